@@ -1,0 +1,44 @@
+// MeshView: the plain, compact result of meshing that quality reports and writers consume.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+#include "base/types.hpp"
+
+namespace fdr::mesh {
+
+// Kind of a constrained (boundary or interior) edge; stored as the segment marker.
+enum class EdgeKind : std::int32_t {
+  kNone = 0,       // unconstrained / unknown
+  kLand = 1,       // mainland coast (or generic outer boundary)
+  kIsland = 2,     // island coast (hole boundary)
+  kOpen = 3,       // open-ocean boundary
+  kBreakline = 4,  // interior constraint (river, levee, channel)
+};
+const char* edge_kind_name(EdgeKind k);
+
+struct MeshEdge {
+  Index a = 0, b = 0;   // vertex ids
+  std::int32_t marker = 0;  // input segment marker (EdgeKind for GIS inputs)
+  std::int32_t part = 0;    // which input chain/ring it came from (nodestring id); -1 unknown
+};
+
+// Triangles are counter-clockwise; vertex coordinates are in the frame given by `origin`:
+// world = origin + vertex. All per-vertex arrays are either empty or vertices.size() long.
+struct MeshView {
+  Point2 origin{0, 0};
+  std::vector<Point2> vertices;
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<MeshEdge> edges;             // every constrained edge (subsegments of the input segments)
+  std::vector<std::int32_t> vertex_marker; // input point marker or segment marker, 0 for Steiner points
+  std::vector<double> z;                   // optional: elevation/depth per vertex (positive up)
+  std::vector<double> f;                   // optional: spacing value per vertex
+  std::string crs_wkt;                     // optional: CRS of world coordinates
+
+  std::size_t num_vertices() const { return vertices.size(); }
+  std::size_t num_triangles() const { return triangles.size(); }
+  Point2 world(Index v) const { return origin + vertices[v]; }
+};
+
+}  // namespace fdr::mesh

@@ -1,0 +1,24 @@
+// SizingField: the spacing function f(x) that drives Functional Delaunay Refinement.
+#pragma once
+#include <memory>
+#include <string>
+#include "base/types.hpp"
+
+namespace fdr::sizing {
+
+// f(p) > 0 is the desired local edge length (same unit as the mesh coordinates).
+// Evaluated in the mesher's local frame. Implementations must be deterministic and
+// cheap: refine calls it once per new triangle (at its circumcenter).
+class SizingField {
+ public:
+  virtual ~SizingField() = default;
+  virtual double operator()(Point2 p) const = 0;
+  // Known Lipschitz constant alpha (|f(x)-f(y)| <= alpha |x-y|), or negative if unknown.
+  virtual double lipschitz() const { return -1.0; }
+  // Human description for reports, e.g. "constant 0.5" or "expr: 0.1*abs(x-5)+0.1".
+  virtual std::string describe() const = 0;
+};
+
+using SizingPtr = std::shared_ptr<const SizingField>;
+
+}  // namespace fdr::sizing

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages fdrmesh needs to build, test and benchmark.
+# Usage: tools/install-deps.sh [--no-qgis]   (root, or sudo available)
+set -euo pipefail
+want_qgis=1
+[ "${1:-}" = "--no-qgis" ] && want_qgis=0
+pkgs=(build-essential cmake ninja-build pkg-config git
+      libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+      libgdal-dev gdal-bin libproj-dev proj-bin libgeographiclib-dev
+      libgtest-dev libgmock-dev libbenchmark-dev
+      libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev
+      gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4)
+[ "$want_qgis" = 1 ] && pkgs+=(qgis python3-qgis python3-pytest)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#pkgs[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
