@@ -1,0 +1,40 @@
+// PSLG cleaning for messy GIS input: snap, remove degenerate pieces, split crossings,
+// drop tiny islands, simplify; every change recorded as a Repair.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+#include "pslg/pslg.hpp"
+
+namespace fdr::pslg {
+
+struct Repair {
+  std::string kind;          // e.g. "snap", "zero_length", "backtrack", "crossing_split",
+                             // "duplicate_segment", "tiny_island", "sliver", "simplify"
+  Point2 where;              // local coordinates of the change
+  double size = 0;           // a length or area that quantifies it (metres / m^2)
+  std::string reason;        // one human sentence
+  std::int32_t part = -1;    // Segment::part (input ring/line id) it concerns, -1 if unknown
+};
+
+struct CleanOptions {
+  double snap_distance = 0;       // vertices closer than this are merged (0: exact duplicates only)
+  // Closed rings (chains of boundary segments) with area < min_island_area_factor * f(c)^2
+  // are removed (c: ring centroid); 0 keeps all.
+  double min_island_area_factor = 0;
+  // Boundary vertices closer than simplify_factor * f to their neighbours are removed where the
+  // boundary moves by less than simplify_tolerance (metres); 0 disables.
+  double simplify_factor = 0;
+  double simplify_tolerance = 0;
+  std::function<double(Point2)> spacing;  // f in the local frame; required when a factor > 0
+  std::size_t max_iterations = 64;        // cap on crossing-split rounds (error if exceeded)
+};
+
+// Returns a PSLG with no duplicate points, no zero-length or duplicate segments and no two
+// segments crossing or overlapping except at shared endpoints. Boundary segments (marker !=
+// mesh::EdgeKind::kBreakline) that coincide an even number of times cancel (they bound the
+// domain by parity); breaklines are merged. Appends every change to `repairs`.
+Pslg clean(const Pslg& in, const CleanOptions& options, std::vector<Repair>* repairs);
+
+}  // namespace fdr::pslg
