@@ -1,0 +1,431 @@
+// Mesh quality measurement and report writers (FDR paper: Definition 2.1, Theorems 4.3-4.5).
+#include "quality/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <ostream>
+#include <string>
+#include <nlohmann/json.hpp>
+
+#include "base/error.hpp"
+#include "predicates/predicates.hpp"
+
+namespace fdr::quality {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = 180.0 / kPi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Kahan-Babuska (Neumaier) compensated sum: areas of millions of triangles of very different size.
+struct CompensatedSum {
+  double sum = 0, c = 0;
+  void add(double v) {
+    const double t = sum + v;
+    if (std::fabs(sum) >= std::fabs(v)) c += (sum - t) + v;
+    else c += (v - t) + sum;
+    sum = t;
+  }
+  double value() const { return sum + c; }
+};
+
+// Static 2-d tree over point indices (implicit: the median of each range is its node).
+class KdTree {
+ public:
+  explicit KdTree(const std::vector<Point2>& p) : p_(p), idx_(p.size()) {
+    std::iota(idx_.begin(), idx_.end(), Index{0});
+    build(0, idx_.size(), 0);
+  }
+  // Squared distance from p_[self] to the nearest point with a different index.
+  double nearest_sq(Index self) const {
+    double best = kInf;
+    query(p_[self], self, 0, idx_.size(), 0, best);
+    return best;
+  }
+
+ private:
+  static double coord(Point2 q, int axis) { return axis == 0 ? q.x : q.y; }
+  void build(std::size_t lo, std::size_t hi, int axis) {
+    if (hi - lo <= 1) return;
+    const std::size_t mid = lo + (hi - lo) / 2;
+    std::nth_element(idx_.begin() + lo, idx_.begin() + mid, idx_.begin() + hi,
+                     [&](Index a, Index b) { return coord(p_[a], axis) < coord(p_[b], axis); });
+    build(lo, mid, 1 - axis);
+    build(mid + 1, hi, 1 - axis);
+  }
+  // Why the far side is visited only conditionally: points across the splitting line are at
+  // least |diff| away, so they cannot beat a best distance already below diff^2.
+  void query(Point2 q, Index self, std::size_t lo, std::size_t hi, int axis, double& best) const {
+    if (lo >= hi) return;
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const Index v = idx_[mid];
+    if (v != self) best = std::min(best, norm2(p_[v] - q));
+    const double diff = coord(q, axis) - coord(p_[v], axis);
+    if (diff < 0) {
+      query(q, self, lo, mid, 1 - axis, best);
+      if (diff * diff < best) query(q, self, mid + 1, hi, 1 - axis, best);
+    } else {
+      query(q, self, mid + 1, hi, 1 - axis, best);
+      if (diff * diff < best) query(q, self, lo, mid, 1 - axis, best);
+    }
+  }
+  const std::vector<Point2>& p_;
+  std::vector<Index> idx_;
+};
+
+double angle_at(Point2 apex, Point2 p, Point2 q) {
+  const Point2 u = p - apex, v = q - apex;
+  const double cr = u.x * v.y - u.y * v.x;
+  return std::atan2(std::fabs(cr), dot(u, v)) * kDeg;
+}
+
+void update_min(std::optional<double>& m, double v) { if (!m || v < *m) m = v; }
+void update_max(std::optional<double>& m, double v) { if (!m || v > *m) m = v; }
+
+bool usable_spacing(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+void Histogram::add(double v) {
+  if (counts.empty()) return;
+  double b = std::floor((v - lo) / width);
+  if (!(b >= 0)) b = 0;  // also catches NaN
+  std::size_t i = b >= static_cast<double>(counts.size()) ? counts.size() - 1 : static_cast<std::size_t>(b);
+  ++counts[i];
+}
+
+Guarantees compute_guarantees(double alpha, double bound_B) {
+  Guarantees g;
+  if (!std::isfinite(alpha) || alpha < 0) {
+    g.note = "no guarantee: the Lipschitz constant alpha of f is unknown";
+    return g;
+  }
+  if (!std::isfinite(bound_B) || bound_B <= 0) {
+    g.note = "no guarantee: the bound B must be positive";
+    return g;
+  }
+  const double ab = alpha * bound_B;
+  if (ab >= 1) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "no guarantee: alpha*B = %.6g >= 1 (Section 4 requires B < 1/alpha)", ab);
+    g.note = buf;
+    return g;
+  }
+  const double s = 2.0 * std::sqrt(2.0) + 3.0 * ab;
+  g.valid = true;
+  g.beta = bound_B / s;
+  g.R_over_l_max = s / (2.0 * (1.0 - ab));
+  g.min_angle_deg = std::asin((1.0 - ab) / s) * kDeg;
+  g.nn_over_f_min = 2.0 * g.beta / (1.0 + alpha * g.beta);
+  g.el_over_f_max = 2.0 * bound_B / (1.0 + ab);
+  g.note = "2D, beta = B/(2*sqrt(2)+3*alpha*B), assuming beta <= D/(2+alpha*D) (Section 4)";
+  return g;
+}
+
+std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) {
+  std::vector<double> nn(pts.size(), kInf);
+  if (pts.size() < 2) return nn;
+  const KdTree tree(pts);
+  for (std::size_t i = 0; i < pts.size(); ++i) nn[i] = std::sqrt(tree.nearest_sq(static_cast<Index>(i)));
+  return nn;
+}
+
+QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
+                              double alpha, const RunInfo& run) {
+  QualityReport r;
+  r.vertices = m.num_vertices();
+  r.triangles = m.num_triangles();
+  r.bound_B = bound_B;
+  r.alpha = alpha;
+  r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
+  r.guarantees = compute_guarantees(alpha, bound_B);
+  r.run = run;
+
+  const std::size_t nv = m.num_vertices();
+  std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
+  CompensatedSum area, r_over_f_sum;
+  std::size_t r_over_f_count = 0;
+  if (f) r.bad_triangles = 0;
+
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      if (tri[k] >= nv) {
+        throw Error(ExitCode::kInternal, "quality: triangle " + std::to_string(t) + " references vertex " +
+                                             std::to_string(tri[k]) + " but the mesh has " +
+                                             std::to_string(nv) + " vertices");
+      }
+    }
+    const Point2 a = m.vertices[tri[0]], b = m.vertices[tri[1]], c = m.vertices[tri[2]];
+    const int o = predicates::orient2d(a, b, c);
+    if (o == 0) ++r.degenerate_triangles;
+    if (o < 0) ++r.inverted_triangles;
+
+    const Point2 d = b - a, e = c - a;
+    const double cr = d.x * e.y - d.y * e.x;  // twice the signed area
+    area.add(0.5 * cr);
+
+    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+    const double lmin = std::min({la, lb, lc}), lmax = std::max({la, lb, lc});
+    for (Index v : tri) el[v] = std::max(el[v], lmax);
+
+    const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+    const double amin = std::min({ang[0], ang[1], ang[2]});
+    const double amax = std::max({ang[0], ang[1], ang[2]});
+    update_min(r.min_angle_deg, amin);
+    update_max(r.max_angle_deg, amax);
+    r.min_angle_histogram.add(amin);
+    r.max_angle_histogram.add(amax);
+
+    // Circumcenter relative to a; a zero determinant means collinear corners (R infinite).
+    double radius = kInf;
+    Point2 center{};
+    const double den = 2.0 * cr;
+    if (o != 0 && den != 0) {
+      const double d2 = norm2(d), e2 = norm2(e);
+      const Point2 u{(e.y * d2 - d.y * e2) / den, (d.x * e2 - e.x * d2) / den};
+      radius = std::sqrt(norm2(u));
+      center = a + u;
+    }
+    update_max(r.max_radius_edge, lmin > 0 ? radius / lmin : kInf);
+
+    if (f) {
+      double ratio = kInf;
+      if (std::isfinite(radius)) {
+        const double fc = (*f)(center);
+        if (!usable_spacing(fc)) { ++r.spacing_invalid; continue; }
+        ratio = radius / fc;
+      }
+      update_max(r.max_R_over_f, ratio);
+      r_over_f_sum.add(ratio);
+      ++r_over_f_count;
+      if (ratio > bound_B) ++*r.bad_triangles;
+    }
+  }
+  r.area = area.value();
+  if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
+
+  // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
+  const std::vector<double> nn = nearest_neighbour_distances(m.vertices);
+  if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
+  const bool have_vertex_f = f != nullptr || m.f.size() == nv;
+  if (!have_vertex_f || nv < 2) return r;
+
+  // Which vertices are corners of some triangle: el(p) is only defined there.
+  std::vector<char> used(nv, 0);
+  for (const auto& tri : m.triangles) for (Index v : tri) used[v] = 1;
+
+  std::vector<double> conf;
+  conf.reserve(nv);
+  CompensatedSum conf_sum;
+  for (std::size_t i = 0; i < nv; ++i) {
+    const double fp = f ? (*f)(m.vertices[i]) : m.f[i];
+    if (!usable_spacing(fp)) { ++r.spacing_invalid; continue; }
+    const double q = nn[i] / fp;
+    const double ci = std::min(q, fp / nn[i]);  // nn = 0 (duplicate point) gives 0
+    conf.push_back(ci);
+    conf_sum.add(ci);
+    r.conformity_histogram.add(ci);
+    update_min(r.nn_over_f_min, q);
+    if (used[i]) update_max(r.el_over_f_max, el[i] / fp);
+  }
+  if (!conf.empty()) {
+    r.conformity_mean = conf_sum.value() / static_cast<double>(conf.size());
+    // p05 by nearest rank: the smallest value with at least 5 % of the vertices at or below it.
+    const std::size_t rank = static_cast<std::size_t>(std::ceil(0.05 * static_cast<double>(conf.size())));
+    const std::size_t k = rank == 0 ? 0 : rank - 1;
+    std::nth_element(conf.begin(), conf.begin() + k, conf.end());
+    r.conformity_p05 = conf[k];
+    r.conformity_min = *std::min_element(conf.begin(), conf.end());
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------- writers
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json num(std::optional<double> v) {
+  if (!v || !std::isfinite(*v)) return nullptr;
+  return *v;
+}
+Json num(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+Json count(std::optional<std::size_t> v) { return v ? Json(*v) : Json(nullptr); }
+
+Json histogram_json(const Histogram& h) {
+  Json j;
+  // Integral widths (5 degrees) are written as integers: {"bin_deg": 5}.
+  if (h.width == std::floor(h.width)) j["bin_deg"] = static_cast<long long>(h.width);
+  else j["bin_deg"] = h.width;
+  j["from_deg"] = h.lo;
+  j["counts"] = h.counts;
+  return j;
+}
+
+}  // namespace
+
+void write_json(const QualityReport& r, std::ostream& out) {
+  Json j;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["min_angle_deg"] = num(r.min_angle_deg);
+  j["max_angle_deg"] = num(r.max_angle_deg);
+  j["max_radius_edge"] = num(r.max_radius_edge);
+  j["max_R_over_f"] = num(r.max_R_over_f);
+  j["mean_R_over_f"] = num(r.mean_R_over_f);
+  j["bad_triangles"] = count(r.bad_triangles);
+  j["exempt_small_angle_triangles"] = r.run.exempt_small_angle_triangles;
+  j["conformity"] = {{"min", num(r.conformity_min)}, {"mean", num(r.conformity_mean)},
+                     {"p05", num(r.conformity_p05)}};
+  j["el_over_f_max"] = num(r.el_over_f_max);
+  j["nn_over_f_min"] = num(r.nn_over_f_min);
+  j["min_angle_histogram"] = histogram_json(r.min_angle_histogram);
+  j["max_angle_histogram"] = histogram_json(r.max_angle_histogram);
+  {
+    Json h;
+    h["bin"] = r.conformity_histogram.width;
+    h["counts"] = r.conformity_histogram.counts;
+    j["conformity_histogram"] = h;
+  }
+  j["timings_s"] = {{"cdt", num(r.run.cdt_s)}, {"refine", num(r.run.refine_s)},
+                    {"write", num(r.run.write_s)}, {"total", num(r.run.total_s)}};
+  j["peak_rss_mb"] = num(r.run.peak_rss_mb);
+  j["predicate_calls"] = {{"filtered", r.run.predicate_filtered}, {"exact", r.run.predicate_exact}};
+  j["steiner_points"] = {{"segment", r.run.steiner_segment}, {"interior", r.run.steiner_interior},
+                         {"total", r.run.steiner_total()}};
+  j["area"] = num(r.area);
+  j["degenerate_triangles"] = r.degenerate_triangles;
+  j["inverted_triangles"] = r.inverted_triangles;
+  j["nn_min"] = num(r.nn_min);
+  j["spacing_invalid_evaluations"] = r.spacing_invalid;
+  j["bound_B"] = num(r.bound_B);
+  j["alpha"] = r.alpha >= 0 ? num(r.alpha) : Json(nullptr);
+  j["spacing"] = r.spacing;
+  j["input_file"] = r.run.input_file;
+  j["min_angle_option_deg"] = num(r.run.min_angle_option_deg);
+  const Guarantees& g = r.guarantees;
+  auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
+  j["guarantees"] = {{"beta", gv(g.beta)},
+                     {"R_over_l_max", gv(g.R_over_l_max)},
+                     {"min_angle_deg", gv(g.min_angle_deg)},
+                     {"nn_over_f_min", gv(g.nn_over_f_min)},
+                     {"el_over_f_max", gv(g.el_over_f_max)},
+                     {"valid", g.valid},
+                     {"note", g.note}};
+  j["measured"] = {{"R_over_l_max", num(r.max_radius_edge)},
+                   {"min_angle_deg", num(r.min_angle_deg)},
+                   {"nn_over_f_min", num(r.nn_over_f_min)},
+                   {"el_over_f_max", num(r.el_over_f_max)}};
+  out << j.dump(2) << '\n';
+}
+
+namespace {
+
+std::string fmt(std::optional<double> v, const char* spec = "%.6g") {
+  if (!v) return "n/a";
+  if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
+  if (std::isnan(*v)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, spec, *v);
+  return buf;
+}
+
+void line(std::ostream& out, const char* label, const std::string& value) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "  %-30s: ", label);
+  out << buf << value << '\n';
+}
+
+}  // namespace
+
+void write_text(const QualityReport& r, std::ostream& out) {
+  out << "Mesh quality\n";
+  if (!r.run.input_file.empty()) line(out, "input", r.run.input_file);
+  line(out, "spacing f", r.spacing);
+  line(out, "vertices / triangles", std::to_string(r.vertices) + " / " + std::to_string(r.triangles));
+  line(out, "area", fmt(r.area, "%.10g"));
+  if (r.degenerate_triangles || r.inverted_triangles) {
+    line(out, "degenerate / inverted", std::to_string(r.degenerate_triangles) + " / " +
+                                           std::to_string(r.inverted_triangles));
+  }
+  line(out, "angle min / max (deg)", fmt(r.min_angle_deg, "%.4f") + " / " + fmt(r.max_angle_deg, "%.4f"));
+  line(out, "max radius-edge R/l", fmt(r.max_radius_edge, "%.4f"));
+  if (r.max_R_over_f) {
+    line(out, "R/f(c) max / mean", fmt(r.max_R_over_f, "%.4f") + " / " + fmt(r.mean_R_over_f, "%.4f"));
+    line(out, "bad triangles (R/f(c) > B)", std::to_string(*r.bad_triangles) + "  (B = " + fmt(r.bound_B) + ")");
+  }
+  if (r.conformity_min) {
+    line(out, "conformity min / mean / p05", fmt(r.conformity_min, "%.4f") + " / " +
+                                                 fmt(r.conformity_mean, "%.4f") + " / " +
+                                                 fmt(r.conformity_p05, "%.4f"));
+    line(out, "nn/f min, el/f max", fmt(r.nn_over_f_min, "%.4f") + ", " + fmt(r.el_over_f_max, "%.4f"));
+  }
+  if (r.spacing_invalid) line(out, "f <= 0 or not finite (skipped)", std::to_string(r.spacing_invalid));
+  line(out, "exempt small-angle triangles", std::to_string(r.run.exempt_small_angle_triangles));
+  line(out, "Steiner points seg/interior", std::to_string(r.run.steiner_segment) + " / " +
+                                                 std::to_string(r.run.steiner_interior));
+  line(out, "time s cdt/refine/write/total",
+       fmt(r.run.cdt_s, "%.3f") + " / " + fmt(r.run.refine_s, "%.3f") + " / " + fmt(r.run.write_s, "%.3f") +
+           " / " + fmt(r.run.total_s, "%.3f"));
+  line(out, "peak RSS (MB)", fmt(r.run.peak_rss_mb, "%.1f"));
+  line(out, "predicates filtered / exact",
+       std::to_string(r.run.predicate_filtered) + " / " + std::to_string(r.run.predicate_exact));
+
+  // Triangle-style histogram: min angles with a bar, max angles as a compact second column.
+  out << "\n  Min-angle histogram" << std::string(32, ' ') << "| Max-angle histogram\n";
+  std::uint64_t peak = 1;
+  for (auto c : r.min_angle_histogram.counts) peak = std::max(peak, c);
+  const auto& hmin = r.min_angle_histogram;
+  const auto& hmax = r.max_angle_histogram;
+  const std::size_t rows = std::max(hmin.counts.size(), (hmax.counts.size() + 1) / 2);
+  for (std::size_t i = 0; i < rows; ++i) {
+    char left[80] = "";
+    if (i < hmin.counts.size()) {
+      const double lo = hmin.lo + static_cast<double>(i) * hmin.width;
+      const int bar = static_cast<int>(std::lround(24.0 * static_cast<double>(hmin.counts[i]) /
+                                                   static_cast<double>(peak)));
+      std::snprintf(left, sizeof left, "  %3.0f - %3.0f deg: %10llu %-24s", lo, lo + hmin.width,
+                    static_cast<unsigned long long>(hmin.counts[i]), std::string(bar, '#').c_str());
+    }
+    out << left;
+    // Two max-angle bins per row keep the table as tall as the min-angle one.
+    for (std::size_t k = 2 * i; k < 2 * i + 2 && k < hmax.counts.size(); ++k) {
+      const double lo = hmax.lo + static_cast<double>(k) * hmax.width;
+      char right[64];
+      std::snprintf(right, sizeof right, " | %3.0f-%3.0f: %9llu", lo, lo + hmax.width,
+                    static_cast<unsigned long long>(hmax.counts[k]));
+      out << right;
+    }
+    out << '\n';
+  }
+
+  const Guarantees& g = r.guarantees;
+  out << "\n  Theory vs measured (alpha = " << (r.alpha >= 0 ? fmt(r.alpha) : std::string("unknown"))
+      << ", B = " << fmt(r.bound_B) << ")\n";
+  if (!g.valid) {
+    out << "    " << g.note << '\n';
+  } else {
+    out << "    beta = " << fmt(g.beta, "%.6f") << "; " << g.note << '\n';
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "    %-22s %-4s %12s %12s  %s\n", "quantity", "", "theory", "measured", "holds");
+    out << buf;
+    auto row = [&](const char* name, const char* rel, double bound, std::optional<double> meas, bool upper) {
+      const char* ok = !meas ? "n/a" : (upper ? (*meas <= bound) : (*meas >= bound)) ? "yes" : "NO";
+      std::snprintf(buf, sizeof buf, "    %-22s %-4s %12s %12s  %s\n", name, rel, fmt(bound, "%.4f").c_str(),
+                    fmt(meas, "%.4f").c_str(), ok);
+      out << buf;
+    };
+    row("R/l max (Thm 4.3)", "<=", g.R_over_l_max, r.max_radius_edge, true);
+    row("min angle deg", ">=", g.min_angle_deg, r.min_angle_deg, false);
+    row("nn/f min (Thm 4.4)", ">=", g.nn_over_f_min, r.nn_over_f_min, false);
+    row("el/f max (Thm 4.5)", "<=", g.el_over_f_max, r.el_over_f_max, true);
+  }
+}
+
+}  // namespace fdr::quality
