@@ -1,0 +1,304 @@
+// Raster sizing rules: distance to shore (BVH), distance/slope/wavelength/curvature rules,
+// cell-wise min and clamp.
+#include "sizing/raster_rules.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "base/error.hpp"
+#include "sizing/fields.hpp"
+
+namespace fdr::sizing {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Grid like_grid(const Grid& g) {
+  Grid out = g;
+  std::fill(out.v.begin(), out.v.end(), 0.0);
+  return out;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw Error(ExitCode::kUsage, what);
+}
+
+// ---------------------------------------------------------------- distance to shore
+
+struct Seg {
+  Point2 a, b;
+};
+
+double seg_dist2(Point2 p, const Seg& s) {
+  const Point2 d = s.b - s.a, w = p - s.a;
+  const double dd = dot(d, d);
+  double t = dd > 0 ? dot(w, d) / dd : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return norm2(p - (s.a + t * d));
+}
+
+struct BNode {
+  double lox, loy, hix, hiy;
+  std::uint32_t first, count;  // leaf: segments [first, first+count); inner: count = 0, children first, first+1
+};
+
+double box_dist2(const BNode& n, Point2 p) {
+  const double ex = std::max({n.lox - p.x, 0.0, p.x - n.hix});
+  const double ey = std::max({n.loy - p.y, 0.0, p.y - n.hiy});
+  return ex * ex + ey * ey;
+}
+
+class SegmentBvh {
+ public:
+  explicit SegmentBvh(std::vector<Seg> segs) : segs_(std::move(segs)) {
+    nodes_.reserve(2 * segs_.size() / kLeaf + 2);
+    nodes_.push_back({});
+    build(0, 0, static_cast<std::uint32_t>(segs_.size()));
+  }
+
+  // Nearest segment to p; `hint` seeds the bound (any segment index). Returns squared distance.
+  double nearest(Point2 p, std::uint32_t& hint) const {
+    double best = seg_dist2(p, segs_[hint]);
+    // Slack on pruning: a segment's rounded distance may undercut its box bound by an ulp,
+    // and the answer must equal a brute-force minimum exactly.
+    auto bound = [&] { return best * (1.0 + 1e-9); };
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const BNode& n = nodes_[stack[--top]];
+      if (box_dist2(n, p) > bound()) continue;
+      if (n.count > 0) {
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+          const double d = seg_dist2(p, segs_[k]);
+          if (d < best) { best = d; hint = k; }
+        }
+        continue;
+      }
+      // Push the farther child first so the nearer one is searched first.
+      const std::uint32_t c0 = n.first, c1 = n.first + 1;
+      const double d0 = box_dist2(nodes_[c0], p), d1 = box_dist2(nodes_[c1], p);
+      if (d0 <= d1) { stack[top++] = c1; stack[top++] = c0; }
+      else { stack[top++] = c0; stack[top++] = c1; }
+    }
+    return best;
+  }
+
+ private:
+  static constexpr std::uint32_t kLeaf = 4;
+
+  void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end) {
+    BNode n{kInf, kInf, -kInf, -kInf, begin, end - begin};
+    double clox = kInf, cloy = kInf, chix = -kInf, chiy = -kInf;
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const Seg& s = segs_[k];
+      n.lox = std::min({n.lox, s.a.x, s.b.x}); n.hix = std::max({n.hix, s.a.x, s.b.x});
+      n.loy = std::min({n.loy, s.a.y, s.b.y}); n.hiy = std::max({n.hiy, s.a.y, s.b.y});
+      const double mx = 0.5 * (s.a.x + s.b.x), my = 0.5 * (s.a.y + s.b.y);
+      clox = std::min(clox, mx); chix = std::max(chix, mx);
+      cloy = std::min(cloy, my); chiy = std::max(chiy, my);
+    }
+    if (end - begin <= kLeaf) { nodes_[node] = n; return; }
+    // Median split on the longer axis of the midpoints' box.
+    const bool by_x = (chix - clox) >= (chiy - cloy);
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(segs_.begin() + begin, segs_.begin() + mid, segs_.begin() + end, [by_x](const Seg& u, const Seg& v) {
+      return by_x ? (u.a.x + u.b.x) < (v.a.x + v.b.x) : (u.a.y + u.b.y) < (v.a.y + v.b.y);
+    });
+    const auto child = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.push_back({});
+    nodes_.push_back({});
+    n.first = child;
+    n.count = 0;
+    nodes_[node] = n;
+    build(child, begin, mid);
+    build(child + 1, mid, end);
+  }
+
+  std::vector<Seg> segs_;
+  std::vector<BNode> nodes_;
+};
+
+// ---------------------------------------------------------------- finite differences
+
+bool valid(const Grid& g, std::int64_t i, std::int64_t j) {
+  return i >= 0 && j >= 0 && i < static_cast<std::int64_t>(g.nx) && j < static_cast<std::int64_t>(g.ny) &&
+         !std::isnan(g.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j)));
+}
+double val(const Grid& g, std::int64_t i, std::int64_t j) {
+  return g.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+}
+
+// First derivative along (di, dj) (a unit index step of length h): central when both
+// neighbours exist, one-sided otherwise, 0 without neighbours.
+double first_diff(const Grid& g, std::int64_t i, std::int64_t j, int di, int dj, double h) {
+  const bool m = valid(g, i - di, j - dj), p = valid(g, i + di, j + dj);
+  const double c = val(g, i, j);
+  if (m && p) return (val(g, i + di, j + dj) - val(g, i - di, j - dj)) / (2 * h);
+  if (p) return (val(g, i + di, j + dj) - c) / h;
+  if (m) return (c - val(g, i - di, j - dj)) / h;
+  return 0.0;
+}
+
+// Second derivative along (di, dj): central, else the stencil shifted by one step forward or
+// backward (exact for quadratics), else 0.
+double second_diff(const Grid& g, std::int64_t i, std::int64_t j, int di, int dj, double h) {
+  auto at = [&](int k) { return val(g, i + k * di, j + k * dj); };
+  auto ok = [&](int k) { return valid(g, i + k * di, j + k * dj); };
+  const double h2 = h * h;
+  if (ok(-1) && ok(1)) return (at(-1) - 2 * at(0) + at(1)) / h2;
+  if (ok(1) && ok(2)) return (at(0) - 2 * at(1) + at(2)) / h2;
+  if (ok(-1) && ok(-2)) return (at(-2) - 2 * at(-1) + at(0)) / h2;
+  return 0.0;
+}
+
+// Mixed derivative on the widest available stencil inside the grid; 0 if a corner is missing.
+double mixed_diff(const Grid& g, std::int64_t i, std::int64_t j) {
+  const std::int64_t ia = std::max<std::int64_t>(i - 1, 0), ib = std::min<std::int64_t>(i + 1, g.nx - 1);
+  const std::int64_t ja = std::max<std::int64_t>(j - 1, 0), jb = std::min<std::int64_t>(j + 1, g.ny - 1);
+  if (ia == ib || ja == jb) return 0.0;
+  if (!valid(g, ia, ja) || !valid(g, ia, jb) || !valid(g, ib, ja) || !valid(g, ib, jb)) return 0.0;
+  return (val(g, ib, jb) - val(g, ib, ja) - val(g, ia, jb) + val(g, ia, ja)) /
+         (static_cast<double>(ib - ia) * g.dx * static_cast<double>(jb - ja) * g.dy);
+}
+
+void check_grid(const Grid& g, const char* what) {
+  if (g.v.size() != g.nx * g.ny || !(g.dx > 0) || !(g.dy > 0))
+    throw Error(ExitCode::kInternal, std::string(what) + ": malformed grid (" + std::to_string(g.nx) + " x " +
+                                         std::to_string(g.ny) + ", " + std::to_string(g.v.size()) + " values)");
+}
+
+}  // namespace
+
+Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Point2>>& shore_segments) {
+  check_grid(like, "distance_to_shore");
+  Grid out = like_grid(like);
+  if (shore_segments.empty()) {
+    std::fill(out.v.begin(), out.v.end(), kInf);
+    return out;
+  }
+  std::vector<Seg> segs;
+  segs.reserve(shore_segments.size());
+  for (std::size_t k = 0; k < shore_segments.size(); ++k) {
+    const auto& [a, b] = shore_segments[k];
+    if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
+      throw Error(ExitCode::kInvalidGeometry, "shore segment " + std::to_string(k) + " (" + format_number(a.x) + ", " +
+                                                  format_number(a.y) + ") - (" + format_number(b.x) + ", " +
+                                                  format_number(b.y) + ") has a non-finite coordinate");
+    segs.push_back({a, b});
+  }
+  const SegmentBvh bvh(std::move(segs));
+  // Why serpentine order: consecutive cells are neighbours, so the previous answer is a
+  // tight initial bound and each query prunes almost everything.
+  std::uint32_t hint = 0;
+  for (std::size_t j = 0; j < out.ny; ++j)
+    for (std::size_t k = 0; k < out.nx; ++k) {
+      const std::size_t i = (j % 2 == 0) ? k : out.nx - 1 - k;
+      out.at(i, j) = std::sqrt(bvh.nearest(out.center(i, j), hint));
+    }
+  return out;
+}
+
+Grid rule_distance(const Grid& dist, double hmin, double g) {
+  check_grid(dist, "rule_distance");
+  require(hmin > 0 && std::isfinite(hmin), "distance rule: hmin must be a positive number, got " + format_number(hmin));
+  require(g >= 0 && std::isfinite(g), "distance rule: growth g must be a finite number >= 0, got " + format_number(g));
+  Grid out = like_grid(dist);
+  for (std::size_t k = 0; k < dist.v.size(); ++k) {
+    const double d = dist.v[k];
+    out.v[k] = std::isnan(d) ? kNaN : std::isinf(d) ? (g > 0 ? kInf : hmin) : hmin + g * std::max(d, 0.0);
+  }
+  return out;
+}
+
+Grid rule_slope(const Grid& depth, double slp) {
+  check_grid(depth, "rule_slope");
+  require(slp > 0 && std::isfinite(slp), "slope rule: slp must be a positive number, got " + format_number(slp));
+  Grid out = like_grid(depth);
+  const double k = 2.0 * std::numbers::pi / slp;
+  for (std::size_t j = 0; j < depth.ny; ++j)
+    for (std::size_t i = 0; i < depth.nx; ++i) {
+      const double d = depth.at(i, j);
+      double h = kInf;
+      if (std::isnan(d)) {
+        h = kNaN;
+      } else if (d > 0) {
+        const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
+        const double gx = first_diff(depth, ii, jj, 1, 0, depth.dx), gy = first_diff(depth, ii, jj, 0, 1, depth.dy);
+        const double gm = std::hypot(gx, gy);
+        if (gm > 0) h = k * d / gm;
+      }
+      out.at(i, j) = h;
+    }
+  return out;
+}
+
+Grid rule_wavelength(const Grid& depth, double period_s, double wl) {
+  check_grid(depth, "rule_wavelength");
+  require(period_s > 0 && std::isfinite(period_s), "wavelength rule: period must be a positive number of seconds, got " +
+                                                       format_number(period_s));
+  require(wl > 0 && std::isfinite(wl), "wavelength rule: wl must be a positive number, got " + format_number(wl));
+  Grid out = like_grid(depth);
+  for (std::size_t k = 0; k < depth.v.size(); ++k) {
+    const double d = depth.v[k];
+    out.v[k] = std::isnan(d) ? kNaN : d > 0 ? period_s * std::sqrt(9.81 * d) / wl : kInf;
+  }
+  return out;
+}
+
+Grid rule_curvature(const Grid& dem, double tol) {
+  check_grid(dem, "rule_curvature");
+  require(tol > 0 && std::isfinite(tol), "curvature rule: tol must be a positive number, got " + format_number(tol));
+  Grid out = like_grid(dem);
+  for (std::size_t j = 0; j < dem.ny; ++j)
+    for (std::size_t i = 0; i < dem.nx; ++i) {
+      if (std::isnan(dem.at(i, j))) {
+        out.at(i, j) = kNaN;
+        continue;
+      }
+      const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
+      const double a = second_diff(dem, ii, jj, 1, 0, dem.dx), c = second_diff(dem, ii, jj, 0, 1, dem.dy);
+      const double b = mixed_diff(dem, ii, jj);
+      // Eigenvalues of [[a, b], [b, c]] are m +- r; the larger in magnitude is |m| + r.
+      const double m = 0.5 * (a + c), r = std::hypot(0.5 * (a - c), b);
+      const double kappa = std::abs(m) + r;
+      out.at(i, j) = kappa > 0 ? std::sqrt(8.0 * tol / kappa) : kInf;
+    }
+  return out;
+}
+
+Grid combine_min(const std::vector<Grid>& grids) {
+  if (grids.empty()) throw Error(ExitCode::kInternal, "combine_min: no grids");
+  const Grid& g0 = grids.front();
+  check_grid(g0, "combine_min");
+  for (std::size_t k = 1; k < grids.size(); ++k) {
+    const Grid& g = grids[k];
+    if (g.nx != g0.nx || g.ny != g0.ny || g.x0 != g0.x0 || g.y0 != g0.y0 || g.dx != g0.dx || g.dy != g0.dy ||
+        g.v.size() != g0.v.size())
+      throw Error(ExitCode::kInternal, "combine_min: grid " + std::to_string(k) + " (" + std::to_string(g.nx) + " x " +
+                                           std::to_string(g.ny) + ") differs in geometry from grid 0 (" +
+                                           std::to_string(g0.nx) + " x " + std::to_string(g0.ny) + ")");
+  }
+  Grid out = g0;
+  for (std::size_t k = 1; k < grids.size(); ++k)
+    for (std::size_t c = 0; c < out.v.size(); ++c) out.v[c] = std::fmin(out.v[c], grids[k].v[c]);
+  return out;
+}
+
+Grid clamp(const Grid& g, double hmin, double hmax) {
+  check_grid(g, "clamp");
+  require(hmin > 0 && std::isfinite(hmin) && hmin <= hmax,
+          "spacing clamp: need 0 < hmin <= hmax, got hmin = " + format_number(hmin) + ", hmax = " + format_number(hmax));
+  Grid out = g;
+  for (double& v : out.v)
+    if (!std::isnan(v)) v = std::min(std::max(v, hmin), hmax);
+  return out;
+}
+
+}  // namespace fdr::sizing

@@ -1,0 +1,52 @@
+// Raster sizing rules on grids in the local metric frame (all sizes and distances in metres).
+#pragma once
+#include <utility>
+#include <vector>
+#include "sizing/grid.hpp"
+
+namespace fdr::sizing {
+
+// Conventions for every rule below:
+// - the output has the input's geometry (nx, ny, x0, y0, dx, dy);
+// - NaN input cells (no data) give NaN output cells;
+// - +inf means "this rule imposes no constraint here"; combine_min() ignores it against
+//   finite values and clamp(g, hmin, hmax) turns it into hmax;
+// - bad parameters throw Error(kUsage, ...).
+
+// Exact Euclidean distance from every cell centre of `like` (its values are ignored) to the
+// nearest of the segments (degenerate segments act as points). Uses a bounding-volume
+// hierarchy over the segments, queried cell by cell with the previous cell's nearest segment
+// as the initial bound, so each query stays near the leaf it starts from. No segments: +inf
+// everywhere. A non-finite coordinate throws Error(kInvalidGeometry) naming the segment.
+Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Point2>>& shore_segments);
+
+// h = hmin + g * d  (hmin > 0, g >= 0): spacing growing linearly away from the shore.
+Grid rule_distance(const Grid& dist, double hmin, double g);
+
+// OceanMesh2D slope rule, depth positive down: h = (2 pi / slp) * depth / |grad depth|,
+// i.e. about slp elements per "slope length" depth/|grad depth|. Land (depth <= 0) and flat
+// cells (|grad| = 0) get +inf. Gradient by central differences, one-sided next to missing
+// data or the grid edge (a direction without any valid neighbour contributes 0).
+Grid rule_slope(const Grid& depth, double slp);
+
+// Shallow-water wavelength rule: h = T * sqrt(9.81 * depth) / wl for depth > 0 (wl elements
+// per wavelength of a wave of period T seconds); land (depth <= 0) gets +inf.
+Grid rule_wavelength(const Grid& depth, double period_s, double wl);
+
+// Terrain curvature rule: h = sqrt(8 * tol / kappa), kappa = largest absolute eigenvalue of
+// the Hessian of the DEM (finite differences: central, shifted one-sided at edges and next to
+// missing data; a mixed term whose 2x2 stencil is incomplete is left out). kappa is the
+// largest principal curvature in the small-slope approximation and bounds the true one, so
+// a straight edge of length h stays within tol of the surface (h^2 kappa / 8 <= tol); inside
+// an equilateral triangle the bound is 4/3 of that — pass a smaller tol for a strict bound.
+// kappa = 0 gives +inf.
+Grid rule_curvature(const Grid& dem, double tol);
+
+// Cell-wise minimum; NaN cells are ignored against numbers (NaN only where all are NaN).
+// Throws Error(kInternal) on an empty list or grids of different geometry.
+Grid combine_min(const std::vector<Grid>& grids);
+
+// Cell-wise min(max(v, hmin), hmax), 0 < hmin <= hmax; +inf becomes hmax; NaN stays NaN.
+Grid clamp(const Grid& g, double hmin, double hmax);
+
+}  // namespace fdr::sizing
