@@ -301,4 +301,12 @@ Grid clamp(const Grid& g, double hmin, double hmax) {
   return out;
 }
 
+Grid fill_nan(const Grid& g, double value) {
+  check_grid(g, "fill_nan");
+  Grid out = g;
+  for (double& v : out.v)
+    if (std::isnan(v)) v = value;
+  return out;
+}
+
 }  // namespace fdr::sizing

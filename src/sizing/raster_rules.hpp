@@ -49,4 +49,8 @@ Grid combine_min(const std::vector<Grid>& grids);
 // Cell-wise min(max(v, hmin), hmax), 0 < hmin <= hmax; +inf becomes hmax; NaN stays NaN.
 Grid clamp(const Grid& g, double hmin, double hmax);
 
+// Replaces NaN (no data) cells by `value`, e.g. hmax on land before building a GridField,
+// which refuses NaN cells. Other cells are unchanged.
+Grid fill_nan(const Grid& g, double value);
+
 }  // namespace fdr::sizing

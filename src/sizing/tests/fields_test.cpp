@@ -38,13 +38,12 @@ TEST(Presets, EqualTheirFormulas) {
 
 TEST(Presets, LipschitzEstimateMatchesKnownConstant) {
   const Box2 b = box(0, 0, 10, 10);
-  for (const SizingField* f : {static_cast<const SizingField*>(new PaperF1Field()),
-                               static_cast<const SizingField*>(new PaperF2Field())}) {
+  const SizingPtr presets[] = {std::make_shared<PaperF1Field>(), std::make_shared<PaperF2Field>()};
+  for (const auto& f : presets) {
     const double est = estimate_lipschitz(*f, b, 513);
     EXPECT_LE(est, f->lipschitz() * (1 + 1e-9)) << f->describe();
     // The steepest slope of paper-f2 sits at its kinks, which finite differences round off.
     EXPECT_GE(est, 0.96 * f->lipschitz()) << f->describe();
-    delete f;
   }
   EXPECT_EQ(estimate_lipschitz(ConstantField(2), b), 0.0);
 }

@@ -161,6 +161,11 @@ TEST(Rules, CombineMinAndClamp) {
   EXPECT_TRUE(std::isnan(cl.v[2]));
   EXPECT_EQ(clamp(a, 2, 5).v[0], 2);
   EXPECT_THROW(clamp(a, 2, 1), Error);
+  const Grid f = fill_nan(a, 7);
+  EXPECT_EQ(f.v[0], 1);
+  EXPECT_EQ(f.v[1], kInf);
+  EXPECT_EQ(f.v[2], 7);
+  EXPECT_EQ(f.v[3], 7);
 }
 
 }  // namespace
