@@ -1,0 +1,118 @@
+// Validity checkers: topology, orientation, constrained Delaunay property, segment recovery.
+#include "mesh/check.hpp"
+#include <sstream>
+#include "predicates/predicates.hpp"
+
+namespace fdr::mesh {
+namespace {
+std::string fmt_pt(Point2 p) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(" << p.x << ", " << p.y << ")";
+  return s.str();
+}
+}  // namespace
+
+CheckResult check_topology(const Triangulation& tri) {
+  CheckResult r;
+  const std::size_t nv = tri.pts.size();
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + k;
+      if (tri.tv[h] >= nv) { r.add("triangle " + std::to_string(t) + " has an invalid vertex id"); continue; }
+      const HalfEdge w = tri.twin[h];
+      if (w == kNoId) continue;
+      if (w >= tri.twin.size() || tri.dead(tri_of(w))) {
+        r.add("half-edge " + std::to_string(h) + " points to a dead or invalid twin");
+        continue;
+      }
+      if (tri.twin[w] != h) r.add("twin asymmetry at half-edge " + std::to_string(h));
+      if (tri.org(w) != tri.dst(h) || tri.dst(w) != tri.org(h))
+        r.add("twin endpoints mismatch at half-edge " + std::to_string(h));
+      if (tri.constrained(w) != tri.constrained(h))
+        r.add("constraint bit asymmetric at half-edge " + std::to_string(h));
+    }
+    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    if (predicates::orient2d(a, b, c) <= 0)
+      r.add("triangle " + std::to_string(t) + " is not counter-clockwise: " + fmt_pt(a) + " " + fmt_pt(b) + " " + fmt_pt(c));
+  }
+  return r;
+}
+
+CheckResult check_delaunay(const Triangulation& tri) {
+  CheckResult r;
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + k;
+      const HalfEdge w = tri.twin[h];
+      if (w == kNoId || w < h || tri.constrained(h)) continue;
+      const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+      const Point2 d = tri.pts[tri.apex(w)];
+      if (predicates::incircle(a, b, c, d) > 0)
+        r.add("edge " + fmt_pt(tri.pts[tri.org(h)]) + "-" + fmt_pt(tri.pts[tri.dst(h)]) + " is not locally Delaunay");
+    }
+  }
+  return r;
+}
+
+CheckResult check_segments(const Triangulation& tri) {
+  CheckResult r;
+  for (Index s = 0; s < tri.input_segments.size(); ++s) {
+    const auto& seg = tri.input_segments[s];
+    if (seg.a == seg.b) continue;
+    if (tri.vhe[seg.a] == kNoId || tri.vhe[seg.b] == kNoId) continue;  // removed with a hole/exterior
+    // Follow constrained edges labelled s from a; each step must reach a new vertex.
+    Index cur = seg.a, prev = kNoId;
+    std::size_t steps = 0;
+    bool ok = true;
+    while (cur != seg.b) {
+      if (++steps > tri.pts.size()) { ok = false; break; }
+      Index nxt = kNoId;
+      const HalfEdge h0 = tri.vhe[cur];
+      HalfEdge h = h0;
+      // Scan the whole star (both directions to cope with boundary vertices).
+      for (int dir = 0; dir < 2 && nxt == kNoId; ++dir) {
+        h = h0;
+        for (std::size_t guard = 0; guard < 100000; ++guard) {
+          const Index w = tri.dst(h);
+          if (w != prev && tri.constrained(h)) {
+            auto it = tri.seg_of.find(edge_key(cur, w));
+            if (it != tri.seg_of.end() && it->second == s) { nxt = w; break; }
+          }
+          // also the incoming edge prev(h) (apex -> cur) for boundary stars
+          const HalfEdge pin = prev_he(h);
+          const Index u = tri.org(pin);
+          if (u != prev && tri.constrained(pin)) {
+            auto it = tri.seg_of.find(edge_key(cur, u));
+            if (it != tri.seg_of.end() && it->second == s) { nxt = u; break; }
+          }
+          const HalfEdge n = dir == 0 ? tri.twin[prev_he(h)] : (tri.twin[h] == kNoId ? kNoId : next_he(tri.twin[h]));
+          if (n == kNoId || n == h0) break;
+          h = n;
+        }
+      }
+      if (nxt == kNoId) { ok = false; break; }
+      prev = cur;
+      cur = nxt;
+    }
+    if (!ok)
+      r.add("input segment " + std::to_string(s) + " " + fmt_pt(tri.pts[seg.a]) + "-" + fmt_pt(tri.pts[seg.b]) +
+            " is not a chain of mesh edges");
+  }
+  return r;
+}
+
+CheckResult check_all(const Triangulation& tri) {
+  CheckResult r = check_topology(tri);
+  for (auto* part : {&check_delaunay, &check_segments}) {
+    if (!r.ok() && part == &check_delaunay) break;  // geometry checks need sane topology
+    CheckResult q = part(tri);
+    r.count += q.count;
+    for (auto& p : q.problems) if (r.problems.size() < 20) r.problems.push_back(p);
+  }
+  return r;
+}
+
+}  // namespace fdr::mesh

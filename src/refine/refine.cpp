@@ -1,0 +1,282 @@
+// Functional Delaunay Refinement (Chen-style FDR paper, Section 3) on a constrained Delaunay
+// triangulation: rule 1 (encroached subsegments, split at midpoints or concentric shells) before
+// rule 3 (B-bad triangles by R/f(c), split at circumcenters unless that encroaches a subsegment).
+#include "refine/refine.hpp"
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include "base/error.hpp"
+#include "cdt/locate.hpp"
+#include "predicates/predicates.hpp"
+
+namespace fdr::refine {
+using mesh::Triangulation;
+using mesh::VertexKind;
+using predicates::diametral;
+
+namespace {
+constexpr int kBuckets = 2048;  // 16 buckets per doubling of R^2/f^2: 2^(1/32) resolution in R/f
+constexpr double kPi = 3.14159265358979323846;
+
+std::string pt(Point2 p) {
+  std::ostringstream s;
+  s.precision(15);
+  s << "(" << p.x << ", " << p.y << ")";
+  return s.str();
+}
+
+int bucket_of(double key2) {
+  int e;
+  const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
+  const int idx = (e - 1) * 16 + static_cast<int>((m - 0.5) * 32.0);
+  return idx < 0 ? 0 : (idx >= kBuckets ? kBuckets - 1 : idx);
+}
+}  // namespace
+
+Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt)
+    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets) {
+  if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
+    throw Error(ExitCode::kUsage, "bound B must be a positive number");
+  b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
+  if (opt_.min_angle_deg > 0) {
+    if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
+    const double s = std::sin(opt_.min_angle_deg * kPi / 180.0);
+    rho2_inv_ = 4.0 * s * s;  // R/l > 1/(2 sin theta)  <=>  (R^2/l^2) * 4 sin^2 > 1
+  }
+}
+
+bool Refiner::shell_apex_equal(Index p, Index q) const {
+  auto ip = shell_.find(p), iq = shell_.find(q);
+  return ip != shell_.end() && iq != shell_.end() && ip->second == iq->second;
+}
+
+double Refiner::badness(TriangleId t, bool* exempt) const {
+  const auto& T = tri_;
+  const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+  const double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double d = 2.0 * (bx * cy - by * cx);
+  const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+  const double r2 = ux * ux + uy * uy;
+  const Point2 cc{a.x + ux, a.y + uy};
+  const double fc = f_(cc);
+  if (!(fc > 0) || !std::isfinite(fc))
+    throw Error(ExitCode::kInvalidSpacing, "spacing f" + pt(cc) + " = " + std::to_string(fc) +
+                                               " is not a positive finite number (at a circumcenter)");
+  const double kf = r2 / (fc * fc) * b2_inv_;
+  double key = kf;
+  if (exempt) *exempt = false;
+  if (rho2_inv_ > 0) {
+    const double ex = c.x - b.x, ey = c.y - b.y;
+    const double e2 = ex * ex + ey * ey;
+    // Shortest edge and the vertex opposite it (where the smallest angle is).
+    double l2 = b2;
+    int opp = 2;  // edge a-b is opposite c
+    if (c2 < l2) { l2 = c2; opp = 1; }
+    if (e2 < l2) { l2 = e2; opp = 0; }
+    const double ka = r2 / l2 * rho2_inv_;
+    if (ka > 1 && ka > kf) {
+      // Why exempt: an angle forced by two input segments (or by two shell vertices around the
+      // same input apex) cannot be improved by splitting; Triangle leaves these alone too.
+      const Index vo = T.tv[3 * t + opp];
+      const HalfEdge h_in = 3 * t + static_cast<Index>((opp + 2) % 3);  // edge ending at vo
+      const HalfEdge h_out = 3 * t + static_cast<Index>(opp);           // edge leaving vo
+      const Index p = T.tv[3 * t + (opp + 1) % 3], q = T.tv[3 * t + (opp + 2) % 3];
+      const bool input_angle = T.vkind[vo] == VertexKind::kInput && T.constrained(h_in) && T.constrained(h_out);
+      if (input_angle || shell_apex_equal(p, q)) {
+        if (exempt) *exempt = true;
+        return kf > 1 ? kf : 0;
+      }
+      key = ka;
+    }
+  }
+  return key > 1 ? key : 0;
+}
+
+void Refiner::push_bad(TriangleId t, double key2) {
+  const int b = bucket_of(key2);
+  buckets_[b].push_back({t, tri_.tv[3 * t], tri_.tv[3 * t + 1], tri_.tv[3 * t + 2]});
+  if (b > top_) top_ = b;
+}
+
+void Refiner::evaluate(TriangleId t) {
+  ++stats_.triangles_tested;
+  bool exempt = false;
+  const double k = badness(t, &exempt);
+  if (k > 1) push_bad(t, k);
+}
+
+void Refiner::check_encroached_edges(TriangleId t) {
+  const auto& T = tri_;
+  for (int k = 0; k < 3; ++k) {
+    const HalfEdge h = 3 * t + static_cast<Index>(k);
+    if (!T.constrained(h)) continue;
+    const Index a = T.org(h), b = T.dst(h), c = T.apex(h);
+    if (diametral(T.pts[a], T.pts[b], T.pts[c]) > 0) enc_.push_back({a, b});
+  }
+}
+
+void Refiner::init() {
+  for (TriangleId t = 0; t < tri_.num_slots(); ++t) {
+    if (tri_.dead(t)) continue;
+    check_encroached_edges(t);
+    evaluate(t);
+  }
+}
+
+void Refiner::split_subsegment(Index a, Index b) {
+  auto& T = tri_;
+  HalfEdge h = T.find_edge(a, b);
+  if (h == kNoId) h = T.find_edge(b, a);
+  if (h == kNoId || !T.constrained(h)) return;  // already split
+  const Point2 pa = T.pts[a], pb = T.pts[b];
+  const double len = dist(pa, pb);
+  const bool ia = T.vkind[a] == VertexKind::kInput, ib = T.vkind[b] == VertexKind::kInput;
+  Point2 m;
+  Index apex = kNoId;
+  int shell_exp = 0;
+  if (ia != ib) {
+    // Concentric shells (Ruppert; Shewchuk's Triangle): split at a power-of-two distance from
+    // the input vertex, so that segments sharing it are split on the same circles and cannot
+    // encroach each other forever at a small angle.
+    apex = ia ? a : b;
+    const Point2 o = ia ? pa : pb, q = ia ? pb : pa;
+    shell_exp = static_cast<int>(std::lround(std::log2(len * 0.5)));
+    const double dd = std::ldexp(1.0, shell_exp);
+    const double s = dd / len;
+    m = {o.x + s * (q.x - o.x), o.y + s * (q.y - o.y)};
+  } else {
+    m = {0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)};
+  }
+  if (m == pa || m == pb)
+    throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
+                                          " further: the spacing is below floating-point resolution there");
+  if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h}))
+    throw Error(ExitCode::kInternal, "could not split subsegment at " + pt(T.origin + m));
+  const Index v = ins_.commit(m, VertexKind::kSegment);
+  if (apex != kNoId) shell_[v] = {apex, shell_exp};
+  ++stats_.segment_splits;
+  for (TriangleId t : ins_.new_triangles()) {
+    check_encroached_edges(t);
+    evaluate(t);
+  }
+}
+
+void Refiner::split_triangle(const BadEntry& e) {
+  auto& T = tri_;
+  const Point2 a = T.pts[e.a], b = T.pts[e.b], c = T.pts[e.c];
+  const Point2 cc = predicates::circumcenter(a, b, c);
+  const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
+  if (loc.kind == cdt::LocateKind::kBlocked) {
+    if (loc.he == kNoId) throw Error(ExitCode::kInternal, "point location failed near " + pt(T.origin + cc));
+    // The circumcenter lies beyond a subsegment; it encroaches the first one crossed.
+    ++stats_.rejected_circumcenters;
+    enc_.push_back({T.org(loc.he), T.dst(loc.he)});
+    buckets_[0].push_back(e);  // retried after the split (lowest bucket: after other bad ones)
+    if (top_ < 0) top_ = 0;
+    return;
+  }
+  if (loc.kind == cdt::LocateKind::kOnVertex) { ++stats_.stuck; return; }
+  if (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)) {
+    ++stats_.rejected_circumcenters;
+    enc_.push_back({T.org(loc.he), T.dst(loc.he)});
+    buckets_[0].push_back(e);
+    if (top_ < 0) top_ = 0;
+    return;
+  }
+  if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
+  bool encroach = false;
+  for (HalfEdge h : ins_.boundary()) {
+    if (!T.constrained(h)) continue;
+    if (diametral(T.pts[T.org(h)], T.pts[T.dst(h)], cc) > 0) {
+      enc_.push_back({T.org(h), T.dst(h)});
+      encroach = true;
+    }
+  }
+  if (encroach) {
+    ins_.abort();
+    ++stats_.rejected_circumcenters;
+    push_bad(e.t, badness(e.t));
+    return;
+  }
+  ins_.commit(cc, VertexKind::kFree);
+  ++stats_.circumcenters;
+  for (TriangleId t : ins_.new_triangles()) evaluate(t);
+}
+
+bool Refiner::step() {
+  if (stats_.steiner() >= opt_.max_steiner)
+    throw Error(ExitCode::kWorkLimit, "Steiner point cap reached (--max-steiner " + std::to_string(opt_.max_steiner) +
+                                          "); the spacing function asks for more vertices than allowed");
+  while (!enc_.empty()) {
+    const auto [a, b] = enc_.back();
+    enc_.pop_back();
+    const std::uint64_t before = stats_.segment_splits;
+    split_subsegment(a, b);
+    if (stats_.segment_splits != before) return true;
+  }
+  while (top_ >= 0) {
+    auto& bk = buckets_[top_];
+    if (bk.empty()) { --top_; continue; }
+    const BadEntry e = bk.back();
+    bk.pop_back();
+    const auto& T = tri_;
+    if (T.dead(e.t) || T.tv[3 * e.t] != e.a || T.tv[3 * e.t + 1] != e.b || T.tv[3 * e.t + 2] != e.c) continue;
+    if (top_ == 0 && badness(e.t) <= 1) continue;  // retried entries: re-test
+    split_triangle(e);
+    return true;
+  }
+  return !enc_.empty();
+}
+
+void Refiner::run() {
+  std::uint64_t tick = 0;
+  while (step()) {
+    if (opt_.progress && (++tick & 4095) == 0) {
+      const double frac = opt_.expected_steiner > 0 ? std::min(0.99, stats_.steiner() / opt_.expected_steiner) : 0.0;
+      if (!opt_.progress(frac, "refine")) throw Error(ExitCode::kCancelled, "cancelled during refinement");
+    }
+  }
+}
+
+double estimate_triangles(const Triangulation& T, const sizing::SizingField& f, double bound) {
+  // Calibration: FDR at bound B produces about kC / (B f)^2 triangles per unit area (measured on
+  // the paper's square cases; see README "Work estimate").
+  const double kC = 1.1;
+  double total = 0;
+  struct Tri { Point2 a, b, c; int depth; };
+  std::vector<Tri> stack;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    stack.push_back({T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], 0});
+    // Why adaptive: a coarse CDT triangle may span a wide range of f; subdivide where the
+    // estimate inside one piece is large, so the sum tracks the integral of 1/f^2.
+    while (!stack.empty()) {
+      Tri q = stack.back();
+      stack.pop_back();
+      const double area = 0.5 * std::fabs((q.b.x - q.a.x) * (q.c.y - q.a.y) - (q.b.y - q.a.y) * (q.c.x - q.a.x));
+      const Point2 g{(q.a.x + q.b.x + q.c.x) / 3, (q.a.y + q.b.y + q.c.y) / 3};
+      const double fg = f(g) * bound;
+      const double n = (fg > 0 && std::isfinite(fg)) ? kC * area / (fg * fg) : 0;
+      bool split = n > 4 && q.depth < 16 && total < 1e12;
+      if (split) {
+        // Only where f varies across the piece; where it is nearly constant the estimate holds.
+        const double fa = f(q.a), fb = f(q.b), fc = f(q.c);
+        const double lo = std::min({fa, fb, fc, fg / bound}), hi = std::max({fa, fb, fc, fg / bound});
+        split = !(hi <= 1.25 * lo);
+      }
+      if (split) {
+        const Point2 ab = 0.5 * (q.a + q.b), bc = 0.5 * (q.b + q.c), ca = 0.5 * (q.c + q.a);
+        stack.push_back({q.a, ab, ca, q.depth + 1});
+        stack.push_back({ab, q.b, bc, q.depth + 1});
+        stack.push_back({ca, bc, q.c, q.depth + 1});
+        stack.push_back({ab, bc, ca, q.depth + 1});
+      } else {
+        total += n;
+      }
+    }
+  }
+  return total;
+}
+
+}  // namespace fdr::refine

@@ -1,0 +1,75 @@
+// Functional Delaunay Refinement (FDR): split B-bad triangles (R/f(c) > B) at their circumcenters,
+// largest R/f(c) first, encroached subsegments first, with concentric-shell segment splitting.
+#pragma once
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+#include "base/progress.hpp"
+#include "cdt/insert.hpp"
+#include "mesh/triangulation.hpp"
+#include "sizing/sizing_field.hpp"
+
+namespace fdr::refine {
+
+struct RefineOptions {
+  double bound = 1.0;          // B: a triangle is bad when R / f(c) > B
+  double min_angle_deg = 0.0;  // optional extra bound (like Triangle -q); 0 disables
+  // Cap on inserted Steiner points; reaching it ends in Error(kWorkLimit). Documented default.
+  std::uint64_t max_steiner = 20'000'000;
+  ProgressFn progress;              // called every few thousand insertions (may cancel)
+  double expected_steiner = 0;      // for progress fractions (0: unknown)
+};
+
+struct RefineStats {
+  std::uint64_t segment_splits = 0;        // Steiner points on segments (midpoints or shells)
+  std::uint64_t circumcenters = 0;         // Steiner points at circumcenters
+  std::uint64_t rejected_circumcenters = 0;  // circumcenters that would encroach a subsegment
+  std::uint64_t exempt_small_angle = 0;    // angle-bad triangles left alone: small input angle
+  std::uint64_t stuck = 0;                 // bad triangles whose circumcenter could not be placed
+  std::uint64_t triangles_tested = 0;
+  std::uint64_t steiner() const { return segment_splits + circumcenters; }
+};
+
+class Refiner {
+ public:
+  Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
+  // Queues every encroached subsegment and every bad triangle of the current mesh.
+  void init();
+  // One refinement action (split one encroached subsegment, or handle one bad triangle).
+  // Returns false when nothing is left to do.
+  bool step();
+  // Runs to completion; throws Error(kWorkLimit) at the Steiner cap, kCancelled on cancel.
+  void run();
+  const RefineStats& stats() const { return stats_; }
+  // Bad-triangle test as used by the queue: returns the squared priority key (> 1 means bad,
+  // 0 when good); exempt is set when the triangle is bad only by angle and the small angle is
+  // forced by the input.
+  double badness(TriangleId t, bool* exempt = nullptr) const;
+
+ private:
+  struct BadEntry { TriangleId t; Index a, b, c; };
+  void evaluate(TriangleId t);
+  void push_bad(TriangleId t, double key2);
+  void check_encroached_edges(TriangleId t);
+  void split_subsegment(Index a, Index b);
+  void split_triangle(const BadEntry& e);
+  bool shell_apex_equal(Index p, Index q) const;
+
+  mesh::Triangulation& tri_;
+  const sizing::SizingField& f_;
+  RefineOptions opt_;
+  RefineStats stats_;
+  cdt::Inserter ins_;
+  double b2_inv_ = 1, rho2_inv_ = 0;
+  std::vector<std::pair<Index, Index>> enc_;
+  std::vector<std::vector<BadEntry>> buckets_;
+  int top_ = -1;
+  // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
+  std::unordered_map<Index, std::pair<Index, int>> shell_;
+};
+
+// Estimated number of triangles FDR will produce: adaptive quadrature of c / f^2 over the
+// triangulated domain (c calibrated on the paper's test cases for the given B).
+double estimate_triangles(const mesh::Triangulation& tri, const sizing::SizingField& f, double bound);
+
+}  // namespace fdr::refine
