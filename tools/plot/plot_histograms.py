@@ -40,7 +40,7 @@ def main(argv=None):
         print(f"ERROR: {e}", file=sys.stderr)
         return 1
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), dpi=args.dpi)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5), dpi=args.dpi)
     ax_min, ax_max, ax_conf = axes
     bins_min = np.arange(0, 62, 2.0)
     bins_max = np.arange(60, 182, 2.0)

@@ -1,0 +1,234 @@
+"""pytest for the plot scripts: readers, spacing expressions, PNG output, paper_figures.sh plumbing."""
+import json
+import os
+import stat
+import struct
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
+TINY = os.path.join(ROOT, "testdata", "plot")
+PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
+sys.path.insert(0, HERE)
+import fdrplot  # noqa: E402
+
+
+def run(script, *args, env=None):
+    return subprocess.run([PY, os.path.join(HERE, script), *args], capture_output=True, text=True,
+                          env=env, timeout=120)
+
+
+def png_size(path):
+    with open(path, "rb") as fh:
+        head = fh.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return struct.unpack(">II", head[16:24])
+
+
+def assert_png(path, width, height, min_kb=8):
+    assert os.path.exists(path), path
+    assert os.path.getsize(path) > min_kb * 1024, f"{path}: only {os.path.getsize(path)} bytes"
+    assert png_size(path) == (width, height)
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(path)
+    colours = np.unique((img[..., :3] * 255).astype(np.uint8).reshape(-1, 3), axis=0)
+    assert len(colours) > 20, f"{path}: only {len(colours)} distinct colours"
+
+
+# ---------------------------------------------------------------- library
+
+def test_spacing_presets_and_syntax():
+    f1 = fdrplot.spacing_function("paper-f1")
+    assert f1(5.0, 5.0) == pytest.approx(0.1)
+    assert f1(0.0, 0.0) == pytest.approx(1.1)
+    f2 = fdrplot.spacing_function("paper-f2")
+    assert f2(0.0, 0.0) == pytest.approx(0.1)
+    assert f2(np.pi / 8, np.pi / 8) == pytest.approx(0.1 * np.sqrt(2))
+    assert fdrplot.spacing_function("3*paper-f1")(5, 5) == pytest.approx(0.3)
+    g = fdrplot.spacing_function("max(x, y, 1)^2 + min(abs(x), 2) - sqrt(4) + exp(0) + log(1)")
+    assert g(3.0, -1.0) == pytest.approx(9 + 2 - 2 + 1)
+    assert g(np.array([0.0, 3.0]), 0.0).tolist() == pytest.approx([1 + 0 - 1, 9 + 2 - 1])
+    assert fdrplot.spacing_function("0.5")(np.zeros(3), np.zeros(3)).shape == (3,)
+    for bad in ("__import__('os')", "x +* ", "z+1", "x; y", "x.real"):
+        with pytest.raises(fdrplot.MeshError):
+            fdrplot.spacing_function(bad)(1.0, 1.0)
+
+
+def test_readers_agree_on_tiny_lattice():
+    a = fdrplot.read_mesh(os.path.join(TINY, "tiny.node"))
+    b = fdrplot.read_mesh(os.path.join(TINY, "tiny.2dm"))
+    for m in (a, b):
+        assert m.xy.shape == (9, 2) and m.tris.shape == (8, 3)
+        angles, center, radius, edges = fdrplot.triangle_metrics(m)
+        assert angles.min() == pytest.approx(45) and angles.max() == pytest.approx(90)
+        assert angles.sum(1) == pytest.approx(np.full(8, 180.0))
+        assert radius == pytest.approx(np.full(8, np.sqrt(0.5)))
+        assert m.z is not None and m.z[4] == pytest.approx(-2.5)
+    assert len(b.segments) == 8  # the closed boundary nodestring
+    c = fdrplot.conformity(a, lambda x, y: np.ones_like(x))
+    assert c == pytest.approx(np.ones(9))
+    c = fdrplot.conformity(a, lambda x, y: np.full_like(x, 0.5))
+    assert c == pytest.approx(np.full(9, 0.5))
+    rf = fdrplot.r_over_f(a, lambda x, y: x + 1)
+    assert sorted(rf)[0] == pytest.approx(np.sqrt(0.5) / 2.5)
+
+
+def test_nearest_neighbour_exact():
+    rng = np.random.default_rng(3)
+    xy = rng.random((300, 2)) ** 3
+    nn = fdrplot.nearest_neighbour(xy)
+    d = np.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1))
+    np.fill_diagonal(d, np.inf)
+    assert nn == pytest.approx(d.min(1))
+
+
+def test_bad_files_name_file_and_line(tmp_path):
+    p = tmp_path / "bad.node"
+    p.write_text("3 2 0 0\n1 0 0\n2 1 zero\n3 0 1\n")
+    (tmp_path / "bad.ele").write_text("1 3 0\n1 1 2 3\n")
+    with pytest.raises(fdrplot.MeshError, match=r"bad.node:3"):
+        fdrplot.read_mesh(str(p))
+    q = tmp_path / "m.2dm"
+    q.write_text("MESH2D\nE3T 1 1 2 9 1\nND 1 0 0 0\nND 2 1 0 0\nND 3 0 1 0\n")
+    with pytest.raises(fdrplot.MeshError, match=r"m.2dm:2: E3T references missing node 9"):
+        fdrplot.read_mesh(str(q))
+    with pytest.raises(fdrplot.MeshError, match="unknown mesh format"):
+        fdrplot.read_mesh(str(tmp_path / "x.obj"))
+
+
+# ---------------------------------------------------------------- scripts
+
+@pytest.mark.parametrize("color", ["min_angle", "r_over_f", "depth", "none"])
+def test_plot_mesh_node_ele(tmp_path, color):
+    out = tmp_path / f"{color}.png"
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.node"), "-o", str(out), "--color", color,
+            "--spacing", "0.5+0.1*x^2", "--bound", "1", "--size", "6", "--dpi", "100")
+    assert r.returncode == 0, r.stderr
+    assert_png(str(out), 600, 600)
+
+
+def test_plot_mesh_2dm(tmp_path):
+    out = tmp_path / "m.png"
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.2dm"), "-o", str(out), "--color", "depth")
+    assert r.returncode == 0, r.stderr
+    assert_png(str(out), 1200, 1200)
+
+
+def test_plot_mesh_gpkg(tmp_path):
+    ogr = pytest.importorskip("osgeo.ogr")
+    mesh = fdrplot.read_mesh(os.path.join(TINY, "tiny.node"))
+    path = str(tmp_path / "mesh.gpkg")
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    nodes = ds.CreateLayer("nodes", geom_type=ogr.wkbPoint)
+    nodes.CreateField(ogr.FieldDefn("z", ogr.OFTReal))
+    for (x, y), z in zip(mesh.xy, mesh.z):
+        f = ogr.Feature(nodes.GetLayerDefn())
+        f.SetField("z", float(z))
+        f.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({x} {y})"))
+        nodes.CreateFeature(f)
+    tris = ds.CreateLayer("triangles", geom_type=ogr.wkbPolygon)
+    for n in ("area", "min_angle", "R_over_f"):
+        tris.CreateField(ogr.FieldDefn(n, ogr.OFTReal))
+    for k, t in enumerate(mesh.tris):
+        p = mesh.xy[list(t) + [t[0]]]
+        f = ogr.Feature(tris.GetLayerDefn())
+        f.SetField("area", 0.5)
+        f.SetField("min_angle", 45.0)
+        f.SetField("R_over_f", 0.1 * k)
+        f.SetGeometry(ogr.CreateGeometryFromWkt("POLYGON ((" + ",".join(f"{x} {y}" for x, y in p) + "))"))
+        tris.CreateFeature(f)
+    bl = ds.CreateLayer("boundaries", geom_type=ogr.wkbLineString)
+    bl.CreateField(ogr.FieldDefn("kind", ogr.OFTString))
+    for kind, wkt in (("land", "LINESTRING (0 0,2 0,2 2)"), ("open", "LINESTRING (2 2,0 2,0 0)")):
+        f = ogr.Feature(bl.GetLayerDefn())
+        f.SetField("kind", kind)
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        bl.CreateFeature(f)
+    ds = None
+    m = fdrplot.read_mesh(path)
+    assert m.xy.shape == (9, 2) and m.tris.shape == (8, 3)
+    assert m.tri_fields["R_over_f"][7] == pytest.approx(0.7)
+    assert {k for _, _, k in m.segments} == {"land", "open"}
+    out = tmp_path / "g.png"
+    r = run("plot_mesh.py", path, "-o", str(out), "--color", "r_over_f", "--size", "5", "--dpi", "100")
+    assert r.returncode == 0, r.stderr
+    assert_png(str(out), 500, 500)
+
+
+def test_plot_mesh_errors(tmp_path):
+    r = run("plot_mesh.py", str(tmp_path / "missing.node"), "-o", str(tmp_path / "x.png"))
+    assert r.returncode == 1 and "missing.node: no such file" in r.stderr
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.node"), "-o", str(tmp_path / "x.png"), "--color", "r_over_f")
+    assert r.returncode == 1 and "needs --spacing" in r.stderr
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.node"), "-o", str(tmp_path / "x.png"), "--color", "r_over_f",
+            "--spacing", "open('x')")
+    assert r.returncode == 1 and "unknown name 'open'" in r.stderr
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_plot_histograms(tmp_path):
+    out = tmp_path / "h.png"
+    r = run("plot_histograms.py", os.path.join(TINY, "tiny.node"), os.path.join(TINY, "tiny.2dm"), "-o", str(out),
+            "--spacing", "paper-f1", "--labels", "node,2dm", "--dpi", "100")
+    assert r.returncode == 0, r.stderr
+    assert_png(str(out), 1500, 450)
+    r = run("plot_histograms.py", os.path.join(TINY, "tiny.node"), "-o", str(out), "--labels", "a,b")
+    assert r.returncode == 1 and "--labels has 2 entries for 1 meshes" in r.stderr
+
+
+FAKE_FDRMESH = textwrap.dedent("""\
+    #!{py}
+    # Stand-in for fdrmesh in tests: a lattice mesh of the .poly's box, spacing ~ B * min f.
+    import json, sys
+    import numpy as np
+    from matplotlib.tri import Triangulation
+    sys.path.insert(0, {here!r})
+    import fdrplot
+    a = sys.argv[1:]
+    assert a[0] == "mesh" and "-q" in a
+    out, spacing, bound, report = (a[a.index(k) + 1] for k in ("-o", "--spacing", "--bound", "--report"))
+    n = int(10 / (float(bound) * 0.8)) + 2
+    g = np.linspace(0, 10, n)
+    X, Y = np.meshgrid(g, g)
+    xy = np.c_[X.ravel(), Y.ravel()]
+    t = Triangulation(xy[:, 0], xy[:, 1]).triangles
+    stem = out[:-5]
+    with open(stem + ".node", "w") as o:
+        o.write(f"{{len(xy)}} 2 0 1\\n" + "".join(f"{{i+1}} {{x}} {{y}} 0\\n" for i, (x, y) in enumerate(xy)))
+    with open(stem + ".ele", "w") as o:
+        o.write(f"{{len(t)}} 3 0\\n" + "".join(f"{{i+1}} {{p+1}} {{q+1}} {{r+1}}\\n" for i, (p, q, r) in enumerate(t)))
+    m = fdrplot.read_mesh(stem + ".node")
+    ang = fdrplot.triangle_metrics(m)[0]
+    json.dump({{"vertices": len(xy), "triangles": len(t), "min_angle_deg": float(ang.min()),
+               "max_angle_deg": float(ang.max()), "max_R_over_f": None,
+               "conformity": {{"min": 0.5, "mean": 0.75, "p05": 0.6}}}}, open(report, "w"))
+""")
+
+
+def test_paper_figures_script_with_stand_in_mesher(tmp_path):
+    fake = tmp_path / "fdrmesh"
+    fake.write_text(FAKE_FDRMESH.format(py=PY, here=HERE))
+    fake.chmod(fake.stat().st_mode | stat.S_IXUSR)
+    out = tmp_path / "figs"
+    env = dict(os.environ, FDR_PAPER_BOUNDS="1 sqrt2", PYTHON=PY)
+    r = subprocess.run(["bash", os.path.join(HERE, "paper_figures.sh"), str(fake), str(out)],
+                       capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    for f in ("f1", "f2"):
+        for b in ("1", "sqrt2"):
+            assert_png(str(out / f"{f}_B{b}.png"), 1200, 1200)
+            assert json.load(open(out / f"{f}_B{b}.json"))["vertices"] > 0
+        assert_png(str(out / f"hist_{f}.png"), 1800, 540)
+    table = (out / "table.md").read_text().splitlines()
+    assert table[0].startswith("| case | B | N vertices | triangles | θmin (°) | θmax (°)")
+    assert len(table) == 2 + 4
+    assert "| paper-f2 | 1.414 |" in table[5]
+    r = subprocess.run(["bash", os.path.join(HERE, "paper_figures.sh"), str(tmp_path / "nope")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "not found or not executable" in r.stderr
