@@ -7,10 +7,15 @@
 
 namespace fdr::pslg {
 
+// Segment marker of an interior constraint (same value as mesh::EdgeKind::kBreakline); every
+// other marker is a domain boundary, whose copies cancel by parity in clean().
+inline constexpr std::int32_t kBreaklineMarker = 4;
+
 struct Segment {
   Index a = 0, b = 0;         // indices into Pslg::points
   std::int32_t marker = 0;    // boundary marker (mesh::EdgeKind for GIS inputs)
   std::int32_t part = -1;     // id of the chain/ring it came from (for nodestrings), -1 unknown
+  bool is_boundary() const { return marker != kBreaklineMarker; }
 };
 
 // A regional attribute / area constraint seed (Triangle .poly "regions" section).

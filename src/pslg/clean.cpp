@@ -1,0 +1,541 @@
+// PSLG cleaning for messy GIS input: snap (grid hashing), parity cancellation of boundary
+// copies, iterative splitting at crossings/overlaps, tiny-island removal, simplification.
+#include "pslg/clean.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <unordered_map>
+#include "base/error.hpp"
+#include "predicates/predicates.hpp"
+#include "pslg/segment_grid.hpp"
+#include "pslg/validate.hpp"
+
+namespace fdr::pslg {
+namespace {
+
+using predicates::orient2d;
+
+struct PairHash {
+  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const {
+    return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ (k.second + 0x632BE59BD9B4E019ULL));
+  }
+};
+
+std::uint64_t bits(double v) {
+  v += 0.0;  // -0.0 and +0.0 compare equal: give them one key
+  std::uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return u;
+}
+
+std::string fmt(Point2 p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.17g, %.17g)", p.x, p.y);
+  return buf;
+}
+
+Point2 mid(Point2 a, Point2 b) { return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}; }
+
+// Distance from p to the closed segment ab (a metric for reporting and tolerances only).
+double dist_to_segment(Point2 p, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double l2 = norm2(d);
+  double t = l2 > 0 ? dot(p - a, d) / l2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  return dist(p, a + t * d);
+}
+
+class Cleaner {
+ public:
+  Cleaner(const Pslg& in, const CleanOptions& opt, std::vector<Repair>* repairs)
+      : in_(in), opt_(opt), repairs_(repairs) {}
+
+  Pslg run() {
+    check_input();
+    snap_input();
+    split_until_clean();
+    if (opt_.min_island_area_factor > 0) drop_tiny_islands();
+    if (opt_.simplify_factor > 0 && opt_.simplify_tolerance > 0) simplify();
+    return compact();
+  }
+
+ private:
+  void report(const char* kind, Point2 where, double size, std::string reason, std::int32_t part) {
+    if (repairs_) repairs_->push_back(Repair{kind, where, size, std::move(reason), part});
+  }
+
+  Point2 world(Point2 p) const { return in_.origin + p; }
+
+  double spacing_at(Point2 p, const char* what) const {
+    if (!opt_.spacing)
+      throw Error(ExitCode::kInvalidSpacing, std::string("clean: ") + what + " needs a spacing function f");
+    const double f = opt_.spacing(p);
+    if (!(f > 0) || !std::isfinite(f))
+      throw Error(ExitCode::kInvalidSpacing, std::string("clean: spacing f = ") + std::to_string(f) +
+                                                 " at " + fmt(world(p)) + " (" + what + ") must be finite and > 0");
+    return f;
+  }
+
+  void check_input() const {
+    for (std::size_t i = 0; i < in_.points.size(); ++i)
+      if (!std::isfinite(in_.points[i].x) || !std::isfinite(in_.points[i].y))
+        throw Error(ExitCode::kInvalidGeometry, "clean: vertex " + std::to_string(i) + " has a non-finite coordinate");
+    for (std::size_t s = 0; s < in_.segments.size(); ++s)
+      if (in_.segments[s].a >= in_.points.size() || in_.segments[s].b >= in_.points.size())
+        throw Error(ExitCode::kInvalidGeometry, "clean: segment " + std::to_string(s) +
+                                                    " refers to a vertex beyond the " +
+                                                    std::to_string(in_.points.size()) + " vertices");
+    if (!(opt_.snap_distance >= 0) || !std::isfinite(opt_.snap_distance))
+      throw Error(ExitCode::kUsage, "clean: snap distance must be finite and >= 0");
+  }
+
+  // --- point registry: exact coordinates, plus a hash grid for snapping -------------------------
+  std::pair<std::int64_t, std::int64_t> snap_cell(Point2 p) const {
+    auto c = [&](double v) {
+      const double q = std::floor(v / opt_.snap_distance);
+      return static_cast<std::int64_t>(std::clamp(q, -4e18, 4e18));
+    };
+    return {c(p.x), c(p.y)};
+  }
+
+  // Lowest-index representative equal to p or within the snap distance of it; kNoId if none.
+  Index find_rep(Point2 p) const {
+    if (auto it = exact_.find({bits(p.x), bits(p.y)}); it != exact_.end()) return it->second;
+    if (opt_.snap_distance <= 0) return kNoId;
+    const auto [cx, cy] = snap_cell(p);
+    Index best = kNoId;
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        auto it = cells_.find({static_cast<std::uint64_t>(cx + dx), static_cast<std::uint64_t>(cy + dy)});
+        if (it == cells_.end()) continue;
+        for (Index q : it->second)
+          if (q < best && dist(pts_[q], p) <= opt_.snap_distance) best = q;
+      }
+    return best;
+  }
+
+  void register_rep(Index id) {
+    exact_.emplace(std::make_pair(bits(pts_[id].x), bits(pts_[id].y)), id);
+    if (opt_.snap_distance > 0) {
+      const auto [cx, cy] = snap_cell(pts_[id]);
+      cells_[{static_cast<std::uint64_t>(cx), static_cast<std::uint64_t>(cy)}].push_back(id);
+    }
+  }
+
+  Index add_point(Point2 p) {
+    if (Index r = find_rep(p); r != kNoId) return r;
+    const Index id = static_cast<Index>(pts_.size());
+    pts_.push_back(p);
+    alive_.push_back(1);
+    input_free_.push_back(0);
+    markers_.push_back(0);
+    register_rep(id);
+    return id;
+  }
+
+  // --- step 1: snap input points (index order; the lowest index in reach wins) ------------------
+  void snap_input() {
+    const std::size_t n = in_.points.size();
+    pts_ = in_.points;
+    alive_.assign(n, 1);
+    input_free_.assign(n, 1);
+    markers_.assign(n, 0);
+    if (in_.point_markers.size() == n) markers_ = in_.point_markers;
+    std::vector<std::int32_t> point_part(n, -1);
+    for (const Segment& s : in_.segments) {
+      input_free_[s.a] = input_free_[s.b] = 0;
+      if (point_part[s.a] < 0) point_part[s.a] = s.part;
+      if (point_part[s.b] < 0) point_part[s.b] = s.part;
+    }
+    std::vector<Index> map(n);
+    for (Index i = 0; i < n; ++i) {
+      const Index r = find_rep(pts_[i]);
+      if (r == kNoId) {
+        register_rep(i);
+        map[i] = i;
+        continue;
+      }
+      map[i] = r;
+      alive_[i] = 0;
+      if (markers_[r] == 0) markers_[r] = markers_[i];
+      if (!input_free_[i]) input_free_[r] = 0;
+      const double d = dist(pts_[i], pts_[r]);
+      report("snap", pts_[r], d,
+             "vertex " + std::to_string(i) + (d == 0 ? " duplicates" : " snapped onto") + " vertex " +
+                 std::to_string(r) + (d == 0 ? "" : " (" + std::to_string(d) + " m away)"),
+             point_part[i]);
+    }
+    segs_.reserve(in_.segments.size());
+    for (Index s = 0; s < in_.segments.size(); ++s) {
+      Segment sg = in_.segments[s];
+      const Point2 a = in_.points[sg.a], b = in_.points[sg.b];
+      sg.a = map[sg.a];
+      sg.b = map[sg.b];
+      if (sg.a == sg.b) {
+        report("zero_length", pts_[sg.a], dist(a, b),
+               "segment " + std::to_string(s) + " collapsed to a point and was removed", sg.part);
+        continue;
+      }
+      segs_.push_back(sg);
+    }
+  }
+
+  // --- step 2: parity cancellation of boundary copies, merging of breakline copies --------------
+  void normalize() {
+    std::vector<std::size_t> order(segs_.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto key = [&](std::size_t i) {
+      return std::make_pair(std::min(segs_[i].a, segs_[i].b), std::max(segs_[i].a, segs_[i].b));
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      const auto kx = key(x), ky = key(y);
+      return kx < ky || (kx == ky && x < y);
+    });
+    std::vector<char> keep(segs_.size(), 1);
+    bool changed = false;
+    for (std::size_t g = 0; g < order.size();) {
+      std::size_t e = g + 1;
+      while (e < order.size() && key(order[e]) == key(order[g])) ++e;
+      if (e - g > 1) {
+        changed = true;
+        std::size_t nb = 0;
+        for (std::size_t k = g; k < e; ++k) nb += segs_[order[k]].is_boundary();
+        // Boundary copies cancel in pairs (the domain is defined by crossing parity): an odd
+        // count keeps the first copy. Breakline copies merge into the first one, and vanish
+        // under a surviving boundary segment.
+        bool kept_boundary = false, kept_break = false;
+        std::size_t cancelled = 0;
+        for (std::size_t k = g; k < e; ++k) {
+          const std::size_t i = order[k];
+          const Segment& s = segs_[i];
+          const Point2 m = mid(pts_[s.a], pts_[s.b]);
+          const double len = dist(pts_[s.a], pts_[s.b]);
+          if (s.is_boundary()) {
+            if (nb % 2 == 1 && !kept_boundary) {
+              kept_boundary = true;
+              continue;
+            }
+            keep[i] = 0;
+            if (++cancelled % 2 == 0)
+              report("backtrack", m, len,
+                     "two coincident boundary segments between vertices " + std::to_string(s.a) + " and " +
+                         std::to_string(s.b) + " cancel (a spike or a shared edge)",
+                     s.part);
+          } else {
+            if (nb % 2 == 0 && !kept_break) {
+              kept_break = true;
+              continue;
+            }
+            keep[i] = 0;
+            report("duplicate_segment", m, len,
+                   "breakline between vertices " + std::to_string(s.a) + " and " + std::to_string(s.b) +
+                       " duplicates another segment and was merged",
+                   s.part);
+          }
+        }
+      }
+      g = e;
+    }
+    if (!changed) return;
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < segs_.size(); ++i)
+      if (keep[i]) segs_[w++] = segs_[i];
+    segs_.resize(w);
+  }
+
+  // --- step 3: split at crossings, at vertices on segments and at collinear overlaps ------------
+  void split_until_clean() {
+    for (std::size_t round = 0;; ++round) {
+      normalize();
+      // Points orphaned by cancellation are no cut candidates; used and free points are.
+      std::vector<char> present(pts_.size(), 0);
+      for (const Segment& s : segs_) present[s.a] = present[s.b] = 1;
+      for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || input_free_[v]);
+      const Contacts c = find_contacts(pts_, segs_, &present);
+      if (c.segment_pairs.empty() && c.vertex_on_segment.empty()) return;
+      if (round >= opt_.max_iterations) {
+        Point2 where;
+        std::string what;
+        if (!c.segment_pairs.empty()) {
+          const Segment &s = segs_[c.segment_pairs[0].first], &t = segs_[c.segment_pairs[0].second];
+          where = mid(pts_[s.a], pts_[s.b]);
+          what = "segments " + fmt(world(pts_[s.a])) + "-" + fmt(world(pts_[s.b])) + " and " +
+                 fmt(world(pts_[t.a])) + "-" + fmt(world(pts_[t.b])) + " still intersect";
+        } else {
+          where = pts_[c.vertex_on_segment[0].first];
+          what = "a vertex at " + fmt(world(where)) + " still lies on a segment";
+        }
+        throw Error(ExitCode::kInvalidGeometry,
+                    "clean: crossings remain after " + std::to_string(opt_.max_iterations) +
+                        " splitting rounds near " + fmt(world(where)) + ": " + what +
+                        " (raise the snap distance or repair the input there)");
+      }
+      std::vector<std::vector<Index>> splits(segs_.size());
+      for (const auto& [v, s] : c.vertex_on_segment) {
+        splits[s].push_back(v);
+        report("vertex_on_segment", pts_[v], 0,
+               "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part);
+      }
+      for (std::size_t k = 0; k < c.segment_pairs.size(); ++k) {
+        const auto [i, j] = c.segment_pairs[k];
+        const Segment s = segs_[i], t = segs_[j];
+        if (c.kinds[k] == Contact::kOverlap) {
+          // The overlapping stretch is cut at each other's endpoints (found as vertex_on_segment).
+          report("overlap_split", mid(pts_[s.a], pts_[s.b]), 0,
+                 "collinear overlapping segments split at each other's endpoints", s.part);
+          continue;
+        }
+        if (c.kinds[k] != Contact::kProper) continue;  // a touch is a vertex_on_segment
+        const Point2 p = crossing_point(pts_[s.a], pts_[s.b], pts_[t.a], pts_[t.b]);
+        const Index id = add_point(p);
+        splits[i].push_back(id);
+        splits[j].push_back(id);
+        report("crossing_split", pts_[id], 0,
+               "crossing segments split at their intersection" +
+                   std::string(s.part == t.part && s.part >= 0 ? " (self-intersecting ring)" : ""),
+               s.part);
+      }
+      std::vector<Segment> out;
+      out.reserve(segs_.size() + 2 * c.segment_pairs.size() + c.vertex_on_segment.size());
+      for (std::size_t i = 0; i < segs_.size(); ++i) {
+        const Segment s = segs_[i];
+        auto& sp = splits[i];
+        if (sp.empty()) {
+          out.push_back(s);
+          continue;
+        }
+        const Point2 a = pts_[s.a], d = pts_[s.b] - pts_[s.a];
+        // Order the cut points along the segment (a metric sort; ties by id for determinism).
+        std::sort(sp.begin(), sp.end(), [&](Index x, Index y) {
+          const double tx = dot(pts_[x] - a, d), ty = dot(pts_[y] - a, d);
+          return tx < ty || (tx == ty && x < y);
+        });
+        sp.erase(std::unique(sp.begin(), sp.end()), sp.end());
+        Index prev = s.a;
+        for (Index v : sp) {
+          if (v == s.a || v == s.b || v == prev) continue;
+          out.push_back(Segment{prev, v, s.marker, s.part});
+          prev = v;
+        }
+        if (prev != s.b) out.push_back(Segment{prev, s.b, s.marker, s.part});
+      }
+      segs_ = std::move(out);
+    }
+  }
+
+  // --- step 4: drop closed boundary components whose area is below factor * f(centroid)^2 -------
+  void drop_tiny_islands() {
+    const std::size_t np = pts_.size();
+    std::vector<Index> bsegs;
+    for (Index s = 0; s < segs_.size(); ++s)
+      if (segs_[s].is_boundary()) bsegs.push_back(s);
+    // Incidence lists (CSR) over boundary segments.
+    std::vector<Index> start(np + 1, 0);
+    for (Index s : bsegs) ++start[segs_[s].a + 1], ++start[segs_[s].b + 1];
+    for (std::size_t v = 0; v < np; ++v) start[v + 1] += start[v];
+    std::vector<Index> inc(start[np]);
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (Index s : bsegs) inc[fill[segs_[s].a]++] = s, inc[fill[segs_[s].b]++] = s;
+    std::vector<char> seen(segs_.size(), 0), used(segs_.size(), 0), drop(segs_.size(), 0);
+    std::vector<Index> comp, stack;
+    for (Index s0 : bsegs) {
+      if (seen[s0]) continue;
+      // Collect the connected component of s0 (segments sorted for deterministic walks).
+      comp.clear();
+      stack.assign(1, s0);
+      seen[s0] = 1;
+      bool closed = true;
+      while (!stack.empty()) {
+        const Index s = stack.back();
+        stack.pop_back();
+        comp.push_back(s);
+        for (Index v : {segs_[s].a, segs_[s].b}) {
+          if ((start[v + 1] - start[v]) % 2) closed = false;
+          for (Index k = start[v]; k < start[v + 1]; ++k)
+            if (!seen[inc[k]]) seen[inc[k]] = 1, stack.push_back(inc[k]);
+        }
+      }
+      if (!closed) continue;
+      std::sort(comp.begin(), comp.end());
+      // Why walk cycles: an even-degree component splits into closed walks (Euler); the area is
+      // the sum of their absolute shoelace areas, the centroid their area-weighted centroid.
+      const Point2 ref = pts_[segs_[comp[0]].a];
+      double area = 0, cx = 0, cy = 0;
+      for (Index s : comp) {
+        if (used[s]) continue;
+        const Index v0 = segs_[s].a;
+        Index cur = v0, e = s;
+        double a2 = 0, sx = 0, sy = 0;
+        do {
+          used[e] = 1;
+          const Index nxt = segs_[e].a == cur ? segs_[e].b : segs_[e].a;
+          const Point2 p = pts_[cur] - ref, q = pts_[nxt] - ref;
+          const double cr = p.x * q.y - q.x * p.y;
+          a2 += cr;
+          sx += (p.x + q.x) * cr;
+          sy += (p.y + q.y) * cr;
+          cur = nxt;
+          if (cur == v0) break;
+          e = kNoId;
+          for (Index k = start[cur]; k < start[cur + 1]; ++k)
+            if (!used[inc[k]] && (e == kNoId || inc[k] < e)) e = inc[k];
+        } while (e != kNoId);
+        const double ai = std::fabs(a2) / 2;
+        area += ai;
+        if (a2 != 0) cx += ai * sx / (3 * a2), cy += ai * sy / (3 * a2);
+      }
+      Point2 c;
+      if (area > 0) {
+        c = ref + Point2{cx / area, cy / area};
+      } else {
+        Box2 b;
+        for (Index s : comp) b.add(pts_[segs_[s].a]);
+        c = b.center();
+      }
+      const double f = spacing_at(c, "min_island_area_factor");
+      const double limit = opt_.min_island_area_factor * f * f;
+      if (!(area < limit)) continue;
+      for (Index s : comp) drop[s] = 1;
+      report("tiny_island", c, area,
+             "closed ring of " + std::to_string(comp.size()) + " segments with area " + std::to_string(area) +
+                 " m^2 < " + std::to_string(limit) + " m^2 (factor * f^2) was removed",
+             segs_[comp[0]].part);
+    }
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < segs_.size(); ++i)
+      if (!drop[i]) segs_[w++] = segs_[i];
+    segs_.resize(w);
+  }
+
+  // --- step 5: remove short-edged degree-2 boundary vertices where safe -------------------------
+  void simplify() {
+    const std::size_t np = pts_.size();
+    std::vector<std::vector<Index>> inc(np);
+    std::vector<char> seg_dead(segs_.size(), 0), simplified(segs_.size(), 0);
+    Box2 box;
+    double total = 0;
+    for (Index s = 0; s < segs_.size(); ++s) {
+      inc[segs_[s].a].push_back(s);
+      inc[segs_[s].b].push_back(s);
+      total += dist(pts_[segs_[s].a], pts_[segs_[s].b]);
+    }
+    // Points that will appear in the output (used or free) block a removal that would jump them.
+    std::vector<char> present(np, 0);
+    for (Index v = 0; v < np; ++v) {
+      present[v] = alive_[v] && (!inc[v].empty() || input_free_[v]);
+      if (present[v]) box.add(pts_[v]);
+    }
+    if (segs_.empty()) return;
+    SegmentGrid grid(box, segs_.size() + np, total / static_cast<double>(segs_.size()));
+    for (Index s = 0; s < segs_.size(); ++s) grid.add_segment(s, pts_[segs_[s].a], pts_[segs_[s].b]);
+    for (Index v = 0; v < np; ++v)
+      if (present[v]) grid.add_point(v, pts_[v]);
+    std::vector<Index> near;
+    for (Index v = 0; v < np; ++v) {
+      if (inc[v].size() != 2) continue;
+      const Index s1 = inc[v][0], s2 = inc[v][1];
+      const Segment &g1 = segs_[s1], &g2 = segs_[s2];
+      if (!g1.is_boundary() || !g2.is_boundary() || g1.marker != g2.marker || g1.part != g2.part) continue;
+      // A segment made by an earlier removal is not shortened again: the move stays bounded.
+      if (simplified[s1] || simplified[s2]) continue;
+      const Index u = g1.a == v ? g1.b : g1.a, w = g2.a == v ? g2.b : g2.a;
+      if (u == w) continue;
+      const Point2 pu = pts_[u], pv = pts_[v], pw = pts_[w];
+      const double f = spacing_at(pv, "simplify_factor");
+      const double lim = opt_.simplify_factor * f;
+      if (!(dist(pu, pv) < lim && dist(pv, pw) < lim)) continue;
+      const double dev = dist_to_segment(pv, pu, pw);
+      if (!(dev < opt_.simplify_tolerance)) continue;
+      bool ok = true;
+      for (Index s : inc[u])
+        if (segs_[s].a == w || segs_[s].b == w) ok = false;
+      if (!ok) continue;
+      Box2 tb;
+      tb.add(pu), tb.add(pv), tb.add(pw);
+      grid.segments_near(tb, &near);
+      for (Index s : near) {
+        if (s == s1 || s == s2 || seg_dead[s]) continue;
+        const Contact k = classify(pu, pw, pts_[segs_[s].a], pts_[segs_[s].b]);
+        if (k != Contact::kNone && k != Contact::kEndpoint) { ok = false; break; }
+      }
+      if (!ok) continue;
+      const int o = orient2d(pu, pv, pw);
+      grid.points_near(tb, &near);
+      for (Index p : near) {
+        if (p == u || p == v || p == w || !present[p]) continue;
+        const Point2 q = pts_[p];
+        const bool inside = o == 0 ? in_interior(pu, pw, q)
+                                   : orient2d(pu, pv, q) * o >= 0 && orient2d(pv, pw, q) * o >= 0 &&
+                                         orient2d(pw, pu, q) * o >= 0;
+        if (inside) { ok = false; break; }
+      }
+      if (!ok) continue;
+      segs_[s1] = Segment{u, w, g1.marker, g1.part};
+      seg_dead[s2] = 1;
+      simplified[s1] = 1;
+      for (Index& s : inc[w])
+        if (s == s2) s = s1;
+      inc[v].clear();
+      present[v] = 0;
+      grid.add_segment(s1, pu, pw);
+      report("simplify", pv, dev,
+             "boundary vertex " + std::to_string(v) + " with edges shorter than simplify_factor * f removed",
+             g1.part);
+    }
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < segs_.size(); ++i)
+      if (!seg_dead[i]) segs_[k++] = segs_[i];
+    segs_.resize(k);
+  }
+
+  // --- final: renumber, dropping points no segment uses (input free points stay) -----------------
+  Pslg compact() {
+    const std::size_t np = pts_.size();
+    std::vector<char> used(np, 0);
+    for (const Segment& s : segs_) used[s.a] = used[s.b] = 1;
+    Pslg out;
+    out.origin = in_.origin;
+    out.holes = in_.holes;
+    out.regions = in_.regions;
+    const bool with_markers = in_.point_markers.size() == in_.points.size() && !in_.points.empty();
+    std::vector<Index> map(np, kNoId);
+    for (Index v = 0; v < np; ++v) {
+      if (!alive_[v]) continue;
+      if (!used[v] && !input_free_[v]) continue;  // orphaned by cancellation/removal
+      map[v] = static_cast<Index>(out.points.size());
+      out.points.push_back(pts_[v]);
+      if (with_markers) out.point_markers.push_back(markers_[v]);
+    }
+    out.segments.reserve(segs_.size());
+    for (Segment s : segs_) {
+      s.a = map[s.a];
+      s.b = map[s.b];
+      out.segments.push_back(s);
+    }
+    try {
+      validate(out, "clean result");
+    } catch (const Error& e) {
+      throw Error(ExitCode::kInternal, std::string("internal error: ") + e.what());
+    }
+    return out;
+  }
+
+  const Pslg& in_;
+  const CleanOptions& opt_;
+  std::vector<Repair>* repairs_;
+  std::vector<Point2> pts_;
+  std::vector<char> alive_, input_free_;
+  std::vector<std::int32_t> markers_;
+  std::vector<Segment> segs_;
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, Index, PairHash> exact_;
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::vector<Index>, PairHash> cells_;
+};
+
+}  // namespace
+
+Pslg clean(const Pslg& in, const CleanOptions& options, std::vector<Repair>* repairs) {
+  return Cleaner(in, options, repairs).run();
+}
+
+}  // namespace fdr::pslg
