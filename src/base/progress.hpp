@@ -1,5 +1,6 @@
 // Progress and log callbacks passed through the pipeline (no global state).
 #pragma once
+#include <cstdio>
 #include <functional>
 #include <string_view>
 

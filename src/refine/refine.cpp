@@ -59,10 +59,16 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
   const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
   const double r2 = ux * ux + uy * uy;
   const Point2 cc{a.x + ux, a.y + uy};
-  const double fc = f_(cc);
-  if (!(fc > 0) || !std::isfinite(fc))
-    throw Error(ExitCode::kInvalidSpacing, "spacing f" + pt(cc) + " = " + std::to_string(fc) +
-                                               " is not a positive finite number (at a circumcenter)");
+  double fc = f_(cc);
+  if (!(fc > 0) || !std::isfinite(fc)) {
+    // Circumcenters of boundary triangles can fall outside the domain, where a user's f may be
+    // undefined; the triangle's centroid is always inside, so judge the triangle there instead.
+    const Point2 g{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+    fc = f_(g);
+    if (!(fc > 0) || !std::isfinite(fc))
+      throw Error(ExitCode::kInvalidSpacing, "spacing f" + pt(T.origin + g) + " = " + std::to_string(fc) +
+                                                 " is not a positive finite number inside the domain");
+  }
   const double kf = r2 / (fc * fc) * b2_inv_;
   double key = kf;
   if (exempt) *exempt = false;

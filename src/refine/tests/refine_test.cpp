@@ -1,0 +1,226 @@
+// FDR tests: R/f(c) <= B everywhere, valid constrained Delaunay mesh, segments kept, area
+// conserved, termination at small input angles, step-by-step == one-shot, determinism.
+#include <gtest/gtest.h>
+#include <cmath>
+#include <functional>
+#include "base/error.hpp"
+#include "cdt/cdt.hpp"
+#include "cdt/tests/test_inputs.hpp"
+#include "mesh/check.hpp"
+#include "predicates/predicates.hpp"
+#include "refine/refine.hpp"
+
+using namespace fdr;
+
+namespace {
+struct FnField : sizing::SizingField {
+  std::function<double(Point2)> fn;
+  explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
+  double operator()(Point2 p) const override { return fn(p); }
+  std::string describe() const override { return "test"; }
+};
+const FnField kF1([](Point2 p) { return (std::fabs(p.x - 5) + std::fabs(p.y - 5)) * 0.1 + 0.1; });
+const FnField kF2([](Point2 p) { return (std::fabs(std::sin(p.x + p.y)) + std::fabs(std::cos(p.x + p.y))) * 0.1; });
+
+double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingField& f) {
+  double worst = 0;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    double r2;
+    Point2 c = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
+    worst = std::max(worst, std::sqrt(r2) / f(c));
+  }
+  return worst;
+}
+
+double min_angle_deg(const mesh::Triangulation& T) {
+  double worst = 180;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      Point2 a = T.pts[T.tv[3 * t + k]], b = T.pts[T.tv[3 * t + (k + 1) % 3]], c = T.pts[T.tv[3 * t + (k + 2) % 3]];
+      Point2 u = b - a, v = c - a;
+      double ang = std::atan2(std::fabs(u.x * v.y - u.y * v.x), dot(u, v)) * 180 / M_PI;
+      worst = std::min(worst, ang);
+    }
+  }
+  return worst;
+}
+
+mesh::Triangulation refine_pslg(const pslg::Pslg& p, const sizing::SizingField& f, refine::RefineOptions o,
+                                refine::RefineStats* st = nullptr,
+                                cdt::CdtOptions co = {cdt::CdtOptions::Regions::kSeeds, "test"}) {
+  auto T = cdt::build_cdt(p, co);
+  refine::Refiner r(T, f, o);
+  r.init();
+  r.run();
+  if (st) *st = r.stats();
+  return T;
+}
+
+void expect_fdr_invariants(const mesh::Triangulation& T, const sizing::SizingField& f, double B, double area,
+                           const std::string& what) {
+  auto r = mesh::check_all(T);
+  ASSERT_TRUE(r.ok()) << what << ": " << (r.problems.empty() ? "" : r.problems[0]);
+  EXPECT_LE(max_r_over_f(T, f), B * (1 + 1e-12)) << what;
+  EXPECT_NEAR(T.area(), area, 1e-9 * area) << what;
+}
+}  // namespace
+
+TEST(Refine, PaperSquareF1) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  for (double B : {1.0, 0.5, std::sqrt(2.0)}) {
+    refine::RefineOptions o;
+    o.bound = B;
+    auto T = refine_pslg(p, kF1, o);
+    expect_fdr_invariants(T, kF1, B, 100, "f1 B=" + std::to_string(B));
+    EXPECT_GE(min_angle_deg(T), 19.0) << B;
+  }
+}
+
+TEST(Refine, PaperSquareF2) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  refine::RefineOptions o;
+  auto T = refine_pslg(p, kF2, o);
+  expect_fdr_invariants(T, kF2, 1, 100, "f2");
+  EXPECT_GE(min_angle_deg(T), 19.0);
+}
+
+TEST(Refine, RandomPslgsHoldInvariants) {
+  for (unsigned seed = 0; seed < 120; ++seed) {
+    auto p = fdr::testing::random_pslg(seed, 5 + seed % 40, static_cast<int>(seed % 12));
+    const double h = 0.3 + 0.1 * (seed % 7);
+    FnField f([h](Point2 q) { return h * (1 + 0.05 * q.x); });
+    refine::RefineOptions o;
+    o.bound = (seed % 3 == 0) ? 0.8 : 1.0;
+    auto T = refine_pslg(p, f, o);
+    expect_fdr_invariants(T, f, o.bound, 100, "seed " + std::to_string(seed));
+  }
+}
+
+TEST(Refine, SmallInputAnglesTerminate) {
+  for (double deg : {0.5, 1.0, 2.0, 5.0, 10.0}) {
+    auto p = fdr::testing::wedge(deg);
+    FnField f([](Point2) { return 0.5; });
+    refine::RefineOptions o;
+    o.max_steiner = 200000;
+    refine::RefineStats st;
+    auto T = refine_pslg(p, f, o, &st);
+    const double area = 0.5 * 10 * 10 * std::sin(deg * M_PI / 180);
+    expect_fdr_invariants(T, f, 1, area, "wedge " + std::to_string(deg));
+  }
+}
+
+TEST(Refine, InteriorSegmentsTouchingBoundaryAtSmallAngles) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  // Chords from the corner (0,0) at 1, 3 and 7 degrees.
+  for (double deg : {1.0, 3.0, 7.0}) {
+    const double t = deg * M_PI / 180;
+    p.points.push_back({9.5, 9.5 * std::tan(t)});
+    p.segments.push_back({0, static_cast<Index>(p.points.size() - 1), 4, 1});
+  }
+  FnField f([](Point2) { return 0.4; });
+  refine::RefineOptions o;
+  auto T = refine_pslg(p, f, o);
+  expect_fdr_invariants(T, f, 1, 100, "chords");
+}
+
+TEST(Refine, NestedHolesAndFarCoordinates) {
+  pslg::Pslg p;
+  auto square = [&](double lo, double hi) {
+    const Index b = static_cast<Index>(p.points.size());
+    p.points.insert(p.points.end(), {{lo, lo}, {hi, lo}, {hi, hi}, {lo, hi}});
+    for (Index i = 0; i < 4; ++i) p.segments.push_back({b + i, b + (i + 1) % 4, 1, static_cast<int>(b)});
+  };
+  square(0, 10);
+  square(2, 8);
+  square(4, 6);
+  for (double off : {0.0, 1e7}) {
+    pslg::Pslg q = p;
+    for (auto& v : q.points) v = {v.x + off, v.y + off};
+    FnField f([off](Point2 x) { return 0.1 + 0.05 * std::fabs(x.x - off - 5); });
+    refine::RefineOptions o;
+    auto T = refine_pslg(q, f, o, nullptr, {});
+    expect_fdr_invariants(T, f, 1, 100 - 36 + 4, "nested offset " + std::to_string(off));
+  }
+}
+
+TEST(Refine, StepByStepEqualsOneShot) {
+  auto p = fdr::testing::random_pslg(42, 30, 8);
+  refine::RefineOptions o;
+  auto one = refine_pslg(p, kF1, o);
+  auto T = cdt::build_cdt(p, {cdt::CdtOptions::Regions::kSeeds, "test"});
+  refine::Refiner r(T, kF1, o);
+  r.init();
+  std::size_t steps = 0;
+  while (r.step()) ++steps;
+  EXPECT_GT(steps, 100u);
+  auto a = one.to_view(), b = T.to_view();
+  ASSERT_EQ(a.vertices.size(), b.vertices.size());
+  ASSERT_EQ(a.triangles, b.triangles);
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
+}
+
+TEST(Refine, DeterministicAcrossRuns) {
+  auto p = fdr::testing::random_pslg(7, 50, 10);
+  refine::RefineOptions o;
+  auto a = refine_pslg(p, kF2, o).to_view(), b = refine_pslg(p, kF2, o).to_view();
+  ASSERT_EQ(a.triangles, b.triangles);
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
+}
+
+TEST(Refine, MinAngleThirtyTerminatesWithExemptions) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  refine::RefineOptions o;
+  o.min_angle_deg = 30;
+  refine::RefineStats st;
+  auto T = refine_pslg(p, kF1, o, &st);
+  expect_fdr_invariants(T, kF1, 1, 100, "min angle");
+  EXPECT_GE(min_angle_deg(T), 30.0 - 1e-9);
+  auto w = fdr::testing::wedge(5);
+  FnField f([](Point2) { return 1.0; });
+  auto T2 = refine_pslg(w, f, o, &st);
+  auto r = mesh::check_all(T2);
+  EXPECT_TRUE(r.ok());
+}
+
+TEST(Refine, SteinerCapEndsInError) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  auto T = cdt::build_cdt(p);
+  refine::RefineOptions o;
+  o.max_steiner = 100;
+  refine::Refiner r(T, kF1, o);
+  r.init();
+  try {
+    r.run();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kWorkLimit);
+  }
+}
+
+TEST(Refine, NonPositiveSpacingIsAnError) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  FnField f([](Point2 q) { return q.x - 5; });
+  auto T = cdt::build_cdt(p);
+  refine::Refiner r(T, f, {});
+  try {
+    r.init();
+    r.run();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidSpacing);
+  }
+}
+
+TEST(Refine, EstimateIsWithinFactorTwo) {
+  auto p = fdr::testing::random_pslg(0, 0, 0);
+  auto T = cdt::build_cdt(p);
+  const double est = refine::estimate_triangles(T, kF1, 1.0);
+  refine::Refiner r(T, kF1, {});
+  r.init();
+  r.run();
+  const double n = static_cast<double>(T.num_live_triangles());
+  EXPECT_GT(est, n / 2) << n;
+  EXPECT_LT(est, n * 2) << n;
+}
