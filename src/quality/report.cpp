@@ -140,6 +140,8 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
   r.bound_B = bound_B;
+  // An unknown alpha (negative) falls back to the field's own Lipschitz constant, if it knows one.
+  if (!(alpha >= 0) && f != nullptr && f->lipschitz() >= 0) alpha = f->lipschitz();
   r.alpha = alpha;
   r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
   r.guarantees = compute_guarantees(alpha, bound_B);

@@ -79,7 +79,8 @@ struct QualityReport {
 };
 
 // Measures every metric of `m` (in its local frame, where `f` is evaluated). `f` may be null.
-// `alpha` is the Lipschitz constant the guarantees are computed for (negative: unknown).
+// `alpha` is the Lipschitz constant the guarantees are computed for; negative means unknown and
+// then f->lipschitz() is used when f knows it (else no guarantee is claimed).
 // Throws fdr::Error(kInternal) if a triangle references a vertex that does not exist.
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run);

@@ -201,6 +201,23 @@ TEST(Quality, BadVertexIdThrowsInternal) {
   }
 }
 
+TEST(Quality, NearestNeighbourIsGlobalNotMeshNeighbour) {
+  // Two unit right triangles 0.1 apart and not sharing an edge: nn comes from the other one.
+  mesh::MeshView m;
+  m.vertices = {{0, 0}, {1, 0}, {0, 1}, {1.1, 0}, {2.1, 0}, {1.1, 1}};
+  m.triangles = {{0, 1, 2}, {3, 4, 5}};
+  const ConstantField f(1.0);
+  const auto r = compute_quality(m, &f, 1.0, -1.0, RunInfo{});
+  EXPECT_NEAR(*r.nn_min, 0.1, 1e-12);
+  EXPECT_NEAR(*r.nn_over_f_min, 0.1, 1e-12);
+  EXPECT_NEAR(*r.conformity_min, 0.1, 1e-12);
+  EXPECT_NEAR(r.area, 1.0, 1e-15);
+  // alpha unknown (-1): the field's own Lipschitz constant (0) is used.
+  EXPECT_EQ(r.alpha, 0.0);
+  EXPECT_TRUE(r.guarantees.valid);
+  EXPECT_NEAR(r.guarantees.R_over_l_max, kSqrt2, 1e-15);
+}
+
 TEST(Quality, NearestNeighbourMatchesBruteForce) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(0, 1);
