@@ -1,0 +1,117 @@
+// Internals shared by the io writers and readers: temp files, boundary chains, number formatting.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+#include "base/error.hpp"
+#include "io/writer.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace fdr::io::detail {
+
+// Output error "<path>: <reason>".
+[[noreturn]] void fail_output(const std::string& path, const std::string& reason);
+
+// A temp file "<target>.tmp-XXXXXX" next to `target`, reserved with mkstemp. commit() renames it
+// onto the target; if never committed the destructor removes it (plus any SQLite sidecars).
+class TempFile {
+ public:
+  explicit TempFile(const std::string& target);  // throws kOutputError (e.g. missing folder)
+  ~TempFile();
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+
+  const std::string& path() const { return temp_; }
+  const std::string& target() const { return target_; }
+  // Closes the reserved descriptor and removes the empty file so a library (GDAL, netCDF) can
+  // create it itself under the same unique name.
+  void release_for_library();
+  // Opens the reserved file for buffered writing (owned; closed by close_stream()).
+  std::FILE* stream();
+  // Flushes and closes the stream, throwing kOutputError on any write error (disk full ...).
+  void close_stream();
+  void commit();  // rename temp -> target; throws kOutputError
+  void discard();  // remove the temp file now
+
+ private:
+  std::string target_, temp_;
+  int fd_ = -1;
+  std::FILE* file_ = nullptr;
+  bool done_ = false;
+};
+
+// Writes several temp files and commits them together: if a later rename fails, the targets
+// already renamed are removed again so no partial set of files remains.
+void commit_all(const std::vector<TempFile*>& files);
+
+// Buffered text output with shortest round-trip number formatting (std::to_chars).
+class TextOut {
+ public:
+  TextOut(std::FILE* f, const std::string& target) : f_(f), target_(target) { buf_.reserve(kFlush + 256); }
+  ~TextOut() = default;
+  TextOut& str(std::string_view s) { buf_.append(s); maybe_flush(); return *this; }
+  TextOut& ch(char c) { buf_.push_back(c); return *this; }
+  TextOut& num(double v);           // shortest representation that reads back bit-exactly
+  TextOut& num(std::int64_t v);
+  TextOut& num(std::uint64_t v);
+  TextOut& num(int v) { return num(static_cast<std::int64_t>(v)); }
+  TextOut& num(unsigned v) { return num(static_cast<std::uint64_t>(v)); }
+  TextOut& sp() { return ch(' '); }
+  TextOut& nl() { buf_.push_back('\n'); maybe_flush(); return *this; }
+  void flush();
+
+ private:
+  static constexpr std::size_t kFlush = 1 << 20;
+  void maybe_flush() { if (buf_.size() >= kFlush) flush(); }
+  std::FILE* f_;
+  const std::string& target_;
+  std::string buf_;
+};
+
+// Name of an edge marker: "none", "land", "island", "open", "breakline", else "marker<N>".
+std::string kind_name(std::int32_t marker);
+// Inverse of kind_name for the five known names; returns false for anything else.
+bool kind_from_name(std::string_view name, std::int32_t& marker);
+
+// An ordered chain of constrained edges sharing (marker, part).
+struct Chain {
+  std::int32_t marker = 0;
+  std::int32_t part = 0;
+  bool closed = false;        // a cycle: last node connects back to nodes[0] (not repeated)
+  std::vector<Index> nodes;   // >= 2 nodes
+};
+
+// Orders the constrained edges of each (marker, part) group into paths and cycles.
+// Deterministic: groups sorted by (marker, part); each walk starts at the endpoint of the
+// earliest-listed unused edge (path ends first, then cycles); each chain is oriented so the
+// mesh lies on its left (counter-clockwise around the domain, clockwise around islands) when
+// most of its edges are boundary edges, else it follows the stored direction of its first edge.
+std::vector<Chain> build_chains(const mesh::MeshView& m);
+
+// Rebuilds MeshView::edges from chains (consecutive node pairs, closing edge for cycles).
+void edges_from_chain(mesh::MeshView& m, const std::vector<Index>& nodes, bool closed,
+                      std::int32_t marker, std::int32_t part);
+
+// Checks array sizes, vertex ids and finite coordinates; throws kOutputError naming `path`.
+void validate_for_output(const mesh::MeshView& m, const std::string& path);
+
+// Per-triangle geometry in the local frame.
+double triangle_area(const mesh::MeshView& m, std::size_t t);
+double triangle_min_angle_deg(const mesh::MeshView& m, std::size_t t);
+// Circumradius and circumcentre (local frame); R = +inf for a degenerate triangle.
+double circumradius(const mesh::MeshView& m, std::size_t t, Point2& centre);
+// Distance from each vertex to its nearest neighbour over triangle edges (+inf if isolated).
+std::vector<double> nearest_neighbour_distance(const mesh::MeshView& m);
+
+// Format back ends (write_mesh validates the mesh first and dispatches here).
+void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
+void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
+
+// Lower-case extension including the dot (".gpkg"), "" if none; and the file name part.
+std::string lower_extension(const std::string& path);
+std::string file_name(const std::string& path);
+std::string to_lower(std::string s);
+
+}  // namespace fdr::io::detail

@@ -1,0 +1,731 @@
+// Tests for the io writers/readers: round trips for every format, GDAL/netCDF/gmsh cross-checks, atomic writes.
+#include <gtest/gtest.h>
+#include <netcdf.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "base/error.hpp"
+#include "io/detail.hpp"
+#include "io/reader.hpp"
+#include "io/writer.hpp"
+
+namespace fs = std::filesystem;
+using namespace fdr;
+using fdr::io::Format;
+using mesh::EdgeKind;
+
+namespace {
+
+class ConstantF : public sizing::SizingField {
+ public:
+  explicit ConstantF(double v) : v_(v) {}
+  double operator()(Point2) const override { return v_; }
+  std::string describe() const override { return "constant"; }
+
+ private:
+  double v_;
+};
+
+std::int32_t mk(EdgeKind k) { return static_cast<std::int32_t>(k); }
+
+// A 4x4 square with a 2x2 island hole, an open right side (with a midpoint) and one breakline:
+//
+//   o4 ------------- o3
+//   |  h3 ------ h2 / |
+//   |   |  hole  |    o2   (o1-o2-o3: open boundary)
+//   |  h0 ------ h1   |
+//   o0 ------------- o1     breakline o0-h0
+mesh::MeshView sample_mesh() {
+  mesh::MeshView m;
+  m.origin = {500000.1, 6400000.3};
+  m.vertices = {{0, 0}, {4, 0}, {4, 2}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}};
+  m.triangles = {{0, 1, 6}, {0, 6, 5}, {1, 2, 6}, {2, 7, 6}, {2, 3, 7},
+                 {3, 4, 8}, {3, 8, 7}, {4, 0, 5}, {4, 5, 8}};
+  // Listed out of order and with mixed directions on purpose: chains must be rebuilt.
+  m.edges = {{4, 0, mk(EdgeKind::kLand), 0},   {2, 3, mk(EdgeKind::kOpen), 1},  {0, 1, mk(EdgeKind::kLand), 0},
+             {3, 4, mk(EdgeKind::kLand), 0},   {1, 2, mk(EdgeKind::kOpen), 1},  {6, 5, mk(EdgeKind::kIsland), 2},
+             {7, 6, mk(EdgeKind::kIsland), 2}, {8, 7, mk(EdgeKind::kIsland), 2}, {5, 8, mk(EdgeKind::kIsland), 2},
+             {0, 5, mk(EdgeKind::kBreakline), 3}};
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    m.z.push_back(-0.1 * static_cast<double>(v + 1) - 1.0 / 3.0);
+    m.f.push_back(1.0 + 0.1 * static_cast<double>(v));
+  }
+  OGRSpatialReference srs;
+  srs.importFromEPSG(32633);
+  char* wkt = nullptr;
+  srs.exportToWkt(&wkt);
+  m.crs_wkt = wkt;
+  CPLFree(wkt);
+  return m;
+}
+
+io::WriteOptions sample_options(const sizing::SizingField* f) {
+  io::WriteOptions o;
+  o.f = f;
+  o.bound_B = 1.5;
+  o.title = "io test mesh";
+  o.metadata = {{"version", "0.1.0"}, {"command_line", "fdrmesh mesh -i a.gpkg -o b.gpkg"}, {"quality", "{\"n\":9}"}};
+  o.repairs = {{"snap", 500001.0, 6400001.0, 0.01, "vertices closer than tolerance", 0},
+               {"drop_sliver", 500002.0, 6400002.0, 1e-4, "sliver ring area below threshold", 5}};
+  return o;
+}
+
+struct TmpDir {
+  fs::path dir;
+  TmpDir() {
+    std::string t = (fs::temp_directory_path() / "fdr_io_test_XXXXXX").string();
+    dir = ::mkdtemp(t.data());
+  }
+  ~TmpDir() {
+    std::error_code ec;
+    fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(dir, ec);
+  }
+  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> r;
+    for (auto& e : fs::directory_iterator(dir)) r.push_back(e.path().filename().string());
+    std::sort(r.begin(), r.end());
+    return r;
+  }
+};
+
+bool has_temp_leftover(const TmpDir& d) {
+  for (const auto& n : d.entries())
+    if (n.find(".tmp-") != std::string::npos) return true;
+  return false;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+using EdgeSet = std::set<std::tuple<Index, Index, std::int32_t>>;
+EdgeSet edge_set(const mesh::MeshView& m, std::set<std::int32_t> kinds) {
+  EdgeSet s;
+  for (const auto& e : m.edges)
+    if (kinds.count(e.marker)) s.insert({std::min(e.a, e.b), std::max(e.a, e.b), e.marker});
+  return s;
+}
+
+// World coordinates, z and triangles must read back bit-exactly and in the same order.
+void expect_same_geometry(const mesh::MeshView& a, const mesh::MeshView& b, bool check_z = true) {
+  ASSERT_EQ(a.num_vertices(), b.num_vertices());
+  ASSERT_EQ(a.num_triangles(), b.num_triangles());
+  for (Index v = 0; v < a.num_vertices(); ++v) {
+    EXPECT_EQ(a.world(v).x, b.world(v).x) << "vertex " << v;
+    EXPECT_EQ(a.world(v).y, b.world(v).y) << "vertex " << v;
+  }
+  if (check_z) {
+    ASSERT_EQ(b.z.size(), a.z.size());
+    for (std::size_t v = 0; v < a.z.size(); ++v) EXPECT_EQ(a.z[v], b.z[v]) << "z of vertex " << v;
+  }
+  for (std::size_t t = 0; t < a.num_triangles(); ++t) EXPECT_EQ(a.triangles[t], b.triangles[t]) << "triangle " << t;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- format selection
+
+TEST(FormatFromPath, Extensions) {
+  EXPECT_EQ(io::format_from_path("out/mesh.gpkg"), Format::kGpkg);
+  EXPECT_EQ(io::format_from_path("mesh.GPKG"), Format::kGpkg);
+  EXPECT_EQ(io::format_from_path("a.b/mesh.2dm"), Format::k2dm);
+  EXPECT_EQ(io::format_from_path("mesh.msh"), Format::kMsh);
+  EXPECT_EQ(io::format_from_path("mesh.node"), Format::kNode);
+  EXPECT_EQ(io::format_from_path("mesh.ele"), Format::kNode);
+  EXPECT_EQ(io::format_from_path("mesh.vtu"), Format::kVtu);
+  EXPECT_EQ(io::format_from_path("mesh.14"), Format::kFort14);
+  EXPECT_EQ(io::format_from_path("mesh.grd"), Format::kFort14);
+  EXPECT_EQ(io::format_from_path("run/fort.14"), Format::kFort14);
+  EXPECT_EQ(io::format_from_path("FORT.14"), Format::kFort14);
+  EXPECT_EQ(io::format_from_path("mesh.nc"), Format::kUgrid);
+}
+
+TEST(FormatFromPath, OverrideIsCaseInsensitive) {
+  EXPECT_EQ(io::format_from_path("x.gpkg", "2dm"), Format::k2dm);
+  EXPECT_EQ(io::format_from_path("x", "GPKG"), Format::kGpkg);
+  EXPECT_EQ(io::format_from_path("x", "msh"), Format::kMsh);
+  EXPECT_EQ(io::format_from_path("x", "Node"), Format::kNode);
+  EXPECT_EQ(io::format_from_path("x", "vtu"), Format::kVtu);
+  EXPECT_EQ(io::format_from_path("x", "fort14"), Format::kFort14);
+  EXPECT_EQ(io::format_from_path("x", "ugrid"), Format::kUgrid);
+  for (Format f : {Format::kGpkg, Format::k2dm, Format::kMsh, Format::kNode, Format::kVtu, Format::kFort14, Format::kUgrid})
+    EXPECT_EQ(io::format_from_path("x", io::format_name(f)), f);
+}
+
+TEST(FormatFromPath, UnknownIsUsageErrorListingFormats) {
+  for (auto [path, of] : {std::pair<std::string, std::string>{"mesh.shp", ""}, {"mesh", ""}, {"mesh.gpkg", "shapefile"}}) {
+    try {
+      io::format_from_path(path, of);
+      FAIL() << path << " / " << of;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::kUsage);
+      std::string msg = e.what();
+      for (const char* name : {"GPKG", "2DM", "MSH", "NODE", "VTU", "FORT14", "UGRID"})
+        EXPECT_NE(msg.find(name), std::string::npos) << msg;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- chains
+
+TEST(Chains, OrderedOrientedAndDeterministic) {
+  mesh::MeshView m = sample_mesh();
+  auto chains = io::detail::build_chains(m);
+  ASSERT_EQ(chains.size(), 4u);
+  // Sorted by (marker, part): land, island, open, breakline.
+  EXPECT_EQ(chains[0].marker, mk(EdgeKind::kLand));
+  EXPECT_FALSE(chains[0].closed);
+  // Outer boundary counter-clockwise: o3 -> o4 -> o0 -> o1.
+  EXPECT_EQ(chains[0].nodes, (std::vector<Index>{3, 4, 0, 1}));
+  EXPECT_EQ(chains[1].marker, mk(EdgeKind::kIsland));
+  EXPECT_TRUE(chains[1].closed);
+  ASSERT_EQ(chains[1].nodes.size(), 4u);
+  // Island ring runs clockwise (mesh on its left): negative signed area.
+  double a2 = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    Point2 p = m.vertices[chains[1].nodes[i]], q = m.vertices[chains[1].nodes[(i + 1) % 4]];
+    a2 += p.x * q.y - q.x * p.y;
+  }
+  EXPECT_LT(a2, 0);
+  EXPECT_EQ(chains[2].marker, mk(EdgeKind::kOpen));
+  EXPECT_EQ(chains[2].nodes, (std::vector<Index>{1, 2, 3}));
+  EXPECT_EQ(chains[3].marker, mk(EdgeKind::kBreakline));
+  EXPECT_EQ(chains[3].nodes, (std::vector<Index>{0, 5}));  // stored direction of an interior edge
+  // Deterministic: same input, same chains.
+  auto again = io::detail::build_chains(m);
+  for (std::size_t i = 0; i < chains.size(); ++i) EXPECT_EQ(chains[i].nodes, again[i].nodes);
+}
+
+// ---------------------------------------------------------------- round trips
+
+class RoundTrip : public ::testing::Test {
+ protected:
+  TmpDir tmp;
+  mesh::MeshView m = sample_mesh();
+  ConstantF f{2.0};
+  io::WriteOptions opts = sample_options(&f);
+};
+
+TEST_F(RoundTrip, Sms2dm) {
+  std::string p = tmp / "mesh.2dm";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  std::string text = slurp(p);
+  EXPECT_EQ(text.rfind("MESH2D\n", 0), 0u);
+  EXPECT_NE(text.find("MESHNAME \"io test mesh\""), std::string::npos);
+  EXPECT_NE(text.find("NS 2 3 -4\n"), std::string::npos) << text;  // open chain o1 o2 o3, 1-based
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(m, r);
+  EXPECT_EQ(edge_set(r, {mk(EdgeKind::kOpen)}), edge_set(m, {mk(EdgeKind::kOpen)}));
+  EXPECT_EQ(r.edges.size(), 2u);
+  EXPECT_EQ(tmp.entries(), std::vector<std::string>{"mesh.2dm"});
+}
+
+TEST_F(RoundTrip, Fort14) {
+  std::string p = tmp / "fort.14";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  std::string text = slurp(p);
+  // Depth positive down: node 1 has z = -0.1 - 1/3, so DP = 0.1 + 1/3.
+  std::istringstream ss(text);
+  std::string title, line;
+  std::getline(ss, title);
+  EXPECT_EQ(title, "io test mesh");
+  long ne, np;
+  ss >> ne >> np;
+  EXPECT_EQ(ne, 9);
+  EXPECT_EQ(np, 9);
+  std::getline(ss, line);
+  long id;
+  double x, y, dp;
+  ss >> id >> x >> y >> dp;
+  EXPECT_EQ(id, 1);
+  EXPECT_EQ(dp, -m.z[0]);
+  EXPECT_NE(text.find("1 = Number of open boundaries\n3 = Total number of open boundary nodes\n3 0 = "), std::string::npos) << text;
+  // Land chain of 4 nodes (mainland, 0) and the island ring closed by repeating its first node (1).
+  EXPECT_NE(text.find("2 = Number of land boundaries\n9 = Total number of land boundary nodes\n4 0 = "), std::string::npos) << text;
+  EXPECT_NE(text.find("5 1 = Number of nodes for land boundary 2"), std::string::npos) << text;
+
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(m, r);
+  std::set<std::int32_t> kinds{mk(EdgeKind::kLand), mk(EdgeKind::kIsland), mk(EdgeKind::kOpen)};
+  EXPECT_EQ(edge_set(r, kinds), edge_set(m, kinds));
+  EXPECT_EQ(r.edges.size(), 9u);  // the breakline is not an ADCIRC boundary
+
+  // Depth convention switch: DP = z written and read back unchanged.
+  opts.fort14_depth_positive_down = false;
+  io::write_mesh(m, p, Format::kFort14, opts);
+  io::ReadOptions ro;
+  ro.fort14_depth_positive_down = false;
+  expect_same_geometry(m, io::read_mesh(p, ro));
+  mesh::MeshView neg = io::read_mesh(p);
+  for (std::size_t v = 0; v < m.z.size(); ++v) EXPECT_EQ(neg.z[v], -m.z[v]);
+}
+
+TEST_F(RoundTrip, GmshMsh) {
+  std::string p = tmp / "mesh.msh";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  std::string text = slurp(p);
+  EXPECT_EQ(text.rfind("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n", 0), 0u);
+  for (const char* name : {"1 1 \"land\"", "1 2 \"island\"", "1 3 \"open\"", "1 4 \"breakline\"", "2 10 \"domain\""})
+    EXPECT_NE(text.find(name), std::string::npos) << name;
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(m, r);
+  std::set<std::int32_t> kinds{mk(EdgeKind::kLand), mk(EdgeKind::kIsland), mk(EdgeKind::kOpen), mk(EdgeKind::kBreakline)};
+  EXPECT_EQ(edge_set(r, kinds), edge_set(m, kinds));
+  EXPECT_EQ(r.edges.size(), m.edges.size());
+}
+
+TEST_F(RoundTrip, GmshLoadsMsh) {
+  if (::access("/usr/bin/gmsh", X_OK) != 0) GTEST_SKIP() << "gmsh binary not installed";
+  std::string p = tmp / "mesh.msh", out = tmp / "out.msh";
+  io::write_mesh(m, p, Format::kMsh, opts);
+  std::string cmd = "/usr/bin/gmsh " + p + " -0 -format msh41 -o " + out + " > " + (tmp / "gmsh.log") + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(tmp / "gmsh.log");
+  std::string log = slurp(tmp / "gmsh.log");
+  EXPECT_EQ(log.find("Error"), std::string::npos) << log;
+  // gmsh's own re-export reads back with the same geometry and boundary kinds.
+  mesh::MeshView r = io::read_mesh(out);
+  EXPECT_EQ(r.num_vertices(), m.num_vertices());
+  EXPECT_EQ(r.num_triangles(), m.num_triangles());
+  std::set<std::int32_t> kinds{mk(EdgeKind::kLand), mk(EdgeKind::kIsland), mk(EdgeKind::kOpen), mk(EdgeKind::kBreakline)};
+  EXPECT_EQ(edge_set(r, kinds).size(), edge_set(m, kinds).size());
+}
+
+TEST_F(RoundTrip, TriangleNodeEle) {
+  std::string p = tmp / "mesh.ele";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"mesh.ele", "mesh.node"}));
+  mesh::MeshView r = io::read_mesh(tmp / "mesh.node");
+  expect_same_geometry(m, r);
+  ASSERT_EQ(r.f.size(), m.f.size());
+  for (std::size_t v = 0; v < m.f.size(); ++v) EXPECT_EQ(r.f[v], m.f[v]);
+  // Boundary markers: largest edge marker at the vertex (o0 has land and breakline -> 4).
+  ASSERT_EQ(r.vertex_marker.size(), 9u);
+  EXPECT_EQ(r.vertex_marker[0], mk(EdgeKind::kBreakline));
+  EXPECT_EQ(r.vertex_marker[2], mk(EdgeKind::kOpen));
+  EXPECT_EQ(r.vertex_marker[7], mk(EdgeKind::kIsland));
+  EXPECT_EQ(r.vertex_marker[4], mk(EdgeKind::kLand));
+}
+
+TEST_F(RoundTrip, GeoPackageOwnReader) {
+  std::string p = tmp / "mesh.gpkg";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  EXPECT_EQ(tmp.entries(), std::vector<std::string>{"mesh.gpkg"});
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(m, r);
+  std::set<std::int32_t> kinds{mk(EdgeKind::kLand), mk(EdgeKind::kIsland), mk(EdgeKind::kOpen), mk(EdgeKind::kBreakline)};
+  EXPECT_EQ(edge_set(r, kinds), edge_set(m, kinds));
+  // Parts survive: land 0, open 1, island 2, breakline 3.
+  std::map<std::int32_t, std::int32_t> part_of{{mk(EdgeKind::kLand), 0}, {mk(EdgeKind::kOpen), 1},
+                                               {mk(EdgeKind::kIsland), 2}, {mk(EdgeKind::kBreakline), 3}};
+  for (const auto& e : r.edges) EXPECT_EQ(e.part, part_of[e.marker]);
+  ASSERT_EQ(r.f.size(), m.f.size());
+  for (std::size_t v = 0; v < m.f.size(); ++v) EXPECT_EQ(r.f[v], m.f[v]);
+  OGRSpatialReference a, b;
+  a.SetFromUserInput(m.crs_wkt.c_str());
+  b.SetFromUserInput(r.crs_wkt.c_str());
+  EXPECT_TRUE(a.IsSame(&b));
+}
+
+TEST_F(RoundTrip, GeoPackageThroughOgr) {
+  std::string p = tmp / "mesh.gpkg";
+  io::write_mesh(m, p, Format::kGpkg, opts);
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(p.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  std::map<std::string, GIntBig> counts;
+  for (int i = 0; i < ds->GetLayerCount(); ++i) counts[ds->GetLayer(i)->GetName()] = ds->GetLayer(i)->GetFeatureCount();
+  EXPECT_EQ(counts, (std::map<std::string, GIntBig>{
+                        {"boundaries", 4}, {"metadata", 5}, {"nodes", 9}, {"repairs", 2}, {"triangles", 9}}));
+  auto fields = [&](const char* layer) {
+    std::vector<std::string> r;
+    OGRFeatureDefn* d = ds->GetLayerByName(layer)->GetLayerDefn();
+    for (int i = 0; i < d->GetFieldCount(); ++i) r.push_back(d->GetFieldDefn(i)->GetNameRef());
+    return r;
+  };
+  EXPECT_EQ(fields("nodes"), (std::vector<std::string>{"id", "z", "f", "conformity", "marker"}));
+  EXPECT_EQ(fields("triangles"), (std::vector<std::string>{"id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"}));
+  EXPECT_EQ(fields("boundaries"), (std::vector<std::string>{"id", "kind", "marker", "part", "closed", "num_nodes"}));
+  EXPECT_EQ(fields("repairs"), (std::vector<std::string>{"kind", "size", "reason", "part"}));
+  EXPECT_EQ(fields("metadata"), (std::vector<std::string>{"key", "value"}));
+  EXPECT_EQ(ds->GetLayerByName("metadata")->GetGeomType(), wkbNone);
+  EXPECT_EQ(ds->GetLayerByName("triangles")->GetGeomType(), wkbPolygon);
+  const OGRSpatialReference* srs = ds->GetLayerByName("nodes")->GetSpatialRef();
+  ASSERT_NE(srs, nullptr);
+  EXPECT_STREQ(srs->GetAuthorityCode(nullptr), "32633");
+
+  // Triangle 1 = (o0, o1, h1): area 2, R/f(c) with f = 2 and quality = (R/f)/B.
+  OGRLayer* lt = ds->GetLayerByName("triangles");
+  std::unique_ptr<OGRFeature> t1(lt->GetFeature(1));
+  ASSERT_TRUE(t1);
+  EXPECT_DOUBLE_EQ(t1->GetFieldAsDouble("area"), 2.0);
+  EXPECT_EQ(t1->GetFieldAsInteger64("n3"), 7);
+  // Circumcentre of (0,0),(4,0),(3,1) is (2,-1): R = sqrt(5).
+  EXPECT_NEAR(t1->GetFieldAsDouble("R_over_f"), std::sqrt(5.0) / 2.0, 1e-12);
+  EXPECT_NEAR(t1->GetFieldAsDouble("quality"), std::sqrt(5.0) / 2.0 / 1.5, 1e-12);
+  double min_angle = t1->GetFieldAsDouble("min_angle");
+  EXPECT_NEAR(min_angle, std::atan2(1.0, 3.0) * 180 / M_PI, 1e-9);  // angle at o0
+  // Node o0: nearest neighbour over triangle edges is h0 at sqrt(2); f = 1.0.
+  std::unique_ptr<OGRFeature> n1(ds->GetLayerByName("nodes")->GetFeature(1));
+  EXPECT_NEAR(n1->GetFieldAsDouble("conformity"), 1.0 / std::sqrt(2.0), 1e-12);
+  EXPECT_EQ(n1->GetFieldAsDouble("z"), m.z[0]);
+  // Repairs and metadata rows as given.
+  std::unique_ptr<OGRFeature> r2(ds->GetLayerByName("repairs")->GetFeature(2));
+  EXPECT_STREQ(r2->GetFieldAsString("kind"), "drop_sliver");
+  EXPECT_EQ(r2->GetFieldAsInteger("part"), 5);
+  EXPECT_EQ(r2->GetGeometryRef()->toPoint()->getX(), 500002.0);
+  std::unique_ptr<OGRFeature> md(ds->GetLayerByName("metadata")->GetFeature(2));
+  EXPECT_STREQ(md->GetFieldAsString("key"), "command_line");
+  // Island chain closed in the boundaries layer.
+  OGRLayer* lb = ds->GetLayerByName("boundaries");
+  lb->SetAttributeFilter("kind = 'island'");
+  std::unique_ptr<OGRFeature> isl(lb->GetNextFeature());
+  ASSERT_TRUE(isl);
+  EXPECT_EQ(isl->GetFieldAsInteger("closed"), 1);
+  EXPECT_EQ(isl->GetGeometryRef()->toLineString()->getNumPoints(), 5);
+  GDALClose(ds);
+}
+
+TEST_F(RoundTrip, GeoPackageWithoutSizingHasNullQuality) {
+  std::string p = tmp / "plain.gpkg";
+  mesh::MeshView plain = m;
+  plain.f.clear();
+  plain.z.clear();
+  plain.crs_wkt.clear();
+  io::write_mesh(plain, p, Format::kGpkg, {});
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(p.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  std::unique_ptr<OGRFeature> t(ds->GetLayerByName("triangles")->GetFeature(1));
+  EXPECT_TRUE(t->IsFieldNull(t->GetFieldIndex("R_over_f")));
+  EXPECT_FALSE(t->IsFieldNull(t->GetFieldIndex("min_angle")));
+  std::unique_ptr<OGRFeature> n(ds->GetLayerByName("nodes")->GetFeature(1));
+  EXPECT_TRUE(n->IsFieldNull(n->GetFieldIndex("z")));
+  EXPECT_TRUE(n->IsFieldNull(n->GetFieldIndex("conformity")));
+  {
+    OGRLayer* q = ds->ExecuteSQL("SELECT srs_id FROM gpkg_contents WHERE table_name = 'nodes'", nullptr, nullptr);
+    ASSERT_NE(q, nullptr);
+    std::unique_ptr<OGRFeature> row(q->GetNextFeature());
+    EXPECT_EQ(row->GetFieldAsInteger(0), -1);  // undefined Cartesian SRS
+    ds->ReleaseResultSet(q);
+  }
+  GDALClose(ds);
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(plain, r, false);
+  EXPECT_TRUE(r.z.empty());
+  EXPECT_TRUE(r.crs_wkt.empty());
+}
+
+TEST_F(RoundTrip, Ugrid) {
+  std::string p = tmp / "mesh.nc";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  int nc;
+  ASSERT_EQ(nc_open(p.c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  auto att = [&](int var, const char* name) {
+    size_t len = 0;
+    if (nc_inq_attlen(nc, var, name, &len) != NC_NOERR) return std::string("<missing>");
+    std::string s(len, '\0');
+    nc_get_att_text(nc, var, name, s.data());
+    return s;
+  };
+  auto var = [&](const char* name) {
+    int v = -1;
+    EXPECT_EQ(nc_inq_varid(nc, name, &v), NC_NOERR) << name;
+    return v;
+  };
+  EXPECT_EQ(att(NC_GLOBAL, "Conventions"), "CF-1.8 UGRID-1.0");
+  int mesh = var("mesh2d");
+  EXPECT_EQ(att(mesh, "cf_role"), "mesh_topology");
+  int td = 0;
+  EXPECT_EQ(nc_get_att_int(nc, mesh, "topology_dimension", &td), NC_NOERR);
+  EXPECT_EQ(td, 2);
+  EXPECT_EQ(att(mesh, "node_coordinates"), "mesh2d_node_x mesh2d_node_y");
+  EXPECT_EQ(att(mesh, "face_node_connectivity"), "mesh2d_face_nodes");
+  EXPECT_EQ(att(mesh, "edge_node_connectivity"), "mesh2d_edge_nodes");
+  int vx = var("mesh2d_node_x"), vy = var("mesh2d_node_y"), vz = var("mesh2d_node_z");
+  EXPECT_EQ(att(vx, "standard_name"), "projection_x_coordinate");
+  EXPECT_EQ(att(vy, "standard_name"), "projection_y_coordinate");
+  EXPECT_EQ(att(vx, "grid_mapping"), "crs");
+  EXPECT_EQ(att(vz, "location"), "node");
+  int crs = var("crs");
+  int epsg = 0;
+  EXPECT_EQ(nc_get_att_int(nc, crs, "epsg", &epsg), NC_NOERR);
+  EXPECT_EQ(epsg, 32633);
+  EXPECT_NE(att(crs, "crs_wkt").find("UTM zone 33N"), std::string::npos);
+  EXPECT_NE(att(crs, "spatial_ref").find("UTM zone 33N"), std::string::npos);
+  EXPECT_NE(att(crs, "wkt").find("UTM zone 33N"), std::string::npos);
+  int faces = var("mesh2d_face_nodes");
+  int start = -1;
+  EXPECT_EQ(nc_get_att_int(nc, faces, "start_index", &start), NC_NOERR);
+  EXPECT_EQ(start, 0);
+  std::vector<double> x(9), y(9), z(9);
+  nc_get_var_double(nc, vx, x.data());
+  nc_get_var_double(nc, vy, y.data());
+  nc_get_var_double(nc, vz, z.data());
+  for (Index v = 0; v < 9; ++v) {
+    EXPECT_EQ(x[v], m.world(v).x);
+    EXPECT_EQ(y[v], m.world(v).y);
+    EXPECT_EQ(z[v], m.z[v]);
+  }
+  std::vector<int> fn(27);
+  nc_get_var_int(nc, faces, fn.data());
+  for (std::size_t t = 0; t < 9; ++t)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(static_cast<Index>(fn[3 * t + k]), m.triangles[t][k]);
+  int dim_edge;
+  size_t ne = 0;
+  ASSERT_EQ(nc_inq_dimid(nc, "nmesh2d_edge", &dim_edge), NC_NOERR);
+  nc_inq_dimlen(nc, dim_edge, &ne);
+  EXPECT_EQ(ne, m.edges.size());
+  std::vector<int> kind(ne);
+  nc_get_var_int(nc, var("mesh2d_edge_kind"), kind.data());
+  for (std::size_t e = 0; e < ne; ++e) EXPECT_EQ(kind[e], m.edges[e].marker);
+  EXPECT_EQ(att(NC_GLOBAL, "fdrmesh_command_line"), "fdrmesh mesh -i a.gpkg -o b.gpkg");
+  nc_close(nc);
+}
+
+TEST_F(RoundTrip, UgridGeographicUsesLonLat) {
+  std::string p = tmp / "geo.nc";
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  char* wkt = nullptr;
+  srs.exportToWkt(&wkt);
+  m.crs_wkt = wkt;
+  CPLFree(wkt);
+  m.origin = {10.5, 59.25};
+  for (auto& v : m.vertices) v = 0.01 * v;
+  io::write_mesh(m, p, Format::kUgrid, {});
+  int nc, vx, crs, epsg = 0;
+  ASSERT_EQ(nc_open(p.c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  ASSERT_EQ(nc_inq_varid(nc, "mesh2d_node_x", &vx), NC_NOERR);
+  char buf[64] = {0};
+  nc_get_att_text(nc, vx, "standard_name", buf);
+  EXPECT_STREQ(buf, "longitude");
+  ASSERT_EQ(nc_inq_varid(nc, "crs", &crs), NC_NOERR);
+  nc_get_att_int(nc, crs, "epsg", &epsg);
+  EXPECT_EQ(epsg, 4326);
+  nc_close(nc);
+}
+
+TEST_F(RoundTrip, Vtu) {
+  std::string p = tmp / "mesh.vtu";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  std::string text = slurp(p);
+  EXPECT_NE(text.find("NumberOfPoints=\"9\" NumberOfCells=\"9\""), std::string::npos);
+  for (const char* name : {"Name=\"z\"", "Name=\"f\"", "Name=\"min_angle\"", "Name=\"R_over_f\"", "Name=\"connectivity\""})
+    EXPECT_NE(text.find(name), std::string::npos) << name;
+  // Cell types: nine VTK_TRIANGLE (5) values.
+  auto types = text.find("Name=\"types\"");
+  ASSERT_NE(types, std::string::npos);
+  std::istringstream ss(text.substr(text.find('\n', types) + 1));
+  int t, count = 0;
+  while (ss >> t) {
+    EXPECT_EQ(t, 5);
+    ++count;
+  }
+  EXPECT_EQ(count, 9);
+  // Points read back bit-exactly.
+  auto pts = text.find("NumberOfComponents=\"3\"");
+  std::istringstream ps(text.substr(text.find('\n', pts) + 1));
+  for (Index v = 0; v < 9; ++v) {
+    double x, y, z;
+    ps >> x >> y >> z;
+    EXPECT_EQ(x, m.world(v).x);
+    EXPECT_EQ(y, m.world(v).y);
+  }
+  // Without a sizing field there is no R_over_f column.
+  io::write_mesh(m, p, Format::kVtu, {});
+  EXPECT_EQ(slurp(p).find("R_over_f"), std::string::npos);
+}
+
+TEST_F(RoundTrip, ExistingFileIsReplaced) {
+  std::string p = tmp / "mesh.2dm";
+  { std::ofstream(p) << "old content\n"; }
+  io::write_mesh(m, p, Format::k2dm, opts);
+  EXPECT_EQ(slurp(p).rfind("MESH2D", 0), 0u);
+  EXPECT_FALSE(has_temp_leftover(tmp));
+}
+
+// ---------------------------------------------------------------- failures leave nothing behind
+
+namespace {
+constexpr Format kEvery[] = {Format::kGpkg, Format::k2dm, Format::kMsh, Format::kNode,
+                             Format::kVtu, Format::kFort14, Format::kUgrid};
+std::string ext_of(Format f) {
+  switch (f) {
+    case Format::kGpkg: return ".gpkg";
+    case Format::k2dm: return ".2dm";
+    case Format::kMsh: return ".msh";
+    case Format::kNode: return ".node";
+    case Format::kVtu: return ".vtu";
+    case Format::kFort14: return ".14";
+    case Format::kUgrid: return ".nc";
+  }
+  return "";
+}
+void expect_output_error(const std::function<void()>& fn, const std::string& path_in_message) {
+  try {
+    fn();
+    ADD_FAILURE() << "no error for " << path_in_message;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kOutputError) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(path_in_message + ": ", 0), 0u) << e.what();
+  }
+}
+}  // namespace
+
+TEST_F(RoundTrip, MissingFolderIsOutputError) {
+  for (Format f : kEvery) {
+    std::string p = tmp / ("no_such_dir/mesh" + ext_of(f));
+    expect_output_error([&] { io::write_mesh(m, p, f, opts); }, f == Format::kNode ? tmp / "no_such_dir/mesh.node" : p);
+  }
+  EXPECT_TRUE(tmp.entries().empty());
+}
+
+TEST_F(RoundTrip, ReadOnlyLocationIsOutputError) {
+  std::string dir;
+  if (::geteuid() == 0) {
+    dir = "/proc";  // root ignores permission bits; /proc refuses new files for everyone
+  } else {
+    dir = tmp / "ro";
+    fs::create_directory(dir);
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+  }
+  for (Format f : kEvery) {
+    std::string p = dir + "/fdr_io_test_mesh" + ext_of(f);
+    expect_output_error([&] { io::write_mesh(m, p, f, opts); }, p);
+    EXPECT_FALSE(fs::exists(p));
+  }
+  for (auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find("fdr_io_test"), std::string::npos);
+}
+
+TEST_F(RoundTrip, FailureAfterWritingRemovesTempFile) {
+  // The target is an existing folder: everything is written, then the final rename fails.
+  for (Format f : kEvery) {
+    std::string p = tmp / ("blocked" + ext_of(f));
+    fs::create_directory(p);
+    expect_output_error([&] { io::write_mesh(m, p, f, opts); }, p);
+    EXPECT_TRUE(fs::is_directory(p));
+    EXPECT_FALSE(has_temp_leftover(tmp)) << io::format_name(f);
+    fs::remove(p);
+  }
+  // .node/.ele: the .node rename succeeds, the .ele one fails -> the new .node is removed again.
+  fs::create_directory(tmp / "pair.ele");
+  expect_output_error([&] { io::write_mesh(m, tmp / "pair.node", Format::kNode, opts); }, tmp / "pair.ele");
+  EXPECT_FALSE(fs::exists(tmp / "pair.node"));
+  EXPECT_FALSE(has_temp_leftover(tmp));
+}
+
+TEST_F(RoundTrip, FailureMidWriteRemovesTempFileAndKeepsOldTarget) {
+  std::string p = tmp / "kept.2dm";
+  { std::ofstream(p) << "previous mesh\n"; }
+  // A sizing field that throws half-way through the triangles (e.g. a raster read error).
+  struct Throwing : sizing::SizingField {
+    mutable int calls = 0;
+    double operator()(Point2) const override {
+      if (++calls > 4) throw std::runtime_error("raster read failed");
+      return 1.0;
+    }
+    std::string describe() const override { return "throwing"; }
+  } bad;
+  io::WriteOptions o = opts;
+  o.f = &bad;
+  for (Format f : {Format::kGpkg, Format::kVtu, Format::kUgrid}) {
+    std::string q = tmp / ("mid" + ext_of(f));
+    bad.calls = 0;
+    expect_output_error([&] { io::write_mesh(m, q, f, o); }, q);
+    EXPECT_FALSE(fs::exists(q)) << io::format_name(f);
+  }
+  // Directly through the temp-file helper: bytes written, then an exception.
+  try {
+    io::detail::TempFile tf(p);
+    io::detail::TextOut out(tf.stream(), p);
+    out.str("MESH2D\nND 1 0 0 0\n").flush();
+    throw std::runtime_error("simulated failure");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(slurp(p), "previous mesh\n");
+  EXPECT_EQ(tmp.entries(), std::vector<std::string>{"kept.2dm"});
+}
+
+TEST_F(RoundTrip, InvalidMeshIsRejectedBeforeWriting) {
+  m.triangles.push_back({0, 1, 99});
+  std::string p = tmp / "bad.gpkg";
+  expect_output_error([&] { io::write_mesh(m, p, Format::kGpkg, opts); }, p);
+  EXPECT_TRUE(tmp.entries().empty());
+  m = sample_mesh();
+  m.z.pop_back();
+  expect_output_error([&] { io::write_mesh(m, p, Format::k2dm, opts); }, p);
+}
+
+// ---------------------------------------------------------------- reader errors
+
+namespace {
+void expect_read_error(const std::string& path, ExitCode code, const std::string& fragment) {
+  try {
+    io::read_mesh(path);
+    ADD_FAILURE() << "no error reading " << path;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+TEST(Readers, MissingFileIsUnreadable) {
+  expect_read_error("/nonexistent/mesh.2dm", ExitCode::kInputUnreadable, "/nonexistent/mesh.2dm");
+  expect_read_error("/nonexistent/mesh.gpkg", ExitCode::kInputUnreadable, "/nonexistent/mesh.gpkg");
+  expect_read_error("/nonexistent/mesh.ele", ExitCode::kInputUnreadable, "/nonexistent/mesh.node");
+}
+
+TEST(Readers, MalformedContentNamesFileAndLine) {
+  TmpDir tmp;
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(tmp / name) << text;
+    return tmp / name;
+  };
+  expect_read_error(write("a.2dm", "MESH2D\nND 1 0 0 0\nND 2 1 zero 0\n"), ExitCode::kInputMalformed, "a.2dm:3: 'zero' is not a number");
+  expect_read_error(write("b.2dm", "MESH2D\nND 1 0 0 0\nE3T 1 1 2 3 1\n"), ExitCode::kInputMalformed, "b.2dm:3: node id 2 is not defined");
+  expect_read_error(write("c.2dm", "hello\n"), ExitCode::kInputMalformed, "c.2dm:1: expected the MESH2D card");
+  expect_read_error(write("d.2dm", "MESH2D\nE4Q 1 1 2 3 4 1\n"), ExitCode::kInputMalformed, "d.2dm:2: element card E4Q");
+  expect_read_error(write("e.14", "t\n1 3\n1 0 0 1\n2 1 0 1\n3 0 1 1\n1 3 1 2 4\n"), ExitCode::kInputMalformed, "e.14:6: node id 4 is not defined");
+  expect_read_error(write("f.14", "t\n1 3\n1 0 0 1\n"), ExitCode::kInputMalformed, "f.14:3: unexpected end of file");
+  expect_read_error(write("g.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"), ExitCode::kInputMalformed, "g.msh:2: msh version 2.2");
+  expect_read_error(write("h.node", "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n"), ExitCode::kInputUnreadable, "h.ele");
+  write("h.ele", "1 6 0\n1 1 2 3 4 5 6\n");
+  expect_read_error(tmp / "h.node", ExitCode::kInputMalformed, "h.ele:1: 6 nodes per triangle");
+  expect_read_error(write("i.gpkg", "not a database"), ExitCode::kInputUnreadable, "i.gpkg");
+  expect_read_error(write("j.vtu", "<VTKFile/>"), ExitCode::kInputUnreadable, "j.vtu");
+}
+
+TEST(Readers, Fort14WithoutBoundariesAndFortranExponents) {
+  TmpDir tmp;
+  std::ofstream(tmp / "fort.14") << "grid\n 1 3\n 10 0.0 0.0 1.5D+00\n 20, 1.0, 0.0, 2.0\n 30 0.0 1.0 -1.0E+00\n 1 3 10 20 30\n";
+  mesh::MeshView r = io::read_mesh(tmp / "fort.14");
+  ASSERT_EQ(r.num_vertices(), 3u);
+  EXPECT_EQ(r.z, (std::vector<double>{-1.5, -2.0, 1.0}));
+  EXPECT_EQ(r.triangles[0], (std::array<Index, 3>{0, 1, 2}));
+  EXPECT_TRUE(r.edges.empty());
+}
+
+TEST(Readers, ClockwiseFileIsReorientedAsAWhole) {
+  TmpDir tmp;
+  std::ofstream(tmp / "cw.2dm") << "MESH2D\nE3T 1 1 3 2 1\nND 1 0 0 0\nND 2 1 0 0\nND 3 0 1 0\n";
+  mesh::MeshView r = io::read_mesh(tmp / "cw.2dm");
+  ASSERT_EQ(r.num_triangles(), 1u);
+  EXPECT_EQ(r.triangles[0], (std::array<Index, 3>{0, 1, 2}));
+}

@@ -1,0 +1,392 @@
+// Mesh writers: format selection, and the text formats (SMS 2dm, Gmsh msh 4.1, Triangle node/ele, VTU, ADCIRC fort.14).
+#include "io/writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "base/error.hpp"
+#include "io/detail.hpp"
+
+namespace fdr::io {
+
+using detail::Chain;
+using detail::TempFile;
+using detail::TextOut;
+
+const char* format_name(Format f) {
+  switch (f) {
+    case Format::kGpkg: return "GPKG";
+    case Format::k2dm: return "2DM";
+    case Format::kMsh: return "MSH";
+    case Format::kNode: return "NODE";
+    case Format::kVtu: return "VTU";
+    case Format::kFort14: return "FORT14";
+    case Format::kUgrid: return "UGRID";
+  }
+  return "?";
+}
+
+namespace {
+constexpr Format kAllFormats[] = {Format::kGpkg, Format::k2dm,   Format::kMsh,  Format::kNode,
+                                  Format::kVtu,  Format::kFort14, Format::kUgrid};
+const char* const kKnownList =
+    "GPKG (.gpkg), 2DM (.2dm), MSH (.msh), NODE (.node/.ele), VTU (.vtu), FORT14 (.14, .grd, fort.14), "
+    "UGRID (.nc)";
+}  // namespace
+
+Format format_from_path(const std::string& path, const std::string& of_override) {
+  if (!of_override.empty()) {
+    std::string up = of_override;
+    for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    for (Format f : kAllFormats)
+      if (up == format_name(f)) return f;
+    throw Error(ExitCode::kUsage, "unknown output format '" + of_override + "'; known formats: " + kKnownList);
+  }
+  std::string name = detail::to_lower(detail::file_name(path));
+  if (name == "fort.14") return Format::kFort14;
+  std::string ext = detail::lower_extension(path);
+  if (ext == ".gpkg") return Format::kGpkg;
+  if (ext == ".2dm") return Format::k2dm;
+  if (ext == ".msh") return Format::kMsh;
+  if (ext == ".node" || ext == ".ele") return Format::kNode;
+  if (ext == ".vtu") return Format::kVtu;
+  if (ext == ".14" || ext == ".grd") return Format::kFort14;
+  if (ext == ".nc") return Format::kUgrid;
+  throw Error(ExitCode::kUsage, "cannot tell the output format of '" + path +
+                                    "' from its extension; use --of with one of: " + kKnownList);
+}
+
+namespace {
+
+std::string one_line(const std::string& s) {
+  std::string r = s;
+  for (char& c : r)
+    if (c == '\n' || c == '\r') c = ' ';
+  return r;
+}
+
+double z_of(const mesh::MeshView& m, std::size_t v) { return m.z.empty() ? 0.0 : m.z[v]; }
+
+// ------------------------------------------------------------------ SMS 2dm
+// Cards: MESH2D, MESHNAME, NUM_MATERIALS_PER_ELEM, E3T id n1 n2 n3 matid, ND id x y z (1-based),
+// NS nodestrings (open-boundary chains, at most 10 ids per card, last id negated).
+void write_2dm(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  TempFile tf(path);
+  TextOut out(tf.stream(), path);
+  std::string title = one_line(o.title.empty() ? "fdrmesh" : o.title);
+  std::replace(title.begin(), title.end(), '"', '\'');
+  out.str("MESH2D").nl();
+  out.str("MESHNAME \"").str(title).str("\"").nl();
+  out.str("NUM_MATERIALS_PER_ELEM 1").nl();
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tr = m.triangles[t];
+    out.str("E3T ").num(static_cast<std::uint64_t>(t + 1));
+    for (Index v : tr) out.sp().num(static_cast<std::uint64_t>(v) + 1);
+    out.str(" 1").nl();
+  }
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    Point2 w = m.world(static_cast<Index>(v));
+    out.str("ND ").num(static_cast<std::uint64_t>(v + 1)).sp().num(w.x).sp().num(w.y).sp().num(z_of(m, v)).nl();
+  }
+  for (const Chain& c : detail::build_chains(m)) {
+    if (c.marker != static_cast<std::int32_t>(mesh::EdgeKind::kOpen)) continue;
+    std::vector<Index> ids = c.nodes;
+    if (c.closed) ids.push_back(ids.front());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (i % 10 == 0) out.str(i ? "\nNS" : "NS");
+      auto id = static_cast<std::int64_t>(ids[i]) + 1;
+      out.sp().num(i + 1 == ids.size() ? -id : id);
+    }
+    out.nl();
+  }
+  out.flush();
+  tf.commit();
+}
+
+// ------------------------------------------------------------------ Gmsh msh 4.1 ASCII
+// One physical group per boundary kind (dimension 1, tag = marker; markers <= 0 get 1000 - marker)
+// and "domain" (dimension 2, tag kDomainTag); one curve entity per boundary chain, one surface.
+constexpr int kDomainTag = 10;
+int physical_tag(std::int32_t marker) { return marker > 0 ? marker : 1000 - marker; }
+
+void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  std::vector<Chain> chains = detail::build_chains(m);
+  std::set<std::int32_t> markers;
+  for (const Chain& c : chains) markers.insert(c.marker);
+  double zmin = 0, zmax = 0;
+  if (!m.z.empty()) {
+    zmin = std::numeric_limits<double>::infinity();
+    zmax = -zmin;
+    for (double z : m.z)
+      if (std::isfinite(z)) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+    if (zmin > zmax) zmin = zmax = 0;
+  }
+  auto box_of = [&](const std::vector<Index>& ids, TextOut& out) {
+    Box2 b;
+    for (Index v : ids) b.add(m.world(v));
+    if (b.empty()) b.add({0, 0});
+    out.num(b.lo.x).sp().num(b.lo.y).sp().num(zmin).sp().num(b.hi.x).sp().num(b.hi.y).sp().num(zmax);
+  };
+
+  TempFile tf(path);
+  TextOut out(tf.stream(), path);
+  out.str("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  if (!o.title.empty()) out.str("$Comments\n").str(one_line(o.title)).str("\n$EndComments\n");
+  out.str("$PhysicalNames\n").num(static_cast<std::uint64_t>(markers.size() + 1)).nl();
+  for (std::int32_t mk : markers)
+    out.str("1 ").num(physical_tag(mk)).str(" \"").str(detail::kind_name(mk)).str("\"").nl();
+  out.str("2 ").num(kDomainTag).str(" \"domain\"").nl();
+  out.str("$EndPhysicalNames\n");
+
+  out.str("$Entities\n0 ").num(static_cast<std::uint64_t>(chains.size())).str(" 1 0\n");
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    out.num(static_cast<std::uint64_t>(i + 1)).sp();
+    box_of(chains[i].nodes, out);
+    out.str(" 1 ").num(physical_tag(chains[i].marker)).str(" 0").nl();
+  }
+  {
+    std::vector<Index> all(m.vertices.size());
+    for (std::size_t v = 0; v < all.size(); ++v) all[v] = static_cast<Index>(v);
+    out.str("1 ");
+    box_of(all, out);
+    out.str(" 1 ").num(kDomainTag).str(" 0").nl();
+  }
+  out.str("$EndEntities\n");
+
+  // All nodes are classified on the surface entity (one block).
+  const auto nv = static_cast<std::uint64_t>(m.vertices.size());
+  out.str("$Nodes\n");
+  if (nv == 0) {
+    out.str("0 0 0 0\n");
+  } else {
+    out.str("1 ").num(nv).str(" 1 ").num(nv).nl();
+    out.str("2 1 0 ").num(nv).nl();
+    for (std::uint64_t v = 1; v <= nv; ++v) out.num(v).nl();
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      Point2 w = m.world(static_cast<Index>(v));
+      out.num(w.x).sp().num(w.y).sp().num(z_of(m, v)).nl();
+    }
+  }
+  out.str("$EndNodes\n");
+
+  std::uint64_t nelem = m.triangles.size();
+  std::uint64_t nblocks = m.triangles.empty() ? 0 : 1;
+  for (const Chain& c : chains) {
+    nelem += c.closed ? c.nodes.size() : c.nodes.size() - 1;
+    ++nblocks;
+  }
+  out.str("$Elements\n").num(nblocks).sp().num(nelem).sp().num(nelem ? 1u : 0u).sp().num(nelem).nl();
+  std::uint64_t tag = 0;
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    const Chain& c = chains[i];
+    std::size_t k = c.nodes.size();
+    std::size_t ne = c.closed ? k : k - 1;
+    out.str("1 ").num(static_cast<std::uint64_t>(i + 1)).str(" 1 ").num(static_cast<std::uint64_t>(ne)).nl();
+    for (std::size_t s = 0; s < ne; ++s)
+      out.num(++tag).sp().num(static_cast<std::uint64_t>(c.nodes[s]) + 1).sp()
+          .num(static_cast<std::uint64_t>(c.nodes[(s + 1) % k]) + 1).nl();
+  }
+  if (!m.triangles.empty()) {
+    out.str("2 1 2 ").num(static_cast<std::uint64_t>(m.triangles.size())).nl();
+    for (const auto& tr : m.triangles) {
+      out.num(++tag);
+      for (Index v : tr) out.sp().num(static_cast<std::uint64_t>(v) + 1);
+      out.nl();
+    }
+  }
+  out.str("$EndElements\n");
+  out.flush();
+  tf.commit();
+}
+
+// ------------------------------------------------------------------ Triangle .node / .ele
+// .node: "<n> 2 <#attributes> 1" then "<id> <x> <y> [z] [f] <marker>" (1-based); the attribute
+// names are given in a comment line. Markers: MeshView::vertex_marker when present, else the
+// largest marker of the constrained edges at the vertex (0 for interior vertices).
+void write_node_ele(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  std::string base = path;
+  std::string ext = detail::lower_extension(path);
+  if (ext == ".node" || ext == ".ele") base = path.substr(0, path.size() - ext.size());
+  std::vector<std::int32_t> marker = m.vertex_marker;
+  if (marker.empty()) {
+    marker.assign(m.vertices.size(), 0);
+    for (const auto& e : m.edges) {
+      marker[e.a] = std::max(marker[e.a], e.marker);
+      marker[e.b] = std::max(marker[e.b], e.marker);
+    }
+  }
+  TempFile node_tf(base + ".node");
+  TempFile ele_tf(base + ".ele");
+  {
+    TextOut out(node_tf.stream(), node_tf.target());
+    int nattr = (m.z.empty() ? 0 : 1) + (m.f.empty() ? 0 : 1);
+    out.num(static_cast<std::uint64_t>(m.vertices.size())).str(" 2 ").num(nattr).str(" 1").nl();
+    out.str("# fdrmesh attributes:");
+    if (!m.z.empty()) out.str(" z");
+    if (!m.f.empty()) out.str(" f");
+    out.nl();
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      Point2 w = m.world(static_cast<Index>(v));
+      out.num(static_cast<std::uint64_t>(v + 1)).sp().num(w.x).sp().num(w.y);
+      if (!m.z.empty()) out.sp().num(m.z[v]);
+      if (!m.f.empty()) out.sp().num(m.f[v]);
+      out.sp().num(static_cast<std::int64_t>(marker[v])).nl();
+    }
+    out.flush();
+    node_tf.close_stream();
+  }
+  {
+    TextOut out(ele_tf.stream(), ele_tf.target());
+    out.num(static_cast<std::uint64_t>(m.triangles.size())).str(" 3 0").nl();
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      out.num(static_cast<std::uint64_t>(t + 1));
+      for (Index v : m.triangles[t]) out.sp().num(static_cast<std::uint64_t>(v) + 1);
+      out.nl();
+    }
+    out.flush();
+    ele_tf.close_stream();
+  }
+  detail::commit_all({&node_tf, &ele_tf});
+}
+
+// ------------------------------------------------------------------ VTK XML unstructured grid
+void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  TempFile tf(path);
+  TextOut out(tf.stream(), path);
+  out.str("<?xml version=\"1.0\"?>\n");
+  if (!o.title.empty()) {
+    std::string t = one_line(o.title);
+    // "--" may not appear inside an XML comment.
+    for (std::size_t p; (p = t.find("--")) != std::string::npos;) t.replace(p, 2, "- -");
+    out.str("<!-- ").str(t).str(" -->\n");
+  }
+  out.str("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  out.str("<UnstructuredGrid>\n<Piece NumberOfPoints=\"").num(static_cast<std::uint64_t>(m.vertices.size()))
+      .str("\" NumberOfCells=\"").num(static_cast<std::uint64_t>(m.triangles.size())).str("\">\n");
+  auto array = [&](const char* name, const std::vector<double>& v) {
+    out.str("<DataArray type=\"Float64\" Name=\"").str(name).str("\" format=\"ascii\">\n");
+    for (double x : v) out.num(x).nl();
+    out.str("</DataArray>\n");
+  };
+  out.str("<PointData>\n");
+  if (!m.z.empty()) array("z", m.z);
+  if (!m.f.empty()) array("f", m.f);
+  out.str("</PointData>\n<CellData>\n");
+  {
+    std::vector<double> ang(m.triangles.size());
+    for (std::size_t t = 0; t < ang.size(); ++t) ang[t] = detail::triangle_min_angle_deg(m, t);
+    array("min_angle", ang);
+    if (o.f) {
+      std::vector<double> r(m.triangles.size());
+      for (std::size_t t = 0; t < r.size(); ++t) {
+        Point2 c;
+        double R = detail::circumradius(m, t, c);
+        r[t] = R / (*o.f)(c);
+      }
+      array("R_over_f", r);
+    }
+  }
+  out.str("</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    Point2 w = m.world(static_cast<Index>(v));
+    out.num(w.x).sp().num(w.y).str(" 0").nl();
+  }
+  out.str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+  for (const auto& tr : m.triangles)
+    out.num(static_cast<std::uint64_t>(tr[0])).sp().num(static_cast<std::uint64_t>(tr[1])).sp()
+        .num(static_cast<std::uint64_t>(tr[2])).nl();
+  out.str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) out.num(static_cast<std::uint64_t>(3 * (t + 1))).nl();
+  out.str("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) out.str("5\n");
+  out.str("</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  out.flush();
+  tf.commit();
+}
+
+// ------------------------------------------------------------------ ADCIRC fort.14
+// AGRID / NE NP / nodes "JN X Y DP" (DP = depth positive down = -z by default) / elements
+// "JE 3 n1 n2 n3" / NOPE NETA, per open chain "NVDLL 0" + node ids / NBOU NVEL, per land chain
+// "NVELL IBTYPE" (0 mainland, 1 island) + node ids. Closed chains repeat their first node at the
+// end. Breaklines and unmarked constrained edges are not ADCIRC boundaries and are not written.
+void write_fort14(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  std::vector<Chain> chains = detail::build_chains(m);
+  std::vector<const Chain*> open, land;
+  for (const Chain& c : chains) {
+    auto k = static_cast<mesh::EdgeKind>(c.marker);
+    if (k == mesh::EdgeKind::kOpen) open.push_back(&c);
+    if (k == mesh::EdgeKind::kLand || k == mesh::EdgeKind::kIsland) land.push_back(&c);
+  }
+  auto count = [](const std::vector<const Chain*>& cs) {
+    std::uint64_t n = 0;
+    for (const Chain* c : cs) n += c->nodes.size() + (c->closed ? 1 : 0);
+    return n;
+  };
+  auto ids = [&](TextOut& out, const Chain& c) {
+    for (Index v : c.nodes) out.num(static_cast<std::uint64_t>(v) + 1).nl();
+    if (c.closed) out.num(static_cast<std::uint64_t>(c.nodes.front()) + 1).nl();
+  };
+  TempFile tf(path);
+  TextOut out(tf.stream(), path);
+  out.str(one_line(o.title.empty() ? "fdrmesh" : o.title)).nl();
+  out.num(static_cast<std::uint64_t>(m.triangles.size())).sp().num(static_cast<std::uint64_t>(m.vertices.size()))
+      .str(" ! NE NP").nl();
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    Point2 w = m.world(static_cast<Index>(v));
+    double z = z_of(m, v);
+    double dp = o.fort14_depth_positive_down ? -z : z;
+    if (dp == 0) dp = 0;  // no "-0" in the file
+    out.num(static_cast<std::uint64_t>(v + 1)).sp().num(w.x).sp().num(w.y).sp().num(dp).nl();
+  }
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    out.num(static_cast<std::uint64_t>(t + 1)).str(" 3");
+    for (Index v : m.triangles[t]) out.sp().num(static_cast<std::uint64_t>(v) + 1);
+    out.nl();
+  }
+  out.num(static_cast<std::uint64_t>(open.size())).str(" = Number of open boundaries").nl();
+  out.num(count(open)).str(" = Total number of open boundary nodes").nl();
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    out.num(static_cast<std::uint64_t>(open[i]->nodes.size() + (open[i]->closed ? 1 : 0)))
+        .str(" 0 = Number of nodes for open boundary ").num(static_cast<std::uint64_t>(i + 1)).nl();
+    ids(out, *open[i]);
+  }
+  out.num(static_cast<std::uint64_t>(land.size())).str(" = Number of land boundaries").nl();
+  out.num(count(land)).str(" = Total number of land boundary nodes").nl();
+  for (std::size_t i = 0; i < land.size(); ++i) {
+    int ibtype = static_cast<mesh::EdgeKind>(land[i]->marker) == mesh::EdgeKind::kIsland ? 1 : 0;
+    out.num(static_cast<std::uint64_t>(land[i]->nodes.size() + (land[i]->closed ? 1 : 0))).sp().num(ibtype)
+        .str(" = Number of nodes for land boundary ").num(static_cast<std::uint64_t>(i + 1)).nl();
+    ids(out, *land[i]);
+  }
+  out.flush();
+  tf.commit();
+}
+
+}  // namespace
+
+void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format format, const WriteOptions& options) {
+  detail::validate_for_output(mesh, path);
+  // Writers throw kOutputError themselves; anything else (out of memory, a sizing field that
+  // throws) is reported as an output error too, after the temp file has been removed.
+  try {
+    switch (format) {
+      case Format::kGpkg: detail::write_gpkg(mesh, path, options); return;
+      case Format::k2dm: write_2dm(mesh, path, options); return;
+      case Format::kMsh: write_msh(mesh, path, options); return;
+      case Format::kNode: write_node_ele(mesh, path, options); return;
+      case Format::kVtu: write_vtu(mesh, path, options); return;
+      case Format::kFort14: write_fort14(mesh, path, options); return;
+      case Format::kUgrid: detail::write_ugrid(mesh, path, options); return;
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    detail::fail_output(path, e.what());
+  }
+  throw Error(ExitCode::kInternal, "write_mesh: bad format value");
+}
+
+}  // namespace fdr::io

@@ -1,0 +1,53 @@
+// Mesh writers for modelers' formats (GeoPackage, SMS 2dm, Gmsh msh, Triangle node/ele, VTU, ADCIRC fort.14, UGRID).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+#include "mesh/mesh_view.hpp"
+#include "sizing/sizing_field.hpp"
+
+namespace fdr::io {
+
+enum class Format { kGpkg, k2dm, kMsh, kNode, kVtu, kFort14, kUgrid };
+
+// Short upper-case name of a format as accepted by --of ("GPKG", "2DM", ...).
+const char* format_name(Format f);
+
+// Format from the file name (.gpkg .2dm .msh .node/.ele .vtu .14/.grd/fort.14 .nc), or from
+// `of_override` (GPKG, 2DM, MSH, NODE, VTU, FORT14, UGRID; case-insensitive) when non-empty.
+// Unknown name or extension -> Error(kUsage) listing the known ones.
+Format format_from_path(const std::string& path, const std::string& of_override = "");
+
+// One fix made while cleaning the input (reported in the GeoPackage `repairs` layer).
+struct RepairRow {
+  std::string kind;     // e.g. "snap", "split_crossing", "drop_sliver"
+  double x = 0, y = 0;  // world coordinates
+  double size = 0;      // size of the fix (distance moved, area dropped, ...)
+  std::string reason;
+  std::int32_t part = -1;  // input ring/line id, -1 unknown
+};
+
+struct WriteOptions {
+  // Spacing function in the mesh's local frame; when set, triangles get R/f(c) and quality
+  // columns and nodes without a per-vertex f get f evaluated at the vertex.
+  const sizing::SizingField* f = nullptr;
+  double bound_B = 0;  // the refinement bound B (quality = (R/f(c)) / B); <= 0: quality not written
+  std::vector<std::pair<std::string, std::string>> metadata;  // version, command line, inputs, ...
+  std::vector<RepairRow> repairs;
+  std::string title;  // mesh name (2dm MESHNAME, fort.14 title line, msh/vtu/UGRID comment)
+  std::optional<std::string> output_crs_wkt;  // handled by the caller (reprojection); ignored here
+  // z sign convention of ADCIRC fort.14: MeshView z is positive up, fort.14 stores depth positive
+  // down, so DP = -z by default. false writes DP = z unchanged (z already holds depths).
+  bool fort14_depth_positive_down = true;
+};
+
+// Writes `mesh` to `path` in `format`. The file is written to "<path>.tmp-XXXXXX" in the same
+// folder and renamed to `path` on success; on any failure the temp file is removed and
+// Error(kOutputError, "<path>: <reason>") is thrown, so no half-written file ever remains.
+// Format::kNode writes both <base>.node and <base>.ele (path may end in either).
+void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format format,
+                const WriteOptions& options = {});
+
+}  // namespace fdr::io
