@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <GeographicLib/TransverseMercator.hpp>
 #include <ogr_spatialref.h>
 
 #include "base/error.hpp"
@@ -124,4 +125,19 @@ TEST(Frame, GroundToGrid) {
     EXPECT_NEAR((*gw)(p), 100.0 * w.scale_factor(p), 100.0 * 2e-5);
   }
   EXPECT_NE(gw->describe().find("scale factor"), std::string::npos);
+}
+
+TEST(Frame, ScaleFactorAgreesWithGeographicLib) {
+  // Independent check of PROJ's factors: GeographicLib's UTM (Karney's series) gives k directly.
+  Frame f = choose_frame(box(-76.6, 36.75, -75.6, 37.75), "");
+  const auto& utm = GeographicLib::TransverseMercator::UTM();
+  for (const LonLat ll : {LonLat{-76.6, 36.75}, LonLat{-75.6, 37.75}, LonLat{-72.5, 40.0}, LonLat{-77.9, 30.0}}) {
+    double x, y, gamma, k;
+    utm.Forward(-75.0, ll.lat_deg, ll.lon_deg, x, y, gamma, k);
+    EXPECT_NEAR(f.scale_factor(f.lonlat_to_local(ll)), k, 1e-9) << ll.lon_deg << " " << ll.lat_deg;
+    // And the projected coordinates agree (GeographicLib's x is relative to the central meridian).
+    const Point2 w = f.to_world(f.lonlat_to_local(ll));
+    EXPECT_NEAR(w.x, x + 500000.0, 1e-3);
+    EXPECT_NEAR(w.y, y, 1e-3);
+  }
 }

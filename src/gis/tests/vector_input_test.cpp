@@ -5,6 +5,9 @@
 #include <map>
 #include <set>
 
+#include <gdal_utils.h>
+#include <gdal_priv.h>
+
 #include "base/error.hpp"
 #include "gis/vector_input.hpp"
 #include "mesh/mesh_view.hpp"
@@ -206,6 +209,11 @@ TEST(ReadDomain, FixedPointsInsideOnly) {
   EXPECT_EQ(in.counts.fixed_points + in.counts.points_outside, 3u);
   EXPECT_GE(in.counts.points_outside, 1u);  // -77.5 is outside the region
   EXPECT_GE(in.counts.fixed_points, 1u);    // open bay water at (-76.0, 37.0)
+  // The fixed point survives cleaning as a vertex.
+  const Point2 p = in.frame.lonlat_to_local({-76.0, 37.0});
+  bool found = false;
+  for (const auto& q : in.pslg.points) found |= dist(p, q) < 1e-6;
+  EXPECT_TRUE(found);
 }
 
 TEST(ReadDomain, LuxembourgCantonsShareBoundaries) {
@@ -287,4 +295,42 @@ TEST(ReadDomainErrors, NoDomainIsUsageError) {
   Error e2 = expect_error([&] { read_domain(o); });
   EXPECT_EQ(e2.code(), ExitCode::kUsage);
   expect_contains(e2.what(), "--extent");
+}
+
+TEST(ReadDomain, MixedCrsOpenBoundaryIsReprojected) {
+  // The open boundary in Web Mercator while the water is in lon/lat: same 12 open parts.
+  GDALAllRegister();
+  const std::string out = testing::TempDir() + "/gis_open_3857.geojson";
+  std::remove(out.c_str());
+  const char* argv[] = {"-t_srs", "EPSG:3857", "-lco", "RFC7946=NO", "-lco", "COORDINATE_PRECISION=15", nullptr};
+  GDALVectorTranslateOptions* opt = GDALVectorTranslateOptionsNew(const_cast<char**>(argv), nullptr);
+  GDALDatasetH src = GDALOpenEx((kChes + "chesapeake_mouth_open_boundary.geojson").c_str(), GDAL_OF_VECTOR, nullptr,
+                                nullptr, nullptr);
+  ASSERT_NE(src, nullptr);
+  GDALDatasetH dst = GDALVectorTranslate(out.c_str(), nullptr, 1, &src, opt, nullptr);
+  ASSERT_NE(dst, nullptr);
+  GDALClose(dst);
+  GDALClose(src);
+  GDALVectorTranslateOptionsFree(opt);
+  GisInput in = read_domain(chesapeake(kChes + "chesapeake_mouth_water.geojson", out));
+  EXPECT_EQ(in.counts.open_parts, 12u);
+  EXPECT_EQ(in.counts.open_segments, 14u);
+}
+
+TEST(ReadDomain, CurvesLinearizedAndZDropped) {
+  // A curved polygon with Z in UTM 18N (a CSV with WKT, CRS from --s_srs).
+  const std::string path = testing::TempDir() + "/gis_curve.csv";
+  FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("id,WKT\n1,\"CURVEPOLYGON Z (CIRCULARSTRING Z (400000 4100000 5,401000 4101000 5,400000 4102000 5,"
+             "399000 4101000 5,400000 4100000 5))\"\n", f);
+  std::fclose(f);
+  DomainOptions o;
+  o.domain = {path, "", ""};
+  o.s_srs = "EPSG:32618";
+  GisInput in = read_domain(o);
+  EXPECT_GT(in.counts.boundary_segments, 16u);  // linearized arc
+  // The area of a 1 km radius circle, up to the chord error.
+  EXPECT_NEAR(in.domain_area_m2, M_PI * 1e6, 0.01 * M_PI * 1e6);
+  for (const auto& p : in.raw.points) EXPECT_NEAR(dist(p + in.raw.origin, {400000, 4101000}), 1000.0, 1e-6);
 }
