@@ -54,6 +54,52 @@ OGRSpatialReference raster_srs(GDALDataset& ds, const std::string& path) {
   return out;
 }
 
+// Warps band 1 of src into the (MEM, Float64, NaN-nodata) dataset dst, bilinear; cells that
+// no source pixel reaches stay NaN.
+void warp_band1(GDALDataset& src_ds, GDALDataset& dst_ds, const std::string& path, const std::string& target) {
+  GDALRasterBand* sb = src_ds.GetRasterBand(1);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  dst_ds.GetRasterBand(1)->SetNoDataValue(nan);
+  {
+    GdalQuiet quiet;
+    CPLErrorReset();
+    GDALWarpOptions* wo = GDALCreateWarpOptions();
+    wo->hSrcDS = GDALDataset::ToHandle(&src_ds);
+    wo->hDstDS = GDALDataset::ToHandle(&dst_ds);
+    wo->nBandCount = 1;
+    wo->panSrcBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panDstBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panSrcBands[0] = 1;
+    wo->panDstBands[0] = 1;
+    wo->eResampleAlg = GRA_Bilinear;
+    wo->eWorkingDataType = GDT_Float64;
+    int has_nodata = 0;
+    const double nd = sb->GetNoDataValue(&has_nodata);
+    if (has_nodata) {
+      wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+      wo->padfSrcNoDataReal[0] = nd;
+    }
+    wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    wo->padfDstNoDataReal[0] = nan;
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    wo->pTransformerArg = GDALCreateGenImgProjTransformer2(wo->hSrcDS, wo->hDstDS, nullptr);
+    if (!wo->pTransformerArg) {
+      GDALDestroyWarpOptions(wo);
+      throw Error(ExitCode::kCrsError, path + ": cannot build a transformation to " + target + ": " +
+                                           CPLGetLastErrorMsg());
+    }
+    wo->pfnTransformer = GDALGenImgProjTransform;
+    GDALWarpOperation op;
+    CPLErr err = op.Initialize(wo);
+    if (err == CE_None) err = op.ChunkAndWarpImage(0, 0, dst_ds.GetRasterXSize(), dst_ds.GetRasterYSize());
+    GDALDestroyGenImgProjTransformer(wo->pTransformerArg);
+    GDALDestroyWarpOptions(wo);
+    if (err != CE_None)
+      throw Error(ExitCode::kInputUnreadable, path + ": warping to " + target + " failed: " + CPLGetLastErrorMsg());
+  }
+
+}
+
 }  // namespace
 
 DatasetPtr open_vector(const std::string& path) { return open_any(path, GDAL_OF_VECTOR, "vector"); }
@@ -131,45 +177,7 @@ sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, B
   dst->SetSpatialRef(&frame.srs());
   GDALRasterBand* sb = src->GetRasterBand(1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  dst->GetRasterBand(1)->SetNoDataValue(nan);
-
-  {
-    GdalQuiet quiet;
-    CPLErrorReset();
-    GDALWarpOptions* wo = GDALCreateWarpOptions();
-    wo->hSrcDS = GDALDataset::ToHandle(src.get());
-    wo->hDstDS = GDALDataset::ToHandle(dst.get());
-    wo->nBandCount = 1;
-    wo->panSrcBands = static_cast<int*>(CPLMalloc(sizeof(int)));
-    wo->panDstBands = static_cast<int*>(CPLMalloc(sizeof(int)));
-    wo->panSrcBands[0] = 1;
-    wo->panDstBands[0] = 1;
-    wo->eResampleAlg = GRA_Bilinear;
-    wo->eWorkingDataType = GDT_Float64;
-    int has_nodata = 0;
-    const double nd = sb->GetNoDataValue(&has_nodata);
-    if (has_nodata) {
-      wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
-      wo->padfSrcNoDataReal[0] = nd;
-    }
-    wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
-    wo->padfDstNoDataReal[0] = nan;
-    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
-    wo->pTransformerArg = GDALCreateGenImgProjTransformer2(wo->hSrcDS, wo->hDstDS, nullptr);
-    if (!wo->pTransformerArg) {
-      GDALDestroyWarpOptions(wo);
-      throw Error(ExitCode::kCrsError, path + ": cannot build a transformation to " + frame.name() + ": " +
-                                           CPLGetLastErrorMsg());
-    }
-    wo->pfnTransformer = GDALGenImgProjTransform;
-    GDALWarpOperation op;
-    CPLErr err = op.Initialize(wo);
-    if (err == CE_None) err = op.ChunkAndWarpImage(0, 0, static_cast<int>(g.nx), static_cast<int>(g.ny));
-    GDALDestroyGenImgProjTransformer(wo->pTransformerArg);
-    GDALDestroyWarpOptions(wo);
-    if (err != CE_None)
-      throw Error(ExitCode::kInputUnreadable, path + ": warping to " + frame.name() + " failed: " + CPLGetLastErrorMsg());
-  }
+  warp_band1(*src, *dst, path, frame.name());
 
   std::vector<double> buf(g.nx * g.ny);
   if (dst->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, static_cast<int>(g.nx), static_cast<int>(g.ny), buf.data(),
@@ -197,6 +205,49 @@ sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, B
 }
 
 namespace {
+
+// Reads band 1 of a north-up dataset into a Grid (row 0 = south) and applies scale/offset.
+// Scale and offset come from `meta` (the original band when ds is a resampled copy).
+sizing::Grid read_north_up(GDALDataset& ds, const std::string& path, const double gt[6], Point2 origin,
+                           GDALRasterBand& meta) {
+  const std::size_t nx = static_cast<std::size_t>(ds.GetRasterXSize()), ny = static_cast<std::size_t>(ds.GetRasterYSize());
+  if (double(nx) * double(ny) > 16e6)
+    throw Error(ExitCode::kWorkLimit, path + ": " + std::to_string(nx) + " x " + std::to_string(ny) +
+                                          " cells (limit 16M); resample the raster first");
+  GDALRasterBand* b = ds.GetRasterBand(1);
+  std::vector<double> buf(nx * ny);
+  {
+    GdalQuiet quiet;
+    if (b->RasterIO(GF_Read, 0, 0, static_cast<int>(nx), static_cast<int>(ny), buf.data(), static_cast<int>(nx),
+                    static_cast<int>(ny), GDT_Float64, 0, 0) != CE_None)
+      throw Error(ExitCode::kInputUnreadable, path + ": cannot read band 1: " + CPLGetLastErrorMsg());
+  }
+  int has_nd = 0, has_scale = 0, has_offset = 0;
+  const double nd = b->GetNoDataValue(&has_nd);
+  double scale = meta.GetScale(&has_scale), offset = meta.GetOffset(&has_offset);
+  if (!has_scale) scale = 1;
+  if (!has_offset) offset = 0;
+  sizing::Grid g;
+  g.nx = nx;
+  g.ny = ny;
+  g.dx = gt[1];
+  g.dy = std::abs(gt[5]);
+  g.x0 = gt[0] - origin.x;
+  const bool north_up = gt[5] < 0;
+  g.y0 = (north_up ? gt[3] + gt[5] * double(ny) : gt[3]) - origin.y;
+  g.v.resize(nx * ny);
+  std::size_t n_valid = 0;
+  for (std::size_t r = 0; r < ny; ++r)
+    for (std::size_t i = 0; i < nx; ++i) {
+      double v = buf[r * nx + i];
+      // Float nodata equality is exact on purpose: GDAL stores the very value it compares.
+      if (!std::isfinite(v) || (has_nd && v == nd)) v = std::numeric_limits<double>::quiet_NaN();
+      else { v = v * scale + offset; ++n_valid; }
+      g.at(i, north_up ? ny - 1 - r : r) = v;
+    }
+  if (n_valid == 0) throw Error(ExitCode::kInvalidSpacing, path + ": nodata everywhere");
+  return g;
+}
 
 // Value of the valid cell nearest to p (cell centres, Euclidean in cell units scaled by dx, dy).
 // Why the search continues past the first hit: a ring of Chebyshev radius r can hold a cell at
@@ -228,6 +279,34 @@ double nearest_valid(const sizing::Grid& g, Point2 p) {
 }
 
 }  // namespace
+
+sizing::Grid read_raster_native(const std::string& path, Point2 origin) {
+  DatasetPtr src = open_raster(path);
+  if (src->GetRasterCount() < 1) throw Error(ExitCode::kInputUnreadable, path + ": raster has no band");
+  double gt[6];
+  if (src->GetGeoTransform(gt) != CE_None)
+    throw Error(ExitCode::kInputUnreadable, path + ": raster has no geotransform");
+  GDALRasterBand& band = *src->GetRasterBand(1);
+  if (gt[2] == 0 && gt[4] == 0 && gt[1] > 0) return read_north_up(*src, path, gt, origin, band);
+  // Rotated or mirrored: resample north-up in the raster's own CRS at about its resolution.
+  void* tr = GDALCreateGenImgProjTransformer2(GDALDataset::ToHandle(src.get()), nullptr, nullptr);
+  if (!tr) throw Error(ExitCode::kInputUnreadable, path + ": cannot georeference the rotated raster");
+  double ogt[6];
+  int onx = 0, ony = 0;
+  const CPLErr e = GDALSuggestedWarpOutput(GDALDataset::ToHandle(src.get()), GDALGenImgProjTransform, tr, ogt, &onx, &ony);
+  GDALDestroyGenImgProjTransformer(tr);
+  if (e != CE_None || onx <= 0 || ony <= 0)
+    throw Error(ExitCode::kInputUnreadable, path + ": cannot resample the rotated raster north-up");
+  if (double(onx) * double(ony) > 16e6)
+    throw Error(ExitCode::kWorkLimit, path + ": resampled north-up it would have " + std::to_string(onx) + " x " +
+                                          std::to_string(ony) + " cells (limit 16M)");
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  DatasetPtr dst(mem->Create("", onx, ony, 1, GDT_Float64, nullptr));
+  dst->SetGeoTransform(ogt);
+  if (const OGRSpatialReference* s = src->GetSpatialRef()) dst->SetSpatialRef(s);
+  warp_band1(*src, *dst, path, "a north-up grid");
+  return read_north_up(*dst, path, ogt, origin, band);
+}
 
 std::vector<double> sample_depths(const sizing::Grid& g, const std::vector<Point2>& nodes, int* n_filled) {
   if (n_filled) *n_filled = 0;

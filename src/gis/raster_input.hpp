@@ -16,6 +16,12 @@ namespace fdr::gis {
 // nodata everywhere over the box -> kInvalidSpacing; more than 16M cells -> kWorkLimit.
 sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, Box2 local_bbox, double cell_m);
 
+// Band 1 of `path` on its own grid and CRS (no reprojection), shifted so that local = world -
+// origin: for a size raster already in the mesh's CRS. Rotated or south-up rasters are resampled
+// north-up (bilinear) through a warped VRT first. Nodata -> NaN; scale/offset applied.
+// Errors: unreadable -> kInputUnreadable; nodata everywhere -> kInvalidSpacing; > 16M cells -> kWorkLimit.
+sizing::Grid read_raster_native(const std::string& path, Point2 origin);
+
 // Bilinear samples of g at nodes (cell-centre interpolation, clamped at the grid edge). Where the
 // interpolation touches a NaN cell the value of the nearest valid cell (Euclidean, cell centres)
 // is used instead; *n_filled_from_nearest counts those nodes. Throws kInvalidSpacing when the grid

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <gdal_priv.h>
+
 #include "base/error.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/raster_output.hpp"
@@ -153,6 +155,15 @@ TEST(Raster, WriteGeoTiffRoundTrip) {
   EXPECT_TRUE(std::isnan(h.at(0, 0)));
   for (std::size_t j = 1; j + 1 < g.ny; ++j)
     for (std::size_t i = 1; i + 1 < g.nx; ++i) EXPECT_NEAR(h.at(i, j), g.at(i, j), 1e-3);
+  // Read back natively (no warp): the very same grid.
+  sizing::Grid n = read_raster_native(path, f.origin());
+  ASSERT_EQ(n.nx, g.nx);
+  ASSERT_EQ(n.ny, g.ny);
+  EXPECT_NEAR(n.x0, g.x0, 1e-6);
+  EXPECT_NEAR(n.y0, g.y0, 1e-6);
+  EXPECT_EQ(n.dx, g.dx);
+  EXPECT_TRUE(std::isnan(n.at(0, 0)));
+  for (std::size_t k = 1; k < g.v.size(); ++k) EXPECT_EQ(n.v[k], static_cast<double>(static_cast<float>(g.v[k])));
   // No temporary file left behind.
   for (const auto& e : std::filesystem::directory_iterator(testing::TempDir()))
     EXPECT_EQ(e.path().string().find("gis_spacing.tif.tmp"), std::string::npos);
@@ -162,4 +173,31 @@ TEST(Raster, WriteGeoTiffRoundTrip) {
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kOutputError);
   }
+}
+
+TEST(Raster, NativeRotatedRasterIsResampledNorthUp) {
+  GDALAllRegister();
+  const std::string path = testing::TempDir() + "/gis_rotated.tif";
+  {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDataset* ds = drv->Create(path.c_str(), 10, 10, 1, GDT_Float32, nullptr);
+    ASSERT_NE(ds, nullptr);
+    const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+    double gt[6] = {1000.0, 10 * c, -10 * s, 2000.0, -10 * s, -10 * c};  // 30 degree rotation
+    ds->SetGeoTransform(gt);
+    ds->SetProjection("EPSG:32618");
+    std::vector<float> v(100, 7.0f);
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 10, 10, v.data(), 10, 10, GDT_Float32, 0, 0), CE_None);
+    GDALClose(GDALDataset::ToHandle(ds));
+  }
+  sizing::Grid g = read_raster_native(path, {1000.0, 2000.0});
+  std::size_t valid = 0;
+  for (double x : g.v)
+    if (std::isfinite(x)) {
+      ++valid;
+      EXPECT_NEAR(x, 7.0, 1e-6);
+    }
+  EXPECT_GT(valid, 50u);
+  EXPECT_LT(valid, g.v.size());  // the corners of the north-up box are outside the rotated raster
+  EXPECT_GT(g.dx, 0);
 }
