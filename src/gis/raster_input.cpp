@@ -105,7 +105,8 @@ void warp_band1(GDALDataset& src_ds, GDALDataset& dst_ds, const std::string& pat
 DatasetPtr open_vector(const std::string& path) { return open_any(path, GDAL_OF_VECTOR, "vector"); }
 DatasetPtr open_raster(const std::string& path) { return open_any(path, GDAL_OF_RASTER, "raster"); }
 
-sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, Box2 box, double cell_m) {
+sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, Box2 box, double cell_m,
+                                  const std::vector<Point2>* must_cover) {
   if (!(cell_m > 0) || !std::isfinite(cell_m))
     throw Error(ExitCode::kInvalidSpacing, path + ": raster cell size must be > 0 (got " + num(cell_m) + ")");
   if (box.empty()) throw Error(ExitCode::kInternal, "read_raster_to_frame: empty domain box");
@@ -119,41 +120,55 @@ sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, B
   if (!GDALInvGeoTransform(gt, inv)) throw Error(ExitCode::kInputUnreadable, path + ": singular geotransform");
   const double W = src->GetRasterXSize(), H = src->GetRasterYSize();
 
-  // Coverage: sample the box outline (33 points per side, corners first), map each to pixel
-  // coordinates of the raster and require it inside the raster's pixel-edge extent.
+  // Coverage: map the probes (the given points, or the box outline with 33 points per side,
+  // corners first) to pixel coordinates and require them inside the raster's pixel-edge extent.
   {
     GdalQuiet quiet;
     std::unique_ptr<OGRCoordinateTransformation, void (*)(OGRCoordinateTransformation*)> ct(
         OGRCreateCoordinateTransformation(&frame.srs(), &rs), OGRCoordinateTransformation::DestroyCT);
     if (!ct) throw Error(ExitCode::kCrsError, path + ": no transformation from " + frame.name() + " to the raster's CRS");
-    std::vector<Point2> probe = {box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}};
-    const int n = 32;
-    for (int k = 0; k < 4; ++k)
-      for (int s = 1; s < n; ++s) probe.push_back(probe[k] + (double(s) / n) * (probe[(k + 1) % 4] - probe[k]));
-    std::string bad;
-    int n_bad = 0;
-    const double tol = 1e-6;  // pixels
+    const bool corners = must_cover == nullptr;
+    std::vector<Point2> probe;
+    if (corners) {
+      probe = {box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}};
+      const int n = 32;
+      for (int k = 0; k < 4; ++k)
+        for (int s = 1; s < n; ++s) probe.push_back(probe[k] + (double(s) / n) * (probe[(k + 1) % 4] - probe[k]));
+    } else {
+      probe = *must_cover;
+    }
+    std::vector<double> x(probe.size()), y(probe.size());
+    std::vector<int> ok(probe.size(), 0);
     for (std::size_t i = 0; i < probe.size(); ++i) {
       const Point2 w = frame.to_world(probe[i]);
-      double x = w.x, y = w.y;
-      bool inside = ct->Transform(1, &x, &y) && std::isfinite(x) && std::isfinite(y);
+      x[i] = w.x;
+      y[i] = w.y;
+    }
+    if (!probe.empty()) ct->Transform(static_cast<int>(probe.size()), x.data(), y.data(), nullptr, ok.data());
+    std::string bad;
+    std::size_t n_bad = 0, n_named = 0;
+    const double tol = 1e-6;  // pixels
+    static const char* kCorner[4] = {"south-west", "south-east", "north-east", "north-west"};
+    for (std::size_t i = 0; i < probe.size(); ++i) {
+      bool inside = ok[i] && std::isfinite(x[i]) && std::isfinite(y[i]);
       if (inside) {
-        const double px = inv[0] + inv[1] * x + inv[2] * y, py = inv[3] + inv[4] * x + inv[5] * y;
+        const double px = inv[0] + inv[1] * x[i] + inv[2] * y[i], py = inv[3] + inv[4] * x[i] + inv[5] * y[i];
         inside = px >= -tol && px <= W + tol && py >= -tol && py <= H + tol;
       }
-      if (!inside) {
-        ++n_bad;
-        // Report the corners; an edge point only if all corners are covered.
-        if (i < 4 || bad.empty()) {
-          const LonLat ll = frame.to_lonlat(probe[i]);
-          static const char* kCorner[4] = {"south-west", "south-east", "north-east", "north-west"};
-          bad += (bad.empty() ? "" : "; ") + std::string(i < 4 ? kCorner[i] : "edge point") + " (" +
-                 num(ll.lon_deg) + ", " + num(ll.lat_deg) + ")";
-        }
+      if (inside) continue;
+      ++n_bad;
+      // Name every uncovered corner; other points only while fewer than 3 places are named.
+      if ((corners && i < 4) || n_named < 3) {
+        const LonLat ll = frame.to_lonlat(probe[i]);
+        const std::string what = corners ? (i < 4 ? kCorner[i] : "edge point") : "domain vertex " + std::to_string(i);
+        bad += (bad.empty() ? "" : "; ") + what + " (" + num(ll.lon_deg) + ", " + num(ll.lat_deg) + ")";
+        ++n_named;
       }
     }
     if (n_bad > 0)
-      throw Error(ExitCode::kInvalidSpacing, path + ": raster does not cover the domain; uncovered: " + bad);
+      throw Error(ExitCode::kInvalidSpacing, path + ": raster does not cover the domain; uncovered: " + bad +
+                                                 (corners ? "" : " (" + std::to_string(n_bad) + " of " +
+                                                                     std::to_string(probe.size()) + " vertices)"));
   }
 
   sizing::Grid g;

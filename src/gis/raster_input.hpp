@@ -12,9 +12,13 @@ namespace fdr::gis {
 // cell_m x cell_m cells that covers local_bbox with one extra cell on each side. Nodata and
 // cells outside the raster become NaN; the band's scale/offset are applied.
 // Errors: unreadable / no band / no CRS -> kInputUnreadable (kCrsError for the CRS);
-// the raster does not cover local_bbox -> kInvalidSpacing naming the uncovered corners (lon/lat);
+// the raster does not cover the domain -> kInvalidSpacing naming the uncovered places (lon/lat);
 // nodata everywhere over the box -> kInvalidSpacing; more than 16M cells -> kWorkLimit.
-sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, Box2 local_bbox, double cell_m);
+// Coverage is checked on `must_cover` (local points, e.g. the PSLG's vertices) when given, else on
+// the outline of local_bbox (its corners are named). Pass the domain's vertices when the raster is
+// cut to the domain's lon/lat box: the bbox of the projected domain reaches beyond that box.
+sizing::Grid read_raster_to_frame(const std::string& path, const Frame& frame, Box2 local_bbox, double cell_m,
+                                  const std::vector<Point2>* must_cover = nullptr);
 
 // Band 1 of `path` on its own grid and CRS (no reprojection), shifted so that local = world -
 // origin: for a size raster already in the mesh's CRS. Rotated or south-up rasters are resampled

@@ -111,6 +111,39 @@ TEST(Raster, PartialCoverReportsOnlyUncoveredCorners) {
   }
 }
 
+TEST(Raster, CoverageCheckedOnDomainVertices) {
+  // Gulf of Maine: the tile covers the lon/lat region but not the projected bbox's northern corners.
+  const std::string tif = kData + "/gulf_of_maine/gulf_of_maine_etopo5.tif";
+  Frame f = choose_frame({{-71.0, 41.0}, {-63.5, 41.0}, {-63.5, 45.6}, {-71.0, 45.6}}, "");
+  const Box2 box = f.domain_box();
+  try {
+    read_raster_to_frame(tif, f, box, 5000.0);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("north-west"), std::string::npos) << e.what();
+  }
+  std::vector<Point2> outline;
+  for (double lon = -71.0; lon <= -63.5; lon += 0.5) {
+    outline.push_back(f.lonlat_to_local({lon, 41.0}));
+    outline.push_back(f.lonlat_to_local({lon, 45.6}));
+  }
+  sizing::Grid g = read_raster_to_frame(tif, f, box, 5000.0, &outline);
+  int filled = 0;
+  std::vector<double> z = sample_depths(g, outline, &filled);
+  for (double v : z) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_EQ(filled, 0);
+  // A vertex outside the tile is named with its lon/lat.
+  outline.push_back(f.lonlat_to_local({-71.3, 45.0}));
+  try {
+    read_raster_to_frame(tif, f, box, 5000.0, &outline);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidSpacing);
+    EXPECT_NE(std::string(e.what()).find("(-71.300000, 45.000000)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 of 33 vertices"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Raster, Unreadable) {
   Frame f = chesapeake_frame();
   try {
