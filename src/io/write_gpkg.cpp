@@ -23,8 +23,11 @@ struct Writer {
 
   [[noreturn]] void fail(const std::string& what) const { fail_output(path, errs.reason(what)); }
 
+  bool spatial_index;
+
   OGRLayer* layer(GDALDataset& ds, const char* name, OGRSpatialReference* srs, OGRwkbGeometryType g) {
-    OGRLayer* l = ds.CreateLayer(name, g == wkbNone ? nullptr : srs, g, nullptr);
+    const char* opts[] = {spatial_index ? "SPATIAL_INDEX=YES" : "SPATIAL_INDEX=NO", nullptr};
+    OGRLayer* l = ds.CreateLayer(name, g == wkbNone ? nullptr : srs, g, const_cast<char**>(opts));
     if (!l) fail(std::string("cannot create layer '") + name + "'");
     return l;
   }
@@ -49,7 +52,7 @@ void set_real_or_null(OGRFeature& f, int i, double v) {
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   gdal_register_once();
   GdalErrors errs;
-  Writer w{path, errs};
+  Writer w{path, errs, o.gpkg_spatial_index};
   GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!drv) fail_output(path, "the GDAL GeoPackage driver is not available");
 

@@ -401,6 +401,29 @@ TEST_F(RoundTrip, GeoPackageThroughOgr) {
   GDALClose(ds);
 }
 
+TEST_F(RoundTrip, GeoPackageSpatialIndexSwitch) {
+  GDALAllRegister();
+  for (bool with_index : {true, false}) {
+    std::string p = tmp / (with_index ? "idx.gpkg" : "noidx.gpkg");
+    opts.gpkg_spatial_index = with_index;
+    io::write_mesh(m, p, Format::kGpkg, opts);
+    GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(p.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr);
+    OGRLayer* q = ds->ExecuteSQL("SELECT COUNT(*) FROM sqlite_master WHERE name = 'rtree_triangles_geom'", nullptr, nullptr);
+    ASSERT_NE(q, nullptr);
+    std::unique_ptr<OGRFeature> row(q->GetNextFeature());
+    EXPECT_EQ(row->GetFieldAsInteger(0), with_index ? 1 : 0);
+    ds->ReleaseResultSet(q);
+    if (with_index) {
+      // The index finds exactly the triangles touching a small window (o2 = (4,2) local).
+      OGRLayer* lt = ds->GetLayerByName("triangles");
+      lt->SetSpatialFilterRect(m.origin.x + 3.9, m.origin.y + 1.9, m.origin.x + 4.1, m.origin.y + 2.1);
+      EXPECT_EQ(lt->GetFeatureCount(), 3);
+    }
+    GDALClose(ds);
+  }
+}
+
 TEST_F(RoundTrip, GeoPackageWithoutSizingHasNullQuality) {
   std::string p = tmp / "plain.gpkg";
   mesh::MeshView plain = m;
