@@ -20,6 +20,7 @@ class GdalErrors {
   GdalErrors& operator=(const GdalErrors&) = delete;
   const std::string& last() const { return last_; }
   bool any() const { return !last_.empty(); }
+  void clear() { last_.clear(); }
   // "<fallback>: <GDAL message>" or just the fallback.
   std::string reason(const std::string& fallback) const { return last_.empty() ? fallback : fallback + ": " + last_; }
 

@@ -3,10 +3,12 @@
 #include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
+#include "io/gpkg_rtree.hpp"
 
 namespace fdr::io::detail {
 
@@ -23,10 +25,10 @@ struct Writer {
 
   [[noreturn]] void fail(const std::string& what) const { fail_output(path, errs.reason(what)); }
 
-  bool spatial_index;
 
   OGRLayer* layer(GDALDataset& ds, const char* name, OGRSpatialReference* srs, OGRwkbGeometryType g) {
-    const char* opts[] = {spatial_index ? "SPATIAL_INDEX=YES" : "SPATIAL_INDEX=NO", nullptr};
+    // Spatial indexes are bulk-loaded at the end (gpkg_rtree.cpp), not maintained row by row.
+    const char* opts[] = {"SPATIAL_INDEX=NO", nullptr};
     OGRLayer* l = ds.CreateLayer(name, g == wkbNone ? nullptr : srs, g, const_cast<char**>(opts));
     if (!l) fail(std::string("cannot create layer '") + name + "'");
     return l;
@@ -52,7 +54,7 @@ void set_real_or_null(OGRFeature& f, int i, double v) {
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   gdal_register_once();
   GdalErrors errs;
-  Writer w{path, errs, o.gpkg_spatial_index};
+  Writer w{path, errs};
   GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!drv) fail_output(path, "the GDAL GeoPackage driver is not available");
 
@@ -107,6 +109,13 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   w.field(lm, "key", OFTString);
   w.field(lm, "value", OFTString);
 
+  std::vector<RtreeEntry> node_boxes, tri_boxes, chain_boxes, repair_boxes;
+  const bool index = o.gpkg_spatial_index;
+  if (index) {
+    node_boxes.reserve(nv);
+    tri_boxes.reserve(m.triangles.size());
+  }
+
   // One transaction for all rows: SQLite commits per statement otherwise (orders of magnitude slower).
   if (ds->StartTransaction() != OGRERR_NONE) w.fail("cannot start a transaction");
 
@@ -129,6 +138,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       set_real_or_null(feat, 3, c);
       feat.SetField(4, m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
       w.create(ln, feat);
+      if (index) node_boxes.push_back({static_cast<std::int64_t>(v + 1), p.x, p.x, p.y, p.y});
     }
   }
   {
@@ -141,10 +151,18 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     ring = static_cast<OGRPolygon*>(feat.GetGeometryRef())->getExteriorRing();
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
       const auto& tr = m.triangles[t];
+      RtreeEntry box{static_cast<std::int64_t>(t + 1), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()};
       for (int k = 0; k < 4; ++k) {
         Point2 p = m.world(tr[k % 3]);
         ring->setPoint(k, p.x, p.y);
+        box.minx = std::min(box.minx, p.x);
+        box.maxx = std::max(box.maxx, p.x);
+        box.miny = std::min(box.miny, p.y);
+        box.maxy = std::max(box.maxy, p.y);
       }
+      if (index) tri_boxes.push_back(box);
       feat.SetFID(static_cast<GIntBig>(t + 1));
       feat.SetField(0, static_cast<GIntBig>(t + 1));
       for (int k = 0; k < 3; ++k) feat.SetField(1 + k, static_cast<GIntBig>(tr[k]) + 1);
@@ -187,6 +205,9 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       feat.SetField(4, c.closed ? 1 : 0);
       feat.SetField(5, static_cast<GIntBig>(c.nodes.size()));
       w.create(lb, feat);
+      OGREnvelope env;
+      ls->getEnvelope(&env);
+      chain_boxes.push_back({static_cast<std::int64_t>(i + 1), env.MinX, env.MaxX, env.MinY, env.MaxY});
     }
   }
   {
@@ -200,6 +221,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       feat.SetField(2, r.reason.c_str());
       feat.SetField(3, r.part);
       w.create(lr, feat);
+      if (std::isfinite(r.x) && std::isfinite(r.y)) repair_boxes.push_back({static_cast<std::int64_t>(i + 1), r.x, r.x, r.y, r.y});
     }
   }
   {
@@ -224,9 +246,15 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       row("bound_B", buf);
     }
   }
+  if (index) {
+    build_gpkg_rtree(*ds, "nodes", std::move(node_boxes), path, errs);
+    build_gpkg_rtree(*ds, "triangles", std::move(tri_boxes), path, errs);
+    build_gpkg_rtree(*ds, "boundaries", std::move(chain_boxes), path, errs);
+    build_gpkg_rtree(*ds, "repairs", std::move(repair_boxes), path, errs);
+  }
   if (ds->CommitTransaction() != OGRERR_NONE) w.fail("cannot commit the transaction");
   GDALDataset* raw = ds.release();
-  GDALClose(raw);  // builds the spatial indexes and closes the database
+  GDALClose(raw);
   if (errs.any()) w.fail("closing the GeoPackage failed");
   tf.commit();
 }

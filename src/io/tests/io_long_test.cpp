@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include "io/reader.hpp"
 #include "io/writer.hpp"
 
@@ -57,8 +60,18 @@ TEST(IoLong, MillionTrianglesEveryFormat) {
   for (const char* name : {"m.gpkg", "m.2dm", "m.msh", "m.node", "m.vtu", "m.14", "m.nc"}) {
     std::string p = dir + "/" + name;
     double s = timed_write(p);
-    if (std::string(name) != "m.gpkg") {
-      EXPECT_LT(s, 10.0);
+    EXPECT_LT(s, std::string(name) == "m.gpkg" ? 20.0 : 10.0);  // gpkg: ~6 s on a loaded 2-core machine
+    if (std::string(name) == "m.gpkg") {
+      // The bulk-loaded R-tree of a million triangles passes SQLite's own consistency check.
+      GDALAllRegister();
+      GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(p.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+      ASSERT_NE(ds, nullptr);
+      OGRLayer* q = ds->ExecuteSQL("SELECT rtreecheck('rtree_triangles_geom')", nullptr, nullptr);
+      ASSERT_NE(q, nullptr);
+      std::unique_ptr<OGRFeature> row(q->GetNextFeature());
+      EXPECT_STREQ(row->GetFieldAsString(0), "ok");
+      ds->ReleaseResultSet(q);
+      GDALClose(ds);
     }
     if (std::string(name) != "m.vtu" && std::string(name) != "m.nc") {
       auto t0 = std::chrono::steady_clock::now();

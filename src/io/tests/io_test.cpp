@@ -424,6 +424,109 @@ TEST_F(RoundTrip, GeoPackageSpatialIndexSwitch) {
   }
 }
 
+namespace {
+// n x n grid of unit squares split into CCW triangles (a few thousand rows: a 3-level R-tree).
+mesh::MeshView grid_mesh(Index n) {
+  mesh::MeshView g;
+  g.origin = {300000.0, 4000000.0};
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) g.vertices.push_back({1.0 * i + 0.01 * (j % 3), 1.0 * j});
+  for (Index j = 0; j + 1 < n; ++j)
+    for (Index i = 0; i + 1 < n; ++i) {
+      Index a = j * n + i;
+      g.triangles.push_back({a, a + 1, a + n + 1});
+      g.triangles.push_back({a, a + n + 1, a + n});
+    }
+  for (Index i = 0; i + 1 < n; ++i) g.edges.push_back({i, i + 1, mk(EdgeKind::kLand), 0});
+  return g;
+}
+std::string sql_text(GDALDataset* ds, const std::string& sql) {
+  OGRLayer* q = ds->ExecuteSQL(sql.c_str(), nullptr, nullptr);
+  if (!q) return "<no result>";
+  std::unique_ptr<OGRFeature> row(q->GetNextFeature());
+  std::string r = row ? row->GetFieldAsString(0) : "<no row>";
+  ds->ReleaseResultSet(q);
+  return r;
+}
+}  // namespace
+
+TEST_F(RoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
+  mesh::MeshView g = grid_mesh(60);  // 6962 triangles, 3600 nodes
+  std::string p = tmp / "grid.gpkg";
+  io::write_mesh(g, p, Format::kGpkg, opts);
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(p.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  for (const char* t : {"nodes", "triangles", "boundaries", "repairs"}) {
+    std::string rt = std::string("rtree_") + t + "_geom";
+    EXPECT_EQ(sql_text(ds, "SELECT rtreecheck('" + rt + "')"), "ok") << t;
+    EXPECT_EQ(sql_text(ds, "SELECT COUNT(*) FROM sqlite_master WHERE type = 'trigger' AND name LIKE '" + rt + "%'"), "6") << t;
+    EXPECT_EQ(sql_text(ds, "SELECT scope FROM gpkg_extensions WHERE table_name = '" + std::string(t) +
+                               "' AND extension_name = 'gpkg_rtree_index'"), "write-only") << t;
+    EXPECT_EQ(sql_text(ds, "SELECT COUNT(*) FROM \"" + rt + "\""), sql_text(ds, std::string("SELECT COUNT(*) FROM ") + t)) << t;
+  }
+  EXPECT_EQ(sql_text(ds, "SELECT MAX(substr(hex(data), 1, 4)) FROM rtree_triangles_geom_node WHERE nodeno = 1"), "0002");  // depth 2
+  // Every triangle whose envelope meets a window is found by the index (float boxes are rounded
+  // outwards, so the index may add candidates but never lose one), and OGR's spatial filter gives
+  // the same answer as on a copy written without an index.
+  std::string p2 = tmp / "grid_noindex.gpkg";
+  opts.gpkg_spatial_index = false;
+  io::write_mesh(g, p2, Format::kGpkg, opts);
+  GDALDataset* ds2 = static_cast<GDALDataset*>(GDALOpenEx(p2.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds2, nullptr);
+  OGRLayer* lt = ds->GetLayerByName("triangles");
+  OGRLayer* lt2 = ds2->GetLayerByName("triangles");
+  ASSERT_TRUE(lt->TestCapability(OLCFastSpatialFilter));
+  EXPECT_FALSE(lt2->TestCapability(OLCFastSpatialFilter));
+  for (auto [x0, y0, x1, y1] : {std::array<double, 4>{3.2, 4.1, 7.9, 9.3}, {0, 0, 0.5, 0.5}, {40.2, 10.7, 41.1, 58.2}, {-5, -5, 100, 100}}) {
+    double wx0 = g.origin.x + x0, wy0 = g.origin.y + y0, wx1 = g.origin.x + x1, wy1 = g.origin.y + y1;
+    std::set<long long> candidates;
+    OGRLayer* q = ds->ExecuteSQL(("SELECT id FROM rtree_triangles_geom WHERE maxx >= " + std::to_string(wx0) + " AND minx <= " +
+                                  std::to_string(wx1) + " AND maxy >= " + std::to_string(wy0) + " AND miny <= " + std::to_string(wy1)).c_str(),
+                                 nullptr, nullptr);
+    ASSERT_NE(q, nullptr);
+    for (auto& f : *q) candidates.insert(f->GetFieldAsInteger64(0));
+    ds->ReleaseResultSet(q);
+    long brute = 0;
+    for (std::size_t t = 0; t < g.num_triangles(); ++t) {
+      Box2 b;
+      for (Index v : g.triangles[t]) b.add(g.world(v));
+      if (b.lo.x <= wx1 && b.hi.x >= wx0 && b.lo.y <= wy1 && b.hi.y >= wy0) {
+        ++brute;
+        EXPECT_TRUE(candidates.count(static_cast<long long>(t + 1))) << "triangle " << t << " missing from the index";
+      }
+    }
+    EXPECT_GT(brute, 0);
+    lt->SetSpatialFilterRect(wx0, wy0, wx1, wy1);
+    lt2->SetSpatialFilterRect(wx0, wy0, wx1, wy1);
+    EXPECT_EQ(lt->GetFeatureCount(), lt2->GetFeatureCount()) << x0 << " " << y0;
+  }
+  GDALClose(ds2);
+  lt->SetSpatialFilter(nullptr);
+  // The maintenance triggers keep the bulk-built index up to date on edits.
+  OGRLayer* lr = ds->GetLayerByName("repairs");
+  OGRFeature nf(lr->GetLayerDefn());
+  nf.SetField("kind", "manual");
+  nf.SetGeometryDirectly(new OGRPoint(g.origin.x + 1000, g.origin.y + 1000));
+  ASSERT_EQ(lr->CreateFeature(&nf), OGRERR_NONE);
+  ASSERT_EQ(lt->DeleteFeature(1), OGRERR_NONE);
+  EXPECT_EQ(sql_text(ds, "SELECT COUNT(*) FROM rtree_repairs_geom WHERE id = " + std::to_string(nf.GetFID()) +
+                             " AND minx > " + std::to_string(g.origin.x + 999)), "1");
+  EXPECT_EQ(sql_text(ds, "SELECT COUNT(*) FROM rtree_triangles_geom WHERE id = 1"), "0");
+  EXPECT_EQ(sql_text(ds, "SELECT rtreecheck('rtree_triangles_geom')"), "ok");
+  GDALClose(ds);
+}
+
+// GDAL's own GeoPackage validator accepts the file (tables, triggers, extensions, R-tree).
+TEST_F(RoundTrip, GeoPackagePassesGdalValidator) {
+  const char* validator = "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py";
+  if (::access(validator, R_OK) != 0) GTEST_SKIP() << "validate_gpkg.py not installed";
+  std::string p = tmp / "valid.gpkg", log = tmp / "validate.log";
+  io::write_mesh(grid_mesh(12), p, Format::kGpkg, opts);
+  int rc = std::system(("/usr/bin/python3 " + std::string(validator) + " " + p + " > " + log + " 2>&1").c_str());
+  EXPECT_EQ(rc, 0) << slurp(log);
+}
+
 TEST_F(RoundTrip, GeoPackageWithoutSizingHasNullQuality) {
   std::string p = tmp / "plain.gpkg";
   mesh::MeshView plain = m;
@@ -751,4 +854,23 @@ TEST(Readers, ClockwiseFileIsReorientedAsAWhole) {
   mesh::MeshView r = io::read_mesh(tmp / "cw.2dm");
   ASSERT_EQ(r.num_triangles(), 1u);
   EXPECT_EQ(r.triangles[0], (std::array<Index, 3>{0, 1, 2}));
+}
+
+// QGIS reads UGRID through MDAL: the mesh, its CRS (from the crs variable) and node z must load.
+TEST_F(RoundTrip, UgridLoadsInQgisMdal) {
+  if (std::system("/usr/bin/python3 -c 'import qgis.core' > /dev/null 2>&1") != 0) GTEST_SKIP() << "QGIS Python not installed";
+  std::string p = tmp / "mdal.nc", script = tmp / "mdal.py", log = tmp / "mdal.log";
+  io::write_mesh(m, p, Format::kUgrid, opts);
+  std::ofstream(script) << "import os\n"
+                           "os.environ['QT_QPA_PLATFORM'] = 'offscreen'\n"
+                           "from qgis.core import QgsApplication, QgsMeshLayer\n"
+                           "app = QgsApplication([], False)\n"
+                           "app.initQgis()\n"
+                           "l = QgsMeshLayer('Ugrid:\"" << p << "\":mesh2d', 'm', 'mdal')\n"
+                           "d = l.dataProvider()\n"
+                           "print('RESULT', l.isValid(), l.crs().authid(), d.vertexCount(), d.faceCount(), d.datasetGroupCount())\n"
+                           "app.exitQgis()\n";
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + script + " > " + log + " 2>&1").c_str()), 0) << slurp(log);
+  std::string out = slurp(log);
+  EXPECT_NE(out.find("RESULT True EPSG:32633 9 9"), std::string::npos) << out;
 }

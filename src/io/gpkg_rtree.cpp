@@ -1,0 +1,207 @@
+// Bulk-loaded GeoPackage R-tree spatial index (gpkg_rtree_index extension), packed with Sort-Tile-Recursive.
+//
+// SQLite R*tree storage (2D, no auxiliary columns), as documented in SQLite's rtree.c:
+//   <rtree>_node(nodeno INTEGER PRIMARY KEY, data BLOB): node 1 is the root; every blob has the
+//     table's fixed node size: [depth:int16 BE (root only)][count:int16 BE][cells...], a cell being
+//     [id:int64 BE][minx maxx miny maxy: float32 BE]; id is a rowid in leaves, a child node number
+//     otherwise. Boxes are rounded outwards to float.
+//   <rtree>_parent(nodeno, parentnode) for every non-root node; <rtree>_rowid(rowid, nodeno) for
+//     every indexed row, naming its leaf.
+#include "io/gpkg_rtree.hpp"
+
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "io/detail.hpp"
+
+namespace fdr::io::detail {
+
+namespace {
+
+struct Cell {
+  std::int64_t id;
+  float box[4];  // minx maxx miny maxy
+};
+
+float round_down(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float round_up(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Sort-Tile-Recursive: sort by x centre into vertical slices of about sqrt(#nodes) nodes each,
+// sort each slice by y centre, cut runs of `cap` cells. Nodes come out full except the last of a slice.
+std::vector<std::vector<Cell>> str_pack(std::vector<Cell> cells, std::size_t cap) {
+  auto cx = [](const Cell& c) { return 0.5 * (double(c.box[0]) + double(c.box[1])); };
+  auto cy = [](const Cell& c) { return 0.5 * (double(c.box[2]) + double(c.box[3])); };
+  std::size_t nodes = (cells.size() + cap - 1) / cap;
+  auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
+  std::size_t per_slice = slices * cap;
+  // Ties broken by id so the packing is deterministic.
+  std::sort(cells.begin(), cells.end(), [&](const Cell& a, const Cell& b) {
+    return cx(a) != cx(b) ? cx(a) < cx(b) : a.id < b.id;
+  });
+  std::vector<std::vector<Cell>> out;
+  for (std::size_t s = 0; s < cells.size(); s += per_slice) {
+    auto b = cells.begin() + static_cast<std::ptrdiff_t>(s);
+    auto e = cells.begin() + static_cast<std::ptrdiff_t>(std::min(cells.size(), s + per_slice));
+    std::sort(b, e, [&](const Cell& p, const Cell& q) { return cy(p) != cy(q) ? cy(p) < cy(q) : p.id < q.id; });
+    for (auto it = b; it < e; it += static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)))
+      out.emplace_back(it, it + static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)));
+  }
+  return out;
+}
+
+void put_be(std::string& hex, std::uint64_t v, int bytes) {
+  static const char* const kHex = "0123456789ABCDEF";
+  for (int i = bytes - 1; i >= 0; --i) {
+    unsigned b = (v >> (8 * i)) & 0xFF;
+    hex.push_back(kHex[b >> 4]);
+    hex.push_back(kHex[b & 15]);
+  }
+}
+
+std::string node_blob_hex(const std::vector<Cell>& cells, int depth, std::size_t node_size) {
+  std::string hex;
+  hex.reserve(2 * node_size + 8);
+  put_be(hex, static_cast<std::uint64_t>(depth), 2);
+  put_be(hex, cells.size(), 2);
+  for (const Cell& c : cells) {
+    put_be(hex, static_cast<std::uint64_t>(c.id), 8);
+    for (float f : c.box) {
+      std::uint32_t u;
+      std::memcpy(&u, &f, 4);
+      put_be(hex, u, 4);
+    }
+  }
+  hex.append(2 * node_size - hex.size(), '0');  // zero padding to the fixed node size
+  return hex;
+}
+
+std::string quoted(const std::string& name) { return "\"" + name + "\""; }
+
+}  // namespace
+
+void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vector<RtreeEntry> entries,
+                      const std::string& path, GdalErrors& errs) {
+  OGRLayer* layer = ds.GetLayerByName(layer_name.c_str());
+  if (!layer) fail_output(path, "layer '" + layer_name + "' vanished while building its spatial index");
+  const std::string t = layer_name, g = layer->GetGeometryColumn(), fid = layer->GetFIDColumn();
+  const std::string rt = "rtree_" + t + "_" + g;
+  auto sql = [&](const std::string& s) {
+    errs.clear();
+    OGRLayer* r = ds.ExecuteSQL(s.c_str(), nullptr, nullptr);
+    if (r) ds.ReleaseResultSet(r);
+    if (errs.any()) fail_output(path, errs.reason("building the spatial index of layer '" + layer_name + "' failed"));
+  };
+
+  sql("CREATE VIRTUAL TABLE " + quoted(rt) + " USING rtree(id, minx, maxx, miny, maxy)");
+  std::size_t node_size = 0;
+  {
+    errs.clear();
+    OGRLayer* r = ds.ExecuteSQL(("SELECT length(data) FROM " + quoted(rt + "_node") + " WHERE nodeno = 1").c_str(), nullptr, nullptr);
+    if (r) {
+      if (std::unique_ptr<OGRFeature> f{r->GetNextFeature()}) node_size = static_cast<std::size_t>(f->GetFieldAsInteger64(0));
+      ds.ReleaseResultSet(r);
+    }
+  }
+  const std::size_t cell_bytes = 8 + 4 * 4;
+  if (node_size < 4 + 4 * cell_bytes) fail_output(path, errs.reason("cannot read the R-tree node size of layer '" + layer_name + "'"));
+  const std::size_t cap = (node_size - 4) / cell_bytes;
+
+  if (!entries.empty()) {
+    std::vector<Cell> cur(entries.size());
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const RtreeEntry& e = entries[i];
+      cur[i] = {e.id, {round_down(e.minx), round_up(e.maxx), round_down(e.miny), round_up(e.maxy)}};
+    }
+    entries.clear();
+    entries.shrink_to_fit();
+    std::vector<std::pair<std::int64_t, std::int64_t>> rowid_rows, parent_rows;
+    std::vector<std::pair<std::int64_t, std::string>> node_rows;
+    std::int64_t next_no = 2;
+    // Build level by level; a level that fits in one node becomes the root (node 1).
+    for (int depth = 0;; ++depth) {
+      std::vector<std::vector<Cell>> groups =
+          cur.size() <= cap ? std::vector<std::vector<Cell>>{cur} : str_pack(std::move(cur), cap);
+      bool root = groups.size() == 1;
+      std::vector<Cell> parents;
+      for (auto& grp : groups) {
+        std::int64_t no = root ? 1 : next_no++;
+        for (const Cell& c : grp) {
+          if (depth == 0) rowid_rows.push_back({c.id, no});
+          else parent_rows.push_back({c.id, no});
+        }
+        node_rows.push_back({no, node_blob_hex(grp, root ? depth : 0, node_size)});
+        Cell p{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
+        for (const Cell& c : grp) {
+          p.box[0] = std::min(p.box[0], c.box[0]);
+          p.box[1] = std::max(p.box[1], c.box[1]);
+          p.box[2] = std::min(p.box[2], c.box[2]);
+          p.box[3] = std::max(p.box[3], c.box[3]);
+        }
+        parents.push_back(p);
+      }
+      if (root) break;
+      cur = std::move(parents);
+    }
+    sql("DELETE FROM " + quoted(rt + "_node"));
+    // Multi-row inserts keep the number of statements (each parsed once) small.
+    auto insert_pairs = [&](const std::string& table, const char* cols,
+                            const std::vector<std::pair<std::int64_t, std::int64_t>>& rows) {
+      for (std::size_t i = 0; i < rows.size(); i += 2000) {
+        std::string s = "INSERT INTO " + quoted(table) + cols + " VALUES ";
+        for (std::size_t k = i; k < std::min(rows.size(), i + 2000); ++k) {
+          if (k > i) s += ',';
+          s += '(' + std::to_string(rows[k].first) + ',' + std::to_string(rows[k].second) + ')';
+        }
+        sql(s);
+      }
+    };
+    for (std::size_t i = 0; i < node_rows.size(); i += 64) {
+      std::string s = "INSERT INTO " + quoted(rt + "_node") + "(nodeno, data) VALUES ";
+      for (std::size_t k = i; k < std::min(node_rows.size(), i + 64); ++k) {
+        if (k > i) s += ',';
+        s += '(' + std::to_string(node_rows[k].first) + ",X'" + node_rows[k].second + "')";
+      }
+      sql(s);
+    }
+    insert_pairs(rt + "_rowid", "(rowid, nodeno)", rowid_rows);
+    insert_pairs(rt + "_parent", "(nodeno, parentnode)", parent_rows);
+  }
+
+  // Maintenance triggers of the GeoPackage 1.2 "gpkg_rtree_index" extension (spec, Annex F.3).
+  const std::string T = quoted(t), C = quoted(g), I = quoted(fid), R = quoted(rt);
+  const std::string values = "VALUES (NEW." + I + ", ST_MinX(NEW." + C + "), ST_MaxX(NEW." + C + "), ST_MinY(NEW." + C +
+                             "), ST_MaxY(NEW." + C + "))";
+  sql("CREATE TRIGGER " + quoted(rt + "_insert") + " AFTER INSERT ON " + T + " WHEN (new." + C +
+      " NOT NULL AND NOT ST_IsEmpty(NEW." + C + ")) BEGIN INSERT OR REPLACE INTO " + R + " " + values + "; END");
+  sql("CREATE TRIGGER " + quoted(rt + "_update1") + " AFTER UPDATE OF " + C + " ON " + T + " WHEN OLD." + I + " = NEW." + I +
+      " AND (NEW." + C + " NOTNULL AND NOT ST_IsEmpty(NEW." + C + ")) BEGIN INSERT OR REPLACE INTO " + R + " " + values + "; END");
+  sql("CREATE TRIGGER " + quoted(rt + "_update2") + " AFTER UPDATE OF " + C + " ON " + T + " WHEN OLD." + I + " = NEW." + I +
+      " AND (NEW." + C + " ISNULL OR ST_IsEmpty(NEW." + C + ")) BEGIN DELETE FROM " + R + " WHERE id = OLD." + I + "; END");
+  sql("CREATE TRIGGER " + quoted(rt + "_update3") + " AFTER UPDATE ON " + T + " WHEN OLD." + I + " != NEW." + I +
+      " AND (NEW." + C + " NOTNULL AND NOT ST_IsEmpty(NEW." + C + ")) BEGIN DELETE FROM " + R + " WHERE id = OLD." + I +
+      "; INSERT OR REPLACE INTO " + R + " " + values + "; END");
+  sql("CREATE TRIGGER " + quoted(rt + "_update4") + " AFTER UPDATE ON " + T + " WHEN OLD." + I + " != NEW." + I +
+      " AND (NEW." + C + " ISNULL OR ST_IsEmpty(NEW." + C + ")) BEGIN DELETE FROM " + R + " WHERE id IN (OLD." + I +
+      ", NEW." + I + "); END");
+  sql("CREATE TRIGGER " + quoted(rt + "_delete") + " AFTER DELETE ON " + T + " WHEN old." + C +
+      " NOT NULL BEGIN DELETE FROM " + R + " WHERE id = OLD." + I + "; END");
+
+  sql("CREATE TABLE IF NOT EXISTS gpkg_extensions (table_name TEXT, column_name TEXT, extension_name TEXT NOT NULL, "
+      "definition TEXT NOT NULL, scope TEXT NOT NULL, CONSTRAINT ge_tce UNIQUE (table_name, column_name, extension_name))");
+  sql("INSERT INTO gpkg_extensions (table_name, column_name, extension_name, definition, scope) VALUES ('" + t + "', '" + g +
+      "', 'gpkg_rtree_index', 'http://www.geopackage.org/spec120/#extension_rtree', 'write-only')");
+}
+
+}  // namespace fdr::io::detail
