@@ -141,7 +141,7 @@ void expect_same_geometry(const mesh::MeshView& a, const mesh::MeshView& b, bool
 
 // ---------------------------------------------------------------- format selection
 
-TEST(FormatFromPath, Extensions) {
+TEST(IoFormatFromPath, Extensions) {
   EXPECT_EQ(io::format_from_path("out/mesh.gpkg"), Format::kGpkg);
   EXPECT_EQ(io::format_from_path("mesh.GPKG"), Format::kGpkg);
   EXPECT_EQ(io::format_from_path("a.b/mesh.2dm"), Format::k2dm);
@@ -156,7 +156,7 @@ TEST(FormatFromPath, Extensions) {
   EXPECT_EQ(io::format_from_path("mesh.nc"), Format::kUgrid);
 }
 
-TEST(FormatFromPath, OverrideIsCaseInsensitive) {
+TEST(IoFormatFromPath, OverrideIsCaseInsensitive) {
   EXPECT_EQ(io::format_from_path("x.gpkg", "2dm"), Format::k2dm);
   EXPECT_EQ(io::format_from_path("x", "GPKG"), Format::kGpkg);
   EXPECT_EQ(io::format_from_path("x", "msh"), Format::kMsh);
@@ -168,7 +168,7 @@ TEST(FormatFromPath, OverrideIsCaseInsensitive) {
     EXPECT_EQ(io::format_from_path("x", io::format_name(f)), f);
 }
 
-TEST(FormatFromPath, UnknownIsUsageErrorListingFormats) {
+TEST(IoFormatFromPath, UnknownIsUsageErrorListingFormats) {
   for (auto [path, of] : {std::pair<std::string, std::string>{"mesh.shp", ""}, {"mesh", ""}, {"mesh.gpkg", "shapefile"}}) {
     try {
       io::format_from_path(path, of);
@@ -184,7 +184,7 @@ TEST(FormatFromPath, UnknownIsUsageErrorListingFormats) {
 
 // ---------------------------------------------------------------- chains
 
-TEST(Chains, OrderedOrientedAndDeterministic) {
+TEST(IoChains, OrderedOrientedAndDeterministic) {
   mesh::MeshView m = sample_mesh();
   auto chains = io::detail::build_chains(m);
   ASSERT_EQ(chains.size(), 4u);
@@ -212,9 +212,43 @@ TEST(Chains, OrderedOrientedAndDeterministic) {
   for (std::size_t i = 0; i < chains.size(); ++i) EXPECT_EQ(chains[i].nodes, again[i].nodes);
 }
 
+TEST(IoChains, BranchesAndSplitPartsCoverEveryEdgeOnce) {
+  // Grid 5x5 vertices (id = 5j + i); part 7 holds a T-shaped breakline plus a separate piece,
+  // part 8 a ring; edges in scrambled order.
+  mesh::MeshView m;
+  for (Index j = 0; j < 5; ++j)
+    for (Index i = 0; i < 5; ++i) m.vertices.push_back({double(i), double(j)});
+  for (Index j = 0; j < 4; ++j)
+    for (Index i = 0; i < 4; ++i) {
+      Index a = 5 * j + i;
+      m.triangles.push_back({a, a + 1, a + 6});
+      m.triangles.push_back({a, a + 6, a + 5});
+    }
+  const std::int32_t bl = mk(EdgeKind::kBreakline);
+  m.edges = {{11, 12, bl, 7}, {6, 11, bl, 7}, {12, 13, bl, 7}, {12, 17, bl, 7}, {3, 4, bl, 7},
+             {6, 7, 1, 8},   {12, 7, 1, 8},  {11, 12, 1, 8},  {6, 11, 1, 8},  {16, 17, bl, 7}};
+  auto chains = io::detail::build_chains(m);
+  std::multiset<std::tuple<Index, Index, std::int32_t, std::int32_t>> seen, want;
+  for (const auto& e : m.edges) want.insert({std::min(e.a, e.b), std::max(e.a, e.b), e.marker, e.part});
+  for (const auto& c : chains) {
+    ASSERT_GE(c.nodes.size(), 2u);
+    std::size_t k = c.nodes.size();
+    for (std::size_t s = 0; s < (c.closed ? k : k - 1); ++s) {
+      Index a = c.nodes[s], b = c.nodes[(s + 1) % k];
+      seen.insert({std::min(a, b), std::max(a, b), c.marker, c.part});
+    }
+  }
+  EXPECT_EQ(seen, want);
+  // The ring is one closed chain; the breakline part needs several open chains.
+  int rings = 0, paths = 0;
+  for (const auto& c : chains) (c.closed ? rings : paths) += 1;
+  EXPECT_EQ(rings, 1);
+  EXPECT_GE(paths, 3);
+}
+
 // ---------------------------------------------------------------- round trips
 
-class RoundTrip : public ::testing::Test {
+class IoRoundTrip : public ::testing::Test {
  protected:
   TmpDir tmp;
   mesh::MeshView m = sample_mesh();
@@ -222,7 +256,7 @@ class RoundTrip : public ::testing::Test {
   io::WriteOptions opts = sample_options(&f);
 };
 
-TEST_F(RoundTrip, Sms2dm) {
+TEST_F(IoRoundTrip, Sms2dm) {
   std::string p = tmp / "mesh.2dm";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   std::string text = slurp(p);
@@ -236,7 +270,7 @@ TEST_F(RoundTrip, Sms2dm) {
   EXPECT_EQ(tmp.entries(), std::vector<std::string>{"mesh.2dm"});
 }
 
-TEST_F(RoundTrip, Fort14) {
+TEST_F(IoRoundTrip, Fort14) {
   std::string p = tmp / "fort.14";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   std::string text = slurp(p);
@@ -276,7 +310,7 @@ TEST_F(RoundTrip, Fort14) {
   for (std::size_t v = 0; v < m.z.size(); ++v) EXPECT_EQ(neg.z[v], -m.z[v]);
 }
 
-TEST_F(RoundTrip, GmshMsh) {
+TEST_F(IoRoundTrip, GmshMsh) {
   std::string p = tmp / "mesh.msh";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   std::string text = slurp(p);
@@ -290,7 +324,7 @@ TEST_F(RoundTrip, GmshMsh) {
   EXPECT_EQ(r.edges.size(), m.edges.size());
 }
 
-TEST_F(RoundTrip, GmshLoadsMsh) {
+TEST_F(IoRoundTrip, GmshLoadsMsh) {
   if (::access("/usr/bin/gmsh", X_OK) != 0) GTEST_SKIP() << "gmsh binary not installed";
   std::string p = tmp / "mesh.msh", out = tmp / "out.msh";
   io::write_mesh(m, p, Format::kMsh, opts);
@@ -306,7 +340,7 @@ TEST_F(RoundTrip, GmshLoadsMsh) {
   EXPECT_EQ(edge_set(r, kinds).size(), edge_set(m, kinds).size());
 }
 
-TEST_F(RoundTrip, TriangleNodeEle) {
+TEST_F(IoRoundTrip, TriangleNodeEle) {
   std::string p = tmp / "mesh.ele";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   EXPECT_EQ(tmp.entries(), (std::vector<std::string>{"mesh.ele", "mesh.node"}));
@@ -322,7 +356,7 @@ TEST_F(RoundTrip, TriangleNodeEle) {
   EXPECT_EQ(r.vertex_marker[4], mk(EdgeKind::kLand));
 }
 
-TEST_F(RoundTrip, GeoPackageOwnReader) {
+TEST_F(IoRoundTrip, GeoPackageOwnReader) {
   std::string p = tmp / "mesh.gpkg";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   EXPECT_EQ(tmp.entries(), std::vector<std::string>{"mesh.gpkg"});
@@ -342,7 +376,7 @@ TEST_F(RoundTrip, GeoPackageOwnReader) {
   EXPECT_TRUE(a.IsSame(&b));
 }
 
-TEST_F(RoundTrip, GeoPackageThroughOgr) {
+TEST_F(IoRoundTrip, GeoPackageThroughOgr) {
   std::string p = tmp / "mesh.gpkg";
   io::write_mesh(m, p, Format::kGpkg, opts);
   GDALAllRegister();
@@ -401,7 +435,7 @@ TEST_F(RoundTrip, GeoPackageThroughOgr) {
   GDALClose(ds);
 }
 
-TEST_F(RoundTrip, GeoPackageSpatialIndexSwitch) {
+TEST_F(IoRoundTrip, GeoPackageSpatialIndexSwitch) {
   GDALAllRegister();
   for (bool with_index : {true, false}) {
     std::string p = tmp / (with_index ? "idx.gpkg" : "noidx.gpkg");
@@ -450,7 +484,7 @@ std::string sql_text(GDALDataset* ds, const std::string& sql) {
 }
 }  // namespace
 
-TEST_F(RoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
+TEST_F(IoRoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
   mesh::MeshView g = grid_mesh(60);  // 6962 triangles, 3600 nodes
   std::string p = tmp / "grid.gpkg";
   io::write_mesh(g, p, Format::kGpkg, opts);
@@ -518,7 +552,7 @@ TEST_F(RoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
 }
 
 // GDAL's own GeoPackage validator accepts the file (tables, triggers, extensions, R-tree).
-TEST_F(RoundTrip, GeoPackagePassesGdalValidator) {
+TEST_F(IoRoundTrip, GeoPackagePassesGdalValidator) {
   const char* validator = "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py";
   if (::access(validator, R_OK) != 0) GTEST_SKIP() << "validate_gpkg.py not installed";
   std::string p = tmp / "valid.gpkg", log = tmp / "validate.log";
@@ -527,7 +561,7 @@ TEST_F(RoundTrip, GeoPackagePassesGdalValidator) {
   EXPECT_EQ(rc, 0) << slurp(log);
 }
 
-TEST_F(RoundTrip, GeoPackageWithoutSizingHasNullQuality) {
+TEST_F(IoRoundTrip, GeoPackageWithoutSizingHasNullQuality) {
   std::string p = tmp / "plain.gpkg";
   mesh::MeshView plain = m;
   plain.f.clear();
@@ -557,7 +591,7 @@ TEST_F(RoundTrip, GeoPackageWithoutSizingHasNullQuality) {
   EXPECT_TRUE(r.crs_wkt.empty());
 }
 
-TEST_F(RoundTrip, Ugrid) {
+TEST_F(IoRoundTrip, Ugrid) {
   std::string p = tmp / "mesh.nc";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   int nc;
@@ -624,7 +658,7 @@ TEST_F(RoundTrip, Ugrid) {
   nc_close(nc);
 }
 
-TEST_F(RoundTrip, UgridGeographicUsesLonLat) {
+TEST_F(IoRoundTrip, UgridGeographicUsesLonLat) {
   std::string p = tmp / "geo.nc";
   OGRSpatialReference srs;
   srs.importFromEPSG(4326);
@@ -647,7 +681,7 @@ TEST_F(RoundTrip, UgridGeographicUsesLonLat) {
   nc_close(nc);
 }
 
-TEST_F(RoundTrip, Vtu) {
+TEST_F(IoRoundTrip, Vtu) {
   std::string p = tmp / "mesh.vtu";
   io::write_mesh(m, p, io::format_from_path(p), opts);
   std::string text = slurp(p);
@@ -678,7 +712,7 @@ TEST_F(RoundTrip, Vtu) {
   EXPECT_EQ(slurp(p).find("R_over_f"), std::string::npos);
 }
 
-TEST_F(RoundTrip, ExistingFileIsReplaced) {
+TEST_F(IoRoundTrip, ExistingFileIsReplaced) {
   std::string p = tmp / "mesh.2dm";
   { std::ofstream(p) << "old content\n"; }
   io::write_mesh(m, p, Format::k2dm, opts);
@@ -714,7 +748,7 @@ void expect_output_error(const std::function<void()>& fn, const std::string& pat
 }
 }  // namespace
 
-TEST_F(RoundTrip, MissingFolderIsOutputError) {
+TEST_F(IoRoundTrip, MissingFolderIsOutputError) {
   for (Format f : kEvery) {
     std::string p = tmp / ("no_such_dir/mesh" + ext_of(f));
     expect_output_error([&] { io::write_mesh(m, p, f, opts); }, f == Format::kNode ? tmp / "no_such_dir/mesh.node" : p);
@@ -722,7 +756,7 @@ TEST_F(RoundTrip, MissingFolderIsOutputError) {
   EXPECT_TRUE(tmp.entries().empty());
 }
 
-TEST_F(RoundTrip, ReadOnlyLocationIsOutputError) {
+TEST_F(IoRoundTrip, ReadOnlyLocationIsOutputError) {
   std::string dir;
   if (::geteuid() == 0) {
     dir = "/proc";  // root ignores permission bits; /proc refuses new files for everyone
@@ -739,7 +773,7 @@ TEST_F(RoundTrip, ReadOnlyLocationIsOutputError) {
   for (auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find("fdr_io_test"), std::string::npos);
 }
 
-TEST_F(RoundTrip, FailureAfterWritingRemovesTempFile) {
+TEST_F(IoRoundTrip, FailureAfterWritingRemovesTempFile) {
   // The target is an existing folder: everything is written, then the final rename fails.
   for (Format f : kEvery) {
     std::string p = tmp / ("blocked" + ext_of(f));
@@ -756,7 +790,7 @@ TEST_F(RoundTrip, FailureAfterWritingRemovesTempFile) {
   EXPECT_FALSE(has_temp_leftover(tmp));
 }
 
-TEST_F(RoundTrip, FailureMidWriteRemovesTempFileAndKeepsOldTarget) {
+TEST_F(IoRoundTrip, FailureMidWriteRemovesTempFileAndKeepsOldTarget) {
   std::string p = tmp / "kept.2dm";
   { std::ofstream(p) << "previous mesh\n"; }
   // A sizing field that throws half-way through the triangles (e.g. a raster read error).
@@ -788,7 +822,7 @@ TEST_F(RoundTrip, FailureMidWriteRemovesTempFileAndKeepsOldTarget) {
   EXPECT_EQ(tmp.entries(), std::vector<std::string>{"kept.2dm"});
 }
 
-TEST_F(RoundTrip, InvalidMeshIsRejectedBeforeWriting) {
+TEST_F(IoRoundTrip, InvalidMeshIsRejectedBeforeWriting) {
   m.triangles.push_back({0, 1, 99});
   std::string p = tmp / "bad.gpkg";
   expect_output_error([&] { io::write_mesh(m, p, Format::kGpkg, opts); }, p);
@@ -812,13 +846,13 @@ void expect_read_error(const std::string& path, ExitCode code, const std::string
 }
 }  // namespace
 
-TEST(Readers, MissingFileIsUnreadable) {
+TEST(IoReaders, MissingFileIsUnreadable) {
   expect_read_error("/nonexistent/mesh.2dm", ExitCode::kInputUnreadable, "/nonexistent/mesh.2dm");
   expect_read_error("/nonexistent/mesh.gpkg", ExitCode::kInputUnreadable, "/nonexistent/mesh.gpkg");
   expect_read_error("/nonexistent/mesh.ele", ExitCode::kInputUnreadable, "/nonexistent/mesh.node");
 }
 
-TEST(Readers, MalformedContentNamesFileAndLine) {
+TEST(IoReaders, MalformedContentNamesFileAndLine) {
   TmpDir tmp;
   auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(tmp / name) << text;
@@ -838,7 +872,7 @@ TEST(Readers, MalformedContentNamesFileAndLine) {
   expect_read_error(write("j.vtu", "<VTKFile/>"), ExitCode::kInputUnreadable, "j.vtu");
 }
 
-TEST(Readers, Fort14WithoutBoundariesAndFortranExponents) {
+TEST(IoReaders, Fort14WithoutBoundariesAndFortranExponents) {
   TmpDir tmp;
   std::ofstream(tmp / "fort.14") << "grid\n 1 3\n 10 0.0 0.0 1.5D+00\n 20, 1.0, 0.0, 2.0\n 30 0.0 1.0 -1.0E+00\n 1 3 10 20 30\n";
   mesh::MeshView r = io::read_mesh(tmp / "fort.14");
@@ -848,7 +882,7 @@ TEST(Readers, Fort14WithoutBoundariesAndFortranExponents) {
   EXPECT_TRUE(r.edges.empty());
 }
 
-TEST(Readers, ClockwiseFileIsReorientedAsAWhole) {
+TEST(IoReaders, ClockwiseFileIsReorientedAsAWhole) {
   TmpDir tmp;
   std::ofstream(tmp / "cw.2dm") << "MESH2D\nE3T 1 1 3 2 1\nND 1 0 0 0\nND 2 1 0 0\nND 3 0 1 0\n";
   mesh::MeshView r = io::read_mesh(tmp / "cw.2dm");
@@ -857,7 +891,7 @@ TEST(Readers, ClockwiseFileIsReorientedAsAWhole) {
 }
 
 // QGIS reads UGRID through MDAL: the mesh, its CRS (from the crs variable) and node z must load.
-TEST_F(RoundTrip, UgridLoadsInQgisMdal) {
+TEST_F(IoRoundTrip, UgridLoadsInQgisMdal) {
   if (std::system("/usr/bin/python3 -c 'import qgis.core' > /dev/null 2>&1") != 0) GTEST_SKIP() << "QGIS Python not installed";
   std::string p = tmp / "mdal.nc", script = tmp / "mdal.py", log = tmp / "mdal.log";
   io::write_mesh(m, p, Format::kUgrid, opts);
@@ -873,4 +907,27 @@ TEST_F(RoundTrip, UgridLoadsInQgisMdal) {
   ASSERT_EQ(std::system(("/usr/bin/python3 " + script + " > " + log + " 2>&1").c_str()), 0) << slurp(log);
   std::string out = slurp(log);
   EXPECT_NE(out.find("RESULT True EPSG:32633 9 9"), std::string::npos) << out;
+}
+
+// An empty mesh is still a valid file in every format and reads back empty.
+TEST_F(IoRoundTrip, EmptyMeshEveryFormat) {
+  mesh::MeshView empty;
+  for (Format f : kEvery) {
+    std::string p = tmp / ("empty" + ext_of(f));
+    io::write_mesh(empty, p, f, {});
+    EXPECT_TRUE(fs::exists(p)) << io::format_name(f);
+    if (f == Format::kVtu || f == Format::kUgrid) continue;
+    mesh::MeshView r = io::read_mesh(p);
+    EXPECT_EQ(r.num_vertices(), 0u) << io::format_name(f);
+    EXPECT_EQ(r.num_triangles(), 0u) << io::format_name(f);
+    EXPECT_TRUE(r.edges.empty()) << io::format_name(f);
+  }
+  if (::access("/usr/bin/gmsh", X_OK) == 0) {
+    std::string cmd = "/usr/bin/gmsh " + (tmp / "empty.msh") + " -0 -o " + (tmp / "empty_out.msh") + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+  }
+  int nc;
+  ASSERT_EQ(nc_open((tmp / "empty.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  nc_close(nc);
+  EXPECT_FALSE(has_temp_leftover(tmp));
 }
