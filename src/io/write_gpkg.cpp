@@ -166,11 +166,16 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       feat.SetFID(static_cast<GIntBig>(t + 1));
       feat.SetField(0, static_cast<GIntBig>(t + 1));
       for (int k = 0; k < 3; ++k) feat.SetField(1 + k, static_cast<GIntBig>(tr[k]) + 1);
-      feat.SetField(4, triangle_area(m, t));
-      feat.SetField(5, triangle_min_angle_deg(m, t));
-      if (o.f) {
-        Point2 c;
-        double r = circumradius(m, t, c) / (*o.f)(c);
+      feat.SetField(4, o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
+      feat.SetField(5, o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
+      if (o.f || o.triangle_r_over_f) {
+        double r;
+        if (o.triangle_r_over_f) {
+          r = (*o.triangle_r_over_f)[t];
+        } else {
+          Point2 c;
+          r = circumradius(m, t, c) / (*o.f)(c);
+        }
         set_real_or_null(feat, 6, r);
         if (o.bound_B > 0) set_real_or_null(feat, 7, r / o.bound_B);
         else feat.SetFieldNull(7);

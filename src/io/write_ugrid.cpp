@@ -199,7 +199,7 @@ void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOp
     return v;
   };
   int v_angle = face_var("mesh2d_face_min_angle", "smallest angle of the triangle", "degree");
-  int v_ratio = o.f ? face_var("mesh2d_face_R_over_f", "circumradius over spacing f at the circumcentre", "1") : -1;
+  int v_ratio = (o.f || o.triangle_r_over_f) ? face_var("mesh2d_face_R_over_f", "circumradius over spacing f at the circumcentre", "1") : -1;
 
   nc.check(nc_enddef(id), "enddef");
 
@@ -234,10 +234,12 @@ void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOp
   if (nt) {
     put_ids(v_faces, nt, 3, [&](std::size_t r, std::size_t c) { return m.triangles[r][c]; }, "write mesh2d_face_nodes");
     std::vector<double> ang(nt);
-    for (std::size_t t = 0; t < nt; ++t) ang[t] = triangle_min_angle_deg(m, t);
+    for (std::size_t t = 0; t < nt; ++t)
+      ang[t] = o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t);
     nc.check(nc_put_var_double(id, v_angle, ang.data()), "write mesh2d_face_min_angle");
     if (v_ratio >= 0) {
       for (std::size_t t = 0; t < nt; ++t) {
+        if (o.triangle_r_over_f) { ang[t] = (*o.triangle_r_over_f)[t]; continue; }
         Point2 c;
         double r = circumradius(m, t, c);
         ang[t] = r / (*o.f)(c);

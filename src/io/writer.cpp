@@ -277,11 +277,13 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
   out.str("</PointData>\n<CellData>\n");
   {
     std::vector<double> ang(m.triangles.size());
-    for (std::size_t t = 0; t < ang.size(); ++t) ang[t] = detail::triangle_min_angle_deg(m, t);
+    for (std::size_t t = 0; t < ang.size(); ++t)
+      ang[t] = o.triangle_min_angle ? (*o.triangle_min_angle)[t] : detail::triangle_min_angle_deg(m, t);
     array("min_angle", ang);
-    if (o.f) {
+    if (o.f || o.triangle_r_over_f) {
       std::vector<double> r(m.triangles.size());
       for (std::size_t t = 0; t < r.size(); ++t) {
+        if (o.triangle_r_over_f) { r[t] = (*o.triangle_r_over_f)[t]; continue; }
         Point2 c;
         double R = detail::circumradius(m, t, c);
         r[t] = R / (*o.f)(c);

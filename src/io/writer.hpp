@@ -44,6 +44,11 @@ struct WriteOptions {
   // GeoPackage R-tree spatial indexes on the nodes/triangles/boundaries/repairs layers (what QGIS
   // uses for fast panning), bulk-loaded after the rows are written.
   bool gpkg_spatial_index = true;
+  // Per-triangle values precomputed in the metric frame (used instead of computing them from the
+  // written coordinates, e.g. when nodes are reprojected to lon/lat by --output-crs).
+  const std::vector<double>* triangle_r_over_f = nullptr;
+  const std::vector<double>* triangle_min_angle = nullptr;
+  const std::vector<double>* triangle_area = nullptr;
 };
 
 // Writes `mesh` to `path` in `format`. The file is written to "<path>.tmp-XXXXXX" in the same

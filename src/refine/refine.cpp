@@ -3,7 +3,9 @@
 // rule 3 (B-bad triangles by R/f(c), split at circumcenters unless that encroaches a subsegment).
 #include "refine/refine.hpp"
 #include <algorithm>
+#include <utility>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include "base/error.hpp"
 #include "cdt/locate.hpp"
@@ -15,6 +17,7 @@ using mesh::VertexKind;
 using predicates::diametral;
 
 namespace {
+static const bool kSortBuckets = std::getenv("FDR_NOSORT") == nullptr;
 constexpr int kBuckets = 2048;  // 16 buckets per doubling of R^2/f^2: 2^(1/32) resolution in R/f
 constexpr double kPi = 3.14159265358979323846;
 
@@ -34,7 +37,7 @@ int bucket_of(double key2) {
 }  // namespace
 
 Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt)
-    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets) {
+    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets), sorted_size_(kBuckets, 0) {
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
@@ -105,6 +108,36 @@ void Refiner::push_bad(TriangleId t, double key2) {
   if (b > top_) top_ = b;
 }
 
+// Why sort: entering a bucket, its triangles lie all over the domain; visiting them in Hilbert
+// order of their first vertex keeps the working set in cache (2x faster at 1M triangles),
+// while the order between buckets (largest R/f(c) first) is unchanged.
+void Refiner::sort_bucket(int b) {
+  auto& bk = buckets_[b];
+  sorted_size_[b] = bk.size();
+  Box2 box;
+  for (const auto& e : bk) box.add(tri_.pts[e.a]);
+  const double sx = box.width() > 0 ? 65535.0 / box.width() : 0, sy = box.height() > 0 ? 65535.0 / box.height() : 0;
+  sort_tmp_.clear();
+  for (const auto& e : bk) {
+    const Point2 p = tri_.pts[e.a];
+    std::uint32_t x = static_cast<std::uint32_t>((p.x - box.lo.x) * sx), y = static_cast<std::uint32_t>((p.y - box.lo.y) * sy);
+    std::uint64_t d = 0;
+    for (std::uint32_t s = 1u << 15; s > 0; s >>= 1) {
+      const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+      d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+      if (ry == 0) {
+        if (rx == 1) { x = s - 1 - x; y = s - 1 - y; }
+        std::swap(x, y);
+      }
+    }
+    sort_tmp_.push_back({~d, e});  // descending: the stack pops in ascending Hilbert order
+  }
+  std::sort(sort_tmp_.begin(), sort_tmp_.end(), [](const auto& u, const auto& v) {
+    return u.first < v.first || (u.first == v.first && u.second.t < v.second.t);
+  });
+  for (std::size_t i = 0; i < bk.size(); ++i) bk[i] = sort_tmp_[i].second;
+}
+
 void Refiner::evaluate(TriangleId t) {
   ++stats_.triangles_tested;
   bool exempt = false;
@@ -120,6 +153,20 @@ void Refiner::check_encroached_edges(TriangleId t) {
     const Index a = T.org(h), b = T.dst(h), c = T.apex(h);
     if (diametral(T.pts[a], T.pts[b], T.pts[c]) > 0) enc_.push_back({a, b});
   }
+}
+
+void Refiner::reserve(double expected_triangles) {
+  if (!(expected_triangles > 0) || expected_triangles > 4e9) return;
+  // Why: growing by doubling would briefly hold old and new arrays (3x peak memory).
+  const auto nt = static_cast<std::size_t>(expected_triangles * 1.1) + 64;
+  tri_.tv.reserve(3 * nt);
+  tri_.twin.reserve(3 * nt);
+  tri_.flags.reserve(nt);
+  const std::size_t nv = nt / 2 + 64;
+  tri_.pts.reserve(nv);
+  tri_.vkind.reserve(nv);
+  tri_.vhe.reserve(nv);
+  tri_.point_marker.reserve(nv);
 }
 
 void Refiner::init() {
@@ -224,6 +271,8 @@ bool Refiner::step() {
   while (top_ >= 0) {
     auto& bk = buckets_[top_];
     if (bk.empty()) { --top_; continue; }
+    // Amortized: re-sort a bucket only when it has doubled since its last sort.
+    if (kSortBuckets && bk.size() >= 64 && bk.size() > 2 * sorted_size_[top_]) sort_bucket(top_);
     const BadEntry e = bk.back();
     bk.pop_back();
     const auto& T = tri_;
@@ -262,8 +311,16 @@ double estimate_triangles(const Triangulation& T, const sizing::SizingField& f, 
       stack.pop_back();
       const double area = 0.5 * std::fabs((q.b.x - q.a.x) * (q.c.y - q.a.y) - (q.b.y - q.a.y) * (q.c.x - q.a.x));
       const Point2 g{(q.a.x + q.b.x + q.c.x) / 3, (q.a.y + q.b.y + q.c.y) / 3};
-      const double fg = f(g) * bound;
-      const double n = (fg > 0 && std::isfinite(fg)) ? kC * area / (fg * fg) : 0;
+      const double fg0 = f(g);
+      if (!(fg0 > 0) || !std::isfinite(fg0)) {
+        std::ostringstream m;
+        m.precision(15);
+        m << "spacing f(" << T.origin.x + g.x << ", " << T.origin.y + g.y << ") = " << fg0
+          << " is not a positive finite number inside the domain";
+        throw Error(ExitCode::kInvalidSpacing, m.str());
+      }
+      const double fg = fg0 * bound;
+      const double n = kC * area / (fg * fg);
       bool split = n > 4 && q.depth < 16 && total < 1e12;
       if (split) {
         // Only where f varies across the piece; where it is nearly constant the estimate holds.

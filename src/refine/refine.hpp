@@ -33,6 +33,9 @@ struct RefineStats {
 class Refiner {
  public:
   Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
+  // Reserves arrays for about this many triangles (from estimate_triangles), avoiding
+  // reallocation peaks.
+  void reserve(double expected_triangles);
   // Queues every encroached subsegment and every bad triangle of the current mesh.
   void init();
   // One refinement action (split one encroached subsegment, or handle one bad triangle).
@@ -54,6 +57,7 @@ class Refiner {
   void split_subsegment(Index a, Index b);
   void split_triangle(const BadEntry& e);
   bool shell_apex_equal(Index p, Index q) const;
+  void sort_bucket(int b);
 
   mesh::Triangulation& tri_;
   const sizing::SizingField& f_;
@@ -64,6 +68,8 @@ class Refiner {
   std::vector<std::pair<Index, Index>> enc_;
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
+  std::vector<std::size_t> sorted_size_;
+  std::vector<std::pair<std::uint64_t, BadEntry>> sort_tmp_;
   // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
   std::unordered_map<Index, std::pair<Index, int>> shell_;
 };

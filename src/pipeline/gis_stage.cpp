@@ -1,0 +1,282 @@
+// GIS stage: read layers into a projected local frame, build the spacing from rasters and rules
+// (combined by minimum, clamped, gradient-limited), clean the PSLG, attach depths to the mesh.
+#include "pipeline/gis_stage.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include "base/error.hpp"
+#include "gis/crs.hpp"
+#include "gis/raster_input.hpp"
+#include "gis/raster_output.hpp"
+#include "gis/reproject.hpp"
+#include "gis/vector_input.hpp"
+#include "sizing/fields.hpp"
+#include "sizing/gradient_limiter.hpp"
+#include "sizing/grid_field.hpp"
+#include "sizing/make_spacing.hpp"
+#include "sizing/raster_rules.hpp"
+
+namespace fdr::pipeline {
+namespace {
+
+class ShiftedField : public sizing::SizingField {
+ public:
+  ShiftedField(sizing::SizingPtr f, Point2 o) : f_(std::move(f)), o_(o) {}
+  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  double lipschitz() const override { return f_->lipschitz(); }
+  std::string describe() const override { return f_->describe() + " (world coordinates)"; }
+
+ private:
+  sizing::SizingPtr f_;
+  Point2 o_;
+};
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// Vertical error of the linear TIN against the DEM grid: every cell centre inside a triangle is
+// compared with the plane through the triangle's three vertex elevations.
+std::pair<double, double> tin_vertical_error(const mesh::MeshView& m, const sizing::Grid& dem) {
+  double max_err = 0, sum2 = 0;
+  std::size_t n = 0;
+  for (const auto& t : m.triangles) {
+    const Point2 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+    const double za = m.z[t[0]], zb = m.z[t[1]], zc = m.z[t[2]];
+    const double det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    if (!(det > 0)) continue;
+    const double xmin = std::min({a.x, b.x, c.x}), xmax = std::max({a.x, b.x, c.x});
+    const double ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
+    const long i0 = std::max(0L, static_cast<long>(std::ceil((xmin - dem.x0) / dem.dx - 0.5)));
+    const long i1 = std::min(static_cast<long>(dem.nx) - 1, static_cast<long>(std::floor((xmax - dem.x0) / dem.dx - 0.5)));
+    const long j0 = std::max(0L, static_cast<long>(std::ceil((ymin - dem.y0) / dem.dy - 0.5)));
+    const long j1 = std::min(static_cast<long>(dem.ny) - 1, static_cast<long>(std::floor((ymax - dem.y0) / dem.dy - 0.5)));
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) {
+        const Point2 p = dem.center(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+        const double l1 = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / det;
+        const double l2 = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / det;
+        const double l3 = 1 - l1 - l2;
+        if (l1 < 0 || l2 < 0 || l3 < 0) continue;
+        const double zd = dem.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+        if (!std::isfinite(zd)) continue;
+        const double e = std::fabs(l1 * za + l2 * zb + l3 * zc - zd);
+        max_err = std::max(max_err, e);
+        sum2 += e * e;
+        ++n;
+      }
+  }
+  return {max_err, n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0};
+}
+
+}  // namespace
+
+PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+  auto warn = [&](const std::string& s) { if (log) log(LogLevel::kWarning, s); };
+  gis::DomainOptions d;
+  if (!opt.land.empty()) {
+    d.land = {opt.land, opt.layer, opt.where};
+    d.extent = opt.extent;
+    if (!opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
+  } else {
+    d.domain = {opt.input, opt.layer, opt.where};
+  }
+  if (!opt.open_boundary.empty()) d.open_boundary = {opt.open_boundary, "", ""};
+  if (!opt.breaklines.empty()) d.breaklines = {opt.breaklines, "", ""};
+  if (!opt.points.empty()) d.points = {opt.points, "", ""};
+  d.s_srs = opt.s_srs;
+  d.t_srs = opt.t_srs;
+  d.clean = false;
+  if (opt.snap) d.snap_distance_m = *opt.snap;
+  gis::GisInput g = gis::read_domain(d);
+  if (progress) progress(0.01, "read");
+  const gis::Frame& frame = g.frame;
+  info("working CRS: " + frame.name() + ", local origin (" + num(frame.origin().x) + ", " + num(frame.origin().y) + ")");
+  info("domain: " + std::to_string(g.counts.polygons) + " polygons, " + std::to_string(g.counts.outer_rings) +
+       " outer rings, " + std::to_string(g.counts.holes) + " holes, " + std::to_string(g.counts.boundary_segments) +
+       " boundary segments, " + std::to_string(g.counts.open_parts) + " open-boundary parts, " +
+       std::to_string(g.counts.breakline_segments) + " breakline segments, " + std::to_string(g.counts.fixed_points) +
+       " fixed points; area " + num(g.domain_area_m2 / 1e6) + " km^2");
+
+  // Spacing, in ground metres on a grid over the domain box, then to grid units.
+  Box2 box = g.raw.bbox();
+  const double diam = std::hypot(box.width(), box.height());
+  const double margin = 0.02 * diam;
+  box.add({box.lo.x - margin, box.lo.y - margin});
+  box.add({box.hi.x + margin, box.hi.y + margin});
+  const bool any_rule = opt.dist_grade || opt.slope_rule || opt.wavelength_rule || opt.vertical_tol ||
+                        !opt.size_raster.empty();
+  const double hmin = opt.hmin.value_or(diam / 500.0);
+  const double hmax = opt.hmax.value_or(diam / 20.0);
+  if (!(hmin > 0) || !(hmax >= hmin))
+    throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " + num(hmax) + ")");
+  sizing::SizingPtr f_ground;
+  std::shared_ptr<sizing::Grid> zgrid;
+  std::shared_ptr<sizing::Grid> fgrid;
+  const bool want_grid = !opt.raster.empty() || any_rule || opt.spacing.empty();
+  if (want_grid) {
+    double cell = opt.cell_size.value_or(0);
+    if (!(cell > 0)) {
+      cell = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
+      // Resolve the smallest features asked for, within a 4M-cell budget.
+      cell = std::max({cell > 0 ? std::min(cell, hmin) : hmin, std::sqrt(box.width() * box.height() / 4e6)});
+    }
+    sizing::Grid like;
+    if (!opt.raster.empty()) {
+      zgrid = std::make_shared<sizing::Grid>(gis::read_raster_to_frame(opt.raster, frame, box, cell, &g.raw.points));
+      like = *zgrid;
+      info("raster " + opt.raster + ": " + std::to_string(like.nx) + " x " + std::to_string(like.ny) + " cells of " +
+           num(cell) + " m");
+    } else {
+      like.nx = static_cast<std::size_t>(std::ceil(box.width() / cell)) + 2;
+      like.ny = static_cast<std::size_t>(std::ceil(box.height() / cell)) + 2;
+      like.x0 = box.lo.x - cell;
+      like.y0 = box.lo.y - cell;
+      like.dx = like.dy = cell;
+      like.v.assign(like.nx * like.ny, 0.0);
+    }
+    std::vector<sizing::Grid> rules;
+    std::vector<std::string> names;
+    // Distance to shore (land and island edges; open boundaries are not shore).
+    if (opt.dist_grade || !any_rule) {
+      std::vector<std::pair<Point2, Point2>> shore;
+      for (const auto& s : g.raw.segments)
+        if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
+          shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
+      const double grade = opt.dist_grade.value_or(0.1);
+      if (!shore.empty()) {
+        rules.push_back(sizing::rule_distance(sizing::distance_to_shore(like, shore), hmin, grade));
+        names.push_back("distance (hmin + " + num(grade) + " d)");
+      }
+    }
+    sizing::Grid depth;
+    if (zgrid) {
+      depth = *zgrid;
+      for (auto& v : depth.v) v = -v;  // elevation positive up -> depth positive down
+    }
+    if (opt.slope_rule) {
+      if (!zgrid) throw Error(ExitCode::kUsage, "--slope-rule needs --raster");
+      rules.push_back(sizing::rule_slope(depth, *opt.slope_rule));
+      names.push_back("slope (slp " + num(*opt.slope_rule) + ")");
+    }
+    if (opt.wavelength_rule) {
+      if (!zgrid) throw Error(ExitCode::kUsage, "--wavelength-rule needs --raster");
+      rules.push_back(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule));
+      names.push_back("wavelength (T " + num(opt.wave_period_s) + " s, wl " + num(*opt.wavelength_rule) + ")");
+    }
+    if (opt.vertical_tol) {
+      if (!zgrid) throw Error(ExitCode::kUsage, "--vertical-tol needs --raster (the DEM)");
+      rules.push_back(sizing::rule_curvature(*zgrid, *opt.vertical_tol));
+      names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
+    }
+    if (!opt.size_raster.empty()) {
+      sizing::Grid s = gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points);
+      if (s.nx != like.nx || s.ny != like.ny) {
+        // Resample onto `like` through a field (both grids cover the same box).
+        sizing::Grid r = like;
+        sizing::Grid filled = sizing::fill_nan(s, std::numeric_limits<double>::infinity());
+        for (auto& v : filled.v) if (!(v > 0)) v = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < r.ny; ++j)
+          for (std::size_t i = 0; i < r.nx; ++i) {
+            const Point2 p = r.center(i, j);
+            const long ii = std::clamp(static_cast<long>((p.x - s.x0) / s.dx), 0L, static_cast<long>(s.nx) - 1);
+            const long jj = std::clamp(static_cast<long>((p.y - s.y0) / s.dy), 0L, static_cast<long>(s.ny) - 1);
+            r.at(i, j) = filled.at(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj));
+          }
+        s = std::move(r);
+      }
+      for (auto& v : s.v) if (!(v > 0) || !std::isfinite(v)) v = std::numeric_limits<double>::infinity();
+      rules.push_back(std::move(s));
+      names.push_back("size raster " + opt.size_raster);
+    }
+    sizing::Grid h;
+    if (rules.empty()) {
+      h = like;
+      std::fill(h.v.begin(), h.v.end(), hmax);
+    } else {
+      h = sizing::combine_min(rules);
+    }
+    h = sizing::clamp(h, hmin, hmax);
+    h = sizing::fill_nan(h, hmax);
+    if (!(opt.gradation > 0)) throw Error(ExitCode::kUsage, "--gradation must be positive");
+    sizing::limit_gradient(h, opt.gradation);
+    fgrid = std::make_shared<sizing::Grid>(h);
+    std::string desc = "grid " + std::to_string(h.nx) + "x" + std::to_string(h.ny) + ": min(";
+    for (std::size_t i = 0; i < names.size(); ++i) desc += (i ? ", " : "") + names[i];
+    desc += ") clamped to [" + num(hmin) + ", " + num(hmax) + "] m, gradient-limited to " + num(opt.gradation);
+    info("spacing: " + desc);
+    f_ground = std::make_shared<sizing::GridField>(h, desc);
+  }
+  if (!opt.spacing.empty()) {
+    sizing::SizingPtr e = std::make_shared<ShiftedField>(sizing::make_spacing(opt.spacing), frame.origin());
+    f_ground = f_ground ? std::make_shared<sizing::MinField>(std::vector<sizing::SizingPtr>{f_ground, e}) : e;
+  }
+  double kdev = 0;
+  sizing::SizingPtr f = gis::ground_to_grid(f_ground, frame, box, &kdev);
+  info("projection scale factor: max |k - 1| = " + num(kdev) + (kdev > 1e-3 ? " (spacing corrected)" : ""));
+  if (progress) progress(0.03, "clean");
+
+  // Geometry repair with the spacing known.
+  pslg::CleanOptions co;
+  co.snap_distance = g.snap_distance_m;
+  co.min_island_area_factor = opt.min_island_factor;
+  if (opt.simplify) {
+    co.simplify_factor = *opt.simplify;
+    co.simplify_tolerance = hmin / 10.0;
+  }
+  co.spacing = [f](Point2 p) { return (*f)(p); };
+  gis::clean_domain(g, co);
+  std::map<std::string, std::size_t> kinds;
+  for (const auto& r : g.repairs) ++kinds[r.repair.kind];
+  std::string rep = "repairs: " + std::to_string(g.repairs.size());
+  for (const auto& [k, n] : kinds) rep += ", " + k + " " + std::to_string(n);
+  info(rep);
+
+  PreparedInput out;
+  out.pslg = std::move(g.pslg);
+  out.f = f;
+  out.crs_name = frame.name();
+  for (const auto& r : g.repairs) {
+    const Point2 w = r.repair.where;
+    out.repairs.push_back({r.repair.kind, w.x, w.y, r.repair.size, r.repair.reason, r.repair.part});
+  }
+  out.metadata.push_back({"crs_wkt", frame.wkt()});
+  out.metadata.push_back({"crs_epsg", std::to_string(frame.epsg())});
+  out.metadata.push_back({"local_origin", num(frame.origin().x) + "," + num(frame.origin().y)});
+  out.metadata.push_back({"domain_area_m2", num(g.domain_area_m2)});
+  if (!opt.raster.empty()) out.metadata.push_back({"raster", opt.raster});
+  out.metadata.push_back({"max_abs_scale_factor_minus_1", num(kdev)});
+  const bool terrain = opt.vertical_tol.has_value();
+  const std::string output_crs = opt.output_crs;
+    out.attach = [zgrid, frame, terrain, info, warn](mesh::MeshView& m) {
+    m.crs_wkt = frame.wkt();
+    if (zgrid) {
+      int filled = 0;
+      m.z = gis::sample_depths(*zgrid, m.vertices, &filled);
+      if (filled > 0) warn(std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
+      if (terrain) {
+        const auto [emax, erms] = tin_vertical_error(m, *zgrid);
+        info("TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
+      }
+    }
+  };
+  if (!output_crs.empty()) {
+    gis::check_crs(output_crs);  // fail before meshing on an unknown CRS
+    out.to_output_crs = [frame, output_crs](mesh::MeshView& m) { gis::reproject_mesh(m, frame, output_crs); };
+  }
+  if (!opt.write_spacing.empty() && fgrid) {
+    const std::string path = opt.write_spacing;
+    out.extra_outputs.push_back([fgrid, frame, path] { gis::write_grid_geotiff(*fgrid, frame, path); });
+  } else if (!opt.write_spacing.empty()) {
+    throw Error(ExitCode::kUsage, "--write-spacing needs a raster-based spacing (give --raster or a rule)");
+  }
+  return out;
+}
+
+}  // namespace fdr::pipeline

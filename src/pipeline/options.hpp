@@ -1,0 +1,53 @@
+// Options of one fdrmesh run (filled by the CLI, the QGIS plugin through the CLI, or C++ callers).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fdr::pipeline {
+
+struct Options {
+  // Input: a Triangle .poly/.node file, or any OGR vector source (water polygons).
+  std::string input;
+  std::string layer, where;              // OGR layer and attribute filter of the domain
+  std::string land;                      // land polygons subtracted from --extent
+  std::optional<std::array<double, 4>> extent;  // xmin,ymin,xmax,ymax (lon/lat)
+  std::string breaklines, points, open_boundary;
+  std::string s_srs, t_srs, output_crs;
+
+  // Outputs.
+  std::vector<std::string> outputs;      // format from the extension, or `of`
+  std::string of;
+  std::string report_json;
+  std::string write_spacing;             // GeoTIFF of the final f (GIS runs)
+  bool overwrite = true;
+
+  // Spacing.
+  std::string spacing;                   // expression / preset / constant (world coordinates)
+  std::string raster;                    // bathymetry / DEM
+  std::string size_raster;               // explicit size raster (metres)
+  std::optional<double> hmin, hmax;      // metres
+  std::optional<double> dist_grade;      // h = hmin + g * distance to shore
+  std::optional<double> slope_rule;      // OceanMesh2D slp: h = (2 pi / slp) depth / |grad depth|
+  std::optional<double> wavelength_rule; // wl: h = T sqrt(g depth) / wl
+  double wave_period_s = 44712.0;        // M2 tide, 12.42 h
+  std::optional<double> vertical_tol;    // terrain: h = sqrt(8 tol / |kappa|)
+  double gradation = 0.15;               // alpha for gradient limiting (GIS runs)
+  std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
+  double min_island_factor = 0.0;        // drop rings with area < factor * f^2
+  std::optional<double> simplify;        // thin boundary vertices closer than factor * f
+  std::optional<double> snap;            // snap distance (metres)
+
+  // Refinement.
+  double bound = 1.0;                    // B
+  double min_angle_deg = 0.0;
+  std::uint64_t max_steiner = 20'000'000;
+  bool check = false;
+  bool quiet = false;
+
+  std::string command_line;              // for provenance (metadata)
+};
+
+}  // namespace fdr::pipeline

@@ -1,0 +1,275 @@
+// Pipeline: read the input, build the spacing f, CDT, FDR refinement, quality report, writers.
+#include "pipeline/pipeline.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include "base/error.hpp"
+#include "base/version.hpp"
+#include "cdt/cdt.hpp"
+#include "io/writer.hpp"
+#include "mesh/check.hpp"
+#include "pipeline/gis_stage.hpp"
+#include "predicates/predicates.hpp"
+#include "pslg/poly_io.hpp"
+#include "pslg/validate.hpp"
+#include "quality/rss.hpp"
+#include "refine/refine.hpp"
+#include "sizing/field_checks.hpp"
+#include "sizing/make_spacing.hpp"
+
+namespace fdr::pipeline {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string lower_ext(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+// f given in world coordinates, evaluated in the mesher's local frame.
+class ShiftedField : public sizing::SizingField {
+ public:
+  ShiftedField(sizing::SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
+  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  double lipschitz() const override { return f_->lipschitz(); }
+  std::string describe() const override { return f_->describe(); }
+
+ private:
+  sizing::SizingPtr f_;
+  Point2 o_;
+};
+
+// Local origin for a .poly input: shift only when the coordinates are far from 0 relative to the
+// extent (e.g. projected metres), so that small inputs keep their exact coordinates.
+Point2 choose_origin(const Box2& b) {
+  const Point2 c = b.center();
+  const double size = std::max({b.width(), b.height(), 1e-300});
+  if (std::max(std::fabs(c.x), std::fabs(c.y)) < 1e3 * size) return {0, 0};
+  const double unit = std::pow(10.0, std::floor(std::log10(size)));
+  return {std::round(c.x / unit) * unit, std::round(c.y / unit) * unit};
+}
+
+void log_info(const LogFn& log, const std::string& s) {
+  if (log) log(LogLevel::kInfo, s);
+}
+}  // namespace
+
+bool is_poly_input(const std::string& path) {
+  const std::string e = lower_ext(path);
+  return e == "poly" || e == "node";
+}
+
+Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  const auto t_start = Clock::now();
+  auto report_progress = [&](double frac, const char* stage) {
+    if (progress && !progress(frac, stage)) throw Error(ExitCode::kCancelled, std::string("cancelled during ") + stage);
+  };
+  if (opt.input.empty()) throw Error(ExitCode::kUsage, "no input given");
+  if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
+  if (opt.min_angle_deg < 0 || opt.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+  // Resolve output formats first: a bad -o fails before any work.
+  std::vector<io::Format> formats;
+  for (const auto& o : opt.outputs) formats.push_back(io::format_from_path(o, opt.of));
+  predicates::reset_counters();
+
+  Result result;
+  PreparedInput in;
+  report_progress(0.0, "read");
+  if (is_poly_input(opt.input)) {
+    in.pslg = lower_ext(opt.input) == "node" ? pslg::read_node(opt.input) : pslg::read_poly(opt.input);
+    pslg::validate(in.pslg, opt.input);
+    const Point2 origin = choose_origin(in.pslg.bbox());
+    if (origin.x != 0 || origin.y != 0) {
+      for (auto& p : in.pslg.points) p = {p.x - origin.x, p.y - origin.y};
+      for (auto& p : in.pslg.holes) p = {p.x - origin.x, p.y - origin.y};
+      for (auto& r : in.pslg.regions) r.seed = {r.seed.x - origin.x, r.seed.y - origin.y};
+      in.pslg.origin = origin;
+    }
+    // Default spacing for a bare PSLG: a twentieth of the bounding-box diagonal.
+    std::string spec = opt.spacing;
+    if (spec.empty()) {
+      const Box2 b = in.pslg.bbox();
+      std::ostringstream s;
+      s.precision(17);
+      s << std::hypot(b.width(), b.height()) / 20.0;
+      spec = s.str();
+    }
+    in.f = std::make_shared<ShiftedField>(sizing::make_spacing(spec), in.pslg.origin);
+  } else {
+    in = prepare_gis_input(opt, progress, log);
+    result.crs_name = in.crs_name;
+    result.repairs = in.repairs.size();
+  }
+  report_progress(0.05, "cdt");
+
+  // Constrained Delaunay triangulation.
+  const auto t_cdt = Clock::now();
+  cdt::CdtStats cstats;
+  mesh::Triangulation tri = cdt::build_cdt(in.pslg, {cdt::CdtOptions::Regions::kAuto, opt.input}, &cstats);
+  const double cdt_s = since(t_cdt);
+  if (tri.num_live_triangles() == 0)
+    throw Error(ExitCode::kInvalidGeometry, opt.input + ": the domain is empty (no region enclosed by segments)");
+
+  // Spacing checks: alpha, positivity inside the domain (during the estimate), work estimate.
+  const sizing::SizingField& f = *in.f;
+  Box2 box = in.pslg.bbox();
+  double alpha = f.lipschitz();
+  if (!(alpha >= 0)) alpha = sizing::estimate_lipschitz(f, box, 64);
+  if (alpha * opt.bound >= 1)
+    log(LogLevel::kWarning, "alpha*B = " + std::to_string(alpha * opt.bound) +
+                                " >= 1: the spacing varies too fast for the FDR guarantees (termination still "
+                                "bounded by --max-steiner); lower --bound or smooth the spacing");
+  const double expected = refine::estimate_triangles(tri, f, opt.bound);
+  log_info(log, "expected about " + std::to_string(static_cast<long long>(expected)) + " triangles");
+  if (expected > 2.5 * static_cast<double>(opt.max_steiner))
+    throw Error(ExitCode::kWorkLimit, "the spacing asks for about " + std::to_string(static_cast<long long>(expected)) +
+                                          " triangles, more than --max-steiner " + std::to_string(opt.max_steiner) +
+                                          " allows; coarsen the spacing or raise --max-steiner");
+
+  // Functional Delaunay Refinement.
+  const auto t_ref = Clock::now();
+  refine::RefineOptions ro;
+  ro.bound = opt.bound;
+  ro.min_angle_deg = opt.min_angle_deg;
+  ro.max_steiner = opt.max_steiner;
+  ro.expected_steiner = expected / 2;
+  ro.progress = [&](double frac, std::string_view) {
+    return !progress || progress(0.05 + 0.75 * frac, "refine");
+  };
+  refine::Refiner refiner(tri, f, ro);
+  refiner.reserve(expected);
+  refiner.init();
+  refiner.run();
+  const double refine_s = since(t_ref);
+  report_progress(0.8, "report");
+
+  if (opt.check) {
+    mesh::CheckResult cr = mesh::check_all(tri);
+    std::size_t bad = 0;
+    for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+      if (tri.dead(t)) continue;
+      bool exempt = false;
+      if (refiner.badness(t, &exempt) > 1 && !exempt) ++bad;
+    }
+    if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
+    if (!cr.ok()) {
+      std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
+      for (const auto& p : cr.problems) msg += "\n  " + p;
+      throw Error(ExitCode::kCheckFailed, msg);
+    }
+    log_info(log, "check: topology, orientation, constrained Delaunay, segments and R/f(c) <= B hold");
+  }
+
+  result.mesh = tri.to_view();
+  auto& m = result.mesh;
+  if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
+  if (m.f.empty()) {
+    m.f.resize(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = f(m.vertices[i]);
+  }
+
+  quality::RunInfo ri;
+  ri.cdt_s = cdt_s;
+  ri.refine_s = refine_s;
+  ri.predicate_filtered = predicates::counters().filtered;
+  ri.predicate_exact = predicates::counters().exact;
+  ri.exempt_small_angle_triangles = 0;
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    bool exempt = false;
+    refiner.badness(t, &exempt);
+    if (exempt) ++ri.exempt_small_angle_triangles;
+  }
+  ri.steiner_segment = refiner.stats().segment_splits;
+  ri.steiner_interior = refiner.stats().circumcenters;
+  ri.input_file = opt.input;
+  ri.spacing = f.describe();
+  if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
+  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  report_progress(0.9, "write");
+
+  // Writers.
+  const auto t_write = Clock::now();
+  io::WriteOptions wo;
+  wo.f = &f;
+  wo.bound_B = opt.bound;
+  wo.title = opt.input;
+  {
+    std::ostringstream js;
+    quality::write_json(result.report, js);
+    wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
+                   {"command_line", opt.command_line},
+                   {"input", opt.input},
+                   {"spacing", f.describe()},
+                   {"bound_B", std::to_string(opt.bound)},
+                   {"min_angle_deg", std::to_string(opt.min_angle_deg)},
+                   {"alpha", std::to_string(alpha)},
+                   {"crs", result.crs_name},
+                   {"quality", js.str()}};
+    for (const auto& kv : in.metadata) wo.metadata.push_back(kv);
+  }
+  wo.repairs = in.repairs;
+  // --output-crs: quality columns are computed in the metric frame, then the copy is reprojected.
+  mesh::MeshView projected;
+  std::vector<double> r_over_f, min_angle, area;
+  const mesh::MeshView* to_write = &m;
+  if (in.to_output_crs && !opt.outputs.empty()) {
+    r_over_f.resize(m.triangles.size());
+    min_angle.resize(m.triangles.size());
+    area.resize(m.triangles.size());
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+      double r2;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      r_over_f[t] = std::sqrt(r2) / f(cc);
+      const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+      auto ang = [](double x, double y, double z) {  // angle opposite x
+        return std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+      };
+      min_angle[t] = std::min({ang(la, lb, lc), ang(lb, lc, la), ang(lc, la, lb)});
+      area[t] = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    }
+    projected = m;
+    in.to_output_crs(projected);
+    wo.f = nullptr;
+    wo.triangle_r_over_f = &r_over_f;
+    wo.triangle_min_angle = &min_angle;
+    wo.triangle_area = &area;
+    to_write = &projected;
+  }
+  for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
+    io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
+    result.written.push_back(opt.outputs[i]);
+  }
+  for (const auto& extra : in.extra_outputs) extra();
+  result.report.run.write_s = since(t_write);
+  result.report.run.total_s = since(t_start);
+  result.report.run.peak_rss_mb = quality::peak_rss_mb_value();
+  if (!opt.report_json.empty()) {
+    // Atomic: temporary file, then rename.
+    const std::string tmp = opt.report_json + ".tmp";
+    {
+      std::ofstream out(tmp);
+      if (!out) throw Error(ExitCode::kOutputError, opt.report_json + ": cannot write");
+      quality::write_json(result.report, out);
+      out << "\n";
+      if (!out) { std::remove(tmp.c_str()); throw Error(ExitCode::kOutputError, opt.report_json + ": write failed"); }
+    }
+    if (std::rename(tmp.c_str(), opt.report_json.c_str()) != 0) {
+      std::remove(tmp.c_str());
+      throw Error(ExitCode::kOutputError, opt.report_json + ": cannot rename the temporary file");
+    }
+    result.written.push_back(opt.report_json);
+  }
+  report_progress(1.0, "done");
+  return result;
+}
+
+}  // namespace fdr::pipeline

@@ -1,0 +1,28 @@
+// pipeline::run: the only place that knows the order of the stages (read, clean, size, CDT,
+// refine, report, write).
+#pragma once
+#include <string>
+#include <vector>
+#include "base/progress.hpp"
+#include "mesh/mesh_view.hpp"
+#include "pipeline/options.hpp"
+#include "quality/report.hpp"
+
+namespace fdr::pipeline {
+
+struct Result {
+  mesh::MeshView mesh;
+  quality::QualityReport report;
+  std::vector<std::string> written;   // output paths
+  std::string crs_name;               // working CRS ("" for .poly input)
+  std::size_t repairs = 0;
+};
+
+// Runs one meshing job. Throws fdr::Error (exit codes in base/error.hpp) on failure; outputs are
+// written to temporary files and renamed, so a failed run leaves no partial output.
+Result run(const Options& options, const ProgressFn& progress, const LogFn& log);
+
+// True if `path` is read as a Triangle .poly/.node file (by extension).
+bool is_poly_input(const std::string& path);
+
+}  // namespace fdr::pipeline
