@@ -6,12 +6,9 @@ namespace fdr::predicates {
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using P = K::Point_2;
-thread_local Counters g_counters;
 inline P cg(Point2 p) { return P(p.x, p.y); }
 }  // namespace
 
-Counters& counters() { return g_counters; }
-void reset_counters() { g_counters = Counters{}; }
 
 int orient2d_exact(Point2 a, Point2 b, Point2 c) {
   return static_cast<int>(CGAL::orientation(cg(a), cg(b), cg(c)));

@@ -18,8 +18,9 @@ struct Counters {
   std::uint64_t filtered = 0;
   std::uint64_t exact = 0;
 };
-Counters& counters();
-void reset_counters();
+inline thread_local Counters tls_counters;
+inline Counters& counters() { return tls_counters; }
+inline void reset_counters() { tls_counters = Counters{}; }
 
 // Exact fallbacks (out of line: they pull in CGAL).
 int orient2d_exact(Point2 a, Point2 b, Point2 c);

@@ -57,7 +57,6 @@ class Refiner {
   void split_subsegment(Index a, Index b);
   void split_triangle(const BadEntry& e);
   bool shell_apex_equal(Index p, Index q) const;
-  void sort_bucket(int b);
 
   mesh::Triangulation& tri_;
   const sizing::SizingField& f_;
@@ -68,8 +67,6 @@ class Refiner {
   std::vector<std::pair<Index, Index>> enc_;
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
-  std::vector<std::size_t> sorted_size_;
-  std::vector<std::pair<std::uint64_t, BadEntry>> sort_tmp_;
   // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
   std::unordered_map<Index, std::pair<Index, int>> shell_;
 };

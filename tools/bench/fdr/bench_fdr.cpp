@@ -71,6 +71,7 @@ Row run_fdr(double k) {
   auto t0 = Clock::now();
   auto T = cdt::build_cdt(p);
   refine::Refiner r(T, f, {});
+  r.reserve(refine::estimate_triangles(T, f, 1.0));
   r.init();
   r.run();
   auto t1 = Clock::now();
