@@ -19,9 +19,12 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--breaklines", "breaklines", "vector_in", "FILE", "", "Input", "Lines kept as mesh edges (rivers, levees, channels); clipped to the domain"},
       {"mesh", "--points", "points", "vector_in", "FILE", "", "Input", "Fixed vertices (points inside the domain)"},
       {"mesh", "--open-boundary", "open-boundary", "vector_in", "FILE", "", "Input", "Lines marking the open-ocean parts of the boundary"},
+      {"mesh", "--breaklines-layer", "breaklines-layer", "string", "NAME", "", "Input", "Layer of --breaklines to read (default: the first)"},
+      {"mesh", "--points-layer", "points-layer", "string", "NAME", "", "Input", "Layer of --points to read (default: the first)"},
+      {"mesh", "--open-boundary-layer", "open-boundary-layer", "string", "NAME", "", "Input", "Layer of --open-boundary to read (default: the first)"},
       {"mesh", "--s_srs", "s_srs", "crs", "SRS", "", "Input", "CRS of input layers that carry none"},
       // mesh: CRS
-      {"mesh", "--t_srs", "t_srs", "crs", "SRS", "auto (UTM / local TM or LAEA)", "CRS", "Projected CRS to mesh in (EPSG:n, PROJ string or WKT)"},
+      {"mesh", "--t_srs", "t_srs", "crs", "SRS", "auto: UTM zone, or a centred transverse Mercator for wide domains", "CRS", "Projected CRS to mesh in (EPSG:n, PROJ string or WKT)"},
       {"mesh", "--output-crs", "output-crs", "crs", "SRS", "", "CRS", "Write node coordinates in this CRS (same topology), e.g. EPSG:4326"},
       // mesh: spacing
       {"mesh", "--spacing", "spacing", "expr", "EXPR|PRESET", "bbox diagonal / 20 (.poly)", "Spacing",
