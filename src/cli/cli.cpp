@@ -171,6 +171,9 @@ int run(int argc, char** argv) {
     o.breaklines = str(v, "breaklines");
     o.points = str(v, "points");
     o.open_boundary = str(v, "open-boundary");
+    o.breaklines_layer = str(v, "breaklines-layer");
+    o.points_layer = str(v, "points-layer");
+    o.open_boundary_layer = str(v, "open-boundary-layer");
     o.s_srs = str(v, "s_srs");
     o.t_srs = str(v, "t_srs");
     o.output_crs = str(v, "output-crs");
@@ -214,6 +217,13 @@ int run(int argc, char** argv) {
     progress.finish();
     if (!o.quiet) {
       quality::write_text(r.report, std::cout);
+      std::cout << "stages (s, peak MiB):";
+      for (const auto& st : r.stages) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " %s %.2f (%.0f)", st.name.c_str(), st.seconds, st.peak_rss_mb);
+        std::cout << buf;
+      }
+      std::cout << "\n";
       for (const auto& w : r.written) std::cout << "wrote " << w << "\n";
       std::cout.flush();
     }

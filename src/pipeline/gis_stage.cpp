@@ -77,6 +77,8 @@ std::pair<double, double> tin_vertical_error(const mesh::MeshView& m, const sizi
 }  // namespace
 
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  std::vector<StageTime> stages;
+  StageClock clock(&stages);
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   auto warn = [&](const std::string& s) { if (log) log(LogLevel::kWarning, s); };
   gis::DomainOptions d;
@@ -87,14 +89,21 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   } else {
     d.domain = {opt.input, opt.layer, opt.where};
   }
-  if (!opt.open_boundary.empty()) d.open_boundary = {opt.open_boundary, "", ""};
-  if (!opt.breaklines.empty()) d.breaklines = {opt.breaklines, "", ""};
-  if (!opt.points.empty()) d.points = {opt.points, "", ""};
+  if (!opt.open_boundary.empty()) d.open_boundary = {opt.open_boundary, opt.open_boundary_layer, ""};
+  if (!opt.breaklines.empty()) d.breaklines = {opt.breaklines, opt.breaklines_layer, ""};
+  if (!opt.points.empty()) d.points = {opt.points, opt.points_layer, ""};
+  if (opt.open_boundary.empty() && !opt.open_boundary_layer.empty())
+    throw Error(ExitCode::kUsage, "--open-boundary-layer needs --open-boundary FILE");
+  if (opt.breaklines.empty() && !opt.breaklines_layer.empty())
+    throw Error(ExitCode::kUsage, "--breaklines-layer needs --breaklines FILE");
+  if (opt.points.empty() && !opt.points_layer.empty())
+    throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
   d.s_srs = opt.s_srs;
   d.t_srs = opt.t_srs;
   d.clean = false;
   if (opt.snap) d.snap_distance_m = *opt.snap;
   gis::GisInput g = gis::read_domain(d);
+  clock.lap("read");
   if (progress) progress(0.01, "read");
   const gis::Frame& frame = g.frame;
   info("working CRS: " + frame.name() + ", local origin (" + num(frame.origin().x) + ", " + num(frame.origin().y) + ")");
@@ -205,7 +214,9 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     h = sizing::clamp(h, hmin, hmax);
     h = sizing::fill_nan(h, hmax);
     if (!(opt.gradation > 0)) throw Error(ExitCode::kUsage, "--gradation must be positive");
+    clock.lap("sizing");
     sizing::limit_gradient(h, opt.gradation);
+    clock.lap("limit");
     fgrid = std::make_shared<sizing::Grid>(h);
     std::string desc = "grid " + std::to_string(h.nx) + "x" + std::to_string(h.ny) + ": min(";
     for (std::size_t i = 0; i < names.size(); ++i) desc += (i ? ", " : "") + names[i];
@@ -231,7 +242,9 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     co.simplify_tolerance = hmin / 10.0;
   }
   co.spacing = [f](Point2 p) { return (*f)(p); };
+  clock.restart();
   gis::clean_domain(g, co);
+  clock.lap("repair");
   std::map<std::string, std::size_t> kinds;
   for (const auto& r : g.repairs) ++kinds[r.repair.kind];
   std::string rep = "repairs: " + std::to_string(g.repairs.size());
@@ -239,6 +252,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   info(rep);
 
   PreparedInput out;
+  out.stages = std::move(stages);
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();

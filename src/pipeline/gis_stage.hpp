@@ -8,6 +8,7 @@
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
+#include "pipeline/stage_time.hpp"
 #include "pslg/pslg.hpp"
 #include "sizing/sizing_field.hpp"
 
@@ -25,6 +26,7 @@ struct PreparedInput {
   std::function<void(mesh::MeshView&)> to_output_crs;
   // Extra outputs written after the mesh (e.g. --write-spacing GeoTIFF).
   std::vector<std::function<void()>> extra_outputs;
+  std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
 };
 
 // Reads OGR/GDAL inputs named in `opt` (any non-.poly input). Throws fdr::Error.

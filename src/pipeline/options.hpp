@@ -15,6 +15,8 @@ struct Options {
   std::string land;                      // land polygons subtracted from --extent
   std::optional<std::array<double, 4>> extent;  // xmin,ymin,xmax,ymax (lon/lat)
   std::string breaklines, points, open_boundary;
+  // Layers of those sources (default: the first layer of each file).
+  std::string breaklines_layer, points_layer, open_boundary_layer;
   std::string s_srs, t_srs, output_crs;
 
   // Outputs.

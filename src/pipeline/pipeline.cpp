@@ -82,6 +82,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   Result result;
   PreparedInput in;
   report_progress(0.0, "read");
+  StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
   if (is_poly_input(opt.input)) {
     in.pslg = lower_ext(opt.input) == "node" ? pslg::read_node(opt.input) : pslg::read_poly(opt.input);
     pslg::validate(in.pslg, opt.input);
@@ -107,13 +108,17 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     result.crs_name = in.crs_name;
     result.repairs = in.repairs.size();
   }
+  if (in.stages.empty()) clock.lap("read");
+  else result.stages = in.stages;
   report_progress(0.05, "cdt");
+  clock.restart();
 
   // Constrained Delaunay triangulation.
   const auto t_cdt = Clock::now();
   cdt::CdtStats cstats;
   mesh::Triangulation tri = cdt::build_cdt(in.pslg, {cdt::CdtOptions::Regions::kAuto, opt.input}, &cstats);
   const double cdt_s = since(t_cdt);
+  clock.lap("cdt");
   if (tri.num_live_triangles() == 0)
     throw Error(ExitCode::kInvalidGeometry, opt.input + ": the domain is empty (no region enclosed by segments)");
 
@@ -148,6 +153,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   refiner.init();
   refiner.run();
   const double refine_s = since(t_ref);
+  clock.lap("refine");
   report_progress(0.8, "report");
 
   if (opt.check) {
@@ -165,11 +171,13 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
       throw Error(ExitCode::kCheckFailed, msg);
     }
     log_info(log, "check: topology, orientation, constrained Delaunay, segments and R/f(c) <= B hold");
+    clock.lap("check");
   }
 
   result.mesh = tri.to_view();
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
+  clock.lap("depths");
   if (m.f.empty()) {
     m.f.resize(m.vertices.size());
     for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = f(m.vertices[i]);
@@ -193,6 +201,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  clock.lap("report");
   report_progress(0.9, "write");
 
   // Writers.
@@ -249,6 +258,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     result.written.push_back(opt.outputs[i]);
   }
   for (const auto& extra : in.extra_outputs) extra();
+  clock.lap("write");
   result.report.run.write_s = since(t_write);
   result.report.run.total_s = since(t_start);
   result.report.run.peak_rss_mb = quality::peak_rss_mb_value();

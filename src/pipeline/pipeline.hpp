@@ -6,6 +6,7 @@
 #include "base/progress.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
+#include "pipeline/stage_time.hpp"
 #include "quality/report.hpp"
 
 namespace fdr::pipeline {
@@ -16,6 +17,7 @@ struct Result {
   std::vector<std::string> written;   // output paths
   std::string crs_name;               // working CRS ("" for .poly input)
   std::size_t repairs = 0;
+  std::vector<StageTime> stages;      // wall time and peak memory per stage, in order
 };
 
 // Runs one meshing job. Throws fdr::Error (exit codes in base/error.hpp) on failure; outputs are
