@@ -271,6 +271,9 @@ class Cleaner {
                         " splitting rounds near " + fmt(world(where)) + ": " + what +
                         " (raise the snap distance or repair the input there)");
       }
+      double mag = 0;
+      for (std::size_t v = 0; v < pts_.size(); ++v)
+        if (present[v]) mag = std::max({mag, std::fabs(pts_[v].x), std::fabs(pts_[v].y)});
       std::vector<std::vector<Index>> splits(segs_.size());
       for (const auto& [v, s] : c.vertex_on_segment) {
         splits[s].push_back(v);
@@ -288,7 +291,27 @@ class Cleaner {
         }
         if (c.kinds[k] != Contact::kProper) continue;  // a touch is a vertex_on_segment
         const Point2 p = crossing_point(pts_[s.a], pts_[s.b], pts_[t.a], pts_[t.b]);
-        const Index id = add_point(p);
+        // Why snap here: in near-parallel bundles rounded crossing points keep creating new
+        // crossings next to each other. From round 2 on, a crossing point within a tolerance that
+        // grows 4x per round merges with a nearby endpoint or cut point of the same two segments.
+        Index id = kNoId;
+        if (round >= 2) {
+          const double eps = std::ldexp(mag * 0x1p-52, 2 * static_cast<int>(std::min<std::size_t>(round, 400)));
+          double best = eps;
+          auto consider = [&](Index q) {
+            const double d = dist(pts_[q], p);
+            if (d <= best && (id == kNoId || d < best || q < id)) best = d, id = q;
+          };
+          for (Index q : {s.a, s.b, t.a, t.b}) consider(q);
+          for (Index q : splits[i]) consider(q);
+          for (Index q : splits[j]) consider(q);
+          if (id != kNoId)
+            report("snap", pts_[id], best,
+                   "crossing point snapped onto a vertex " + std::to_string(best) + " m away (round " +
+                       std::to_string(round) + " of splitting)",
+                   s.part);
+        }
+        if (id == kNoId) id = add_point(p);
         splits[i].push_back(id);
         splits[j].push_back(id);
         report("crossing_split", pts_[id], 0,
@@ -433,7 +456,7 @@ class Cleaner {
       if (present[v]) grid.add_point(v, pts_[v]);
     std::vector<Index> near;
     for (Index v = 0; v < np; ++v) {
-      if (inc[v].size() != 2) continue;
+      if (inc[v].size() != 2 || input_free_[v]) continue;  // free input points are fixed vertices
       const Index s1 = inc[v][0], s2 = inc[v][1];
       const Segment &g1 = segs_[s1], &g2 = segs_[s2];
       if (!g1.is_boundary() || !g2.is_boundary() || g1.marker != g2.marker || g1.part != g2.part) continue;

@@ -25,7 +25,9 @@ Point2 crossing_point(Point2 a, Point2 b, Point2 c, Point2 d);
 
 // Fixed grid over a box; cells hold segment ids and point ids. Cells are registered
 // conservatively (padded), so every cell that a segment touches lists it; extra entries are
-// harmless because every decision is re-made exactly.
+// harmless because every decision is re-made exactly. Cost is linear in the registrations plus
+// the pairs per cell: fine for coastlines, quadratic for pathological stars (one vertex of
+// degree d costs O(d^2)).
 class SegmentGrid {
  public:
   // `box` must contain every geometry added later; `n_items` and `mean_length` size the cells.

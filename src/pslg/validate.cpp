@@ -47,18 +47,19 @@ Contacts find_contacts(const std::vector<Point2>& points, const std::vector<Segm
                        const std::vector<char>* point_alive) {
   Contacts out;
   Box2 box;
-  double total = 0;
-  std::size_t live = 0;
+  std::vector<double> lengths;
+  lengths.reserve(segments.size());
   for (const Segment& s : segments) {
     const Point2 a = points[s.a], b = points[s.b];
     if (s.a == s.b || a == b) continue;
     box.add(a);
     box.add(b);
-    total += dist(a, b);
-    ++live;
+    lengths.push_back(dist(a, b));
   }
-  if (live == 0) return out;
-  SegmentGrid grid(box, live, total / static_cast<double>(live));
+  if (lengths.empty()) return out;
+  // Median length sizes the cells: a few very long segments (region box edges) do not matter.
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  SegmentGrid grid(box, lengths.size(), lengths[lengths.size() / 2]);
   for (Index i = 0; i < segments.size(); ++i) {
     const Segment& s = segments[i];
     if (s.a == s.b || points[s.a] == points[s.b]) continue;

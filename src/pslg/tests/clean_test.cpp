@@ -306,6 +306,25 @@ TEST(Clean, SimplifyRemovesShortEdgesWithinTolerance) {
   EXPECT_EQ(long_edges, 3);
 }
 
+TEST(Clean, FreePointOnSegmentStaysAVertexWhenSimplifying) {
+  // Regression (stress case): a free point split into a segment must not be simplified away.
+  Pslg g;
+  g.points = {{0, 0}, {1, 0}, {1, 1}, {0.5, 0}};
+  g.segments = {{0, 1, 1, 0}, {1, 2, 1, 0}, {2, 0, 1, 0}};
+  CleanOptions opt;
+  opt.simplify_factor = 1;
+  opt.simplify_tolerance = 0.1;  // only the free point (deviation 0) would qualify
+  opt.spacing = [](Point2) { return 10.0; };
+  std::vector<Repair> rep;
+  const Pslg out = clean(g, opt, &rep);
+  EXPECT_NO_THROW(validate(out, "free"));
+  EXPECT_EQ(count_kind(rep, "vertex_on_segment"), 1u);
+  EXPECT_EQ(count_kind(rep, "simplify"), 0u);
+  ASSERT_EQ(out.points.size(), 4u);
+  EXPECT_EQ(out.points[3], (Point2{0.5, 0}));
+  EXPECT_EQ(out.segments.size(), 4u);
+}
+
 TEST(Clean, IterationCapThrowsWithLocation) {
   // Zero splitting rounds allowed: the bow-tie cannot be repaired.
   Pslg g = read_poly(testdata("poly/invalid_crossing.poly"));
