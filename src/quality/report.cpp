@@ -122,6 +122,7 @@ Guarantees compute_guarantees(double alpha, double bound_B) {
   g.min_angle_deg = std::asin((1.0 - ab) / s) * kDeg;
   g.nn_over_f_min = 2.0 * g.beta / (1.0 + alpha * g.beta);
   g.el_over_f_max = 2.0 * bound_B / (1.0 + ab);
+  g.el_over_f_max_corrected = 2.0 * bound_B / (1.0 - ab);
   g.note = "2D, beta = B/(2*sqrt(2)+3*alpha*B), assuming beta <= D/(2+alpha*D) (Section 4)";
   return g;
 }
@@ -318,6 +319,7 @@ void write_json(const QualityReport& r, std::ostream& out) {
                      {"min_angle_deg", gv(g.min_angle_deg)},
                      {"nn_over_f_min", gv(g.nn_over_f_min)},
                      {"el_over_f_max", gv(g.el_over_f_max)},
+                     {"el_over_f_max_corrected", gv(g.el_over_f_max_corrected)},
                      {"valid", g.valid},
                      {"note", g.note}};
   j["measured"] = {{"R_over_l_max", num(r.max_radius_edge)},
@@ -427,6 +429,7 @@ void write_text(const QualityReport& r, std::ostream& out) {
     row("min angle deg", ">=", g.min_angle_deg, r.min_angle_deg, false);
     row("nn/f min (Thm 4.4)", ">=", g.nn_over_f_min, r.nn_over_f_min, false);
     row("el/f max (Thm 4.5)", "<=", g.el_over_f_max, r.el_over_f_max, true);
+    row("el/f max (4.5 fixed)", "<=", g.el_over_f_max_corrected, r.el_over_f_max, true);
   }
 }
 

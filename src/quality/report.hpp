@@ -42,7 +42,11 @@ struct Guarantees {
   double R_over_l_max = 0;     // Theorem 4.3 with that beta: (2*sqrt(2)+3aB) / (2(1-aB))
   double min_angle_deg = 0;    // asin((1-aB) / (2*sqrt(2)+3aB))
   double nn_over_f_min = 0;    // Theorem 4.4: 2*beta / (1 + alpha*beta)
-  double el_over_f_max = 0;    // Theorem 4.5: 2B / (1 + alpha*B)
+  double el_over_f_max = 0;    // Theorem 4.5 as printed: 2B / (1 + alpha*B)
+  // Theorem 4.5 with its sign slip fixed: the proof needs f(p) >= f(c) - alpha*R (Lipschitz), not
+  // f(c) + alpha*R, which gives el(p) <= 2B / (1 - alpha*B) f(p). Measured meshes can exceed the
+  // printed bound but stay within this one.
+  double el_over_f_max_corrected = 0;
 };
 Guarantees compute_guarantees(double alpha, double bound_B);
 
