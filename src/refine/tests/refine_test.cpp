@@ -224,3 +224,19 @@ TEST(Refine, EstimateIsWithinFactorTwo) {
   EXPECT_GT(est, n / 2) << n;
   EXPECT_LT(est, n * 2) << n;
 }
+
+TEST(Refine, ScaledAndTranslatedCopiesHoldInvariants) {
+  auto base = fdr::testing::random_pslg(21, 20, 5);
+  for (double s : {1e-6, 1e-3, 1e3, 1e6}) {
+    for (double off : {0.0, 1e7}) {
+      if (off > 0 && s < 1e-3) continue;  // 1e7 + 1e-5 spans only a few hundred doubles
+      pslg::Pslg p = base;
+      for (auto& q : p.points) q = {q.x * s + off, q.y * s + off};
+      FnField f([s, off](Point2 q) { return s * (0.3 + 0.02 * std::fabs((q.x - off) / s - 5)); });
+      refine::RefineOptions o;
+      auto T = refine_pslg(p, f, o);
+      const double want = (p.points[1].x - p.points[0].x) * (p.points[2].y - p.points[1].y);
+      expect_fdr_invariants(T, f, 1, want, "scale " + std::to_string(s) + " offset " + std::to_string(off));
+    }
+  }
+}
