@@ -232,3 +232,22 @@ def test_paper_figures_script_with_stand_in_mesher(tmp_path):
     r = subprocess.run(["bash", os.path.join(HERE, "paper_figures.sh"), str(tmp_path / "nope")],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "not found or not executable" in r.stderr
+
+
+@pytest.mark.skipif(not os.environ.get("FDRMESH"), reason="FDRMESH (the fdrmesh binary) not given")
+def test_paper_figures_with_real_fdrmesh(tmp_path):
+    """The paper's experiment end to end with the real mesher (one bound, to stay quick)."""
+    env = dict(os.environ, FDR_PAPER_BOUNDS="sqrt2", PYTHON=PY, MPLBACKEND="Agg")
+    out = tmp_path / "paper"
+    subprocess.run(["bash", os.path.join(HERE, "paper_figures.sh"), os.environ["FDRMESH"], str(out)], check=True, env=env,
+                   capture_output=True, timeout=300)
+    table = (out / "table.md").read_text()
+    rows = [r for r in table.splitlines() if r.startswith("| paper-f")]
+    assert len(rows) == 2
+    for r in rows:
+        cells = [c.strip() for c in r.strip("|").split("|")]
+        assert int(cells[2]) > 50                 # vertices
+        assert float(cells[4]) >= 19.0            # theta min of pure FDR
+        assert float(cells[6]) <= 1.4143          # max R/f(c) <= B = sqrt(2)
+    for png in ["f1_Bsqrt2.png", "f2_Bsqrt2.png", "hist_f1.png", "hist_f2.png"]:
+        assert (out / png).stat().st_size > 10000
