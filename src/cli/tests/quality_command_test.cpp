@@ -1,0 +1,50 @@
+// `fdrmesh quality` on meshes written by `fdrmesh mesh` in every readable format: the same counts,
+// the same R/f(c) maximum and the same bad-triangle count as the mesher's own report.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+int run(const std::string& args) {
+  const int st = std::system((std::string(FDR_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+nlohmann::json load(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+}  // namespace
+
+TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
+  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_quality_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string in = std::string(FDR_TESTDATA_DIR) + "/poly/square_with_hole.poly";
+  ASSERT_EQ(run("mesh " + in + " --spacing '0.2+0.05*x' -q -o " + (dir / "m.2dm").string() + " -o " +
+                (dir / "m.14").string() + " -o " + (dir / "m.msh").string() + " -o " + (dir / "m.gpkg").string() +
+                " -o " + (dir / "m.node").string() + " --report " + (dir / "mesh.json").string()),
+            0);
+  const auto ref = load(dir / "mesh.json");
+  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.gpkg", "m.node"}) {
+    const fs::path rep = dir / (std::string(f) + ".json");
+    ASSERT_EQ(run("quality " + (dir / f).string() + " --spacing '0.2+0.05*x' -q --report " + rep.string()), 0) << f;
+    const auto q = load(rep);
+    EXPECT_EQ(q["vertices"], ref["vertices"]) << f;
+    EXPECT_EQ(q["triangles"], ref["triangles"]) << f;
+    EXPECT_EQ(q["bad_triangles"], 0) << f;
+    EXPECT_NEAR(q["max_R_over_f"].get<double>(), ref["max_R_over_f"].get<double>(), 1e-9) << f;
+    EXPECT_NEAR(q["min_angle_deg"].get<double>(), ref["min_angle_deg"].get<double>(), 1e-9) << f;
+  }
+  // A stricter bound counts bad triangles.
+  const fs::path strict = dir / "strict.json";
+  ASSERT_EQ(run("quality " + (dir / "m.2dm").string() + " --spacing '0.2+0.05*x' --bound 0.5 -q --report " +
+                strict.string()),
+            0);
+  EXPECT_GT(load(strict)["bad_triangles"].get<int>(), 0);
+  fs::remove_all(dir);
+}
