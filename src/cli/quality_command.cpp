@@ -11,30 +11,17 @@
 #include "quality/rss.hpp"
 #include "sizing/field_checks.hpp"
 #include "sizing/grid_field.hpp"
+#include "sizing/fields.hpp"
 #include "sizing/make_spacing.hpp"
 
 namespace fdr::cli {
-namespace {
-class ShiftedField : public sizing::SizingField {
- public:
-  ShiftedField(sizing::SizingPtr f, Point2 o) : f_(std::move(f)), o_(o) {}
-  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
-  double lipschitz() const override { return f_->lipschitz(); }
-  std::string describe() const override { return f_->describe(); }
-
- private:
-  sizing::SizingPtr f_;
-  Point2 o_;
-};
-}  // namespace
-
 int run_quality(const QualityArgs& a) {
   mesh::MeshView m = io::read_mesh(a.mesh);
   if (!a.spacing.empty() && !a.raster.empty())
     throw Error(ExitCode::kUsage, "give either --spacing or --raster, not both");
   sizing::SizingPtr f;
   if (!a.spacing.empty()) {
-    f = std::make_shared<ShiftedField>(sizing::make_spacing(a.spacing), m.origin);
+    f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(a.spacing), m.origin);
   } else if (!a.raster.empty()) {
     sizing::Grid g = gis::read_raster_native(a.raster, m.origin);
     f = std::make_shared<sizing::GridField>(std::move(g), "size raster " + a.raster);
@@ -54,19 +41,7 @@ int run_quality(const QualityArgs& a) {
   quality::QualityReport r = quality::compute_quality(m, f.get(), a.bound, alpha, ri);
   r.run.peak_rss_mb = quality::peak_rss_mb_value();
   if (!a.quiet) quality::write_text(r, std::cout);
-  if (!a.report_json.empty()) {
-    const std::string tmp = a.report_json + ".tmp";
-    {
-      std::ofstream out(tmp);
-      if (!out) throw Error(ExitCode::kOutputError, a.report_json + ": cannot write");
-      quality::write_json(r, out);
-      out << "\n";
-    }
-    if (std::rename(tmp.c_str(), a.report_json.c_str()) != 0) {
-      std::remove(tmp.c_str());
-      throw Error(ExitCode::kOutputError, a.report_json + ": cannot rename the temporary file");
-    }
-  }
+  if (!a.report_json.empty()) quality::write_json_file(r, a.report_json);
   return 0;
 }
 

@@ -17,6 +17,7 @@
 #include "quality/rss.hpp"
 #include "refine/refine.hpp"
 #include "sizing/field_checks.hpp"
+#include "sizing/fields.hpp"
 #include "sizing/make_spacing.hpp"
 
 namespace fdr::pipeline {
@@ -33,18 +34,6 @@ std::string lower_ext(const std::string& path) {
   return e;
 }
 
-// f given in world coordinates, evaluated in the mesher's local frame.
-class ShiftedField : public sizing::SizingField {
- public:
-  ShiftedField(sizing::SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
-  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
-  double lipschitz() const override { return f_->lipschitz(); }
-  std::string describe() const override { return f_->describe(); }
-
- private:
-  sizing::SizingPtr f_;
-  Point2 o_;
-};
 
 // Local origin for a .poly input: shift only when the coordinates are far from 0 relative to the
 // extent (e.g. projected metres), so that small inputs keep their exact coordinates.
@@ -102,7 +91,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
       s << std::hypot(b.width(), b.height()) / 20.0;
       spec = s.str();
     }
-    in.f = std::make_shared<ShiftedField>(sizing::make_spacing(spec), in.pslg.origin);
+    in.f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(spec), in.pslg.origin);
   } else {
     in = prepare_gis_input(opt, progress, log);
     result.crs_name = in.crs_name;
@@ -263,19 +252,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   result.report.run.total_s = since(t_start);
   result.report.run.peak_rss_mb = quality::peak_rss_mb_value();
   if (!opt.report_json.empty()) {
-    // Atomic: temporary file, then rename.
-    const std::string tmp = opt.report_json + ".tmp";
-    {
-      std::ofstream out(tmp);
-      if (!out) throw Error(ExitCode::kOutputError, opt.report_json + ": cannot write");
-      quality::write_json(result.report, out);
-      out << "\n";
-      if (!out) { std::remove(tmp.c_str()); throw Error(ExitCode::kOutputError, opt.report_json + ": write failed"); }
-    }
-    if (std::rename(tmp.c_str(), opt.report_json.c_str()) != 0) {
-      std::remove(tmp.c_str());
-      throw Error(ExitCode::kOutputError, opt.report_json + ": cannot rename the temporary file");
-    }
+    quality::write_json_file(result.report, opt.report_json);
     result.written.push_back(opt.report_json);
   }
   report_progress(1.0, "done");

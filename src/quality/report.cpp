@@ -1,5 +1,7 @@
 // Mesh quality measurement and report writers (FDR paper: Definition 2.1, Theorems 4.3-4.5).
 #include "quality/report.hpp"
+#include <cstdio>
+#include <fstream>
 
 #include <algorithm>
 #include <cmath>
@@ -430,6 +432,25 @@ void write_text(const QualityReport& r, std::ostream& out) {
     row("nn/f min (Thm 4.4)", ">=", g.nn_over_f_min, r.nn_over_f_min, false);
     row("el/f max (Thm 4.5)", "<=", g.el_over_f_max, r.el_over_f_max, true);
     row("el/f max (4.5 fixed)", "<=", g.el_over_f_max_corrected, r.el_over_f_max, true);
+  }
+}
+
+void write_json_file(const QualityReport& r, const std::string& path) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw Error(ExitCode::kOutputError, path + ": cannot write");
+    write_json(r, out);
+    out.flush();
+    if (!out) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw Error(ExitCode::kOutputError, path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error(ExitCode::kOutputError, path + ": cannot rename the temporary file");
   }
 }
 

@@ -95,6 +95,8 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts);
 
 // JSON report (schema in README "Quality report"); non-applicable or non-finite values are null.
 void write_json(const QualityReport& r, std::ostream& out);
+// Writes the JSON report to `path` atomically (temporary file, then rename); Error(kOutputError).
+void write_json_file(const QualityReport& r, const std::string& path);
 // Compact human summary with an ASCII angle histogram and a theory-vs-measured table.
 void write_text(const QualityReport& r, std::ostream& out);
 

@@ -103,6 +103,19 @@ class ClampField final : public SizingField {
   double hmin_, hmax_;
 };
 
+// f given in world coordinates, evaluated in a local frame: g(p) = f(p + origin).
+class ShiftedField final : public SizingField {
+ public:
+  ShiftedField(SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
+  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  double lipschitz() const override { return f_->lipschitz(); }
+  std::string describe() const override { return f_->describe(); }
+
+ private:
+  SizingPtr f_;
+  Point2 o_;
+};
+
 // Formats a double for messages and descriptions (shortest round-trip form).
 std::string format_number(double v);
 
