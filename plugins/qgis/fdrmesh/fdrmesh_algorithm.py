@@ -186,7 +186,7 @@ def layer_option_key(usage_opts, opt):
 class ProgressParser:
     """Turns the CLI's stderr (GDAL ticks '0...10...20... - done.' and 'ERROR n: ...' lines) into events."""
 
-    _tick = re.compile(r"(\d+)\.\.\.?")
+    _tick = re.compile(r"(\d+)\.")
 
     def __init__(self):
         self.line = ""
@@ -214,7 +214,8 @@ class ProgressParser:
         if m:
             self.errors.append(m.group(0).strip())
             return
-        rest = re.sub(r"^(\d+\.{1,3})+(\s*-\s*done\.)?", "", line).strip()
+        # Why: a message can follow ticks on the same line ("0..ERROR 7: ..."); drop the tick prefix.
+        rest = re.match(r"^((?:\d+\.+)*(?:\d+\s*-\s*done\.)?)(.*)$", line).group(2).strip()
         if rest:
             self.messages.append(rest)
 
