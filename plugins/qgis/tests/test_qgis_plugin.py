@@ -297,3 +297,26 @@ def test_parameters_follow_json_usage(qgs):
     assert not names["INPUT"].flags() & names["INPUT"].FlagOptional
     assert names["CHECK"].flags() & names["CHECK"].FlagAdvanced
     assert not names["HMIN"].flags() & names["HMIN"].FlagAdvanced
+
+
+# ---------------------------------------------------------------- plugin zip
+def test_plugin_zip_installs(tmp_path):
+    import subprocess
+    import zipfile
+    script = os.path.join(os.path.dirname(os.path.dirname(PLUGINS_DIR)), "tools", "qgis", "build_plugin_zip.sh")
+    r = subprocess.run(["bash", script, str(tmp_path / "dist")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    zpath = r.stdout.strip()
+    assert os.path.basename(zpath) == "fdrmesh-qgis-0.1.0.zip"
+    with zipfile.ZipFile(zpath) as z:
+        names = z.namelist()
+        assert all(n.startswith("fdrmesh/") for n in names)
+        assert {"fdrmesh/__init__.py", "fdrmesh/metadata.txt", "fdrmesh/fdrmesh_algorithm.py"} <= set(names)
+        assert not [n for n in names if "__pycache__" in n]
+        z.extractall(tmp_path / "plugins")
+    prof = tmp_path / "profile"
+    prof.mkdir()
+    plugin_path = str(tmp_path / "plugins")
+    assert qgis_process(prof, "plugins", "enable", "fdrmesh", QGIS_PLUGINPATH=plugin_path).returncode == 0
+    h = qgis_process(prof, "help", "fdrmesh:meshcoastal", QGIS_PLUGINPATH=plugin_path)
+    assert h.returncode == 0 and "OPEN_BOUNDARY" in h.stdout and "OUTPUT_UGRID" in h.stdout, h.stdout + h.stderr
