@@ -19,7 +19,6 @@ import sqlite3
 import subprocess
 import tempfile
 import threading
-import time
 
 from qgis.core import (
     Qgis,

@@ -93,6 +93,14 @@ def test_in_process_run_loads_styled_layers(qgs, tmp_path):
     bnd = layers["m boundaries"].renderer()
     assert isinstance(bnd, QgsCategorizedSymbolRenderer)
     assert {c.value() for c in bnd.categories()} == {"land", "island", "open"}
+    # The post-processor (run by QGIS once the layer is in the project) styles it again.
+    details = context.layerToLoadOnCompletionDetails(tri.id())
+    assert details.outputName == "OUTPUT" and details.postProcessor() is not None
+    from qgis.core import QgsSingleSymbolRenderer, QgsSymbol
+    tri.setRenderer(QgsSingleSymbolRenderer(QgsSymbol.defaultSymbol(tri.geometryType())))
+    details.postProcessor().postProcessLayer(tri, context, feedback)
+    assert isinstance(tri.renderer(), QgsGraduatedSymbolRenderer) and len(tri.renderer().ranges()) == 6
+    assert tri.renderer().ranges()[-1].lowerValue() == 1.0  # the bound B of this run
     mesh = layers["m.2dm"]
     assert isinstance(mesh, QgsMeshLayer) and mesh.crs().authid() == "EPSG:32618"
     assert mesh.dataProvider().faceCount() == results["TRIANGLES"]
