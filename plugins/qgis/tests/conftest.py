@@ -16,13 +16,21 @@ CHESAPEAKE = os.path.join(REPO, "testdata", "chesapeake")
 GULF_OF_MAINE = os.path.join(REPO, "testdata", "gulf_of_maine")
 SKIP_CODE = 77  # CTest SKIP_RETURN_CODE
 
-if not os.path.exists(QGIS_PROCESS):
-    pytest.exit("QGIS is not installed (%s missing): QGIS plugin tests skipped" % QGIS_PROCESS, returncode=SKIP_CODE)
-
 FDRMESH = os.environ.get("FDRMESH") or shutil.which("fdrmesh")
-if not FDRMESH or not os.access(FDRMESH, os.X_OK):
-    pytest.exit("set FDRMESH to the fdrmesh executable (CTest does)", returncode=SKIP_CODE)
-FDRMESH = os.path.abspath(FDRMESH)
+SKIP_REASON = None
+if not os.path.exists(QGIS_PROCESS):
+    SKIP_REASON = "QGIS is not installed (%s missing): QGIS plugin tests skipped" % QGIS_PROCESS
+elif not FDRMESH or not os.access(FDRMESH, os.X_OK):
+    SKIP_REASON = "set FDRMESH to the fdrmesh executable (CTest does): QGIS plugin tests skipped"
+else:
+    FDRMESH = os.path.abspath(FDRMESH)
+
+
+def pytest_sessionstart(session):
+    # Why: exiting here (not at import) gives pytest's own exit code, which CTest maps to "skipped".
+    if SKIP_REASON:
+        pytest.exit(SKIP_REASON, returncode=SKIP_CODE)
+
 
 # The in-process PyQGIS tests need these before QgsApplication starts.
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
