@@ -1,13 +1,22 @@
-// FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1; fdrmesh's refiner side by side with CGAL's
-// Delaunay_mesher_2 driven by the same R/f(c) criterion. Prints refine seconds, triangles/s,
-// peak RSS, bytes/triangle, min angle and vertex count. Usage: bench_fdr [k ...] [--no-cgal]
+// FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1; fdrmesh's refiner beside CGAL's Delaunay_mesher_2 (same R/f(c) criterion) and Gmsh (background size field).
+// Prints refine seconds, triangles/s, peak RSS, bytes/triangle, min angle and vertex count; usage in kUsage below.
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -15,6 +24,7 @@
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "base/error.hpp"
 #include "cdt/cdt.hpp"
 #include "refine/refine.hpp"
 #include "sizing/fields.hpp"
@@ -52,12 +62,13 @@ double min_angle_of(double ax, double ay, double bx, double by, double cx, doubl
   return std::min({ang(ax, ay, bx, by, cx, cy), ang(bx, by, cx, cy, ax, ay), ang(cx, cy, ax, ay, bx, by)});
 }
 
-struct Row { std::string tool; double k; double seconds; std::size_t tris, verts; double rss_mb, min_angle; };
+struct Row { std::string tool; double k; double seconds; std::size_t tris, verts; double rss_mb, min_angle; std::string note; };
 
 void print(const Row& r) {
   std::printf("%-10s k=%-8g refine %8.3f s  %12zu tri  %10.0f tri/s  peak %8.1f MB  %6.1f B/tri  min angle %5.2f  %10zu vertices\n",
               r.tool.c_str(), r.k, r.seconds, r.tris, r.tris / r.seconds, r.rss_mb, r.rss_mb * 1048576.0 / r.tris,
               r.min_angle, r.verts);
+  if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
   std::fflush(stdout);
 }
 
@@ -81,7 +92,7 @@ Row run_fdr(double k) {
     const auto& a = T.pts[T.tv[3 * t]]; const auto& b = T.pts[T.tv[3 * t + 1]]; const auto& c = T.pts[T.tv[3 * t + 2]];
     amin = std::min(amin, min_angle_of(a.x, a.y, b.x, b.y, c.x, c.y));
   }
-  return {"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.pts.size() - 3, (vm_hwm_kb() - base) / 1024.0, amin};
+  return {"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.pts.size() - 3, (vm_hwm_kb() - base) / 1024.0, amin, {}};
 }
 
 // CGAL's mesher with an R/f(c) criterion: a face is bad when circumradius / f(circumcenter) > B.
@@ -130,36 +141,314 @@ Row run_cgal(double k) {
     const auto& a = f->vertex(0)->point(); const auto& b = f->vertex(1)->point(); const auto& c = f->vertex(2)->point();
     amin = std::min(amin, min_angle_of(a.x(), a.y(), b.x(), b.y(), c.x(), c.y()));
   }
-  return {"cgal", k, secs(t0, t1), n, cdt.number_of_vertices(), (vm_hwm_kb() - base) / 1024.0, amin};
+  return {"cgal", k, secs(t0, t1), n, cdt.number_of_vertices(), (vm_hwm_kb() - base) / 1024.0, amin, {}};
 }
 
-// Runs `fn` in a child process so each measurement has its own peak RSS.
+// ---- Gmsh peer: the same square and size law as a .geo with a MathEval background field, run as a child process.
+
+// Gmsh sizes are target edge lengths h. An equilateral triangle with circumradius f has edge sqrt(3) f, but a
+// Delaunay refiner stops as soon as R <= B f, so its triangles are smaller than the bound, while Gmsh aims at
+// edges ~ h. h = factor * B * f with these factors gives Gmsh fdrmesh's triangle count: calibrated at k = 0.08
+// and k = 0.025 from h = sqrt(3) B f, which gave 0.617x (Algorithm 5) and 0.556x (Algorithm 6) of fdrmesh's
+// count at both k, hence sqrt(3) * sqrt(0.617) = 1.36 and sqrt(3) * sqrt(0.556) = 1.29.
+constexpr double kGmshDelaunayFactor = 1.36;
+constexpr double kGmshFrontalFactor = 1.29;
+
+// factor <= 0 means the calibrated per-algorithm factor.
+struct GmshOptions { double factor = 0; double min_k = 0.025; std::string binary = "gmsh"; };
+
+double gmsh_factor(const GmshOptions& g, int algorithm) {
+  if (g.factor > 0) return g.factor;
+  return algorithm == 5 ? kGmshDelaunayFactor : kGmshFrontalFactor;
+}
+
+// Writes the .geo for one run: the square, the background field h(x,y) = factor * B * k * f1, and the options
+// that make the field the only size source (no sizes from points, curvature or boundary extension).
+void write_geo(const std::string& path, double k, double factor, int algorithm) {
+  std::ofstream o(path);
+  if (!o) throw fdr::Error(fdr::ExitCode::kOutputError, "bench_fdr: cannot write " + path);
+  char f[256];
+  std::snprintf(f, sizeof f, "%.17g*%.17g*((Fabs(x-5)+Fabs(y-5))*0.1+0.1)", factor, k);
+  o << "Point(1) = {0, 0, 0}; Point(2) = {10, 0, 0}; Point(3) = {10, 10, 0}; Point(4) = {0, 10, 0};\n"
+       "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n"
+       "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n"
+       "Field[1] = MathEval; Field[1].F = \"" << f << "\";\n"
+       "Background Field = 1;\n"
+       "Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeFromCurvature = 0;\n"
+       "Mesh.Algorithm = " << algorithm << "; Mesh.MshFileVersion = 4.1; Mesh.Binary = 0;\n";
+  if (!o) throw fdr::Error(fdr::ExitCode::kOutputError, "bench_fdr: cannot write " + path);
+}
+
+struct MshStats { std::size_t tris = 0, verts = 0; double min_angle = 180; };
+
+// Reads the ASCII .msh 4.1 sections $Nodes and $Elements: node coordinates by tag, then every 3-node triangle
+// (element type 2) for the count and the minimum angle.
+MshStats read_msh41(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw fdr::Error(fdr::ExitCode::kInputUnreadable, "bench_fdr: cannot open Gmsh output " + path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const char* p = text.c_str();
+  auto bad = [&](const char* what) {
+    return fdr::Error(fdr::ExitCode::kInputMalformed,
+                      std::string("bench_fdr: ") + path + " (byte " + std::to_string(p - text.c_str()) + "): " + what);
+  };
+  auto num = [&]() {
+    char* e;
+    const double v = std::strtod(p, &e);
+    if (e == p) throw bad("number expected");
+    p = e;
+    return v;
+  };
+  auto uint = [&]() {
+    char* e;
+    const unsigned long long v = std::strtoull(p, &e, 10);
+    if (e == p) throw bad("integer expected");
+    p = e;
+    return static_cast<std::size_t>(v);
+  };
+  auto seek = [&](const char* tag) {
+    const char* q = std::strstr(p, tag);
+    if (!q) throw bad((std::string("section ") + tag + " missing").c_str());
+    p = q + std::strlen(tag);
+  };
+  seek("$MeshFormat");
+  if (num() < 4.1 - 1e-9) throw bad("not a .msh 4.1 file");
+  MshStats st;
+  seek("$Nodes");
+  std::size_t blocks = uint(), n_nodes = uint();
+  uint();
+  const std::size_t max_tag = uint();
+  st.verts = n_nodes;
+  std::vector<double> xy(2 * (max_tag + 1), std::nan(""));
+  std::vector<std::size_t> tags;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t dim = uint();
+    uint();
+    const std::size_t parametric = uint(), n = uint();
+    tags.resize(n);
+    for (auto& t : tags) {
+      t = uint();
+      if (t > max_tag) throw bad("node tag above maxNodeTag");
+    }
+    for (std::size_t t : tags) {
+      xy[2 * t] = num();
+      xy[2 * t + 1] = num();
+      num();
+      // Parametric nodes carry dim extra coordinates (u, or u v).
+      for (std::size_t d = 0; parametric && d < dim; ++d) num();
+    }
+  }
+  seek("$Elements");
+  blocks = uint();
+  uint(); uint(); uint();
+  for (std::size_t b = 0; b < blocks; ++b) {
+    uint(); uint();
+    const std::size_t type = uint(), n = uint();
+    // Nodes per element for the types a 2D linear mesh contains: 15 point, 1 line, 2 triangle, 3 quadrangle.
+    std::size_t nn = 0;
+    switch (type) {
+      case 15: nn = 1; break;
+      case 1: nn = 2; break;
+      case 2: nn = 3; break;
+      case 3: nn = 4; break;
+      default: throw bad(("unexpected element type " + std::to_string(type)).c_str());
+    }
+    std::size_t v[4];
+    for (std::size_t e = 0; e < n; ++e) {
+      uint();
+      for (std::size_t j = 0; j < nn; ++j) {
+        v[j] = uint();
+        if (v[j] > max_tag || std::isnan(xy[2 * v[j]])) throw bad("element refers to an unknown node");
+      }
+      if (type != 2) continue;
+      ++st.tris;
+      st.min_angle = std::min(st.min_angle, min_angle_of(xy[2 * v[0]], xy[2 * v[0] + 1], xy[2 * v[1]], xy[2 * v[1] + 1],
+                                                         xy[2 * v[2]], xy[2 * v[2] + 1]));
+    }
+  }
+  return st;
+}
+
+struct ChildRun { double wall = 0; double maxrss_mb = 0; int status = 0; };
+
+// Spawns `argv` with stdout+stderr to `log`, waits with wait4 for its own rusage: wall clock and ru_maxrss.
+// posix_spawn (vfork-like) keeps the bench process's pages out of the child's peak.
+ChildRun spawn_and_wait(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid;
+  const auto t0 = Clock::now();
+  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0)
+    throw fdr::Error(fdr::ExitCode::kInputUnreadable, "bench_fdr: cannot start " + args[0] + ": " + std::strerror(rc));
+  int st = 0;
+  rusage ru{};
+  if (wait4(pid, &st, 0, &ru) < 0)
+    throw fdr::Error(fdr::ExitCode::kInternal, std::string("bench_fdr: wait4 failed: ") + std::strerror(errno));
+  return {secs(t0, Clock::now()), ru.ru_maxrss / 1024.0, st};
+}
+
+// Gmsh's own "Done meshing 2D (Wall X s" figure: meshing time without start-up, .geo parsing and .msh writing.
+std::optional<double> gmsh_mesh2d_wall(const std::string& log) {
+  std::ifstream in(log);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto at = line.find("Done meshing 2D (Wall ");
+    if (at != std::string::npos) return std::atof(line.c_str() + at + 22);
+  }
+  return std::nullopt;
+}
+
+struct GmshResult { Row row; double raw_mb = 0; std::optional<double> mesh2d; };
+
+// One Gmsh run in a fresh scratch directory (removed afterwards unless Gmsh failed, so its log can be read).
+GmshResult run_gmsh_once(const GmshOptions& g, double k, int algorithm, const char* label, double factor) {
+  char dir_tmpl[] = "/tmp/bench_fdr_gmsh.XXXXXX";
+  if (!mkdtemp(dir_tmpl)) throw fdr::Error(fdr::ExitCode::kOutputError, "bench_fdr: mkdtemp in /tmp failed");
+  const std::string dir = dir_tmpl, geo = dir + "/square.geo", msh = dir + "/square.msh", log = dir + "/gmsh.log";
+  write_geo(geo, k, factor, algorithm);
+  ChildRun c;
+  try {
+    c = spawn_and_wait({g.binary, geo, "-2", "-nt", "1", "-o", msh}, log);
+  } catch (const fdr::Error&) {
+    std::remove(geo.c_str()); std::remove(log.c_str()); rmdir(dir.c_str());  // nothing ran: nothing to inspect
+    throw;
+  }
+  if (!WIFEXITED(c.status) || WEXITSTATUS(c.status) != 0)
+    throw fdr::Error(fdr::ExitCode::kInternal, "bench_fdr: " + g.binary + " failed on " + geo + " (status " +
+                                                   std::to_string(c.status) + "), see " + log);
+  const MshStats m = read_msh41(msh);
+  const auto mesh2d = gmsh_mesh2d_wall(log);
+  std::remove(geo.c_str()); std::remove(msh.c_str()); std::remove(log.c_str()); rmdir(dir.c_str());
+  return {{label, k, c.wall, m.tris, m.verts, c.maxrss_mb, m.min_angle, {}}, c.maxrss_mb, mesh2d};
+}
+
+// Peak RSS of Gmsh meshing the same square with h from 0.45 to 5 (a few hundred triangles): its start-up footprint,
+// subtracted from each run's ru_maxrss so "peak" means memory added by meshing, as in the fdrmesh/CGAL rows.
+double gmsh_baseline_mb(const GmshOptions& g) {
+  const GmshResult r = run_gmsh_once(g, 1.0, 5, "baseline", 5.0 / (0.1 * 1.0 * 11.0));
+  return r.raw_mb;
+}
+
+Row run_gmsh(const GmshOptions& g, double k, int algorithm, const char* label, double baseline_mb) {
+  GmshResult r = run_gmsh_once(g, k, algorithm, label, gmsh_factor(g, algorithm));
+  r.row.rss_mb = r.raw_mb - baseline_mb;
+  char note[256];
+  std::snprintf(note, sizeof note, "%s ru_maxrss %.1f MB (peak = that minus %.1f MB start-up); Gmsh's own 2D meshing wall %s",
+                label, r.raw_mb, baseline_mb,
+                r.mesh2d ? (std::to_string(*r.mesh2d) + " s, the rest is start-up, .geo parse, .msh write").c_str() : "not in log");
+  r.row.note = note;
+  return r.row;
+}
+
+// Runs `fn` in a child process so each measurement has its own peak RSS. Errors in the child are printed there;
+// returns the child's exit code (0 on success) so one failing peer does not hide the others' rows.
 template <class Fn>
-void isolated(Fn fn) {
+int isolated(Fn fn) {
   std::fflush(stdout);
   const pid_t pid = fork();
   if (pid == 0) {
-    print(fn());
+    int code = 0;
+    try {
+      print(fn());
+    } catch (const fdr::Error& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      code = e.exit_code();
+    }
     std::fflush(stdout);
-    _exit(0);
+    std::fflush(stderr);
+    _exit(code);
   }
   int st = 0;
   waitpid(pid, &st, 0);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : static_cast<int>(fdr::ExitCode::kInternal);
+}
+
+constexpr const char* kUsage =
+    "usage: bench_fdr [k ...] [--no-cgal] [--no-gmsh] [--only fdr|cgal|gmsh] [--gmsh-min-k K] [--gmsh-factor F]\n"
+    "                 [--gmsh-bin PATH]\n"
+    "  k             size scale, f = k * f1 (default 0.08 0.025 0.0125)\n"
+    "  --no-cgal     skip CGAL's Delaunay_mesher_2\n"
+    "  --no-gmsh     skip Gmsh (Algorithm 5 'gmsh-del' and 6 'gmsh-front')\n"
+    "  --only T      run only fdrmesh, CGAL or Gmsh\n"
+    "  --gmsh-min-k  run Gmsh only for k >= K (default 0.025; Gmsh needs ~40 s per million triangles)\n"
+    "  --gmsh-factor Gmsh edge length h = F * B * f for both algorithms (default 1.36 Delaunay, 1.29 Frontal,\n"
+    "                calibrated so Gmsh makes as many triangles as fdrmesh)\n"
+    "  --gmsh-bin    Gmsh executable (default gmsh from PATH)\n";
+
+double parse_number(const char* opt, const char* text) {
+  char* e;
+  const double v = std::strtod(text, &e);
+  if (e == text || *e != '\0' || !std::isfinite(v) || v <= 0)
+    throw fdr::Error(fdr::ExitCode::kUsage, std::string("bench_fdr: ") + opt + " needs a positive number, got '" +
+                                                text + "'\n" + kUsage);
+  return v;
+}
+
+int run(int argc, char** argv) {
+  std::vector<double> ks;
+  bool fdr_on = true, cgal = true, gmsh = true;
+  GmshOptions g;
+  auto value = [&](int& i) -> const char* {
+    if (i + 1 >= argc)
+      throw fdr::Error(fdr::ExitCode::kUsage, std::string("bench_fdr: ") + argv[i] + " needs a value\n" + kUsage);
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--no-cgal") cgal = false;
+    else if (a == "--no-gmsh") gmsh = false;
+    else if (a == "--only") {
+      const std::string t = value(i);
+      if (t != "fdr" && t != "cgal" && t != "gmsh")
+        throw fdr::Error(fdr::ExitCode::kUsage, "bench_fdr: --only takes fdr, cgal or gmsh, got '" + t + "'\n" + kUsage);
+      fdr_on = t == "fdr"; cgal = t == "cgal"; gmsh = t == "gmsh";
+    } else if (a == "--gmsh-min-k") g.min_k = parse_number("--gmsh-min-k", value(i));
+    else if (a == "--gmsh-factor") g.factor = parse_number("--gmsh-factor", value(i));
+    else if (a == "--gmsh-bin") g.binary = value(i);
+    else if (a == "-h" || a == "--help") { std::printf("%s", kUsage); return 0; }
+    else if (!a.empty() && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')))
+      throw fdr::Error(fdr::ExitCode::kUsage, "bench_fdr: unknown option " + a + "\n" + kUsage);
+    else ks.push_back(parse_number("k", argv[i]));
+  }
+  if (ks.empty()) ks = {0.08, 0.025, 0.0125};
+  std::printf("FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1 (one core)\n");
+  double gmsh_base = 0;
+  if (gmsh && std::any_of(ks.begin(), ks.end(), [&](double k) { return k >= g.min_k; })) {
+    gmsh_base = gmsh_baseline_mb(g);
+    std::printf("  note: Gmsh (%s -2 -nt 1), edge length h = factor*B*f with factor %.3g (gmsh-del, Algorithm 5) and %.3g "
+                "(gmsh-front, Algorithm 6)%s; start-up peak %.1f MB; refine s = wall clock of the gmsh child\n",
+                g.binary.c_str(), gmsh_factor(g, 5), gmsh_factor(g, 6),
+                g.factor > 0 ? " from --gmsh-factor" : ", calibrated to fdrmesh's triangle count", gmsh_base);
+  }
+  int code = 0;
+  auto keep_first = [&code](int c) { if (code == 0) code = c; };
+  for (double k : ks) {
+    if (fdr_on) keep_first(isolated([k] { return run_fdr(k); }));
+    if (cgal) keep_first(isolated([k] { return run_cgal(k); }));
+    if (gmsh && k < g.min_k) {
+      std::printf("  note: gmsh skipped at k=%g (< --gmsh-min-k %g: Gmsh needs ~40 s per million triangles)\n", k, g.min_k);
+    } else if (gmsh) {
+      keep_first(isolated([&g, k, gmsh_base] { return run_gmsh(g, k, 5, "gmsh-del", gmsh_base); }));
+      keep_first(isolated([&g, k, gmsh_base] { return run_gmsh(g, k, 6, "gmsh-front", gmsh_base); }));
+    }
+  }
+  return code;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<double> ks;
-  bool cgal = true;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--no-cgal") == 0) cgal = false;
-    else ks.push_back(std::atof(argv[i]));
+  try {
+    return run(argc, argv);
+  } catch (const fdr::Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return e.exit_code();
   }
-  if (ks.empty()) ks = {0.08, 0.025, 0.0125};
-  std::printf("FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1 (one core)\n");
-  for (double k : ks) {
-    isolated([k] { return run_fdr(k); });
-    if (cgal) isolated([k] { return run_cgal(k); });
-  }
-  return 0;
 }
