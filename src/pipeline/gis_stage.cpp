@@ -75,6 +75,38 @@ std::pair<double, double> tin_vertical_error(const mesh::MeshView& m, const sizi
   return {max_err, n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0};
 }
 
+// `g` resampled onto the cells of `like` (bilinear between cell centres, clamped to their hull as
+// GridField does). A non-finite corner with a non-zero weight is passed through (NaN before +inf),
+// so nodata and "no constraint" areas are not smeared into finite values.
+sizing::Grid resample_like(const sizing::Grid& g, const sizing::Grid& like) {
+  if (g.nx == like.nx && g.ny == like.ny && g.x0 == like.x0 && g.y0 == like.y0 && g.dx == like.dx && g.dy == like.dy)
+    return g;
+  sizing::Grid r = like;
+  for (std::size_t j = 0; j < r.ny; ++j)
+    for (std::size_t i = 0; i < r.nx; ++i) {
+      const Point2 p = r.center(i, j);
+      const double u = std::clamp((p.x - g.x0) / g.dx - 0.5, 0.0, static_cast<double>(g.nx - 1));
+      const double w = std::clamp((p.y - g.y0) / g.dy - 0.5, 0.0, static_cast<double>(g.ny - 1));
+      std::size_t i0 = static_cast<std::size_t>(u), j0 = static_cast<std::size_t>(w);
+      if (i0 + 1 >= g.nx) i0 = g.nx >= 2 ? g.nx - 2 : 0;
+      if (j0 + 1 >= g.ny) j0 = g.ny >= 2 ? g.ny - 2 : 0;
+      const double s = u - static_cast<double>(i0), t = w - static_cast<double>(j0);
+      const std::size_t i1 = std::min(i0 + 1, g.nx - 1), j1 = std::min(j0 + 1, g.ny - 1);
+      const double c[4] = {g.at(i0, j0), g.at(i1, j0), g.at(i0, j1), g.at(i1, j1)};
+      const double wt[4] = {(1 - s) * (1 - t), s * (1 - t), (1 - s) * t, s * t};
+      double v = 0;
+      bool nan = false, inf = false;
+      for (int k = 0; k < 4; ++k) {
+        if (wt[k] == 0) continue;
+        if (std::isnan(c[k])) nan = true;
+        else if (std::isinf(c[k])) inf = true;
+        else v += wt[k] * c[k];
+      }
+      r.at(i, j) = nan ? std::numeric_limits<double>::quiet_NaN() : inf ? std::numeric_limits<double>::infinity() : v;
+    }
+  return r;
+}
+
 // Breakline ends and free points lying within `tol` of a boundary segment they do not touch are
 // put on it: the segment is split at the point. Why: a river clipped at the coast ends a rounding
 // error (1e-11 m) short of it; pslg::clean merges close vertices but not vertex-segment pairs, and
@@ -218,18 +250,25 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   std::shared_ptr<sizing::Grid> fgrid;
   const bool want_grid = !opt.raster.empty() || any_rule || opt.spacing.empty();
   if (want_grid) {
+    const double native = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
     double cell = opt.cell_size.value_or(0);
     if (!(cell > 0)) {
-      cell = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
       // Resolve the smallest features asked for, within a 4M-cell budget.
-      cell = std::max({cell > 0 ? std::min(cell, hmin) : hmin, std::sqrt(box.width() * box.height() / 4e6)});
+      cell = std::max({native > 0 ? std::min(native, hmin) : hmin, std::sqrt(box.width() * box.height() / 4e6)});
     }
     sizing::Grid like;
     if (!opt.raster.empty()) {
-      zgrid = std::make_shared<sizing::Grid>(gis::read_raster_to_frame(opt.raster, frame, box, cell, &g.raw.points));
+      // The raster is warped at its own resolution (or the spacing cell when coarser): warping a
+      // 5' ETOPO tile onto a 4M-cell grid cost a second for nothing. Depth rules run on this
+      // grid and are resampled to the spacing grid below; depths are sampled from it.
+      const double zcell = std::max(native, cell);
+      zgrid = std::make_shared<sizing::Grid>(gis::read_raster_to_frame(opt.raster, frame, box, zcell, &g.raw.points));
+      clock.lap("raster");
+      info("raster " + opt.raster + ": " + std::to_string(zgrid->nx) + " x " + std::to_string(zgrid->ny) +
+           " cells of " + num(zcell) + " m");
+    }
+    if (zgrid && zgrid->dx == cell) {
       like = *zgrid;
-      info("raster " + opt.raster + ": " + std::to_string(like.nx) + " x " + std::to_string(like.ny) + " cells of " +
-           num(cell) + " m");
     } else {
       like.nx = static_cast<std::size_t>(std::ceil(box.width() / cell)) + 2;
       like.ny = static_cast<std::size_t>(std::ceil(box.height() / cell)) + 2;
@@ -259,17 +298,17 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     }
     if (opt.slope_rule) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--slope-rule needs --raster");
-      rules.push_back(sizing::rule_slope(depth, *opt.slope_rule));
+      rules.push_back(resample_like(sizing::rule_slope(depth, *opt.slope_rule), like));
       names.push_back("slope (slp " + num(*opt.slope_rule) + ")");
     }
     if (opt.wavelength_rule) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--wavelength-rule needs --raster");
-      rules.push_back(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule));
+      rules.push_back(resample_like(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule), like));
       names.push_back("wavelength (T " + num(opt.wave_period_s) + " s, wl " + num(*opt.wavelength_rule) + ")");
     }
     if (opt.vertical_tol) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--vertical-tol needs --raster (the DEM)");
-      rules.push_back(sizing::rule_curvature(*zgrid, *opt.vertical_tol));
+      rules.push_back(resample_like(sizing::rule_curvature(*zgrid, *opt.vertical_tol), like));
       names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
     }
     if (!opt.size_raster.empty()) {

@@ -177,7 +177,7 @@ TEST(PipelineChesapeake, GeoJsonAllOutputsReadBack) {
     names.push_back(s.name);
     EXPECT_GE(s.seconds, 0.0);
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"read", "sizing", "limit", "repair", "cdt", "refine", "check", "depths",
+  EXPECT_EQ(names, (std::vector<std::string>{"read", "raster", "sizing", "limit", "repair", "cdt", "refine", "check", "depths",
                                              "report", "write"}));
   EXPECT_EQ(r.written.size(), 6u);
   EXPECT_EQ(dir.list(), (std::set<std::string>{"m.gpkg", "m.2dm", "m.14", "m.nc", "m.msh", "r.json", "f.tif"}));
