@@ -259,8 +259,8 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     sizing::Grid like;
     if (!opt.raster.empty()) {
       // The raster is warped at its own resolution (or the spacing cell when coarser): warping a
-      // 5' ETOPO tile onto a 4M-cell grid cost a second for nothing. Depth rules run on this
-      // grid and are resampled to the spacing grid below; depths are sampled from it.
+      // 5' ETOPO tile onto a 4M-cell grid cost a second for nothing. Depths are sampled from it;
+      // depth rules resample it to the spacing grid (bilinear, as the warp did).
       const double zcell = std::max(native, cell);
       zgrid = std::make_shared<sizing::Grid>(gis::read_raster_to_frame(opt.raster, frame, box, zcell, &g.raw.points));
       clock.lap("raster");
@@ -291,24 +291,27 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
         names.push_back("distance (hmin + " + num(grade) + " d)");
       }
     }
-    sizing::Grid depth;
-    if (zgrid) {
-      depth = *zgrid;
+    // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
+    // 5'/30" cells would miss the bends between samples that a fine TIN must follow.
+    sizing::Grid zfine, depth;
+    if (zgrid && (opt.slope_rule || opt.wavelength_rule || opt.vertical_tol)) {
+      zfine = resample_like(*zgrid, like);
+      depth = zfine;
       for (auto& v : depth.v) v = -v;  // elevation positive up -> depth positive down
     }
     if (opt.slope_rule) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--slope-rule needs --raster");
-      rules.push_back(resample_like(sizing::rule_slope(depth, *opt.slope_rule), like));
+      rules.push_back(sizing::rule_slope(depth, *opt.slope_rule));
       names.push_back("slope (slp " + num(*opt.slope_rule) + ")");
     }
     if (opt.wavelength_rule) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--wavelength-rule needs --raster");
-      rules.push_back(resample_like(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule), like));
+      rules.push_back(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule));
       names.push_back("wavelength (T " + num(opt.wave_period_s) + " s, wl " + num(*opt.wavelength_rule) + ")");
     }
     if (opt.vertical_tol) {
       if (!zgrid) throw Error(ExitCode::kUsage, "--vertical-tol needs --raster (the DEM)");
-      rules.push_back(resample_like(sizing::rule_curvature(*zgrid, *opt.vertical_tol), like));
+      rules.push_back(sizing::rule_curvature(zfine, *opt.vertical_tol));
       names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
     }
     if (!opt.size_raster.empty()) {
