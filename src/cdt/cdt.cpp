@@ -41,17 +41,33 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
   return d;
 }
 
-// Triangulates the pseudo-polygon a -> e with `chain` (from a to e) lying left of a->e.
-void triangulate_left(Triangulation& T, Index a, Index e, const Index* chain, std::size_t n,
-                      std::vector<std::array<Index, 3>>& out) {
-  if (n == 0) return;
-  std::size_t ci = 0;
-  for (std::size_t i = 1; i < n; ++i)
-    if (incircle(T.pts[a], T.pts[e], T.pts[chain[ci]], T.pts[chain[i]]) > 0) ci = i;
-  const Index c = chain[ci];
-  out.push_back({a, e, c});
-  triangulate_left(T, a, c, chain, ci, out);
-  triangulate_left(T, c, e, chain + ci + 1, n - ci - 1, out);
+// Flips the edge of half-edge h (and its twin): triangles (a,b,c) + (b,a,d) become (c,a,d) +
+// (d,b,c), i.e. the diagonal a-b is replaced by c-d. Caller guarantees a strictly convex quad.
+//
+//          c                    c
+//        /   \                / | \   .
+//       a --- b      ->      a  |  b
+//        \   /                \ | /
+//          d                    d
+void flip(Triangulation& T, HalfEdge h) {
+  const HalfEdge g = T.twin[h];
+  const TriangleId t1 = mesh::tri_of(h), t2 = mesh::tri_of(g);
+  const Index a = T.org(h), b = T.dst(h), c = T.apex(h), d = T.apex(g);
+  const HalfEdge o_bc = T.twin[mesh::next_he(h)], o_ca = T.twin[mesh::prev_he(h)];
+  const HalfEdge o_ad = T.twin[mesh::next_he(g)], o_db = T.twin[mesh::prev_he(g)];
+  const bool c_bc = T.constrained(mesh::next_he(h)), c_ca = T.constrained(mesh::prev_he(h));
+  const bool c_ad = T.constrained(mesh::next_he(g)), c_db = T.constrained(mesh::prev_he(g));
+  // t1 = (c, a, d): edges c->a, a->d, d->c.  t2 = (d, b, c): edges d->b, b->c, c->d.
+  T.tv[3 * t1] = c; T.tv[3 * t1 + 1] = a; T.tv[3 * t1 + 2] = d;
+  T.tv[3 * t2] = d; T.tv[3 * t2 + 1] = b; T.tv[3 * t2 + 2] = c;
+  T.flags[t1] &= static_cast<std::uint8_t>(~7u);
+  T.flags[t2] &= static_cast<std::uint8_t>(~7u);
+  T.link(3 * t1, o_ca);     T.set_constrained(3 * t1, c_ca);
+  T.link(3 * t1 + 1, o_ad); T.set_constrained(3 * t1 + 1, c_ad);
+  T.link(3 * t2, o_db);     T.set_constrained(3 * t2, c_db);
+  T.link(3 * t2 + 1, o_bc); T.set_constrained(3 * t2 + 1, c_bc);
+  T.link(3 * t1 + 2, 3 * t2 + 2);
+  T.vhe[a] = 3 * t1 + 1; T.vhe[d] = 3 * t1 + 2; T.vhe[b] = 3 * t2 + 1; T.vhe[c] = 3 * t2 + 2;
 }
 
 [[noreturn]] void crossing_error(const Triangulation& T, Index a, Index b, Index sid, HalfEdge h,
@@ -77,9 +93,6 @@ void mark_constrained(Triangulation& T, HalfEdge h, Index sid) {
 }  // namespace
 
 void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::string& source, CdtStats* stats) {
-  std::vector<Index> left, right;
-  std::vector<TriangleId> crossed;
-  std::vector<std::array<Index, 3>> tris;
   std::size_t guard = 0;
   while (a != b) {
     if (++guard > T.pts.size() + 2) throw Error(ExitCode::kInternal, source + ": segment insertion did not finish");
@@ -104,60 +117,66 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     } while (h != h0 && h != kNoId);
     if (next_a != kNoId) { a = next_a; continue; }
     if (start == kNoId) throw Error(ExitCode::kInternal, source + ": segment " + std::to_string(sid) + " start not found");
-    // Walk through the triangles crossed by a-b; u (right) / w (left) are the crossed edge's ends.
-    left.clear(); right.clear(); crossed.clear();
-    crossed.push_back(mesh::tri_of(start));
-    right.push_back(T.dst(start));
-    left.push_back(T.apex(start));
-    HalfEdge cur = mesh::next_he(start);  // u -> w
+    // Walk along a-b collecting the crossed edges (as vertex pairs: flips renumber half-edges)
+    // up to b or to the first vertex lying on the segment.
+    std::deque<std::pair<Index, Index>> crossing;
+    HalfEdge cur = mesh::next_he(start);  // right -> left
     Index end = kNoId;
     while (true) {
       if (T.constrained(cur)) crossing_error(T, a, b, sid, cur, source);
+      crossing.push_back({T.org(cur), T.dst(cur)});
       const HalfEdge n = T.twin[cur];
       if (n == kNoId) throw Error(ExitCode::kInternal, source + ": segment walk left the mesh");
-      crossed.push_back(mesh::tri_of(n));
       const Index o = T.apex(n);
       if (o == b) { end = b; break; }
       const int s = orient2d(T.pts[a], T.pts[b], T.pts[o]);
       if (s == 0) { end = o; if (stats) ++stats->segments_split_at_vertices; break; }
-      if (s > 0) { left.push_back(o); cur = mesh::next_he(n); }
-      else { right.push_back(o); cur = mesh::prev_he(n); }
+      cur = s > 0 ? mesh::next_he(n) : mesh::prev_he(n);
     }
-    // Record the rim of the crossed region (edge -> outside twin) before freeing it.
-    for (TriangleId t : crossed) T.flags[t] |= Triangulation::kMarkA;
-    std::unordered_map<std::uint64_t, std::pair<HalfEdge, bool>> rim;
-    for (TriangleId t : crossed)
-      for (int k = 0; k < 3; ++k) {
-        const HalfEdge e = 3 * t + static_cast<Index>(k);
-        const HalfEdge n = T.twin[e];
-        if (n != kNoId && (T.flags[mesh::tri_of(n)] & Triangulation::kMarkA)) continue;
-        rim[(static_cast<std::uint64_t>(T.org(e)) << 32) | T.dst(e)] = {n, T.constrained(e)};
+    // Sloan's edge flipping: flip crossed edges whose quadrilateral is strictly convex until
+    // none crosses a-end (always possible, so the loop ends); then Lawson flips restore the
+    // constrained Delaunay property around the new edges. Unlike re-triangulating the two
+    // pseudo-polygons, this needs no simple-polygon assumption (a vertex whose whole star is
+    // crossed, with its edges hanging into the cavity, is handled like any other).
+    const Point2 pa = T.pts[a], pe = T.pts[end];
+    std::vector<std::pair<Index, Index>> fresh;
+    std::size_t stall = 0;
+    while (!crossing.empty()) {
+      if (++stall > crossing.size() + 1)  // a whole pass without a flip: impossible in theory
+        throw Error(ExitCode::kInternal, source + ": segment recovery by flips did not converge");
+      const auto [u, w] = crossing.front();
+      crossing.pop_front();
+      const HalfEdge e = T.find_edge(u, w);
+      if (e == kNoId) continue;
+      const Index c = T.apex(e), d = T.apex(T.twin[e]);
+      // Convex iff the diagonal c-d separates u and w strictly.
+      if (orient2d(T.pts[c], T.pts[d], T.pts[u]) * orient2d(T.pts[c], T.pts[d], T.pts[w]) >= 0) {
+        crossing.push_back({u, w});
+        continue;
       }
-    for (TriangleId t : crossed) T.kill_triangle(t);
-    tris.clear();
-    triangulate_left(T, a, end, left.data(), left.size(), tris);
-    std::reverse(right.begin(), right.end());
-    triangulate_left(T, end, a, right.data(), right.size(), tris);
-    std::unordered_map<std::uint64_t, HalfEdge> open;
-    for (const auto& tv : tris) {
-      const TriangleId t = T.new_triangle(tv[0], tv[1], tv[2]);
-      for (int k = 0; k < 3; ++k) {
-        const HalfEdge e = 3 * t + static_cast<Index>(k);
-        const Index x = T.org(e), y = T.dst(e);
-        auto r = rim.find((static_cast<std::uint64_t>(x) << 32) | y);
-        if (r != rim.end()) {
-          T.link(e, r->second.first);
-          if (r->second.second) T.set_constrained(e, true);
-          continue;
-        }
-        auto o = open.find((static_cast<std::uint64_t>(y) << 32) | x);
-        if (o != open.end()) { T.link(e, o->second); open.erase(o); }
-        else open[(static_cast<std::uint64_t>(x) << 32) | y] = e;
-      }
+      flip(T, e);
+      stall = 0;
+      const int sc = orient2d(pa, pe, T.pts[c]), sd = orient2d(pa, pe, T.pts[d]);
+      if ((c == a || c == end || d == a || d == end) || sc * sd >= 0) fresh.push_back({c, d});
+      else crossing.push_back({c, d});
     }
     const HalfEdge ae = T.find_edge(a, end);
     if (ae == kNoId) throw Error(ExitCode::kInternal, source + ": recovered segment edge missing");
     mark_constrained(T, ae, sid);
+    // Lawson: restore local Delaunay on the new edges (constrained edges are never flipped).
+    while (!fresh.empty()) {
+      const auto [u, w] = fresh.back();
+      fresh.pop_back();
+      const HalfEdge e = T.find_edge(u, w);
+      if (e == kNoId || T.constrained(e) || T.twin[e] == kNoId) continue;
+      const Index c = T.apex(e), d = T.apex(T.twin[e]);
+      if (incircle(T.pts[u], T.pts[w], T.pts[c], T.pts[d]) <= 0) continue;
+      flip(T, e);
+      fresh.push_back({u, c});
+      fresh.push_back({c, w});
+      fresh.push_back({w, d});
+      fresh.push_back({d, u});
+    }
     a = end;
   }
 }
@@ -238,7 +257,7 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
   // Regions: connected components of triangles across unconstrained edges.
   const std::size_t nt = T.num_slots();
   std::vector<Index> comp(nt, kNoId);
-  std::vector<std::vector<Index>> comp_adj;
+  std::vector<std::vector<std::pair<Index, int>>> comp_adj;  // neighbour, depth step
   std::vector<bool> comp_super;
   std::vector<TriangleId> stack;
   Index ncomp = 0;
@@ -267,10 +286,16 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + static_cast<Index>(k);
       const HalfEdge w = T.twin[h];
-      if (w != kNoId && T.constrained(h) && comp[mesh::tri_of(w)] != comp[t]) comp_adj[comp[t]].push_back(comp[mesh::tri_of(w)]);
+      if (w == kNoId || !T.constrained(h) || comp[mesh::tri_of(w)] == comp[t]) continue;
+      // Breaklines (marker 4) are interior constraints: crossing one does not change the depth.
+      auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
+      const bool breakline = it != T.seg_of.end() && it->second < T.input_segments.size() &&
+                             T.input_segments[it->second].marker == pslg::kBreaklineMarker;
+      comp_adj[comp[t]].push_back({comp[mesh::tri_of(w)], breakline ? 0 : 1});
     }
   }
-  // Nesting depth: breadth-first from the outside, +1 per constraint crossed.
+  // Nesting depth: fewest boundary (non-breakline) constraints crossed from the outside
+  // (0-1 breadth-first search).
   std::vector<int> depth(ncomp, -1);
   std::deque<Index> q;
   for (Index k = 0; k < ncomp; ++k)
@@ -278,8 +303,11 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
   while (!q.empty()) {
     const Index k = q.front();
     q.pop_front();
-    for (Index j : comp_adj[k])
-      if (depth[j] < 0) { depth[j] = depth[k] + 1; q.push_back(j); }
+    for (const auto& [j, step] : comp_adj[k]) {
+      if (depth[j] >= 0 && depth[j] <= depth[k] + step) continue;
+      depth[j] = depth[k] + step;
+      if (step == 0) q.push_front(j); else q.push_back(j);
+    }
   }
   auto mode = opt.regions;
   if (mode == CdtOptions::Regions::kAuto) {

@@ -11,7 +11,8 @@ struct CdtOptions {
   // Which triangles are removed after the segments are in:
   //  kAuto: seeds (exterior + hole seeds, Triangle semantics) when the PSLG has holes,
   //         constraint parity otherwise; a PSLG without segments keeps its convex hull.
-  //  kParity: keep regions at odd nesting depth (number of segment crossings from outside).
+  //  kParity: keep regions at odd nesting depth (number of segment crossings from outside;
+  //           breaklines, marker 4, are interior constraints and do not count).
   //  kSeeds: remove the exterior and the regions containing hole seeds.
   //  kNone: keep the convex hull (only the super-triangle is removed).
   enum class Regions { kAuto, kParity, kSeeds, kNone } regions = Regions::kAuto;

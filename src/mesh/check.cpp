@@ -1,6 +1,7 @@
 // Validity checkers: topology, orientation, constrained Delaunay property, segment recovery.
 #include "mesh/check.hpp"
 #include <sstream>
+#include <unordered_map>
 #include "predicates/predicates.hpp"
 
 namespace fdr::mesh {
@@ -59,41 +60,38 @@ CheckResult check_delaunay(const Triangulation& tri) {
 
 CheckResult check_segments(const Triangulation& tri) {
   CheckResult r;
+  // Constrained edges by input segment, from every live half-edge (robust to pinched vertices).
+  std::unordered_map<Index, std::vector<std::pair<Index, Index>>> by_seg;
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + static_cast<Index>(k);
+      if (!tri.constrained(h)) continue;
+      auto it = tri.seg_of.find(edge_key(tri.org(h), tri.dst(h)));
+      if (it == tri.seg_of.end() || it->second == kNoId) continue;
+      by_seg[it->second].push_back({tri.org(h), tri.dst(h)});
+    }
+  }
+  std::vector<bool> in_mesh(tri.pts.size(), false);
+  for (TriangleId t = 0; t < tri.num_slots(); ++t)
+    if (!tri.dead(t))
+      for (int k = 0; k < 3; ++k) in_mesh[tri.tv[3 * t + k]] = true;
   for (Index s = 0; s < tri.input_segments.size(); ++s) {
     const auto& seg = tri.input_segments[s];
-    if (seg.a == seg.b) continue;
-    if (tri.vhe[seg.a] == kNoId || tri.vhe[seg.b] == kNoId) continue;  // removed with a hole/exterior
-    // Follow constrained edges labelled s from a; each step must reach a new vertex.
+    if (seg.a == seg.b || !in_mesh[seg.a] || !in_mesh[seg.b]) continue;  // removed with a hole
+    std::unordered_map<Index, std::vector<Index>> adj;
+    for (const auto& [u, w] : by_seg[s]) {
+      adj[u].push_back(w);
+      adj[w].push_back(u);
+    }
+    // Follow the chain from a; each step must reach a new vertex, ending at b.
     Index cur = seg.a, prev = kNoId;
-    std::size_t steps = 0;
     bool ok = true;
-    while (cur != seg.b) {
-      if (++steps > tri.pts.size()) { ok = false; break; }
+    for (std::size_t steps = 0; cur != seg.b; ++steps) {
       Index nxt = kNoId;
-      const HalfEdge h0 = tri.vhe[cur];
-      HalfEdge h = h0;
-      // Scan the whole star (both directions to cope with boundary vertices).
-      for (int dir = 0; dir < 2 && nxt == kNoId; ++dir) {
-        h = h0;
-        for (std::size_t guard = 0; guard < 100000; ++guard) {
-          const Index w = tri.dst(h);
-          if (w != prev && tri.constrained(h)) {
-            auto it = tri.seg_of.find(edge_key(cur, w));
-            if (it != tri.seg_of.end() && it->second == s) { nxt = w; break; }
-          }
-          // also the incoming edge prev(h) (apex -> cur) for boundary stars
-          const HalfEdge pin = prev_he(h);
-          const Index u = tri.org(pin);
-          if (u != prev && tri.constrained(pin)) {
-            auto it = tri.seg_of.find(edge_key(cur, u));
-            if (it != tri.seg_of.end() && it->second == s) { nxt = u; break; }
-          }
-          const HalfEdge n = dir == 0 ? tri.twin[prev_he(h)] : (tri.twin[h] == kNoId ? kNoId : next_he(tri.twin[h]));
-          if (n == kNoId || n == h0) break;
-          h = n;
-        }
-      }
-      if (nxt == kNoId) { ok = false; break; }
+      for (Index w : adj[cur])
+        if (w != prev) { nxt = w; break; }
+      if (nxt == kNoId || steps > adj.size()) { ok = false; break; }
       prev = cur;
       cur = nxt;
     }

@@ -15,29 +15,61 @@ const char* edge_kind_name(EdgeKind k) {
   return "none";
 }
 
-HalfEdge Triangulation::find_edge(Index a, Index b) const {
-  const HalfEdge h0 = vhe[a];
-  if (h0 == kNoId) return kNoId;
-  // Counter-clockwise around a: the half-edge after h is twin(prev(h)).
+// Scans the fan of vhe[v] both ways (outgoing and incoming edges); returns a half-edge joining
+// v and w (v->w preferred), or kNoId.
+static HalfEdge find_in_fan(const Triangulation& T, Index v, Index w) {
+  const HalfEdge h0 = T.vhe[v];
+  if (h0 == kNoId || T.dead(tri_of(h0)) || T.org(h0) != v) return kNoId;
+  HalfEdge found = kNoId;
+  auto visit = [&](HalfEdge h) {  // h leaves v
+    if (T.dst(h) == w) { found = h; return true; }
+    if (found == kNoId && T.org(prev_he(h)) == w) found = prev_he(h);  // incoming w->v
+    return false;
+  };
   HalfEdge h = h0;
-  do {
-    if (dst(h) == b) return h;
-    const HalfEdge p = twin[prev_he(h)];
+  do {  // counter-clockwise: twin(prev(h))
+    if (visit(h)) return found;
+    const HalfEdge p = T.twin[prev_he(h)];
     if (p == kNoId) break;
     h = p;
   } while (h != h0);
-  if (h != h0 || twin[prev_he(h)] == kNoId) {
-    // Hit the boundary: rotate clockwise from the start: next(twin(h)).
-    h = h0;
-    while (true) {
-      const HalfEdge t = twin[h];
-      if (t == kNoId) break;
-      h = next_he(t);
-      if (h == h0) break;
-      if (dst(h) == b) return h;
+  for (h = h0;;) {  // clockwise: next(twin(h))
+    const HalfEdge t = T.twin[h];
+    if (t == kNoId) break;
+    h = next_he(t);
+    if (h == h0) break;
+    if (visit(h)) return found;
+  }
+  return found;
+}
+
+HalfEdge Triangulation::find_edge(Index a, Index b) const {
+  HalfEdge e = find_in_fan(*this, a, b);
+  if (e != kNoId && org(e) == a) return e;
+  const HalfEdge f = find_in_fan(*this, b, a);
+  if (f != kNoId) {
+    if (org(f) == a) return f;
+    if (e == kNoId) e = f;
+  }
+  if (e != kNoId) return twin[e] != kNoId ? twin[e] : e;
+  return kNoId;
+}
+
+HalfEdge Triangulation::find_edge_anywhere(Index a, Index b) const {
+  const HalfEdge e = find_edge(a, b);
+  if (e != kNoId) return e;
+  // Why a full scan: a vertex where two parts of the domain touch (a "pinch", e.g. the knot of
+  // a figure-eight coastline) has two separate fans and vhe reaches only one of them.
+  HalfEdge back = kNoId;
+  for (TriangleId t = 0; t < num_slots(); ++t) {
+    if (dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + static_cast<Index>(k);
+      if (org(h) == a && dst(h) == b) return h;
+      if (org(h) == b && dst(h) == a) back = h;
     }
   }
-  return kNoId;
+  return back;
 }
 
 void Triangulation::rebuild_vertex_map() {

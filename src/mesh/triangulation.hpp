@@ -3,7 +3,7 @@
 // Index convention (one triangle t, counter-clockwise):
 //
 //              v[3t+2]
-//               /  \
+//               /  \   .
 //      edge 2  /    \  edge 1          half-edge h = 3t+k runs from v[h] to v[next(h)],
 //             /      \                 next(h) = 3t + (k+1)%3, prev(h) = 3t + (k+2)%3.
 //        v[3t] ------ v[3t+1]          twin[h] = the opposite half-edge in the neighbouring
@@ -110,8 +110,12 @@ class Triangulation {
     twin[a] = b;
     if (b != kNoId) twin[b] = a;
   }
-  // Finds the half-edge a->b, or kNoId. Rotates around a (both ways if a is on the boundary).
+  // Finds the half-edge a->b, or else b->a (a boundary edge has only one), or kNoId. Rotates
+  // around a and b; falls back to a scan for vertices with two separate fans (pinches).
   HalfEdge find_edge(Index a, Index b) const;
+  // find_edge, then (only if the fans miss it) a scan of all triangles: O(n), for edges known to
+  // exist at a pinched vertex (two parts of the domain touching at one vertex).
+  HalfEdge find_edge_anywhere(Index a, Index b) const;
   // Makes vhe[v] valid for every vertex that still has a triangle (kNoId for the others).
   void rebuild_vertex_map();
 

@@ -147,12 +147,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
 
   if (opt.check) {
     mesh::CheckResult cr = mesh::check_all(tri);
-    std::size_t bad = 0;
-    for (TriangleId t = 0; t < tri.num_slots(); ++t) {
-      if (tri.dead(t)) continue;
-      bool exempt = false;
-      if (refiner.badness(t, &exempt) > 1 && !exempt) ++bad;
-    }
+    const std::size_t bad = refiner.leftovers().r_over_f_bad;
     if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
     if (!cr.ok()) {
       std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
@@ -177,13 +172,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.refine_s = refine_s;
   ri.predicate_filtered = predicates::counters().filtered;
   ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = 0;
-  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
-    if (tri.dead(t)) continue;
-    bool exempt = false;
-    refiner.badness(t, &exempt);
-    if (exempt) ++ri.exempt_small_angle_triangles;
-  }
+  ri.exempt_small_angle_triangles = refiner.leftovers().angle_bad;
   ri.steiner_segment = refiner.stats().segment_splits;
   ri.steiner_interior = refiner.stats().circumcenters;
   ri.input_file = opt.input;
@@ -242,20 +231,35 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     wo.triangle_area = &area;
     to_write = &projected;
   }
-  for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
-    io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
-    result.written.push_back(opt.outputs[i]);
+  // All or nothing: if a later output (mesh, spacing GeoTIFF, report) fails or the run is
+  // cancelled, the files already written are removed again.
+  std::vector<std::string> extra_paths;
+  if (!opt.write_spacing.empty()) extra_paths.push_back(opt.write_spacing);
+  try {
+    for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
+      io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
+      result.written.push_back(opt.outputs[i]);
+      if (formats[i] == io::Format::kNode) {
+        const std::string& o = opt.outputs[i];
+        const auto dot = o.find_last_of('.');
+        extra_paths.push_back((dot == std::string::npos ? o : o.substr(0, dot)) + ".ele");
+      }
+    }
+    for (const auto& extra : in.extra_outputs) extra();
+    clock.lap("write");
+    result.report.run.write_s = since(t_write);
+    result.report.run.total_s = since(t_start);
+    result.report.run.peak_rss_mb = quality::peak_rss_mb_value();
+    if (!opt.report_json.empty()) {
+      quality::write_json_file(result.report, opt.report_json);
+      result.written.push_back(opt.report_json);
+    }
+    report_progress(1.0, "done");
+  } catch (...) {
+    for (const auto& w : result.written) std::remove(w.c_str());
+    for (const auto& w : extra_paths) std::remove(w.c_str());
+    throw;
   }
-  for (const auto& extra : in.extra_outputs) extra();
-  clock.lap("write");
-  result.report.run.write_s = since(t_write);
-  result.report.run.total_s = since(t_start);
-  result.report.run.peak_rss_mb = quality::peak_rss_mb_value();
-  if (!opt.report_json.empty()) {
-    quality::write_json_file(result.report, opt.report_json);
-    result.written.push_back(opt.report_json);
-  }
-  report_progress(1.0, "done");
   return result;
 }
 

@@ -114,13 +114,44 @@ void Refiner::evaluate(TriangleId t) {
   if (k > 1) push_bad(t, k);
 }
 
+// Why: two segments meeting at a small input angle encroach each other's subsegments all the
+// way into the apex (the strip between them is thinner than any subsegment), which never ends.
+// A vertex on a segment of the same small-angle cluster (sharing an input endpoint at less than
+// 60 degrees) therefore does not count as encroaching; triangles there are still refined until
+// R/f(c) <= B, which is bounded because f is.
+bool Refiner::cluster_pair(Index s1i, Index s2i) const {
+  if (s1i == kNoId || s2i == kNoId || s1i == s2i) return false;
+  const auto& T = tri_;
+  const auto& s1 = T.input_segments[s1i];
+  const auto& s2 = T.input_segments[s2i];
+  Index apex = kNoId, o1 = kNoId, o2 = kNoId;
+  if (s1.a == s2.a) { apex = s1.a; o1 = s1.b; o2 = s2.b; }
+  else if (s1.a == s2.b) { apex = s1.a; o1 = s1.b; o2 = s2.a; }
+  else if (s1.b == s2.a) { apex = s1.b; o1 = s1.a; o2 = s2.b; }
+  else if (s1.b == s2.b) { apex = s1.b; o1 = s1.a; o2 = s2.a; }
+  if (apex == kNoId) return false;
+  const Point2 u = T.pts[o1] - T.pts[apex], w = T.pts[o2] - T.pts[apex];
+  const double cross = std::fabs(u.x * w.y - u.y * w.x), d = dot(u, w);
+  return d > 0 && cross < std::sqrt(3.0) * d;  // angle < 60 degrees
+}
+
+Index Refiner::segment_of_vertex(Index v) const {
+  auto it = seg_vertex_.find(v);
+  return it == seg_vertex_.end() ? kNoId : it->second;
+}
+
+bool Refiner::same_cluster(Index v, Index a, Index b) const {
+  auto is = tri_.seg_of.find(mesh::edge_key(a, b));
+  return is != tri_.seg_of.end() && cluster_pair(segment_of_vertex(v), is->second);
+}
+
 void Refiner::check_encroached_edges(TriangleId t) {
   const auto& T = tri_;
   for (int k = 0; k < 3; ++k) {
     const HalfEdge h = 3 * t + static_cast<Index>(k);
     if (!T.constrained(h)) continue;
     const Index a = T.org(h), b = T.dst(h), c = T.apex(h);
-    if (diametral(T.pts[a], T.pts[b], T.pts[c]) > 0) enc_.push_back({a, b});
+    if (diametral(T.pts[a], T.pts[b], T.pts[c]) > 0 && !same_cluster(c, a, b)) enc_.push_back({a, b});
   }
 }
 
@@ -146,37 +177,45 @@ void Refiner::init() {
   }
 }
 
-void Refiner::split_subsegment(Index a, Index b) {
-  auto& T = tri_;
-  HalfEdge h = T.find_edge(a, b);
-  if (h == kNoId) h = T.find_edge(b, a);
-  if (h == kNoId || !T.constrained(h)) return;  // already split
+Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const {
+  const auto& T = tri_;
   const Point2 pa = T.pts[a], pb = T.pts[b];
-  const double len = dist(pa, pb);
   const bool ia = T.vkind[a] == VertexKind::kInput, ib = T.vkind[b] == VertexKind::kInput;
-  Point2 m;
-  Index apex = kNoId;
-  int shell_exp = 0;
+  *apex = kNoId;
   if (ia != ib) {
     // Concentric shells (Ruppert; Shewchuk's Triangle): split at a power-of-two distance from
     // the input vertex, so that segments sharing it are split on the same circles and cannot
     // encroach each other forever at a small angle.
-    apex = ia ? a : b;
+    const double len = dist(pa, pb);
+    *apex = ia ? a : b;
     const Point2 o = ia ? pa : pb, q = ia ? pb : pa;
-    shell_exp = static_cast<int>(std::lround(std::log2(len * 0.5)));
-    const double dd = std::ldexp(1.0, shell_exp);
-    const double s = dd / len;
-    m = {o.x + s * (q.x - o.x), o.y + s * (q.y - o.y)};
-  } else {
-    m = {0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)};
+    *shell_exp = static_cast<int>(std::lround(std::log2(len * 0.5)));
+    const double s = std::ldexp(1.0, *shell_exp) / len;
+    return {o.x + s * (q.x - o.x), o.y + s * (q.y - o.y)};
   }
+  return {0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)};
+}
+
+void Refiner::split_subsegment(Index a, Index b) {
+  auto& T = tri_;
+  // A stale entry (the subsegment was split meanwhile) is no longer in the segment map.
+  if (T.seg_of.find(mesh::edge_key(a, b)) == T.seg_of.end()) return;
+  const HalfEdge h = T.find_edge_anywhere(a, b);
+  if (h == kNoId || !T.constrained(h)) return;
+  const Point2 pa = T.pts[a], pb = T.pts[b];
+  Index apex = kNoId;
+  int shell_exp = 0;
+  const Point2 m = split_point(a, b, &apex, &shell_exp);
   if (m == pa || m == pb)
     throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
                                           " further: the spacing is below floating-point resolution there");
   if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h}))
     throw Error(ExitCode::kInternal, "could not split subsegment at " + pt(T.origin + m));
+  auto sid = T.seg_of.find(mesh::edge_key(a, b));
+  const Index seg_id = sid != T.seg_of.end() ? sid->second : kNoId;
   const Index v = ins_.commit(m, VertexKind::kSegment);
   if (apex != kNoId) shell_[v] = {apex, shell_exp};
+  if (seg_id != kNoId) seg_vertex_[v] = seg_id;
   ++stats_.segment_splits;
   for (TriangleId t : ins_.new_triangles()) {
     check_encroached_edges(t);
@@ -184,46 +223,88 @@ void Refiner::split_subsegment(Index a, Index b) {
   }
 }
 
+// Why the give-up rule: a triangle that is bad only by the --min-angle criterion next to a
+// small input angle can ask for subsegment splits forever (each split makes a smaller skinny
+// triangle). As in Shewchuk's "Terminator", such a triangle may split a subsegment only if the
+// pieces are no shorter than its own shortest edge; otherwise it is left (counted as exempt).
+// Triangles bad by R/f(c) > B are always split: that is the FDR guarantee.
+bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const {
+  const auto& T = tri_;
+  const Point2 a = T.pts[e.a], b = T.pts[e.b], c = T.pts[e.c];
+  double r2;
+  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+  const double fc = f_(cc);
+  if (!(fc > 0) || r2 / (fc * fc) * b2_inv_ > 1) return true;  // R/f-bad (or f undefined there)
+  // A triangle spanning the strip between two segments of a small-angle cluster is skinny
+  // because of the input; it is left alone (refining it would march into the apex forever).
+  const Index sa = segment_of_vertex(e.a), sb = segment_of_vertex(e.b), sc = segment_of_vertex(e.c);
+  if (cluster_pair(sa, sb) || cluster_pair(sb, sc) || cluster_pair(sc, sa)) return false;
+  const double lmin = std::sqrt(std::min({norm2(b - a), norm2(c - b), norm2(a - c)}));
+  for (const auto& [p, q] : segs) {
+    Index apex;
+    int ex;
+    const Point2 m = split_point(p, q, &apex, &ex);
+    if (std::min(dist(T.pts[p], m), dist(m, T.pts[q])) < lmin) return false;
+  }
+  return true;
+}
+
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
   const Point2 a = T.pts[e.a], b = T.pts[e.b], c = T.pts[e.c];
   const Point2 cc = predicates::circumcenter(a, b, c);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
+  seg_tmp_.clear();
   if (loc.kind == cdt::LocateKind::kBlocked) {
     if (loc.he == kNoId) throw Error(ExitCode::kInternal, "point location failed near " + pt(T.origin + cc));
     // The circumcenter lies beyond a subsegment; it encroaches the first one crossed.
-    ++stats_.rejected_circumcenters;
-    enc_.push_back({T.org(loc.he), T.dst(loc.he)});
-    buckets_[0].push_back(e);  // retried after the split (lowest bucket: after other bad ones)
-    if (top_ < 0) top_ = 0;
+    seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
+  } else if (loc.kind == cdt::LocateKind::kOnVertex) {
+    ++stats_.stuck;
+    return;
+  } else if (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)) {
+    seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
+  } else {
+    if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
+    for (HalfEdge h : ins_.boundary())
+      if (T.constrained(h) && diametral(T.pts[T.org(h)], T.pts[T.dst(h)], cc) > 0)
+        seg_tmp_.push_back({T.org(h), T.dst(h)});
+    if (seg_tmp_.empty()) {
+      ins_.commit(cc, VertexKind::kFree);
+      ++stats_.circumcenters;
+      for (TriangleId t : ins_.new_triangles()) evaluate(t);
+      return;
+    }
+    ins_.abort();
+  }
+  // Rejected: split the encroached subsegments instead, then retry the triangle.
+  ++stats_.rejected_circumcenters;
+  if (!may_split_for(e, seg_tmp_)) {
+    ++stats_.exempt_small_angle;
     return;
   }
-  if (loc.kind == cdt::LocateKind::kOnVertex) { ++stats_.stuck; return; }
-  if (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)) {
-    ++stats_.rejected_circumcenters;
-    enc_.push_back({T.org(loc.he), T.dst(loc.he)});
-    buckets_[0].push_back(e);
-    if (top_ < 0) top_ = 0;
-    return;
-  }
-  if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
-  bool encroach = false;
-  for (HalfEdge h : ins_.boundary()) {
-    if (!T.constrained(h)) continue;
-    if (diametral(T.pts[T.org(h)], T.pts[T.dst(h)], cc) > 0) {
-      enc_.push_back({T.org(h), T.dst(h)});
-      encroach = true;
+  enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());
+  const double k = badness(e.t);
+  if (k > 1) push_bad(e.t, k);
+}
+
+RefineLeftovers Refiner::leftovers() const {
+  RefineLeftovers r;
+  const auto& T = tri_;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+    double r2;
+    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+    const double fc = f_(cc);
+    const bool rf_bad = fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;
+    if (rf_bad) { ++r.r_over_f_bad; continue; }
+    if (rho2_inv_ > 0) {
+      const double l2 = std::min({norm2(b - a), norm2(c - b), norm2(a - c)});
+      if (r2 / l2 * rho2_inv_ > 1) ++r.angle_bad;
     }
   }
-  if (encroach) {
-    ins_.abort();
-    ++stats_.rejected_circumcenters;
-    push_bad(e.t, badness(e.t));
-    return;
-  }
-  ins_.commit(cc, VertexKind::kFree);
-  ++stats_.circumcenters;
-  for (TriangleId t : ins_.new_triangles()) evaluate(t);
+  return r;
 }
 
 bool Refiner::step() {
@@ -244,7 +325,6 @@ bool Refiner::step() {
     bk.pop_back();
     const auto& T = tri_;
     if (T.dead(e.t) || T.tv[3 * e.t] != e.a || T.tv[3 * e.t + 1] != e.b || T.tv[3 * e.t + 2] != e.c) continue;
-    if (top_ == 0 && badness(e.t) <= 1) continue;  // retried entries: re-test
     split_triangle(e);
     return true;
   }
@@ -252,8 +332,16 @@ bool Refiner::step() {
 }
 
 void Refiner::run() {
-  std::uint64_t tick = 0;
+  std::uint64_t tick = 0, last_steiner = stats_.steiner(), idle = 0;
   while (step()) {
+    // Never hang: every action either inserts a vertex or retires a queue entry; a long run of
+    // actions without an insertion means a bug, reported instead of spinning.
+    if (stats_.steiner() != last_steiner) {
+      last_steiner = stats_.steiner();
+      idle = 0;
+    } else if (++idle > 8 * tri_.num_slots() + 100000) {
+      throw Error(ExitCode::kInternal, "refinement made no progress (" + std::to_string(idle) + " steps without a new vertex)");
+    }
     if (opt_.progress && (++tick & 4095) == 0) {
       const double frac = opt_.expected_steiner > 0 ? std::min(0.99, stats_.steiner() / opt_.expected_steiner) : 0.0;
       if (!opt_.progress(frac, "refine")) throw Error(ExitCode::kCancelled, "cancelled during refinement");

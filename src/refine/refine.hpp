@@ -30,6 +30,14 @@ struct RefineStats {
   std::uint64_t steiner() const { return segment_splits + circumcenters; }
 };
 
+// What is left after run(): triangles with R/f(c) > B (none unless the Steiner cap or an
+// undefined f stopped refinement) and triangles that only fail --min-angle because of a small
+// input angle (left alone on purpose).
+struct RefineLeftovers {
+  std::size_t r_over_f_bad = 0;
+  std::size_t angle_bad = 0;
+};
+
 class Refiner {
  public:
   Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
@@ -44,6 +52,7 @@ class Refiner {
   // Runs to completion; throws Error(kWorkLimit) at the Steiner cap, kCancelled on cancel.
   void run();
   const RefineStats& stats() const { return stats_; }
+  RefineLeftovers leftovers() const;
   // Bad-triangle test as used by the queue: returns the squared priority key (> 1 means bad,
   // 0 when good); exempt is set when the triangle is bad only by angle and the small angle is
   // forced by the input.
@@ -57,6 +66,11 @@ class Refiner {
   void split_subsegment(Index a, Index b);
   void split_triangle(const BadEntry& e);
   bool shell_apex_equal(Index p, Index q) const;
+  bool same_cluster(Index v, Index a, Index b) const;
+  bool cluster_pair(Index s1, Index s2) const;
+  Index segment_of_vertex(Index v) const;
+  Point2 split_point(Index a, Index b, Index* apex, int* shell_exp) const;
+  bool may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const;
 
   mesh::Triangulation& tri_;
   const sizing::SizingField& f_;
@@ -64,11 +78,13 @@ class Refiner {
   RefineStats stats_;
   cdt::Inserter ins_;
   double b2_inv_ = 1, rho2_inv_ = 0;
-  std::vector<std::pair<Index, Index>> enc_;
+  std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
   // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
   std::unordered_map<Index, std::pair<Index, int>> shell_;
+  // Input segment of every segment vertex (for small-angle clusters).
+  std::unordered_map<Index, Index> seg_vertex_;
 };
 
 // Estimated number of triangles FDR will produce: adaptive quadrature of c / f^2 over the

@@ -306,7 +306,9 @@ TEST(PipelineLuxembourg, TerrainWithCantonBordersAsBreaklines) {
   EXPECT_GT(brk, 1000u);
   PreparedInput in = prepare_gis_input(o, nullptr, nullptr);
   // Cantons share borders: the domain is their union (2565.5 km^2); breaklines must not cut cantons out.
-  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 1e-6);
+  // (domain_area_m2 is measured on the raw rings; cleaning snaps 1706 shared-border vertices, which
+  // moves the area by about 2e-6 relative.)
+  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 1e-5);
   EXPECT_NEAR(mesh_area(r.mesh) / 2565.53e6, 1.0, 1e-5);
   ASSERT_EQ(r.mesh.z.size(), r.mesh.num_vertices());
   for (double z : r.mesh.z) {
