@@ -11,6 +11,7 @@
 #include <proj.h>
 
 #include "base/error.hpp"
+#include "gis/gdal_util.hpp"
 
 namespace fdr::gis {
 
@@ -237,6 +238,7 @@ Point2 round_origin(Point2 c, double diameter) {
 
 Frame Frame::from_crs(const std::string& crs, Point2 origin) {
   OGRSpatialReference srs;
+  GdalQuiet quiet;  // our ERROR 9 line, not GDAL's own
   if (srs.SetFromUserInput(crs.c_str()) != OGRERR_NONE)
     throw Error(ExitCode::kCrsError, "--t_srs '" + crs + "': unknown CRS");
   Frame f;
@@ -270,6 +272,7 @@ Frame choose_frame(const std::vector<LonLat>& sample, const std::string& t_srs) 
   OGRSpatialReference srs;
   std::string what;
   if (!t_srs.empty()) {
+    GdalQuiet quiet;  // our ERROR 9 line, not GDAL's own
     if (srs.SetFromUserInput(t_srs.c_str()) != OGRERR_NONE)
       throw Error(ExitCode::kCrsError, "--t_srs '" + t_srs + "': unknown CRS");
     what = "--t_srs '" + t_srs + "'";
