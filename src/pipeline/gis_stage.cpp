@@ -406,7 +406,8 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   out.metadata.push_back({"max_abs_scale_factor_minus_1", num(kdev)});
   const bool terrain = opt.vertical_tol.has_value();
   const std::string output_crs = opt.output_crs;
-    out.attach = [zgrid, frame, terrain, info, warn](mesh::MeshView& m) {
+  auto tin = out.tin_error;
+  out.attach = [zgrid, frame, terrain, info, warn, tin](mesh::MeshView& m) {
     m.crs_wkt = frame.wkt();
     if (zgrid) {
       int filled = 0;
@@ -415,6 +416,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
       if (terrain) {
         const auto [emax, erms] = tin_vertical_error(m, *zgrid);
         info("TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
+        *tin = {emax, erms};
       }
     }
   };

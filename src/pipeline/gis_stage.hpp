@@ -1,6 +1,8 @@
 // The GIS stage of the pipeline: OGR/GDAL inputs -> PSLG in a projected local frame + spacing f.
 #pragma once
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +28,9 @@ struct PreparedInput {
   std::function<void(mesh::MeshView&)> to_output_crs;
   // Extra outputs written after the mesh (e.g. --write-spacing GeoTIFF).
   std::vector<std::function<void()>> extra_outputs;
+  // Terrain runs: (max, RMS) vertical error of the TIN against the DEM, filled by attach().
+  std::shared_ptr<std::optional<std::pair<double, double>>> tin_error =
+      std::make_shared<std::optional<std::pair<double, double>>>();
   std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
 };
 

@@ -179,6 +179,10 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  if (in.tin_error && *in.tin_error) {
+    result.report.vertical_error_max_m = (*in.tin_error)->first;
+    result.report.vertical_error_rms_m = (*in.tin_error)->second;
+  }
   clock.lap("report");
   report_progress(0.9, "write");
 

@@ -289,6 +289,10 @@ void write_json(const QualityReport& r, std::ostream& out) {
   j["conformity"] = {{"min", num(r.conformity_min)}, {"mean", num(r.conformity_mean)},
                      {"p05", num(r.conformity_p05)}};
   j["el_over_f_max"] = num(r.el_over_f_max);
+  if (r.vertical_error_max_m) {
+    j["vertical_error_max_m"] = num(r.vertical_error_max_m);
+    j["vertical_error_rms_m"] = num(r.vertical_error_rms_m);
+  }
   j["nn_over_f_min"] = num(r.nn_over_f_min);
   j["min_angle_histogram"] = histogram_json(r.min_angle_histogram);
   j["max_angle_histogram"] = histogram_json(r.max_angle_histogram);
@@ -371,6 +375,9 @@ void write_text(const QualityReport& r, std::ostream& out) {
                                                  fmt(r.conformity_mean, "%.4f") + " / " +
                                                  fmt(r.conformity_p05, "%.4f"));
     line(out, "nn/f min, el/f max", fmt(r.nn_over_f_min, "%.4f") + ", " + fmt(r.el_over_f_max, "%.4f"));
+    if (r.vertical_error_max_m)
+      line(out, "TIN vs DEM error max / RMS (m)",
+           fmt(r.vertical_error_max_m, "%.3f") + " / " + fmt(r.vertical_error_rms_m, "%.3f"));
   }
   if (r.spacing_invalid) line(out, "f <= 0 or not finite (skipped)", std::to_string(r.spacing_invalid));
   line(out, "exempt small-angle triangles", std::to_string(r.run.exempt_small_angle_triangles));

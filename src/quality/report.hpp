@@ -73,7 +73,9 @@ struct QualityReport {
   Histogram conformity_histogram{0.0, 0.1, std::vector<std::uint64_t>(10, 0)};  // 0..1
   std::optional<double> el_over_f_max;  // el(p) / f(p), el = longest edge of the triangles at p
   std::optional<double> nn_over_f_min;  // nn(p) / f(p)
-  std::size_t spacing_invalid = 0;       // evaluations of f that were <= 0 or not finite (skipped)
+  std::size_t spacing_invalid = 0;
+  // Terrain runs: vertical error of the linear TIN against the DEM cells inside the domain.
+  std::optional<double> vertical_error_max_m, vertical_error_rms_m;       // evaluations of f that were <= 0 or not finite (skipped)
 
   double bound_B = 0;
   double alpha = 0;

@@ -317,6 +317,11 @@ TEST(PipelineLuxembourg, TerrainWithCantonBordersAsBreaklines) {
     ASSERT_LE(z, 600.0);
   }
   EXPECT_NE(r.crs_name.find("32632"), std::string::npos) << r.crs_name;
+  // The report carries the TIN's vertical error against the DEM; the curvature rule keeps the RMS
+  // within the tolerance (the maximum can exceed it where hmin caps the refinement).
+  ASSERT_TRUE(r.report.vertical_error_rms_m.has_value());
+  EXPECT_LE(*r.report.vertical_error_rms_m, 5.0);
+  EXPECT_GE(*r.report.vertical_error_max_m, *r.report.vertical_error_rms_m);
 }
 
 // ---- error cases: exit code, message naming the file, no output left behind ----
