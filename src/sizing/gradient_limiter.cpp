@@ -131,7 +131,14 @@ void limit_gradient(Grid& g, double alpha) {
     }
   // Why repeat: source propagation can need another sweep pair where the nearest source
   // reaches a cell only through neighbours that hold a different source, or around NaN holes.
+  // Cap (documented): a shortest path around NaN holes can bend at most once per sweep pair, so
+  // nx + ny + 64 sweep pairs cover any grid; reaching it means a bug or a pathological nodata maze.
+  const std::size_t max_sweeps = g.nx + g.ny + 64;
+  std::size_t sweeps = 0;
   do {
+    if (++sweeps > max_sweeps)
+      throw Error(ExitCode::kWorkLimit, "gradient limiting did not settle after " + std::to_string(max_sweeps) +
+                                            " sweeps (nodata pattern too convoluted); fill nodata or coarsen the grid");
     L.changed = false;
     L.forward();
     L.backward();
