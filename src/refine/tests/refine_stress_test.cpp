@@ -12,12 +12,7 @@
 using namespace fdr;
 
 namespace {
-struct FnField : sizing::SizingField {
-  std::function<double(Point2)> fn;
-  explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
-  double operator()(Point2 p) const override { return fn(p); }
-  std::string describe() const override { return "stress"; }
-};
+using fdr::testing::FnField;
 }  // namespace
 
 TEST(RefineStress, ThousandsOfRandomPslgs) {

@@ -13,12 +13,7 @@
 using namespace fdr;
 
 namespace {
-struct FnField : sizing::SizingField {
-  std::function<double(Point2)> fn;
-  explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
-  double operator()(Point2 p) const override { return fn(p); }
-  std::string describe() const override { return "test"; }
-};
+using fdr::testing::FnField;
 const FnField kF1([](Point2 p) { return (std::fabs(p.x - 5) + std::fabs(p.y - 5)) * 0.1 + 0.1; });
 const FnField kF2([](Point2 p) { return (std::fabs(std::sin(p.x + p.y)) + std::fabs(std::cos(p.x + p.y))) * 0.1; });
 

@@ -33,26 +33,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secs(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
-long vm_hwm_kb() {
+// A "Vm...:" field of /proc/self/status in kB (0 if unavailable).
+long proc_status_kb(const char* key) {
   FILE* f = std::fopen("/proc/self/status", "r");
   if (!f) return 0;
   char line[256];
   long kb = 0;
+  const std::size_t n = std::strlen(key);
   while (std::fgets(line, sizeof line, f))
-    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::atol(line + 6);
+    if (std::strncmp(line, key, n) == 0) kb = std::atol(line + n);
   std::fclose(f);
   return kb;
 }
-long vm_rss_kb() {
-  FILE* f = std::fopen("/proc/self/status", "r");
-  if (!f) return 0;
-  char line[256];
-  long kb = 0;
-  while (std::fgets(line, sizeof line, f))
-    if (std::strncmp(line, "VmRSS:", 6) == 0) kb = std::atol(line + 6);
-  std::fclose(f);
-  return kb;
-}
+long vm_hwm_kb() { return proc_status_kb("VmHWM:"); }
+long vm_rss_kb() { return proc_status_kb("VmRSS:"); }
 
 double min_angle_of(double ax, double ay, double bx, double by, double cx, double cy) {
   auto ang = [](double px, double py, double qx, double qy, double rx, double ry) {
