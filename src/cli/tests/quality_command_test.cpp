@@ -48,3 +48,30 @@ TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
   EXPECT_GT(load(strict)["bad_triangles"].get<int>(), 0);
   fs::remove_all(dir);
 }
+
+// Same input, same output, bit for bit: two runs of the whole GIS pipeline write identical files.
+TEST(Determinism, TwoRunsWriteIdenticalFiles) {
+  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_determinism_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string t = FDR_TESTDATA_DIR;
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* run_name : {"a", "b"}) {
+    const fs::path o = dir / run_name;
+    fs::create_directories(o);
+    ASSERT_EQ(run("mesh " + t + "/chesapeake/chesapeake_mouth_water.geojson --open-boundary " + t +
+                  "/chesapeake/chesapeake_mouth_open_boundary.geojson --raster " + t +
+                  "/chesapeake/chesapeake_mouth_etopo5.tif --min-angle 20 -q -o " + (o / "m.2dm").string() + " -o " +
+                  (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " + (o / "m.node").string()),
+              0);
+  }
+  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.node", "m.ele"}) {
+    const std::string a = slurp(dir / "a" / f), b = slurp(dir / "b" / f);
+    EXPECT_GT(a.size(), 1000u) << f;
+    EXPECT_TRUE(a == b) << f << " differs between two runs";
+  }
+  fs::remove_all(dir);
+}
