@@ -40,6 +40,17 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
+  // Input segments that meet another at an input vertex at less than 60 degrees (a cluster).
+  in_cluster_.assign(tri_.input_segments.size(), false);
+  std::unordered_map<Index, std::vector<Index>> at_vertex;
+  for (Index s = 0; s < tri_.input_segments.size(); ++s) {
+    at_vertex[tri_.input_segments[s].a].push_back(s);
+    at_vertex[tri_.input_segments[s].b].push_back(s);
+  }
+  for (const auto& [v, list] : at_vertex)
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i + 1; j < list.size(); ++j)
+        if (cluster_pair(list[i], list[j])) in_cluster_[list[i]] = in_cluster_[list[j]] = true;
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
     const double s = std::sin(opt_.min_angle_deg * kPi / 180.0);
@@ -225,8 +236,9 @@ void Refiner::split_subsegment(Index a, Index b) {
 
 // Why the give-up rule: a triangle that is bad only by the --min-angle criterion next to a
 // small input angle can ask for subsegment splits forever (each split makes a smaller skinny
-// triangle). As in Shewchuk's "Terminator", such a triangle may split a subsegment only if the
-// pieces are no shorter than its own shortest edge; otherwise it is left (counted as exempt).
+// triangle). As in Shewchuk's "Terminator", such a triangle may split a subsegment of a
+// small-angle cluster only if the pieces are no shorter than its own shortest edge; otherwise it
+// is left (counted as exempt). Subsegments outside clusters are always split (Ruppert's case).
 // Triangles bad by R/f(c) > B are always split: that is the FDR guarantee.
 bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const {
   const auto& T = tri_;
@@ -241,6 +253,8 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
   if (cluster_pair(sa, sb) || cluster_pair(sb, sc) || cluster_pair(sc, sa)) return false;
   const double lmin = std::sqrt(std::min({norm2(b - a), norm2(c - b), norm2(a - c)}));
   for (const auto& [p, q] : segs) {
+    auto it = T.seg_of.find(mesh::edge_key(p, q));
+    if (it == T.seg_of.end() || it->second == kNoId || !in_cluster_[it->second]) continue;
     Index apex;
     int ex;
     const Point2 m = split_point(p, q, &apex, &ex);

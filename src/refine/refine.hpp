@@ -85,6 +85,7 @@ class Refiner {
   std::unordered_map<Index, std::pair<Index, int>> shell_;
   // Input segment of every segment vertex (for small-angle clusters).
   std::unordered_map<Index, Index> seg_vertex_;
+  std::vector<bool> in_cluster_;  // per input segment
 };
 
 // Estimated number of triangles FDR will produce: adaptive quadrature of c / f^2 over the
