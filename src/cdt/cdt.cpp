@@ -84,7 +84,18 @@ void flip(Triangulation& T, HalfEdge h) {
   throw Error(ExitCode::kInvalidGeometry, s.str());
 }
 
-void mark_constrained(Triangulation& T, HalfEdge h, Index sid) {
+void mark_constrained(Triangulation& T, HalfEdge h, Index sid, const std::string& source) {
+  if (T.constrained(h)) {
+    // Already part of another input segment: the two segments overlap (or repeat).
+    auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
+    if (it != T.seg_of.end() && it->second != sid && it->second < T.input_segments.size()) {
+      const auto& o = T.input_segments[it->second];
+      throw Error(ExitCode::kInvalidGeometry,
+                  source + ": segment " + std::to_string(sid) + " overlaps segment " + std::to_string(it->second) +
+                      " " + pt(T.pts[o.a]) + "-" + pt(T.pts[o.b]) + " along " + pt(T.pts[T.org(h)]) + "-" +
+                      pt(T.pts[T.dst(h)]));
+    }
+  }
   T.set_constrained(h, true);
   if (T.twin[h] != kNoId) T.set_constrained(T.twin[h], true);
   T.seg_of[mesh::edge_key(T.org(h), T.dst(h))] = sid;
@@ -102,9 +113,9 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     Index next_a = kNoId;
     do {
       const Index u = T.dst(h), w = T.apex(h);
-      if (u == b) { mark_constrained(T, h, sid); return; }
+      if (u == b) { mark_constrained(T, h, sid, source); return; }
       if (orient2d(T.pts[a], T.pts[b], T.pts[u]) == 0 && diametral(T.pts[a], T.pts[b], T.pts[u]) > 0) {
-        mark_constrained(T, h, sid);  // u lies on the segment: split it there
+        mark_constrained(T, h, sid, source);  // u lies on the segment: split it there
         if (stats) ++stats->segments_split_at_vertices;
         next_a = u;
         break;
@@ -162,7 +173,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     }
     const HalfEdge ae = T.find_edge(a, end);
     if (ae == kNoId) throw Error(ExitCode::kInternal, source + ": recovered segment edge missing");
-    mark_constrained(T, ae, sid);
+    mark_constrained(T, ae, sid, source);
     // Lawson: restore local Delaunay on the new edges (constrained edges are never flipped).
     while (!fresh.empty()) {
       const auto [u, w] = fresh.back();

@@ -178,3 +178,38 @@ TEST(Cdt, DanglingSegmentsDoNotBreakParity) {
   expect_valid(T, "dangling");
   EXPECT_NEAR(T.area(), 100.0, 1e-12);
 }
+
+TEST(Cdt, OverlappingSegmentsAreAnError) {
+  pslg::Pslg p = random_pslg(5, 0, 0);
+  p.points.insert(p.points.end(), {{1, 1}, {5, 5}, {8, 8}});
+  p.segments.push_back({4, 6, 4, 1});  // (1,1)-(8,8) passes through (5,5)
+  p.segments.push_back({5, 6, 4, 2});  // (5,5)-(8,8) overlaps it
+  try {
+    cdt::build_cdt(p);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
+    EXPECT_NE(std::string(e.what()).find("overlaps"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Cdt, SegmentsThroughLatticeVerticesAreSplitExactly) {
+  // Lattice points: many segments pass exactly through vertices (exact collinearity).
+  pslg::Pslg p;
+  const int n = 8;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) p.points.push_back({double(i), double(j)});
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int i = 0; i < n; ++i) {
+    p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
+    p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
+    p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
+    p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
+  }
+  p.segments.push_back({id(0, 0), id(n, n), 4, 1});          // through 7 interior vertices
+  p.segments.push_back({id(1, 7), id(7, 1), 4, 2});          // crosses the diagonal at the vertex (4,4)
+  cdt::CdtStats st;
+  auto T = cdt::build_cdt(p, {cdt::CdtOptions::Regions::kSeeds, "lattice"}, &st);
+  expect_valid(T, "lattice segments");
+  EXPECT_GE(st.segments_split_at_vertices, 7u + 5u);
+}
