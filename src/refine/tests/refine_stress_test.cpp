@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <cmath>
 #include <functional>
+#include <random>
 #include "cdt/cdt.hpp"
 #include "cdt/tests/test_inputs.hpp"
 #include "mesh/check.hpp"
@@ -41,5 +42,51 @@ TEST(RefineStress, ThousandsOfRandomPslgs) {
       const Point2 cc = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
       ASSERT_LE(std::sqrt(r2) / f(cc), o.bound * (1 + 1e-12)) << "seed " << seed;
     }
+  }
+}
+
+// Lattice inputs: exact collinearity and cocircularity everywhere, segments through vertices.
+TEST(RefineStress, LatticePslgsWithSegmentsThroughVertices) {
+  for (unsigned seed = 0; seed < 1500; ++seed) {
+    std::mt19937 rng(seed);
+    const int n = 6 + static_cast<int>(seed % 10);
+    pslg::Pslg p;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) p.points.push_back({double(i), double(j)});
+    auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+    for (int i = 0; i < n; ++i) {
+      p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
+      p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
+      p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
+      p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
+    }
+    std::uniform_int_distribution<int> u(0, n);
+    for (int k = 0; k < 4 + static_cast<int>(seed % 12); ++k) {
+      const Index a = id(u(rng), u(rng)), b = id(u(rng), u(rng));
+      if (a == b) continue;
+      bool ok = true;
+      for (const auto& s : p.segments) {
+        if (s.a == a || s.a == b || s.b == a || s.b == b) {  // reject collinear overlaps
+          const Index sh = (s.a == a || s.a == b) ? s.a : s.b, o = sh == s.a ? s.b : s.a, other = sh == a ? b : a;
+          if (predicates::orient2d(p.points[sh], p.points[other], p.points[o]) == 0 &&
+              dot(p.points[other] - p.points[sh], p.points[o] - p.points[sh]) > 0) { ok = false; break; }
+          continue;
+        }
+        if (fdr::testing::segments_cross_or_touch(p.points[a], p.points[b], p.points[s.a], p.points[s.b])) { ok = false; break; }
+      }
+      if (ok) p.segments.push_back({a, b, 4, 1});
+    }
+    auto T = cdt::build_cdt(p, {cdt::CdtOptions::Regions::kSeeds, "lattice"});
+    auto c = mesh::check_all(T);
+    ASSERT_TRUE(c.ok()) << "seed " << seed << ": " << (c.problems.empty() ? "" : c.problems[0]);
+    FnField f([](Point2 q) { return 0.3 + 0.05 * q.x; });
+    refine::RefineOptions o;
+    o.min_angle_deg = (seed % 2) ? 28.0 : 0.0;
+    refine::Refiner r(T, f, o);
+    r.init();
+    r.run();
+    c = mesh::check_all(T);
+    ASSERT_TRUE(c.ok()) << "seed " << seed << " refined: " << (c.problems.empty() ? "" : c.problems[0]);
+    ASSERT_NEAR(T.area(), double(n) * n, 1e-9 * n * n);
   }
 }
