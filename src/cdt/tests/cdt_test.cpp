@@ -75,17 +75,9 @@ TEST(Cdt, MatchesCgalConstrainedDelaunay) {
 }
 
 TEST(Cdt, CocircularLatticeIsValid) {
-  pslg::Pslg p;
   const int n = 30;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) p.points.push_back({i * 0.1, j * 0.1});
-  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
-  for (int i = 0; i < n; ++i) {
-    p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
-    p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
-    p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
-    p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
-  }
+  pslg::Pslg p = fdr::testing::lattice_square(n);
+  for (auto& q : p.points) q = {q.x * 0.1, q.y * 0.1};
   auto T = cdt::build_cdt(p);
   expect_valid(T, "lattice");
   EXPECT_EQ(T.num_live_triangles(), static_cast<std::size_t>(2 * n * n));
@@ -195,17 +187,9 @@ TEST(Cdt, OverlappingSegmentsAreAnError) {
 
 TEST(Cdt, SegmentsThroughLatticeVerticesAreSplitExactly) {
   // Lattice points: many segments pass exactly through vertices (exact collinearity).
-  pslg::Pslg p;
   const int n = 8;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) p.points.push_back({double(i), double(j)});
+  pslg::Pslg p = fdr::testing::lattice_square(n);
   auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
-  for (int i = 0; i < n; ++i) {
-    p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
-    p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
-    p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
-    p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
-  }
   p.segments.push_back({id(0, 0), id(n, n), 4, 1});          // through 7 interior vertices
   p.segments.push_back({id(1, 7), id(7, 1), 4, 2});          // crosses the diagonal at the vertex (4,4)
   cdt::CdtStats st;

@@ -73,6 +73,21 @@ inline pslg::Pslg random_pslg(unsigned seed, int n, int m, double w = 10, double
   return p;
 }
 
+// The (n+1)^2 integer lattice on [0,n]^2 with its boundary as 4n unit segments (marker 1).
+inline pslg::Pslg lattice_square(int n) {
+  pslg::Pslg p;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) p.points.push_back({double(i), double(j)});
+  auto id = [n](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int i = 0; i < n; ++i) {
+    p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
+    p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
+    p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
+    p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
+  }
+  return p;
+}
+
 // Two segments from the origin at `deg` degrees inside a box, closed by an arc-free polygon:
 // a wedge-shaped domain with a small input angle at (0,0).
 inline pslg::Pslg wedge(double deg, double len = 10) {

@@ -159,7 +159,7 @@ TEST(ReadDomain, InvalidRawRingsBoothbayAreSplitNotRepairedInOgr) {
   }
 }
 
-TEST(ReadDomain, BreaklinesClippedToDomain) {
+TEST(ReadDomain, BreaklinesAreClippedInsideTheDomain) {
   DomainOptions o;
   const std::string gom = kData + "/gulf_of_maine/gulf_of_maine.gpkg";
   o.domain = {gom, "water", ""};

@@ -50,16 +50,9 @@ TEST(RefineStress, LatticePslgsWithSegmentsThroughVertices) {
   for (unsigned seed = 0; seed < 1500; ++seed) {
     std::mt19937 rng(seed);
     const int n = 6 + static_cast<int>(seed % 10);
-    pslg::Pslg p;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) p.points.push_back({double(i), double(j)});
+    pslg::Pslg p = fdr::testing::lattice_square(n);
+
     auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
-    for (int i = 0; i < n; ++i) {
-      p.segments.push_back({id(i, 0), id(i + 1, 0), 1, 0});
-      p.segments.push_back({id(n, i), id(n, i + 1), 1, 0});
-      p.segments.push_back({id(i + 1, n), id(i, n), 1, 0});
-      p.segments.push_back({id(0, i + 1), id(0, i), 1, 0});
-    }
     std::uniform_int_distribution<int> u(0, n);
     for (int k = 0; k < 4 + static_cast<int>(seed % 12); ++k) {
       const Index a = id(u(rng), u(rng)), b = id(u(rng), u(rng));
