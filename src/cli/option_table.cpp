@@ -10,8 +10,9 @@ const std::vector<OptSpec>& option_table() {
   static const std::vector<OptSpec> t = {
       // mesh: input
       {"mesh", "input", "input", "vector_in", "INPUT", "", "Input",
-       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes)",
-       false, true, {}, true},
+       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes); "
+       "not needed with --land and --extent",
+       false, false, {}, true},
       {"mesh", "--layer", "layer", "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
       {"mesh", "--where", "where", "string", "SQL", "", "Input", "OGR attribute filter on INPUT features"},
       {"mesh", "--land", "land", "vector_in", "FILE", "", "Input", "Land polygons subtracted from --extent (instead of water polygons)"},

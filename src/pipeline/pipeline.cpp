@@ -60,7 +60,10 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   auto report_progress = [&](double frac, const char* stage) {
     if (progress && !progress(frac, stage)) throw Error(ExitCode::kCancelled, std::string("cancelled during ") + stage);
   };
-  if (opt.input.empty()) throw Error(ExitCode::kUsage, "no input given");
+  if (opt.input.empty() && opt.land.empty())
+    throw Error(ExitCode::kUsage, "no input given: INPUT (a .poly/.node file or water polygons) or --land with --extent");
+  // The name used in messages, titles and metadata.
+  const std::string source = !opt.input.empty() ? opt.input : opt.land;
   if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt.min_angle_deg < 0 || opt.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   // Resolve output formats first: a bad -o fails before any work.
@@ -105,11 +108,11 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // Constrained Delaunay triangulation.
   const auto t_cdt = Clock::now();
   cdt::CdtStats cstats;
-  mesh::Triangulation tri = cdt::build_cdt(in.pslg, {cdt::CdtOptions::Regions::kAuto, opt.input}, &cstats);
+  mesh::Triangulation tri = cdt::build_cdt(in.pslg, {cdt::CdtOptions::Regions::kAuto, source}, &cstats);
   const double cdt_s = since(t_cdt);
   clock.lap("cdt");
   if (tri.num_live_triangles() == 0)
-    throw Error(ExitCode::kInvalidGeometry, opt.input + ": the domain is empty (no region enclosed by segments)");
+    throw Error(ExitCode::kInvalidGeometry, source + ": the domain is empty (no region enclosed by segments)");
 
   // Spacing checks: alpha, positivity inside the domain (during the estimate), work estimate.
   const sizing::SizingField& f = *in.f;
@@ -175,7 +178,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.exempt_small_angle_triangles = refiner.leftovers().angle_bad;
   ri.steiner_segment = refiner.stats().segment_splits;
   ri.steiner_interior = refiner.stats().circumcenters;
-  ri.input_file = opt.input;
+  ri.input_file = source;
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
@@ -191,13 +194,13 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   io::WriteOptions wo;
   wo.f = &f;
   wo.bound_B = opt.bound;
-  wo.title = opt.input;
+  wo.title = source;
   {
     std::ostringstream js;
     quality::write_json(result.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
                    {"command_line", opt.command_line},
-                   {"input", opt.input},
+                   {"input", source},
                    {"spacing", f.describe()},
                    {"bound_B", std::to_string(opt.bound)},
                    {"min_angle_deg", std::to_string(opt.min_angle_deg)},

@@ -302,9 +302,17 @@ def test_parameters_follow_json_usage(qgs):
         assert p.type() == want, (o["key"], p.type())
     for out in ("OUTPUT", "OUTPUT_2DM", "OUTPUT_UGRID", "OUTPUT_FORT14"):
         assert names[out].type() == "fileDestination"
-    assert not names["INPUT"].flags() & names["INPUT"].FlagOptional
+    # INPUT follows the CLI: optional, since --land with --extent can define the domain instead;
+    # both are among the common (non-advanced) parameters.
+    assert bool(names["INPUT"].flags() & names["INPUT"].FlagOptional) == (not usage_required(opts, "input"))
+    assert not names["INPUT"].flags() & names["INPUT"].FlagAdvanced
+    assert not names["LAND"].flags() & names["LAND"].FlagAdvanced
     assert names["CHECK"].flags() & names["CHECK"].FlagAdvanced
     assert not names["HMIN"].flags() & names["HMIN"].FlagAdvanced
+
+
+def usage_required(opts, key):
+    return next(o for o in opts if o["key"] == key).get("required", False)
 
 
 # ---------------------------------------------------------------- plugin zip
