@@ -28,6 +28,14 @@ inline Point2 operator*(double s, Point2 a) { return {s * a.x, s * a.y}; }
 inline double dot(Point2 a, Point2 b) { return a.x * b.x + a.y * b.y; }
 inline double norm2(Point2 a) { return a.x * a.x + a.y * a.y; }
 inline double dist(Point2 a, Point2 b) { return std::sqrt(norm2(a - b)); }
+// Distance from p to the closed segment ab (a measurement for tolerances and reports, never a
+// topological decision).
+inline double dist_to_segment(Point2 p, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double l2 = norm2(d);
+  const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return dist(p, a + t * d);
+}
 
 // Geographic coordinates in degrees; deliberately a different type from Point2.
 struct LonLat {

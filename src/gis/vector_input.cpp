@@ -166,13 +166,6 @@ double ring_area(const std::vector<Point2>& r) {
   return 0.5 * a;
 }
 
-double point_segment_dist(Point2 p, Point2 a, Point2 b) {
-  const Point2 d = b - a;
-  const double l2 = norm2(d);
-  double t = l2 > 0 ? dot(p - a, d) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return dist(p, a + t * d);
-}
 
 // Uniform bucket grid over line segments for "is this point within tol of a line" queries.
 class SegmentBuckets {
@@ -200,7 +193,7 @@ class SegmentBuckets {
     if (p.x < box_.lo.x - tol_ || p.y < box_.lo.y - tol_ || p.x > box_.hi.x + tol_ || p.y > box_.hi.y + tol_) return -1;
     const auto [i, j] = cell(p);
     for (std::size_t k : cells_[static_cast<std::size_t>(j) * n_ + i])
-      if (point_segment_dist(p, segs_[k].a, segs_[k].b) <= tol_) return segs_[k].tag;
+      if (dist_to_segment(p, segs_[k].a, segs_[k].b) <= tol_) return segs_[k].tag;
     return -1;
   }
 

@@ -37,15 +37,6 @@ std::string fmt(Point2 p) {
 
 Point2 mid(Point2 a, Point2 b) { return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}; }
 
-// Distance from p to the closed segment ab (a metric for reporting and tolerances only).
-double dist_to_segment(Point2 p, Point2 a, Point2 b) {
-  const Point2 d = b - a;
-  const double l2 = norm2(d);
-  double t = l2 > 0 ? dot(p - a, d) / l2 : 0;
-  t = std::clamp(t, 0.0, 1.0);
-  return dist(p, a + t * d);
-}
-
 class Cleaner {
  public:
   Cleaner(const Pslg& in, const CleanOptions& opt, std::vector<Repair>* repairs)
