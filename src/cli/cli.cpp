@@ -191,7 +191,12 @@ int run(int argc, char** argv) {
     o.cell_size = opt_double(v, "cell-size");
     o.write_spacing = str(v, "write-spacing");
     o.snap = opt_double(v, "snap");
-    o.min_island_factor = to_double(v, "min-island", 0.0);
+    o.min_island_factor = opt_double(v, "min-island");
+    o.keep_coast = flags["mesh:keep-coast"];
+    o.coast_tol = to_double(v, "coast-tol", o.coast_tol);
+    o.close_width = opt_double(v, "close-width");
+    o.min_feature = opt_double(v, "min-feature");
+    o.min_depth_m = to_double(v, "min-depth", o.min_depth_m);
     o.simplify = opt_double(v, "simplify");
     o.bound = to_double(v, "bound", 1.0);
     o.min_angle_deg = to_double(v, "min-angle", 0.0);

@@ -44,7 +44,12 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--write-spacing", "write-spacing", "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},
       // mesh: repair
       {"mesh", "--snap", "snap", "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},
-      {"mesh", "--min-island", "min-island", "float", "FACTOR", "0", "Repair", "Drop islands with area < FACTOR * f^2"},
+      {"mesh", "--min-island", "min-island", "float", "FACTOR", "1 (0 with --keep-coast)", "Repair", "Remove islands with area < FACTOR * hmin^2 (listed in repairs)"},
+      {"mesh", "--close-width", "close-width", "float", "M", "hmin (0 with --keep-coast)", "Repair", "Close dead-end water (inlets, gaps, slivers) narrower than M metres (listed in repairs; 0: keep)"},
+      {"mesh", "--min-feature", "min-feature", "float", "M", "hmin/4", "Repair", "Keep channels joining water bodies down to M metres wide; narrower ones are closed (listed)"},
+      {"mesh", "--coast-tol", "coast-tol", "float", "FACTOR", "0.25", "Repair", "Resample boundaries to f keeping the shape within FACTOR * f"},
+      {"mesh", "--keep-coast", "keep-coast", "flag", "", "", "Repair", "Keep every input boundary vertex and close nothing (no resampling)"},
+      {"mesh", "--min-depth", "min-depth", "float", "M", "1", "Output", "Depth clamp (metres) for the gravity-wave time step in the report"},
       {"mesh", "--simplify", "simplify", "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
       {"mesh", "--bound", "bound", "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},

@@ -427,7 +427,7 @@ void clean_domain(GisInput& in, const pslg::CleanOptions& options) {
   std::vector<pslg::Repair> reps;
   in.pslg = pslg::clean(in.raw, options, &reps);
   in.pslg.origin = in.frame.origin();
-  in.repairs.clear();
+  in.repairs = in.feature_repairs;
   for (auto& r : reps) {
     RepairRecord rec;
     rec.lonlat = in.frame.to_lonlat(r.where);
@@ -469,25 +469,80 @@ GisInput read_domain(const DomainOptions& o) {
   const double diam = std::hypot(bb.width(), bb.height());
   in.frame.set_domain_box(bb);
 
-  // Open boundary: from the extent box (land mode) or from an open-boundary layer.
+  // Open boundary lines in the local frame (tag = index into open_fid_of_tag): the extent box
+  // sides (land mode) and the open-boundary layer. Ring segments lying on them become kOpen
+  // after the resolution filter has reshaped the rings.
   std::vector<std::int64_t> open_fid_of_tag;
   std::string open_file, open_layer;
+  std::vector<SegmentBuckets::Seg> open_segs;
   if (!on_box.empty()) {
     std::size_t k = 0;
     for (const auto& poly : on_box)
       for (const auto& flags : poly) {
-        rings[k].open.assign(flags.begin(), flags.end());
+        const auto& pts = rings[k].pts;
+        for (std::size_t i = 0; i < flags.size() && i < pts.size(); ++i)
+          if (flags[i]) open_segs.push_back({pts[i], pts[(i + 1) % pts.size()], 0});
         ++k;
       }
     open_fid_of_tag.push_back(-1);
     open_file = o.land.path;
     open_layer = "--extent";
   }
+
+  if (o.features) {
+    const FeatureFilterOptions fo = o.features(bb);
+    in.input_polygons = in.domain_polygons;
+    FeatureFilterResult fr = filter_features(in.domain_polygons, fo);
+    // Which input ring each new ring continues: vote of its vertices near the old rings.
+    std::vector<SegmentBuckets::Seg> old_segs;
+    for (const auto& r : rings)
+      for (std::size_t i = 0; i < r.pts.size(); ++i) old_segs.push_back({r.pts[i], r.pts[(i + 1) % r.pts.size()], r.part});
+    const SegmentBuckets old_near(std::move(old_segs), std::max({fo.close_width, 1e-7 * diam, 1e-6}));
+    std::vector<Ring> out_rings;
+    for (const auto& poly : fr.polygons)
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        Ring r;
+        r.pts = poly[k];
+        r.hole = k > 0;
+        r.open.assign(r.pts.size(), 0);
+        std::map<int, int> votes;
+        const std::size_t step = std::max<std::size_t>(1, r.pts.size() / 16);
+        for (std::size_t i = 0; i < r.pts.size(); i += step)
+          if (const int t = old_near.near(r.pts[i]); t >= 0) ++votes[t];
+        int best = -1, bestn = 0;
+        for (const auto& [t, n] : votes)
+          if (n > bestn) { best = t; bestn = n; }
+        if (best >= 0 && (in.parts[static_cast<std::size_t>(best)].role == "hole") == r.hole) {
+          r.part = best;
+        } else {
+          r.part = static_cast<int>(in.parts.size());
+          SourcePart sp = best >= 0 ? in.parts[static_cast<std::size_t>(best)] : SourcePart{dom.file, dom.layer, -1, "", -1};
+          sp.role = r.hole ? "hole" : (o.domain.given() ? "outer ring" : "extent box");
+          sp.ring = r.hole ? -1 : 0;
+          in.parts.push_back(sp);
+        }
+        out_rings.push_back(std::move(r));
+      }
+    rings = std::move(out_rings);
+    in.domain_polygons = fr.polygons;
+    in.domain_area_m2 = fr.output_area;
+    for (auto& rep : fr.repairs) {
+      RepairRecord rec;
+      rec.lonlat = frame.to_lonlat(rep.where);
+      rec.repair = std::move(rep);
+      rec.repair.where = frame.to_world(rec.repair.where);
+      in.feature_repairs.push_back(std::move(rec));
+    }
+    fr.repairs.clear();
+    fr.polygons.clear();
+    in.features = std::move(fr);
+    in.repairs = in.feature_repairs;
+  }
+
   if (o.open_boundary.given()) {
     LayerData ob = read_layer(o.open_boundary, o.s_srs, "--open-boundary");
     open_file = ob.file;
     open_layer = ob.layer;
-    std::vector<SegmentBuckets::Seg> segs;
     for (const auto& f : ob.features) {
       std::vector<const OGRSimpleCurve*> ls;
       if (const OGRGeometry* bad = collect_lines(f.geom.get(), ls))
@@ -500,13 +555,15 @@ GisInput read_domain(const DomainOptions& o) {
       for (const auto* c : ls) {
         std::vector<Point2> pts = curve_points(c);
         frame.to_local_batch(pts, ob.srs, ob.label());
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) segs.push_back({pts[i], pts[i + 1], tag});
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) open_segs.push_back({pts[i], pts[i + 1], tag});
       }
     }
+  }
+  if (!open_segs.empty()) {
     // Open lines normally share the polygon's vertices exactly; the tolerance only absorbs
-    // rounding from a different file format or a reprojection.
+    // rounding from a different file format, a reprojection or the resolution filter.
     const double tol = std::max(1e-7 * diam, 1e-6);
-    SegmentBuckets buckets(std::move(segs), tol);
+    SegmentBuckets buckets(std::move(open_segs), tol);
     for (auto& r : rings) {
       const std::size_t n = r.pts.size();
       for (std::size_t i = 0; i < n; ++i) {

@@ -8,6 +8,7 @@
 #include <vector>
 #include "base/types.hpp"
 #include "gis/crs.hpp"
+#include "gis/feature_filter.hpp"
 #include "pslg/clean.hpp"
 #include "pslg/pslg.hpp"
 #include "sizing/sizing_field.hpp"
@@ -42,6 +43,9 @@ struct DomainOptions {
   std::function<sizing::SizingPtr(const Frame&)> spacing;
   double simplify_factor = 0;     // off by default
   double simplify_tolerance_m = 0;
+  // Resolution filter (gis/feature_filter.hpp), called with the domain box in the local frame
+  // once the frame is known; unset: the polygons are used as read.
+  std::function<FeatureFilterOptions(const Box2& local_box)> features;
 };
 
 // Where a PSLG segment `part` came from (index = Segment::part).
@@ -81,9 +85,12 @@ struct GisInput {
   // Domain polygons in the local frame, each polygon = rings (outer first, then holes), ring
   // vertices without the closing repeat. Use for area checks (not necessarily valid geometry).
   std::vector<std::vector<std::vector<Point2>>> domain_polygons;
+  std::vector<std::vector<std::vector<Point2>>> input_polygons;  // as read, before the resolution filter
   double domain_area_m2 = 0;          // sum of signed ring areas (outer positive, holes negative)
   std::vector<SourcePart> parts;      // indexed by Segment::part
   std::vector<RepairRecord> repairs;
+  std::vector<RepairRecord> feature_repairs;  // from the resolution filter (kept by clean_domain)
+  FeatureFilterResult features;       // its figures (polygons cleared); input_pieces 0 when off
   GisCounts counts;
   double snap_distance_m = 0;         // the snap distance actually used
 };

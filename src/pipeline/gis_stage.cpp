@@ -13,6 +13,9 @@
 #include "gis/raster_output.hpp"
 #include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
+#include "pslg/poly_io.hpp"
+#include "pslg/resample.hpp"
+#include <cstdlib>
 #include "sizing/fields.hpp"
 #include "sizing/gradient_limiter.hpp"
 #include "sizing/grid_field.hpp"
@@ -221,6 +224,19 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   d.s_srs = opt.s_srs;
   d.t_srs = opt.t_srs;
   d.clean = false;
+  // Resolution filter: union of overlapping polygons always; closing of sub-resolution water and
+  // removal of small islands unless --keep-coast. hmin as below (default: domain diameter / 500).
+  d.features = [&opt](const Box2& b) {
+    const double hmin = opt.hmin.value_or(std::hypot(b.width(), b.height()) / 500.0);
+    gis::FeatureFilterOptions fo;
+    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : hmin);
+    fo.min_feature = opt.min_feature.value_or(0.25 * hmin);
+    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 1.0) * hmin * hmin;
+    fo.list_area = 0.5 * hmin * hmin;
+    if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0))
+      throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");
+    return fo;
+  };
   if (opt.snap) d.snap_distance_m = *opt.snap;
   gis::GisInput g = gis::read_domain(d);
   clock.lap("read");
@@ -366,7 +382,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   // Geometry repair with the spacing known.
   pslg::CleanOptions co;
   co.snap_distance = g.snap_distance_m;
-  co.min_island_area_factor = opt.min_island_factor;
+  co.min_island_area_factor = 0;  // islands: resolution filter (in hmin^2)
   if (opt.simplify) {
     co.simplify_factor = *opt.simplify;
     co.simplify_tolerance = hmin / 10.0;
@@ -383,6 +399,45 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     g.repairs.push_back(std::move(rec));
   }
   clock.lap("repair");
+  // Boundaries resampled to f (model-ready coast) unless --keep-coast.
+  std::vector<std::pair<std::string, double>> coast_figures;
+  if (!opt.keep_coast) {
+    if (!(opt.coast_tol >= 0)) throw Error(ExitCode::kUsage, "--coast-tol must be >= 0");
+    pslg::ResampleOptions ro;
+    ro.spacing = [f](Point2 p) { return (*f)(p); };
+    ro.tolerance_factor = opt.coast_tol;
+    pslg::ResampleStats rs;
+    if (const char* dbg = std::getenv("FDR_DEBUG_PSLG")) pslg::write_poly(g.pslg, std::string(dbg) + ".before.poly");
+    g.pslg = pslg::resample(g.pslg, ro, &rs);
+    if (const char* dbg = std::getenv("FDR_DEBUG_PSLG")) pslg::write_poly(g.pslg, std::string(dbg) + ".after.poly");
+    info("coast resampled to f: " + std::to_string(rs.vertices_in) + " -> " + std::to_string(rs.vertices_out) +
+         " boundary vertices in " + std::to_string(rs.chains) + " chains (tolerance " + num(opt.coast_tol) +
+         " f, max deviation " + num(rs.max_deviation) + " m; " + std::to_string(rs.pieces_restored) +
+         " pieces kept as input to avoid crossings)");
+    coast_figures.push_back({"boundary_vertices_input", static_cast<double>(rs.vertices_in)});
+    coast_figures.push_back({"boundary_vertices_resampled", static_cast<double>(rs.vertices_out)});
+    coast_figures.push_back({"resample_max_deviation_m", rs.max_deviation});
+    coast_figures.push_back({"resample_pieces_restored", static_cast<double>(rs.pieces_restored)});
+    clock.lap("resample");
+  }
+  {
+    const auto& ff = g.features;
+    coast_figures.push_back({"input_pieces", static_cast<double>(ff.input_pieces)});
+    coast_figures.push_back({"filtered_pieces", static_cast<double>(ff.output_pieces)});
+    coast_figures.push_back({"polygons_united", static_cast<double>(ff.united)});
+    coast_figures.push_back({"narrow_water_closed", static_cast<double>(ff.closed)});
+    coast_figures.push_back({"water_removed_m2", ff.closed_area});
+    coast_figures.push_back({"corner_pieces_removed", static_cast<double>(ff.corner_pieces)});
+    coast_figures.push_back({"channels_kept", static_cast<double>(ff.channels_kept)});
+    coast_figures.push_back({"islands_removed", static_cast<double>(ff.islands_removed)});
+    coast_figures.push_back({"islands_removed_m2", ff.islands_area});
+    coast_figures.push_back({"input_area_m2", ff.input_area});
+    info("features: " + std::to_string(ff.input_pieces) + " water bodies in, " + std::to_string(ff.output_pieces) +
+         " out; " + std::to_string(ff.closed) + " narrow water pieces closed (" + num(ff.closed_area / 1e6) +
+         " km^2 with corner rounding), " + std::to_string(ff.channels_kept) + " narrow connections kept, " +
+         std::to_string(ff.islands_removed) + " islands removed (" + num(ff.islands_area / 1e6) + " km^2), " +
+         std::to_string(ff.united) + " overlaps united");
+  }
   std::map<std::string, std::size_t> kinds;
   for (const auto& r : g.repairs) ++kinds[r.repair.kind];
   std::string rep = "repairs: " + std::to_string(g.repairs.size());
@@ -390,6 +445,11 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   info(rep);
 
   PreparedInput out;
+  out.hmin = hmin;
+  out.coast_figures = std::move(coast_figures);
+  for (const auto& poly : (g.input_polygons.empty() ? g.domain_polygons : g.input_polygons))
+    for (const auto& ring : poly)
+      for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
   out.stages = std::move(stages);
   out.pslg = std::move(g.pslg);
   out.f = f;

@@ -32,6 +32,10 @@ struct PreparedInput {
   std::shared_ptr<std::optional<std::pair<double, double>>> tin_error =
       std::make_shared<std::optional<std::pair<double, double>>>();
   std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
+  // Model-readiness inputs for the report (GIS runs).
+  double hmin = 0;                        // metres
+  std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame
+  std::vector<std::pair<std::string, double>> coast_figures;  // filter/resample counts for the report
 };
 
 // Reads OGR/GDAL inputs named in `opt` (any non-.poly input). Throws fdr::Error.

@@ -38,7 +38,13 @@ struct Options {
   std::optional<double> vertical_tol;    // terrain: h = sqrt(8 tol / |kappa|)
   double gradation = 0.15;               // alpha for gradient limiting (GIS runs)
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
-  double min_island_factor = 0.0;        // drop rings with area < factor * f^2
+  // Model-ready coast (GIS runs; gis/feature_filter.hpp, pslg/resample.hpp).
+  bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)
+  double coast_tol = 0.25;               // resampling tolerance, fraction of the local f
+  std::optional<double> close_width;     // dead-end water narrower than this is closed (default hmin)
+  std::optional<double> min_feature;     // connections narrower than this are closed (default hmin/4)
+  std::optional<double> min_island_factor;  // islands with area < factor * hmin^2 removed (default 1)
+  double min_depth_m = 1.0;              // depth clamp for the gravity-wave time step in the report
   std::optional<double> simplify;        // thin boundary vertices closer than factor * f
   std::optional<double> snap;            // snap distance (metres)
 

@@ -1,0 +1,55 @@
+// Resolution filter for water polygons (GEOS through OGR): unites overlapping polygons, closes
+// water narrower than the mesh can resolve while keeping connections between water bodies,
+// fills islands smaller than the resolution. Every change is reported.
+//
+// Why morphological opening: the FDR bounds (paper, Section 5) need f <= D * lfs; a channel
+// narrower than hmin forces elements narrower than hmin. The opening of the water W by a disk of
+// radius r, (W - r) + r, removes exactly the parts of W that no disk of radius r fits in (narrow
+// inlets, gaps between islands and the coast, slivers) and rounds convex water corners with
+// radius r, and leaves the rest of the coast where it is. Two openings are used:
+//   O1 = open(W, close_width/2)   what the resolution keeps,
+//   O2 = open(W, min_feature/2)   what is wide enough to keep as a connection;
+// a piece of O2 - O1 that touches two or more pieces of O1 is a channel joining water bodies
+// (kept), a piece touching none is a small water body of its own (kept), a piece touching one is
+// a dead end (closed). Result R = O1 + kept pieces; W - R is listed as repairs.
+#pragma once
+#include <cstddef>
+#include <vector>
+#include "base/types.hpp"
+#include "pslg/clean.hpp"
+
+namespace fdr::gis {
+
+// Polygons in the local frame: rings (outer first, then holes), without the closing repeat.
+using Rings = std::vector<std::vector<Point2>>;
+using Polygons = std::vector<Rings>;
+
+struct FeatureFilterOptions {
+  double close_width = 0;      // dead-end water narrower than this is closed (0: no opening)
+  double min_feature = 0;      // connections narrower than this are closed too (<= close_width)
+  double min_island_area = 0;  // islands (holes) with a smaller area are removed (m^2); 0 keeps all
+  double list_area = 0;        // removed water pieces at least this large are listed one by one
+};
+
+struct FeatureFilterResult {
+  Polygons polygons;                 // outer rings counter-clockwise, holes clockwise
+  std::vector<pslg::Repair> repairs; // local coordinates
+  std::size_t input_pieces = 0;      // connected water bodies of the input (after union)
+  std::size_t output_pieces = 0;
+  std::size_t united = 0;            // overlapping polygon pairs united
+  double united_overlap_area = 0;
+  std::size_t closed = 0;            // listed closures (narrow water, dead ends)
+  double closed_area = 0;            // area of every removed water piece (m^2)
+  std::size_t corner_pieces = 0;     // removed pieces below list_area (corner rounding, slivers)
+  std::size_t channels_kept = 0;     // narrow connections kept (O2 - O1 pieces joining bodies)
+  std::size_t cut_off = 0;           // water bodies cut off by a closed connection, removed
+  double cut_off_area = 0;
+  std::size_t islands_removed = 0;
+  double islands_area = 0;
+  double input_area = 0, output_area = 0;
+};
+
+// Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
+FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
+
+}  // namespace fdr::gis

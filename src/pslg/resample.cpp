@@ -1,0 +1,449 @@
+// Boundary resampling to f (see resample.hpp): chains, Douglas-Peucker corners, placement by
+// integral ds / f, tolerance repair, exact conflict checks with restoration of input pieces.
+#include "pslg/resample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "base/error.hpp"
+#include "predicates/predicates.hpp"
+#include "pslg/segment_grid.hpp"
+
+namespace fdr::pslg {
+namespace {
+
+struct Chain {
+  std::vector<Index> v;  // input vertex ids along the chain; closed: v.front() == v.back()
+  std::int32_t marker = 0, part = -1;
+  bool closed = false;
+};
+
+// A piece of a chain between two key vertices v[k0] and v[k1]; `inner` are the new points
+// strictly between them (an input vertex id when the point is an input vertex, else kNoId).
+struct Piece {
+  std::size_t chain = 0, k0 = 0, k1 = 0;
+  std::vector<Point2> inner;
+  std::vector<Index> inner_id;
+  bool restored = false;
+  bool changed() const { return inner_id.size() != k1 - k0 - 1 || std::any_of(inner_id.begin(), inner_id.end(), [](Index i) { return i == kNoId; }); }
+};
+
+double turn(Point2 a, Point2 b, Point2 c) {
+  const Point2 u = b - a, w = c - b;
+  return std::fabs(std::atan2(u.x * w.y - u.y * w.x, dot(u, w)));
+}
+
+class Resampler {
+ public:
+  Resampler(const Pslg& in, const ResampleOptions& o) : in_(in), o_(o) {
+    if (!o_.spacing) throw Error(ExitCode::kInternal, "resample: no spacing function");
+    if (!(o_.spacing_factor > 0) || !(o_.tolerance_factor >= 0))
+      throw Error(ExitCode::kUsage, "resample: spacing factor must be > 0 and tolerance factor >= 0");
+  }
+
+  Pslg run(ResampleStats* st) {
+    build_chains();
+    for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
+    Pslg out;
+    std::size_t round = 0;
+    for (;; ++round) {
+      out = assemble();
+      if (!find_conflicts(out)) break;
+      if (round + 1 >= o_.max_rounds) {  // give up on this input: keep every input vertex
+        for (auto& p : pieces_) p.restored = true;
+        out = assemble();
+        break;
+      }
+    }
+    if (st) {
+      st->chains = chains_.size();
+      st->pieces = pieces_.size();
+      st->pieces_restored = static_cast<std::size_t>(
+          std::count_if(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.restored; }));
+      st->rounds = round + 1;
+      st->max_deviation = max_dev_;
+      std::vector<char> used(in_.points.size(), 0);
+      for (const auto& s : in_.segments) used[s.a] = used[s.b] = 1;
+      st->vertices_in = static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
+      std::vector<char> used2(out.points.size(), 0);
+      for (const auto& s : out.segments) used2[s.a] = used2[s.b] = 1;
+      st->vertices_out = static_cast<std::size_t>(std::count(used2.begin(), used2.end(), 1));
+    }
+    return out;
+  }
+
+ private:
+  double f(Point2 p) const {
+    const double v = o_.spacing(p);
+    if (!(v > 0) || !std::isfinite(v))
+      throw Error(ExitCode::kInvalidSpacing, "resample: spacing f = " + std::to_string(v) + " at (" +
+                                                 std::to_string(in_.origin.x + p.x) + ", " +
+                                                 std::to_string(in_.origin.y + p.y) + ") must be finite and > 0");
+    return v;
+  }
+  Point2 P(std::size_t c, std::size_t k) const { return in_.points[chains_[c].v[k]]; }
+
+  void build_chains() {
+    const std::size_t n = in_.points.size();
+    std::vector<std::uint32_t> deg(n, 0);
+    for (const auto& s : in_.segments) {
+      if (s.a == s.b) continue;
+      ++deg[s.a];
+      ++deg[s.b];
+    }
+    std::vector<std::size_t> start(n + 1, 0);
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] = start[v] + deg[v];
+    std::vector<std::size_t> adj(start[n]);
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t s = 0; s < in_.segments.size(); ++s) {
+      const auto& g = in_.segments[s];
+      if (g.a == g.b) continue;
+      adj[fill[g.a]++] = s;
+      adj[fill[g.b]++] = s;
+    }
+    auto other = [&](std::size_t s, Index v) { return in_.segments[s].a == v ? in_.segments[s].b : in_.segments[s].a; };
+    std::vector<char> anchor(n, 0);
+    for (std::size_t v = 0; v < n; ++v) {
+      if (deg[v] == 0) continue;
+      if (deg[v] != 2) { anchor[v] = 1; continue; }
+      const auto& s0 = in_.segments[adj[start[v]]];
+      const auto& s1 = in_.segments[adj[start[v] + 1]];
+      if (s0.marker != s1.marker || s0.part != s1.part) anchor[v] = 1;
+      if (!in_.point_markers.empty() && in_.point_markers[v] != 0) anchor[v] = 1;
+    }
+    std::vector<char> used(in_.segments.size(), 0);
+    auto walk = [&](Index v0, std::size_t s0) {
+      Chain c;
+      c.marker = in_.segments[s0].marker;
+      c.part = in_.segments[s0].part;
+      c.v.push_back(v0);
+      Index cur = v0;
+      std::size_t seg = s0;
+      for (;;) {
+        used[seg] = 1;
+        const Index nx = other(seg, cur);
+        c.v.push_back(nx);
+        if (anchor[nx] || nx == v0) break;
+        const std::size_t a0 = adj[start[nx]], a1 = adj[start[nx] + 1];
+        seg = a0 == seg ? a1 : a0;
+        cur = nx;
+        if (used[seg]) break;
+      }
+      c.closed = c.v.front() == c.v.back();
+      return c;
+    };
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!anchor[v]) continue;
+      for (std::size_t k = start[v]; k < start[v + 1]; ++k)
+        if (!used[adj[k]] && in_.segments[adj[k]].a != in_.segments[adj[k]].b) chains_.push_back(walk(static_cast<Index>(v), adj[k]));
+    }
+    // Rings without an anchor: start at their sharpest corner, so that the seam is a corner.
+    for (std::size_t s = 0; s < in_.segments.size(); ++s) {
+      if (used[s] || in_.segments[s].a == in_.segments[s].b) continue;
+      Chain c = walk(in_.segments[s].a, s);
+      if (c.closed && c.v.size() > 3) {
+        const std::size_t m = c.v.size() - 1;
+        std::size_t best = 0;
+        double bt = -1;
+        for (std::size_t k = 0; k < m; ++k) {
+          const double t = turn(in_.points[c.v[(k + m - 1) % m]], in_.points[c.v[k]], in_.points[c.v[(k + 1) % m]]);
+          if (t > bt) { bt = t; best = k; }
+        }
+        std::vector<Index> r(c.v.begin(), c.v.end() - 1);
+        std::rotate(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(best), r.end());
+        r.push_back(r.front());
+        c.v = std::move(r);
+      }
+      chains_.push_back(std::move(c));
+    }
+  }
+
+  double tol(Point2 a, Point2 b) const { return o_.tolerance_factor * std::min(f(a), f(b)); }
+
+  void plan_chain(std::size_t c) {
+    const Chain& ch = chains_[c];
+    const std::size_t m = ch.v.size() - 1;
+    std::vector<char> key(m + 1, 0);
+    key[0] = key[m] = 1;
+    // Douglas-Peucker with a local tolerance: the corners that must stay.
+    std::vector<std::pair<std::size_t, std::size_t>> stack{{0, m}};
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      if (j <= i + 1) continue;
+      const Point2 a = P(c, i), b = P(c, j);
+      double dmax = -1;
+      std::size_t kmax = i + 1;
+      for (std::size_t k = i + 1; k < j; ++k) {
+        const double d = dist_to_segment(P(c, k), a, b);
+        if (d > dmax) { dmax = d; kmax = k; }
+      }
+      if (dmax > tol(a, b) || a == b) {
+        key[kmax] = 1;
+        stack.push_back({i, kmax});
+        stack.push_back({kmax, j});
+      }
+    }
+    // A ring keeps at least three pieces (a non-degenerate polygon): add keys at a third and two
+    // thirds of its length.
+    if (ch.closed) {
+      std::size_t nkeys = static_cast<std::size_t>(std::count(key.begin(), key.end(), 1)) - 1;
+      if (nkeys < 3 && m >= 3) {
+        std::vector<double> cum(m + 1, 0);
+        for (std::size_t k = 0; k < m; ++k) cum[k + 1] = cum[k] + dist(P(c, k), P(c, k + 1));
+        for (double frac : {1.0 / 3.0, 2.0 / 3.0}) {
+          const auto it = std::lower_bound(cum.begin(), cum.end(), frac * cum[m]);
+          std::size_t k = static_cast<std::size_t>(it - cum.begin());
+          k = std::clamp<std::size_t>(k, 1, m - 1);
+          key[k] = 1;
+        }
+      }
+    }
+    std::size_t k0 = 0;
+    for (std::size_t k = 1; k <= m; ++k) {
+      if (!key[k]) continue;
+      Piece p;
+      p.chain = c;
+      p.k0 = k0;
+      p.k1 = k;
+      place(p);
+      pieces_.push_back(std::move(p));
+      k0 = k;
+    }
+    // A closed chain of two pieces would be two segments between the same two vertices.
+    if (ch.closed && m >= 3) {
+      std::size_t first = pieces_.size();
+      while (first > 0 && pieces_[first - 1].chain == c) --first;
+      std::size_t pts = 0;
+      for (std::size_t q = first; q < pieces_.size(); ++q) pts += 1 + pieces_[q].inner.size();
+      if (pts < 3)
+        for (std::size_t q = first; q < pieces_.size(); ++q) pieces_[q].restored = true;
+    }
+  }
+
+  // Points on the input polyline v[k0..k1] at equal steps of integral ds / (factor * f).
+  void place(Piece& p) {
+    const std::size_t c = p.chain;
+    struct Step { std::size_t k; double t0, t1, lam; };
+    std::vector<Step> steps;
+    double lam = 0;
+    for (std::size_t k = p.k0; k < p.k1; ++k) {
+      const Point2 a = P(c, k), b = P(c, k + 1);
+      const double len = dist(a, b);
+      if (!(len > 0)) continue;
+      const double fa = f(a);
+      const double h = 0.5 * o_.spacing_factor * fa;
+      const std::size_t nsub = static_cast<std::size_t>(std::clamp(std::ceil(len / h), 1.0, 4096.0));
+      for (std::size_t s = 0; s < nsub; ++s) {
+        const double t0 = static_cast<double>(s) / static_cast<double>(nsub);
+        const double t1 = static_cast<double>(s + 1) / static_cast<double>(nsub);
+        const Point2 mid = a + (0.5 * (t0 + t1)) * (b - a);
+        lam += len * (t1 - t0) / (o_.spacing_factor * f(mid));
+        steps.push_back({k, t0, t1, lam});
+      }
+    }
+    const long n = std::max(1L, std::lround(lam));
+    struct Pos { std::size_t k; double t; };
+    std::vector<Pos> pos;
+    std::size_t si = 0;
+    double prev = 0;
+    for (long t = 1; t < n; ++t) {
+      const double target = lam * static_cast<double>(t) / static_cast<double>(n);
+      while (si < steps.size() && steps[si].lam < target) { prev = steps[si].lam; ++si; }
+      if (si >= steps.size()) break;
+      const Step& s = steps[si];
+      const double w = s.lam > prev ? (target - prev) / (s.lam - prev) : 0.5;
+      pos.push_back({s.k, s.t0 + w * (s.t1 - s.t0)});
+    }
+    // Sequence of points: ends are key vertices; inner points on the polyline.
+    struct Q { Point2 p; Index id; std::size_t k; double t; };
+    std::vector<Q> seq;
+    seq.push_back({P(c, p.k0), chains_[c].v[p.k0], p.k0, 0.0});
+    for (const auto& q : pos) {
+      if (q.t <= 0) {
+        seq.push_back({P(c, q.k), chains_[c].v[q.k], q.k, 0.0});
+      } else {
+        const Point2 a = P(c, q.k), b = P(c, q.k + 1);
+        seq.push_back({a + q.t * (b - a), kNoId, q.k, q.t});
+      }
+    }
+    seq.push_back({P(c, p.k1), chains_[c].v[p.k1], p.k1, 0.0});
+    // Tolerance: an input vertex between two consecutive points further than tol from their
+    // chord comes back as a point.
+    for (std::size_t i = 0; i + 1 < seq.size();) {
+      const Q& a = seq[i];
+      const Q& b = seq[i + 1];
+      // Input vertices strictly between a and b: after a (index > a.k) and before b (index <
+      // b.k, or == b.k when b lies inside segment b.k).
+      const std::size_t first = a.k + 1;
+      const std::size_t end = b.t > 0 ? b.k + 1 : b.k;  // one past the last
+      double dmax = 0;
+      std::size_t kmax = 0;
+      for (std::size_t k = first; k < end; ++k) {
+        const double d = dist_to_segment(P(c, k), a.p, b.p);
+        if (d > dmax) { dmax = d; kmax = k; }
+      }
+      if (kmax != 0 && dmax > tol(a.p, b.p)) {
+        seq.insert(seq.begin() + static_cast<std::ptrdiff_t>(i + 1), Q{P(c, kmax), chains_[c].v[kmax], kmax, 0.0});
+        continue;
+      }
+      max_dev_ = std::max(max_dev_, dmax);
+      ++i;
+    }
+    for (std::size_t i = 1; i + 1 < seq.size(); ++i) {
+      p.inner.push_back(seq[i].p);
+      p.inner_id.push_back(seq[i].id);
+    }
+  }
+
+  Pslg assemble() {
+    Pslg out;
+    out.origin = in_.origin;
+    out.holes = in_.holes;
+    out.regions = in_.regions;
+    out.points = in_.points;
+    if (!in_.point_markers.empty()) out.point_markers = in_.point_markers;
+    seg_piece_.clear();
+    pt_piece_.assign(in_.points.size(), kNoPiece);
+    for (std::size_t q = 0; q < pieces_.size(); ++q) {
+      const Piece& p = pieces_[q];
+      const Chain& ch = chains_[p.chain];
+      std::vector<Index> seq;
+      seq.push_back(ch.v[p.k0]);
+      if (p.restored) {
+        for (std::size_t k = p.k0 + 1; k < p.k1; ++k) seq.push_back(ch.v[k]);
+      } else {
+        for (std::size_t i = 0; i < p.inner.size(); ++i) {
+          if (p.inner_id[i] != kNoId) {
+            seq.push_back(p.inner_id[i]);
+            pt_piece_[p.inner_id[i]] = q;
+          } else {
+            seq.push_back(static_cast<Index>(out.points.size()));
+            out.points.push_back(p.inner[i]);
+            if (!out.point_markers.empty()) out.point_markers.push_back(0);
+            pt_piece_.push_back(q);
+          }
+        }
+      }
+      seq.push_back(ch.v[p.k1]);
+      for (std::size_t i = 0; i + 1 < seq.size(); ++i) {
+        out.segments.push_back({seq[i], seq[i + 1], ch.marker, ch.part});
+        seg_piece_.push_back(p.restored ? kNoPiece : q);
+      }
+    }
+    // Compact: input points that are on no segment any more are dropped, isolated input points
+    // (fixed points) stay.
+    std::vector<char> keep(out.points.size(), 0);
+    std::vector<char> had_seg(in_.points.size(), 0);
+    for (const auto& s : in_.segments) had_seg[s.a] = had_seg[s.b] = 1;
+    for (std::size_t v = 0; v < in_.points.size(); ++v) keep[v] = !had_seg[v];
+    for (const auto& s : out.segments) keep[s.a] = keep[s.b] = 1;
+    std::vector<Index> map(out.points.size(), kNoId);
+    Pslg c = out;
+    c.points.clear();
+    c.point_markers.clear();
+    std::vector<std::size_t> pp;
+    for (std::size_t v = 0; v < out.points.size(); ++v) {
+      if (!keep[v]) continue;
+      map[v] = static_cast<Index>(c.points.size());
+      c.points.push_back(out.points[v]);
+      if (!out.point_markers.empty()) c.point_markers.push_back(out.point_markers[v]);
+      pp.push_back(pt_piece_[v]);
+    }
+    for (auto& s : c.segments) {
+      s.a = map[s.a];
+      s.b = map[s.b];
+    }
+    pt_piece_ = std::move(pp);
+    return c;
+  }
+
+  // Marks pieces in conflict as restored; returns true if any was found.
+  bool find_conflicts(const Pslg& out) {
+    bool any = false;
+    auto restore = [&](std::size_t q) {
+      if (q != kNoPiece && !pieces_[q].restored) {
+        pieces_[q].restored = true;
+        any = true;
+      }
+    };
+    const Contacts ct = find_contacts(out.points, out.segments, nullptr);
+    for (const auto& [s, t] : ct.segment_pairs) {
+      restore(seg_piece_[s]);
+      restore(seg_piece_[t]);
+    }
+    for (const auto& [v, s] : ct.vertex_on_segment) {
+      restore(pt_piece_[v]);
+      restore(seg_piece_[s]);
+    }
+    if (any) return true;
+    // Swept regions: no other vertex may lie between a new chain piece and its input polyline.
+    Box2 box = out.bbox();
+    if (out.points.empty()) return false;
+    double mean = 0;
+    for (const auto& s : out.segments) mean += dist(out.points[s.a], out.points[s.b]);
+    mean = out.segments.empty() ? 1 : mean / static_cast<double>(out.segments.size());
+    for (const auto& p : in_.points) box.add(p);
+    SegmentGrid grid(box, out.points.size(), std::max(mean, 1e-300));
+    for (Index v = 0; v < out.points.size(); ++v) grid.add_point(v, out.points[v]);
+    std::vector<Index> near;
+    std::vector<Point2> poly;
+    for (std::size_t q = 0; q < pieces_.size(); ++q) {
+      const Piece& p = pieces_[q];
+      if (p.restored || !p.changed()) continue;
+      poly.clear();
+      for (std::size_t k = p.k0; k <= p.k1; ++k) poly.push_back(P(p.chain, k));
+      for (std::size_t i = p.inner.size(); i-- > 0;) poly.push_back(p.inner[i]);
+      Box2 pb;
+      for (const auto& x : poly) pb.add(x);
+      grid.points_near(pb, &near);
+      const Point2 e0 = P(p.chain, p.k0), e1 = P(p.chain, p.k1);
+      for (Index v : near) {
+        if (pt_piece_[v] == q) continue;
+        const Point2 x = out.points[v];
+        if (x == e0 || x == e1) continue;
+        if (inside_or_on(x, poly)) {
+          restore(q);
+          break;
+        }
+      }
+    }
+    return any;
+  }
+
+  // Parity test with exact orientation; points on the polygon's boundary count as inside.
+  static bool inside_or_on(Point2 p, const std::vector<Point2>& poly) {
+    bool in = false;
+    const std::size_t n = poly.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 a = poly[i], b = poly[(i + 1) % n];
+      if (a == b) continue;
+      if (predicates::orient2d(a, b, p) == 0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+          std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y))
+        return true;
+      if ((a.y > p.y) == (b.y > p.y)) continue;
+      const int o = predicates::orient2d(a, b, p);
+      if ((b.y > a.y) ? (o > 0) : (o < 0)) in = !in;
+    }
+    return in;
+  }
+
+  static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
+  const Pslg& in_;
+  ResampleOptions o_;
+  std::vector<Chain> chains_;
+  std::vector<Piece> pieces_;
+  std::vector<std::size_t> seg_piece_, pt_piece_;
+  double max_dev_ = 0;
+};
+
+}  // namespace
+
+Pslg resample(const Pslg& in, const ResampleOptions& options, ResampleStats* stats) {
+  Resampler r(in, options);
+  return r.run(stats);
+}
+
+}  // namespace fdr::pslg
