@@ -11,6 +11,7 @@ and options. Errors raise fdrmesh.Error subclasses carrying .exit_code and the C
 """
 import json as _json
 import numbers as _numbers
+import warnings as _warnings
 
 import numpy as _np
 
@@ -92,6 +93,14 @@ class Mesh:
                 + (f", CRS {self.crs_name}" if self.crs_name else "") + ">")
 
 
+def _result(core):
+    """Mesh of a finished run; its warnings (e.g. alpha*B >= 1) become RuntimeWarnings."""
+    for level, message in core.log:
+        if level >= 2:  # LogLevel::kWarning, kError
+            _warnings.warn(message, RuntimeWarning, stacklevel=3)
+    return Mesh(core)
+
+
 def read_poly(path, markers=False):
     """Reads a Triangle .poly (or .node) file: (vertices (n,2) float64, segments (m,2) int64,
     holes (h,2) float64), 0-based. markers=True adds (vertex_markers (n,), segment_markers (m,))."""
@@ -146,8 +155,8 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     hol = None if holes is None else _np.asarray(holes, dtype=_np.float64).reshape(-1, 2)
     sm = None if segment_markers is None else _np.asarray(segment_markers, dtype=_np.int32)
     vm = None if vertex_markers is None else _np.asarray(vertex_markers, dtype=_np.int32)
-    return Mesh(_core._triangulate(v, seg, hol, sm, vm, spec, grid, float(bound), float(min_angle),
-                                   int(max_steiner), bool(convex_hull), bool(check)))
+    return _result(_core._triangulate(v, seg, hol, sm, vm, spec, grid, float(bound), float(min_angle),
+                                      int(max_steiner), bool(convex_hull), bool(check)))
 
 
 def _arg(value):
@@ -180,4 +189,4 @@ def mesh(input=None, **options):
             args += ["--" + key, _arg(x)]
     if input is not None:
         args += ["--", str(input)]
-    return Mesh(_core._mesh(args))
+    return _result(_core._mesh(args))

@@ -99,7 +99,7 @@ def test_callable_spacing_is_sampled_once_vectorised():
     assert m2.report["bad_triangles"] == 0 and m2.report["max_R_over_f"] <= 1.0
 
 
-def test_gil_released_threads():
+def test_two_threads():
     v, s, h = fdrmesh.read_poly(SQUARE)
     out = []
     th = [threading.Thread(target=lambda: out.append(fdrmesh.triangulate(v, s, h, spacing=0.2))) for _ in range(2)]
@@ -108,6 +108,12 @@ def test_gil_released_threads():
     for t in th:
         t.join()
     assert len(out) == 2 and np.array_equal(out[0].triangles, out[1].triangles)
+
+
+def test_warning_when_alpha_b_too_large():
+    v, s, h = fdrmesh.read_poly(SQUARE)
+    with pytest.warns(RuntimeWarning, match="alpha"):
+        fdrmesh.triangulate(v, s, spacing="0.3 + 0.9 * x", bound=1.5)
 
 
 def test_errors():
