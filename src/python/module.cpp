@@ -8,6 +8,7 @@
 #include <memory>
 #include "api/triangulate.hpp"
 #include "base/error.hpp"
+#include "base/version.hpp"
 #include "cli/cli.hpp"
 #include "cli/option_table.hpp"
 #include "pipeline/mesh_domain.hpp"
@@ -89,6 +90,7 @@ fdr::Pslg make_pslg(py::array_t<double, py::array::c_style | py::array::forcecas
 
 PYBIND11_MODULE(_core, mod) {
   mod.doc() = "fdrmesh core bindings (use the fdrmesh package)";
+  mod.attr("__version__") = fdr::kVersion;
 
   // Exceptions: fdrmesh.Error(RuntimeError) with .exit_code; one subclass per exit code.
   py::handle base_error = PyErr_NewException("fdrmesh.Error", PyExc_RuntimeError, nullptr);

@@ -16,6 +16,7 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _core
+from ._core import __version__
 from ._core import (Error, InternalError, UsageError, InputUnreadableError, InputMalformedError,
                     GeometryError, SpacingError, WorkLimitError, OutputError, CrsError, CheckError,
                     CancelledError)
