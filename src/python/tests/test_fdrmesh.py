@@ -179,3 +179,17 @@ def test_mesh_gis_equals_cli_and_writes_every_format(tmp_path):
         assert os.path.getsize(str(tmp_path / name)) > 0
     m.write(str(tmp_path / "forced.txt"), format="2DM")
     assert open(str(tmp_path / "forced.txt")).readline().startswith("MESH2D")
+
+
+def test_mesh_options_from_the_cli_table(tmp_path):
+    assert {"layer", "raster", "hmin", "hmax", "open_boundary", "breaklines", "t_srs", "output", "check"} <= set(
+        fdrmesh.MESH_OPTIONS)
+    a, b = str(tmp_path / "a.2dm"), str(tmp_path / "b.node")
+    m = fdrmesh.mesh(SQUARE, spacing=0.5, output=[a, b], check=True, report=str(tmp_path / "r.json"))
+    assert m.written == [a, b, str(tmp_path / "r.json")] and os.path.exists(str(tmp_path / "b.ele"))
+    land = os.path.join(TESTDATA, "chesapeake", "shp", "chesapeake_mouth_land.shp")
+    if os.path.exists(land):
+        m = fdrmesh.mesh(land=land, extent=(-76.6, 36.75, -75.6, 37.75))
+        assert len(m.triangles) > 0 and m.crs_wkt
+        with pytest.raises(fdrmesh.UsageError):
+            fdrmesh.mesh(land=land, extent=(-75.6, 36.75, -76.6, 37.75))  # XMIN > XMAX, the CLI's check
