@@ -13,7 +13,7 @@
 #include "cli/option_table.hpp"
 #include "cli/quality_command.hpp"
 #include "pipeline/pipeline.hpp"
-#include "quality/report.hpp"
+#include "pipeline/summary.hpp"
 
 namespace fdr::cli {
 namespace {
@@ -68,14 +68,21 @@ int fail(const Error& e) {
   return e.exit_code();
 }
 
-}  // namespace
-
-int run(int argc, char** argv) {
-  CLI::App app{"fdrmesh " + std::string(kVersion) +
-               ": Functional Delaunay Refinement meshes of coastal and terrain domains\n"
-               "Guaranteed R/f(c) <= B for every triangle; exact predicates; GIS in, model meshes out."};
-  app.set_help_all_flag("--help-all", "Help for every command");
+// The CLI11 application built from the option table (shared by run() and parse_mesh_args()).
+struct Parser {
+  CLI::App app;
   bool version = false, json = false;
+  std::map<std::string, Values> values;
+  std::map<std::string, CLI::App*> subs;
+  std::map<std::string, bool> flags;
+  Parser();
+};
+
+Parser::Parser()
+    : app{"fdrmesh " + std::string(kVersion) +
+          ": Functional Delaunay Refinement meshes of coastal and terrain domains\n"
+          "Guaranteed R/f(c) <= B for every triangle; exact predicates; GIS in, model meshes out."} {
+  app.set_help_all_flag("--help-all", "Help for every command");
   app.add_flag("--version", version, "Print the version and exit");
   app.add_flag("--json-usage", json, "Print the option table as JSON (used by the QGIS plugin) and exit");
   app.require_subcommand(0, 1);
@@ -86,11 +93,8 @@ int run(int argc, char** argv) {
       "  fdrmesh mesh square.poly --spacing paper-f1 -o square.2dm --report square.json\n"
       "  fdrmesh mesh water.gpkg --open-boundary open.geojson --raster etopo.tif -o mesh.gpkg -o fort.14\n"
       "  fdrmesh quality mesh.2dm --spacing 500");
-  std::map<std::string, Values> values;
-  std::map<std::string, CLI::App*> subs;
   subs["mesh"] = app.add_subcommand("mesh", "Mesh a domain by Functional Delaunay Refinement");
   subs["quality"] = app.add_subcommand("quality", "Report the quality of an existing mesh against a spacing f");
-  std::map<std::string, bool> flags;
   for (const auto& o : option_table()) {
     CLI::App* sub = subs.at(o.command);
     auto& slot = values[o.command][o.key];
@@ -109,42 +113,13 @@ int run(int argc, char** argv) {
     }
     opt->group(o.group);
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "ERROR %d: %s (see fdrmesh --help)\n", static_cast<int>(ExitCode::kUsage), e.what());
-    return static_cast<int>(ExitCode::kUsage);
-  }
-  if (version) {
-    std::printf("fdrmesh %s\n", kVersion);
-    return 0;
-  }
-  if (json) {
-    std::printf("%s\n", json_usage().c_str());
-    return 0;
-  }
-  std::string cmdline;
-  for (int i = 0; i < argc; ++i) cmdline += (i ? " " : "") + std::string(argv[i]);
-  try {
-    if (subs["quality"]->parsed()) {
-      const Values& v = values["quality"];
-      QualityArgs q;
-      q.mesh = str(v, "mesh");
-      q.spacing = str(v, "spacing");
-      q.raster = str(v, "raster");
-      q.bound = to_double(v, "bound", 1.0);
-      q.report_json = str(v, "report");
-      q.quiet = flags["quality:quiet"];
-      return run_quality(q);
-    }
-    if (!subs["mesh"]->parsed()) {
-      std::printf("%s", app.help().c_str());
-      return static_cast<int>(ExitCode::kUsage);
-    }
+}
+
+// Binds the parsed `mesh` values to pipeline::Options (phase 2 of issue 8 replaces these lines by
+// a typed option table bound to the fields).
+pipeline::Options bind_mesh(std::map<std::string, Values>& values, std::map<std::string, bool>& flags,
+                            const std::string& cmdline) {
+  {
     const Values& v = values["mesh"];
     pipeline::Options o;
     o.command_line = cmdline;
@@ -208,6 +183,71 @@ int run(int argc, char** argv) {
     if (auto it = v.find("output"); it != v.end()) o.outputs = it->second;
     o.of = str(v, "of");
     o.report_json = str(v, "report");
+    return o;
+  }
+}
+
+}  // namespace
+
+pipeline::Options parse_mesh_args(const std::vector<std::string>& args) {
+  Parser p;
+  std::vector<std::string> argv{"fdrmesh", "mesh"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  // CLI11 parses a reversed vector of arguments (without the program name).
+  std::vector<std::string> rev(argv.rbegin(), argv.rend() - 1);
+  try {
+    p.app.parse(rev);
+  } catch (const CLI::ParseError& e) {
+    throw Error(ExitCode::kUsage, e.what());
+  }
+  std::string cmdline;
+  for (std::size_t i = 0; i < argv.size(); ++i) cmdline += (i ? " " : "") + argv[i];
+  return bind_mesh(p.values, p.flags, cmdline);
+}
+
+int run(int argc, char** argv) {
+  Parser p;
+  CLI::App& app = p.app;
+  auto& values = p.values;
+  auto& subs = p.subs;
+  auto& flags = p.flags;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "ERROR %d: %s (see fdrmesh --help)\n", static_cast<int>(ExitCode::kUsage), e.what());
+    return static_cast<int>(ExitCode::kUsage);
+  }
+  if (p.version) {
+    std::printf("fdrmesh %s\n", kVersion);
+    return 0;
+  }
+  if (p.json) {
+    std::printf("%s\n", json_usage().c_str());
+    return 0;
+  }
+  std::string cmdline;
+  for (int i = 0; i < argc; ++i) cmdline += (i ? " " : "") + std::string(argv[i]);
+  try {
+    if (subs["quality"]->parsed()) {
+      const Values& v = values["quality"];
+      QualityArgs q;
+      q.mesh = str(v, "mesh");
+      q.spacing = str(v, "spacing");
+      q.raster = str(v, "raster");
+      q.bound = to_double(v, "bound", 1.0);
+      q.report_json = str(v, "report");
+      q.quiet = flags["quality:quiet"];
+      return run_quality(q);
+    }
+    if (!subs["mesh"]->parsed()) {
+      std::printf("%s", app.help().c_str());
+      return static_cast<int>(ExitCode::kUsage);
+    }
+    pipeline::Options o = bind_mesh(values, flags, cmdline);
 
     DelayedProgress progress(o.quiet);
     auto log = [&](LogLevel lvl, std::string_view msg) {
@@ -221,16 +261,7 @@ int run(int argc, char** argv) {
     pipeline::Result r = pipeline::run(o, [&](double f, std::string_view s) { return progress(f, s); }, log);
     progress.finish();
     if (!o.quiet) {
-      quality::write_text(r.report, std::cout);
-      std::cout << "stages (s, peak MiB):";
-      for (const auto& st : r.stages) {
-        char buf[96];
-        std::snprintf(buf, sizeof buf, " %s %.2f (%.0f)", st.name.c_str(), st.seconds, st.peak_rss_mb);
-        std::cout << buf;
-      }
-      std::cout << "\n";
-      for (const auto& w : r.written) std::cout << "wrote " << w << "\n";
-      std::cout.flush();
+      pipeline::write_summary(r, std::cout);
     }
     return 0;
   } catch (const Error& e) {

@@ -1,47 +1,18 @@
 // `fdrmesh quality`: reads a mesh (2DM, fort.14, msh, node/ele, fdrmesh GPKG), evaluates f,
-// prints and writes the same report as `fdrmesh mesh --report`.
+// prints and writes the same report as `fdrmesh mesh --report` (pipeline::run_quality).
 #include "cli/quality_command.hpp"
-#include <cstdio>
-#include <fstream>
 #include <iostream>
-#include "base/error.hpp"
-#include "gis/raster_input.hpp"
-#include "io/reader.hpp"
-#include "quality/report.hpp"
-#include "quality/rss.hpp"
-#include "sizing/field_checks.hpp"
-#include "sizing/grid_field.hpp"
-#include "sizing/fields.hpp"
-#include "sizing/make_spacing.hpp"
+#include "pipeline/quality_run.hpp"
 
 namespace fdr::cli {
 int run_quality(const QualityArgs& a) {
-  mesh::MeshView m = io::read_mesh(a.mesh);
-  if (!a.spacing.empty() && !a.raster.empty())
-    throw Error(ExitCode::kUsage, "give either --spacing or --raster, not both");
-  sizing::SizingPtr f;
-  if (!a.spacing.empty()) {
-    f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(a.spacing), m.origin);
-  } else if (!a.raster.empty()) {
-    sizing::Grid g = gis::read_raster_native(a.raster, m.origin);
-    f = std::make_shared<sizing::GridField>(std::move(g), "size raster " + a.raster);
-  }
-  double alpha = -1;
-  if (f) {
-    alpha = f->lipschitz();
-    if (!(alpha >= 0)) {
-      Box2 b;
-      for (const auto& p : m.vertices) b.add(p);
-      alpha = sizing::estimate_lipschitz(*f, b, 64);
-    }
-  }
-  quality::RunInfo ri;
-  ri.input_file = a.mesh;
-  ri.spacing = f ? f->describe() : "none";
-  quality::QualityReport r = quality::compute_quality(m, f.get(), a.bound, alpha, ri);
-  r.run.peak_rss_mb = quality::peak_rss_mb_value();
-  if (!a.quiet) quality::write_text(r, std::cout);
-  if (!a.report_json.empty()) quality::write_json_file(r, a.report_json);
+  pipeline::QualityOptions o;
+  o.mesh = a.mesh;
+  o.spacing = a.spacing;
+  o.raster = a.raster;
+  o.report_json = a.report_json;
+  o.bound = a.bound;
+  pipeline::run_quality(o, a.quiet ? nullptr : &std::cout);
   return 0;
 }
 

@@ -19,7 +19,7 @@ OGRSpatialReference parse(const std::string& crs) {
 
 void check_crs(const std::string& crs) { (void)parse(crs); }
 
-void reproject_mesh(mesh::MeshView& m, const Frame& frame, const std::string& crs) {
+std::string reproject_points(std::vector<Point2>& pts, Point2 origin, const Frame& frame, const std::string& crs) {
   ensure_gdal_registered();
   OGRSpatialReference dst = parse(crs);
   OGRSpatialReference src = frame.srs();
@@ -27,11 +27,11 @@ void reproject_mesh(mesh::MeshView& m, const Frame& frame, const std::string& cr
   std::unique_ptr<OGRCoordinateTransformation, void (*)(OGRCoordinateTransformation*)> ct(
       OGRCreateCoordinateTransformation(&src, &dst), OGRCoordinateTransformation::DestroyCT);
   if (!ct) throw Error(ExitCode::kCrsError, "--output-crs '" + crs + "': no transformation from " + frame.name());
-  const std::size_t n = m.vertices.size();
+  const std::size_t n = pts.size();
   std::vector<double> x(n), y(n);
   std::vector<int> ok(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const Point2 w = m.world(static_cast<Index>(i));
+    const Point2 w = origin + pts[i];
     x[i] = w.x;
     y[i] = w.y;
   }
@@ -40,13 +40,13 @@ void reproject_mesh(mesh::MeshView& m, const Frame& frame, const std::string& cr
       if (!ok[i])
         throw Error(ExitCode::kCrsError, "--output-crs '" + crs + "': node " + std::to_string(i) + " at (" +
                                              std::to_string(x[i]) + ", " + std::to_string(y[i]) + ") cannot be transformed");
-  for (std::size_t i = 0; i < n; ++i) m.vertices[i] = {x[i], y[i]};
-  m.origin = {0, 0};
+  for (std::size_t i = 0; i < n; ++i) pts[i] = {x[i], y[i]};
   char* wkt = nullptr;
   const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
   dst.exportToWkt(&wkt, opts);
-  m.crs_wkt = wkt ? wkt : "";
+  std::string out = wkt ? wkt : "";
   CPLFree(wkt);
+  return out;
 }
 
 }  // namespace fdr::gis

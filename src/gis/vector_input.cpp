@@ -17,14 +17,14 @@
 
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
-#include "mesh/mesh_view.hpp"
+#include "base/edge_kind.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::gis {
 
 namespace {
 
-using mesh::EdgeKind;
+using fdr::EdgeKind;
 
 std::string num(double v, int prec = 6) {
   char buf[64];

@@ -1,5 +1,6 @@
 // Validity checkers: topology, orientation, constrained Delaunay property, segment recovery.
 #include "mesh/check.hpp"
+#include <cmath>
 #include <sstream>
 #include <unordered_map>
 #include "predicates/predicates.hpp"
@@ -98,6 +99,24 @@ CheckResult check_segments(const Triangulation& tri) {
     if (!ok)
       r.add("input segment " + std::to_string(s) + " " + fmt_pt(tri.pts[seg.a]) + "-" + fmt_pt(tri.pts[seg.b]) +
             " is not a chain of mesh edges");
+  }
+  return r;
+}
+
+CheckResult check_spacing(const Triangulation& tri, const std::function<double(Point2)>& f, double bound) {
+  CheckResult r;
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    double r2 = 0;
+    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+    const double fc = f(cc);
+    if (!(fc > 0) || r2 > bound * bound * fc * fc) {
+      std::ostringstream s;
+      s.precision(6);
+      s << "triangle " << t << " has R/f(c) = " << std::sqrt(r2) / fc << " > B = " << bound << " at " << fmt_pt(cc);
+      r.add(s.str());
+    }
   }
   return r;
 }

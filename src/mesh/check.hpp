@@ -1,5 +1,6 @@
 // Validity checkers for a Triangulation (library code, used by tests and `--check`).
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 #include "mesh/triangulation.hpp"
@@ -26,5 +27,8 @@ CheckResult check_delaunay(const Triangulation& tri);
 CheckResult check_segments(const Triangulation& tri);
 // All three.
 CheckResult check_all(const Triangulation& tri);
+// FDR's guarantee: R/f(c) <= bound for every live triangle (R circumradius, c circumcenter), for a
+// spacing f given as a function (the mesh does not know sizing::SizingField).
+CheckResult check_spacing(const Triangulation& tri, const std::function<double(Point2)>& f, double bound);
 
 }  // namespace fdr::mesh

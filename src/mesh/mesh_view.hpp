@@ -4,18 +4,12 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+#include "base/edge_kind.hpp"
 #include "base/types.hpp"
 
 namespace fdr::mesh {
 
-// Kind of a constrained (boundary or interior) edge; stored as the segment marker.
-enum class EdgeKind : std::int32_t {
-  kNone = 0,       // unconstrained / unknown
-  kLand = 1,       // mainland coast (or generic outer boundary)
-  kIsland = 2,     // island coast (hole boundary)
-  kOpen = 3,       // open-ocean boundary
-  kBreakline = 4,  // interior constraint (river, levee, channel)
-};
+using fdr::EdgeKind;  // base/edge_kind.hpp (gis and pslg use it without the mesh)
 const char* edge_kind_name(EdgeKind k);
 
 struct MeshEdge {

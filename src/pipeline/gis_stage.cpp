@@ -11,7 +11,7 @@
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/raster_output.hpp"
-#include "gis/reproject.hpp"
+#include "pipeline/reproject_mesh.hpp"
 #include "gis/vector_input.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
@@ -481,7 +481,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     }
   };
   if (!output_crs.empty()) {
-    out.to_output_crs = [frame, output_crs](mesh::MeshView& m) { gis::reproject_mesh(m, frame, output_crs); };
+    out.to_output_crs = [frame, output_crs](mesh::MeshView& m) { reproject_mesh(m, frame, output_crs); };
   }
   if (!opt.write_spacing.empty() && fgrid) {
     const std::string path = opt.write_spacing;

@@ -99,6 +99,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     in = prepare_gis_input(opt, progress, log);
     result.crs_name = in.crs_name;
     result.repairs = in.repairs.size();
+    result.repair_rows = in.repairs;
   }
   if (in.stages.empty()) clock.lap("read");
   else result.stages = in.stages;
@@ -116,6 +117,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
 
   // Spacing checks: alpha, positivity inside the domain (during the estimate), work estimate.
   const sizing::SizingField& f = *in.f;
+  result.f = in.f;
   Box2 box = in.pslg.bbox();
   double alpha = f.lipschitz();
   if (!(alpha >= 0)) alpha = sizing::estimate_lipschitz(f, box, 64);

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 #include "base/progress.hpp"
+#include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
 #include "pipeline/stage_time.hpp"
@@ -18,6 +19,8 @@ struct Result {
   std::string crs_name;               // working CRS ("" for .poly input)
   std::size_t repairs = 0;
   std::vector<StageTime> stages;      // wall time and peak memory per stage, in order
+  std::vector<io::RepairRow> repair_rows;  // the repairs themselves (world coordinates)
+  sizing::SizingPtr f;                // the spacing in the mesh's local frame
 };
 
 // Runs one meshing job. Throws fdr::Error (exit codes in base/error.hpp) on failure; outputs are

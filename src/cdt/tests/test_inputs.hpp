@@ -7,17 +7,8 @@
 #include <vector>
 #include "pslg/pslg.hpp"
 #include "predicates/predicates.hpp"
-#include "sizing/sizing_field.hpp"
 
 namespace fdr::testing {
-
-// A spacing function from a lambda (tests only).
-struct FnField : sizing::SizingField {
-  std::function<double(Point2)> fn;
-  explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
-  double operator()(Point2 p) const override { return fn(p); }
-  std::string describe() const override { return "test"; }
-};
 
 inline bool segments_cross_or_touch(Point2 a, Point2 b, Point2 c, Point2 d) {
   using predicates::orient2d;

@@ -10,12 +10,12 @@
 
 #include "base/error.hpp"
 #include "gis/vector_input.hpp"
-#include "mesh/mesh_view.hpp"
+#include "base/edge_kind.hpp"
 #include "pslg/validate.hpp"
 
 using namespace fdr;
 using namespace fdr::gis;
-using mesh::EdgeKind;
+using fdr::EdgeKind;
 
 namespace {
 

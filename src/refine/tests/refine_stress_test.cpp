@@ -6,6 +6,7 @@
 #include <random>
 #include "cdt/cdt.hpp"
 #include "cdt/tests/test_inputs.hpp"
+#include "refine/tests/fn_field.hpp"
 #include "mesh/check.hpp"
 #include "predicates/predicates.hpp"
 #include "refine/refine.hpp"

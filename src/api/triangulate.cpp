@@ -1,0 +1,199 @@
+// fdrmesh core API: the CLI's .poly path (pipeline.cpp) as a library function, step by step.
+#include "api/triangulate.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include "cdt/cdt.hpp"
+#include "mesh/check.hpp"
+#include "predicates/predicates.hpp"
+#include "pslg/poly_io.hpp"
+#include "pslg/validate.hpp"
+#include "quality/rss.hpp"
+#include "refine/refine.hpp"
+#include "sizing/field_checks.hpp"
+#include "sizing/fields.hpp"
+#include "sizing/grid_field.hpp"
+#include "sizing/make_spacing.hpp"
+
+namespace fdr {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string lower_ext(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+// Local origin (same rule as pipeline.cpp): shift only when the coordinates are far from 0
+// relative to the extent, so that small inputs keep their exact coordinates.
+Point2 choose_origin(const Box2& b) {
+  const Point2 c = b.center();
+  const double size = std::max({b.width(), b.height(), 1e-300});
+  if (std::max(std::fabs(c.x), std::fabs(c.y)) < 1e3 * size) return {0, 0};
+  const double unit = std::pow(10.0, std::floor(std::log10(size)));
+  return {std::round(c.x / unit) * unit, std::round(c.y / unit) * unit};
+}
+
+void info(const LogFn& log, const std::string& s) {
+  if (log) log(LogLevel::kInfo, s);
+}
+}  // namespace
+
+Pslg read_pslg(const std::string& path) {
+  Pslg p = lower_ext(path) == "node" ? pslg::read_node(path) : pslg::read_poly(path);
+  pslg::validate(p, path);
+  return p;
+}
+
+SizingPtr make_spacing(const std::string& spec) { return sizing::make_spacing(spec); }
+
+std::string default_spacing_spec(const Pslg& pslg) {
+  // Computed on the shifted PSLG in the CLI; the extent is the same in both frames.
+  Pslg shifted = pslg;
+  const Box2 b0 = pslg.bbox();
+  const Point2 origin = choose_origin(b0);
+  for (auto& p : shifted.points) p = {p.x - origin.x, p.y - origin.y};
+  const Box2 b = shifted.bbox();
+  std::ostringstream s;
+  s.precision(17);
+  s << std::hypot(b.width(), b.height()) / 20.0;
+  return s.str();
+}
+
+SizingPtr grid_spacing(sizing::Grid grid, const std::string& label) {
+  return std::make_shared<sizing::GridField>(std::move(grid), label);
+}
+
+Triangulator::Triangulator(const Pslg& in, const TriangulateOptions& opt) : opt_(opt), pslg_(in) {
+  if (!(opt_.bound > 0) || !std::isfinite(opt_.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
+  if (opt_.min_angle_deg < 0 || opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+  if (opt_.convex_hull)  // issue 10 adds --convex-hull to the core; wire CdtOptions here then
+    throw Error(ExitCode::kUsage, "--convex-hull is not supported by this build yet");
+  predicates::reset_counters();
+  pslg::validate(pslg_, opt_.source);
+  const Point2 origin = choose_origin(pslg_.bbox());
+  if (origin.x != 0 || origin.y != 0) {
+    for (auto& p : pslg_.points) p = {p.x - origin.x, p.y - origin.y};
+    for (auto& p : pslg_.holes) p = {p.x - origin.x, p.y - origin.y};
+    for (auto& r : pslg_.regions) r.seed = {r.seed.x - origin.x, r.seed.y - origin.y};
+    pslg_.origin = pslg_.origin + origin;  // (the CLI sets origin = shift: the same when it was 0)
+  }
+  if (opt_.progress && !opt_.progress(0.05, "cdt")) throw Error(ExitCode::kCancelled, "cancelled during cdt");
+  const auto t = Clock::now();
+  tri_ = cdt::build_cdt(pslg_, {cdt::CdtOptions::Regions::kAuto, opt_.source}, nullptr);
+  cdt_s_ = since(t);
+  if (tri_.num_live_triangles() == 0)
+    throw Error(ExitCode::kInvalidGeometry, opt_.source + ": the domain is empty (no region enclosed by segments)");
+}
+
+Triangulator& Triangulator::refine(const SizingField& f) {
+  // Non-owning: the caller keeps `f` alive while this Triangulator uses it.
+  return refine(SizingPtr(SizingPtr(), &f));
+}
+
+Triangulator& Triangulator::refine(SizingPtr world_f) {
+  f_ = std::make_shared<sizing::ShiftedField>(std::move(world_f), pslg_.origin);
+  const SizingField& f = *f_;
+  Box2 box = pslg_.bbox();
+  double alpha = f.lipschitz();
+  if (!(alpha >= 0)) alpha = sizing::estimate_lipschitz(f, box, 64);
+  alpha_ = alpha;
+  if (alpha * opt_.bound >= 1 && opt_.log)
+    opt_.log(LogLevel::kWarning, "alpha*B = " + std::to_string(alpha * opt_.bound) +
+                                     " >= 1: the spacing varies too fast for the FDR guarantees (termination still "
+                                     "bounded by --max-steiner); lower --bound or smooth the spacing");
+  const double expected = refine::estimate_triangles(tri_, f, opt_.bound);
+  info(opt_.log, "expected about " + std::to_string(static_cast<long long>(expected)) + " triangles");
+  if (expected > 2.5 * static_cast<double>(opt_.max_steiner))
+    throw Error(ExitCode::kWorkLimit, "the spacing asks for about " + std::to_string(static_cast<long long>(expected)) +
+                                          " triangles, more than --max-steiner " + std::to_string(opt_.max_steiner) +
+                                          " allows; coarsen the spacing or raise --max-steiner");
+  const auto t = Clock::now();
+  refine::RefineOptions ro;
+  ro.bound = opt_.bound;
+  ro.min_angle_deg = opt_.min_angle_deg;
+  ro.max_steiner = opt_.max_steiner;
+  ro.expected_steiner = expected / 2;
+  const ProgressFn& progress = opt_.progress;
+  ro.progress = [&progress](double frac, std::string_view) { return !progress || progress(0.05 + 0.75 * frac, "refine"); };
+  refine::Refiner refiner(tri_, f, ro);
+  refiner.reserve(expected);
+  refiner.init();
+  refiner.run();
+  refine_s_ = refine_s_.value_or(0) + since(t);
+  seg_splits_ += refiner.stats().segment_splits;
+  circumcenters_ += refiner.stats().circumcenters;
+  angle_exempt_ = refiner.leftovers().angle_bad;
+  if (opt_.check) {
+    mesh::CheckResult cr = mesh::check_all(tri_);
+    const std::size_t bad = refiner.leftovers().r_over_f_bad;
+    if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
+    if (!cr.ok()) {
+      std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
+      for (const auto& p : cr.problems) msg += "\n  " + p;
+      throw Error(ExitCode::kCheckFailed, msg);
+    }
+    info(opt_.log, "check: topology, orientation, constrained Delaunay, segments and R/f(c) <= B hold");
+  }
+  return *this;
+}
+
+MeshView Triangulator::view() const { return tri_.to_view(); }
+
+Mesh Triangulator::mesh() const {
+  if (opt_.progress && !opt_.progress(0.8, "report")) throw Error(ExitCode::kCancelled, "cancelled during report");
+  Mesh out;
+  out.view = tri_.to_view();
+  out.f = f_;
+  out.bound = opt_.bound;
+  out.min_angle_deg = opt_.min_angle_deg;
+  out.alpha = alpha_;
+  out.source = opt_.source;
+  MeshView& m = out.view;
+  if (f_ && m.f.empty()) {
+    m.f.resize(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f_)(m.vertices[i]);
+  }
+  quality::RunInfo ri;
+  ri.cdt_s = cdt_s_;
+  ri.refine_s = refine_s_;
+  ri.predicate_filtered = predicates::counters().filtered;
+  ri.predicate_exact = predicates::counters().exact;
+  ri.exempt_small_angle_triangles = angle_exempt_;
+  ri.steiner_segment = seg_splits_;
+  ri.steiner_interior = circumcenters_;
+  ri.input_file = opt_.source;
+  ri.spacing = f_ ? f_->describe() : "none";
+  if (opt_.min_angle_deg > 0) ri.min_angle_option_deg = opt_.min_angle_deg;
+  out.report = quality::compute_quality(m, f_.get(), opt_.bound, alpha_, ri);
+  out.report.run.peak_rss_mb = quality::peak_rss_mb_value();
+  return out;
+}
+
+Mesh triangulate(const Pslg& pslg, SizingPtr f, const TriangulateOptions& options) {
+  Triangulator t(pslg, options);
+  t.refine(std::move(f));
+  return t.mesh();
+}
+
+Mesh triangulate(const Pslg& pslg, const SizingField& f, const TriangulateOptions& options) {
+  Triangulator t(pslg, options);
+  t.refine(f);
+  Mesh m = t.mesh();
+  m.f.reset();  // `f` belongs to the caller: keep no dangling reference in the result
+  return m;
+}
+
+std::string report_json(const QualityReport& report) {
+  std::ostringstream js;
+  quality::write_json(report, js);
+  return js.str();
+}
+
+}  // namespace fdr

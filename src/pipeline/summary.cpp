@@ -1,0 +1,21 @@
+// What the command line prints after a run (moved from cli.cpp so that the CLI sees only pipeline).
+#include "pipeline/summary.hpp"
+#include <cstdio>
+#include <ostream>
+
+namespace fdr::pipeline {
+
+void write_summary(const Result& r, std::ostream& out) {
+  quality::write_text(r.report, out);
+  out << "stages (s, peak MiB):";
+  for (const auto& st : r.stages) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %s %.2f (%.0f)", st.name.c_str(), st.seconds, st.peak_rss_mb);
+    out << buf;
+  }
+  out << "\n";
+  for (const auto& w : r.written) out << "wrote " << w << "\n";
+  out.flush();
+}
+
+}  // namespace fdr::pipeline
