@@ -228,12 +228,83 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   }
   lap("union");
   res.input_area = area_of(W.get());
+  GeomPtr W0(W->clone());  // the input water bodies (ownership of the result's pieces)
   {
     std::vector<std::unique_ptr<OGRPolygon>> ps;
     polygons_of(W.get(), ps);
     res.input_pieces = ps.size();
   }
   (void)sum_area;
+
+  // 1b. Islands below the resolution. The tiniest are removed (--min-island); the others smaller
+  //     than grow_island_area are grown by grow_island (buffer), so that the mesh keeps them with
+  //     elements near hmin instead of elements as small as the island. Why grow rather than drop:
+  //     a dropped island near the coast moves the coastline the model sees by its whole distance.
+  {
+    std::vector<std::unique_ptr<OGRPolygon>> wps;
+    polygons_of(W.get(), wps);
+    auto grown = std::make_unique<OGRMultiPolygon>();
+    bool changed = false;
+    for (auto& p : wps) {
+      if (p->getNumInteriorRings() == 0) continue;
+      OGRPolygon q;
+      q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
+      for (int k = 0; k < p->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* h = p->getInteriorRing(k);
+        const double a = std::fabs(h->get_Area());
+        OGRPolygon hp;
+        hp.addRing(const_cast<OGRLinearRing*>(h));
+        if (a < o.min_island_area) {
+          changed = true;
+          ++res.islands_removed;
+          res.islands_area += a;
+          res.repairs.push_back({"island_removed", inside_point(&hp), a,
+                                 "island of " + num(a) + " m^2 is smaller than " + num(o.min_island_area) +
+                                     " m^2 (--min-island); it became water",
+                                 -1});
+          continue;
+        }
+        q.addRing(const_cast<OGRLinearRing*>(h));
+        if (a < o.grow_island_area && o.grow_island > 0) {
+          GeomPtr g = checked(hp.Buffer(o.grow_island, kQuadSegs), "buffer of a small island");
+          ++res.islands_grown;
+          res.islands_grown_area += area_of(g.get()) - a;
+          res.repairs.push_back({"island_enlarged", inside_point(&hp), area_of(g.get()) - a,
+                                 "island of " + num(a) + " m^2 is below the resolution; grown by " +
+                                     num(o.grow_island) + " m so that elements near hmin fit around it",
+                                 -1});
+          std::vector<std::unique_ptr<OGRPolygon>> gps;
+          polygons_of(g.get(), gps);
+          for (auto& gp : gps) grown->addGeometryDirectly(gp.release());
+        }
+      }
+      *p = q;
+    }
+    if (changed || !grown->IsEmpty()) {
+      GeomPtr w2 = multi(wps);
+      if (!grown->IsEmpty()) {
+        GeomPtr gu = grown->getNumGeometries() > 1 ? checked(grown->UnionCascaded(), "union of grown islands")
+                                                   : GeomPtr(grown.release());
+        w2 = checked(w2->Difference(gu.get()), "water minus grown islands");
+      }
+      W = std::move(w2);
+    }
+  }
+  lap("islands");
+
+  // 1c. Closing at the same scale: land thinner than close_width (spikes, spits, slivers of land
+  //     between two waters) becomes water. Why: a land spike leaves two coast segments meeting at
+  //     a tiny angle, around which any mesher makes a cascade of tiny elements.
+  if (o.close_width > 0) {
+    const double rc = 0.5 * o.close_width;
+    GeomPtr dil = offset(*W, rc);
+    GeomPtr closed = offset(*dil, -rc);
+    // Closing never removes water; what it adds is reported (land taken away).
+    const double added = area_of(closed.get()) - area_of(W.get());
+    if (added > 0) res.land_removed_area += added;
+    W = std::move(closed);
+  }
+  lap("closing");
 
   // 2. Openings; the pieces of O2 - O1 are judged one by one.
   GeomPtr R;
@@ -297,7 +368,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //     (a water body the model cannot reach), keeping the largest piece of each input body.
   {
     std::vector<std::unique_ptr<OGRPolygon>> wps, rps;
-    polygons_of(W.get(), wps);
+    polygons_of(W0.get(), wps);
     polygons_of(R.get(), rps);
     std::vector<int> owner(rps.size(), -1);
     for (std::size_t i = 0; i < wps.size() && rps.size() > 1; ++i) {
@@ -335,33 +406,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     R = multi(kept);
   }
 
-  // 3. Islands below the resolution: holes with a small area are filled.
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
-  for (auto& p : outp) {
-    if (!(o.min_island_area > 0) || p->getNumInteriorRings() == 0) continue;
-    OGRPolygon q;
-    q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
-    for (int k = 0; k < p->getNumInteriorRings(); ++k) {
-      const OGRLinearRing* h = p->getInteriorRing(k);
-      const double a = std::fabs(h->get_Area());
-      if (a < o.min_island_area) {
-        OGRPolygon hp;
-        hp.addRing(const_cast<OGRLinearRing*>(h));
-        ++res.islands_removed;
-        res.islands_area += a;
-        res.repairs.push_back({"island_removed", inside_point(&hp), a,
-                               "island of " + num(a) + " m^2 is smaller than the resolution (" +
-                                   num(o.min_island_area) + " m^2, --min-island); it became water",
-                               -1});
-      } else {
-        q.addRing(const_cast<OGRLinearRing*>(h));
-      }
-    }
-    *p = q;
-  }
-
-  lap("islands");
   // 4. Removed water: W - R, listed piece by piece above list_area (whole water bodies always).
   if (o.close_width > 0) {
     auto rm = std::make_unique<OGRMultiPolygon>();

@@ -28,6 +28,8 @@ struct FeatureFilterOptions {
   double close_width = 0;      // dead-end water narrower than this is closed (0: no opening)
   double min_feature = 0;      // connections narrower than this are closed too (<= close_width)
   double min_island_area = 0;  // islands (holes) with a smaller area are removed (m^2); 0 keeps all
+  double grow_island_area = 0; // islands with a smaller area (but >= min_island_area) are grown
+  double grow_island = 0;      // ... by this distance (m)
   double list_area = 0;        // removed water pieces at least this large are listed one by one
 };
 
@@ -44,6 +46,9 @@ struct FeatureFilterResult {
   std::size_t channels_kept = 0;     // narrow connections kept (O2 - O1 pieces joining bodies)
   std::size_t cut_off = 0;           // water bodies cut off by a closed connection, removed
   double cut_off_area = 0;
+  double land_removed_area = 0;      // land thinner than close_width that became water (m^2)
+  std::size_t islands_grown = 0;
+  double islands_grown_area = 0;     // land added
   std::size_t islands_removed = 0;
   double islands_area = 0;
   double input_area = 0, output_area = 0;

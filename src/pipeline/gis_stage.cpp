@@ -229,9 +229,10 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   d.features = [&opt](const Box2& b) {
     const double hmin = opt.hmin.value_or(std::hypot(b.width(), b.height()) / 500.0);
     gis::FeatureFilterOptions fo;
-    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : hmin);
-    fo.min_feature = opt.min_feature.value_or(0.25 * hmin);
-    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 1.0) * hmin * hmin;
+    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.25 * hmin);
+    fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
+    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.1) * hmin * hmin;
+    fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");

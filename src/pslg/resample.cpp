@@ -18,7 +18,12 @@ struct Chain {
   std::vector<Index> v;  // input vertex ids along the chain; closed: v.front() == v.back()
   std::int32_t marker = 0, part = -1;
   bool closed = false;
+  // Per input segment: how many times a piece over it conflicted; the tolerance there is
+  // halved each time, and at kMaxLevel the input vertices are kept.
+  std::vector<std::uint8_t> level;
 };
+
+constexpr std::uint8_t kMaxLevel = 6;
 
 // A piece of a chain between two key vertices v[k0] and v[k1]; `inner` are the new points
 // strictly between them (an input vertex id when the point is an input vertex, else kNoId).
@@ -26,7 +31,8 @@ struct Piece {
   std::size_t chain = 0, k0 = 0, k1 = 0;
   std::vector<Point2> inner;
   std::vector<Index> inner_id;
-  bool restored = false;
+  bool restored = false;  // tolerance 0: the input vertices
+  double deviation = 0;   // max distance input vertex -> new piece
   bool changed() const { return inner_id.size() != k1 - k0 - 1 || std::any_of(inner_id.begin(), inner_id.end(), [](Index i) { return i == kNoId; }); }
 };
 
@@ -45,25 +51,43 @@ class Resampler {
 
   Pslg run(ResampleStats* st) {
     build_chains();
+    chain_pieces_.resize(chains_.size());
     for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
     Pslg out;
     std::size_t round = 0;
     for (;; ++round) {
       out = assemble();
-      if (!find_conflicts(out)) break;
-      if (round + 1 >= o_.max_rounds) {  // give up on this input: keep every input vertex
-        for (auto& p : pieces_) p.restored = true;
+      std::vector<std::size_t> bad;
+      if (!find_conflicts(out, &bad)) break;
+      if (round + 1 >= o_.max_rounds) {  // give up: keep every input vertex
+        for (auto& ch : chains_) std::fill(ch.level.begin(), ch.level.end(), kMaxLevel);
+        for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
         out = assemble();
         break;
       }
+      // Why halve the tolerance instead of restoring the input at once: a conflict is almost
+      // always two chains closer than the tolerance (a narrow channel); a closer chord fixes it
+      // and keeps the coarse spacing along the chain.
+      std::vector<char> dirty(chains_.size(), 0);
+      for (std::size_t q : bad) {
+        const auto& [c, k0, k1] = flat_[q];
+        for (std::size_t k = k0; k < k1; ++k)
+          chains_[c].level[k] = static_cast<std::uint8_t>(std::min<int>(chains_[c].level[k] + 1, kMaxLevel));
+        dirty[c] = 1;
+      }
+      for (std::size_t c = 0; c < chains_.size(); ++c)
+        if (dirty[c]) plan_chain(c);
     }
     if (st) {
       st->chains = chains_.size();
-      st->pieces = pieces_.size();
-      st->pieces_restored = static_cast<std::size_t>(
-          std::count_if(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.restored; }));
+      st->pieces = flat_.size();
+      st->pieces_restored = 0;
+      for (const auto& ps : chain_pieces_)
+        for (const auto& p : ps) st->pieces_restored += p.restored;
       st->rounds = round + 1;
-      st->max_deviation = max_dev_;
+      st->max_deviation = 0;
+      for (const auto& ps : chain_pieces_)
+        for (const auto& p : ps) st->max_deviation = std::max(st->max_deviation, p.deviation);
       std::vector<char> used(in_.points.size(), 0);
       for (const auto& s : in_.segments) used[s.a] = used[s.b] = 1;
       st->vertices_in = static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
@@ -132,6 +156,7 @@ class Resampler {
         if (used[seg]) break;
       }
       c.closed = c.v.front() == c.v.back();
+      c.level.assign(c.v.size() - 1, 0);
       return c;
     };
     for (std::size_t v = 0; v < n; ++v) {
@@ -162,6 +187,13 @@ class Resampler {
 
   double tol(Point2 a, Point2 b) const { return o_.tolerance_factor * std::min(f(a), f(b)); }
 
+  // Tolerance scale over input segments [i, j): 0.5^level, 0 once a segment is at kMaxLevel.
+  double tol_scale(std::size_t c, std::size_t i, std::size_t j) const {
+    std::uint8_t L = 0;
+    for (std::size_t k = i; k < j; ++k) L = std::max(L, chains_[c].level[k]);
+    return L >= kMaxLevel ? 0.0 : std::ldexp(1.0, -static_cast<int>(L));
+  }
+
   void plan_chain(std::size_t c) {
     const Chain& ch = chains_[c];
     const std::size_t m = ch.v.size() - 1;
@@ -180,7 +212,8 @@ class Resampler {
         const double d = dist_to_segment(P(c, k), a, b);
         if (d > dmax) { dmax = d; kmax = k; }
       }
-      if (dmax > tol(a, b) || a == b) {
+      const double sc = tol_scale(c, i, j);
+      if (dmax > tol(a, b) * sc || a == b || sc == 0) {
         key[kmax] = 1;
         stack.push_back({i, kmax});
         stack.push_back({kmax, j});
@@ -201,6 +234,8 @@ class Resampler {
         }
       }
     }
+    auto& pieces = chain_pieces_[c];
+    pieces.clear();
     std::size_t k0 = 0;
     for (std::size_t k = 1; k <= m; ++k) {
       if (!key[k]) continue;
@@ -208,23 +243,23 @@ class Resampler {
       p.chain = c;
       p.k0 = k0;
       p.k1 = k;
-      place(p);
-      pieces_.push_back(std::move(p));
+      const double sc = tol_scale(c, k0, k);
+      if (sc == 0) p.restored = true;
+      else place(p, sc);
+      pieces.push_back(std::move(p));
       k0 = k;
     }
     // A closed chain of two pieces would be two segments between the same two vertices.
     if (ch.closed && m >= 3) {
-      std::size_t first = pieces_.size();
-      while (first > 0 && pieces_[first - 1].chain == c) --first;
       std::size_t pts = 0;
-      for (std::size_t q = first; q < pieces_.size(); ++q) pts += 1 + pieces_[q].inner.size();
+      for (const auto& p : pieces) pts += 1 + (p.restored ? p.k1 - p.k0 - 1 : p.inner.size());
       if (pts < 3)
-        for (std::size_t q = first; q < pieces_.size(); ++q) pieces_[q].restored = true;
+        for (auto& p : pieces) p.restored = true;
     }
   }
 
   // Points on the input polyline v[k0..k1] at equal steps of integral ds / (factor * f).
-  void place(Piece& p) {
+  void place(Piece& p, double tol_sc) {
     const std::size_t c = p.chain;
     struct Step { std::size_t k; double t0, t1, lam; };
     std::vector<Step> steps;
@@ -285,11 +320,11 @@ class Resampler {
         const double d = dist_to_segment(P(c, k), a.p, b.p);
         if (d > dmax) { dmax = d; kmax = k; }
       }
-      if (kmax != 0 && dmax > tol(a.p, b.p)) {
+      if (kmax != 0 && dmax > tol(a.p, b.p) * tol_sc) {
         seq.insert(seq.begin() + static_cast<std::ptrdiff_t>(i + 1), Q{P(c, kmax), chains_[c].v[kmax], kmax, 0.0});
         continue;
       }
-      max_dev_ = std::max(max_dev_, dmax);
+      p.deviation = std::max(p.deviation, dmax);
       ++i;
     }
     for (std::size_t i = 1; i + 1 < seq.size(); ++i) {
@@ -306,31 +341,35 @@ class Resampler {
     out.points = in_.points;
     if (!in_.point_markers.empty()) out.point_markers = in_.point_markers;
     seg_piece_.clear();
+    flat_.clear();
     pt_piece_.assign(in_.points.size(), kNoPiece);
-    for (std::size_t q = 0; q < pieces_.size(); ++q) {
-      const Piece& p = pieces_[q];
-      const Chain& ch = chains_[p.chain];
-      std::vector<Index> seq;
-      seq.push_back(ch.v[p.k0]);
-      if (p.restored) {
-        for (std::size_t k = p.k0 + 1; k < p.k1; ++k) seq.push_back(ch.v[k]);
-      } else {
-        for (std::size_t i = 0; i < p.inner.size(); ++i) {
-          if (p.inner_id[i] != kNoId) {
-            seq.push_back(p.inner_id[i]);
-            pt_piece_[p.inner_id[i]] = q;
-          } else {
-            seq.push_back(static_cast<Index>(out.points.size()));
-            out.points.push_back(p.inner[i]);
-            if (!out.point_markers.empty()) out.point_markers.push_back(0);
-            pt_piece_.push_back(q);
+    for (std::size_t c = 0; c < chains_.size(); ++c) {
+      const Chain& ch = chains_[c];
+      for (const Piece& p : chain_pieces_[c]) {
+        const std::size_t q = flat_.size();
+        flat_.push_back({c, p.k0, p.k1});
+        std::vector<Index> seq;
+        seq.push_back(ch.v[p.k0]);
+        if (p.restored) {
+          for (std::size_t k = p.k0 + 1; k < p.k1; ++k) seq.push_back(ch.v[k]);
+        } else {
+          for (std::size_t i = 0; i < p.inner.size(); ++i) {
+            if (p.inner_id[i] != kNoId) {
+              seq.push_back(p.inner_id[i]);
+              pt_piece_[p.inner_id[i]] = q;
+            } else {
+              seq.push_back(static_cast<Index>(out.points.size()));
+              out.points.push_back(p.inner[i]);
+              if (!out.point_markers.empty()) out.point_markers.push_back(0);
+              pt_piece_.push_back(q);
+            }
           }
         }
-      }
-      seq.push_back(ch.v[p.k1]);
-      for (std::size_t i = 0; i + 1 < seq.size(); ++i) {
-        out.segments.push_back({seq[i], seq[i + 1], ch.marker, ch.part});
-        seg_piece_.push_back(p.restored ? kNoPiece : q);
+        seq.push_back(ch.v[p.k1]);
+        for (std::size_t i = 0; i + 1 < seq.size(); ++i) {
+          out.segments.push_back({seq[i], seq[i + 1], ch.marker, ch.part});
+          seg_piece_.push_back(p.restored ? kNoPiece : q);
+        }
       }
     }
     // Compact: input points that are on no segment any more are dropped, isolated input points
@@ -360,13 +399,13 @@ class Resampler {
     return c;
   }
 
-  // Marks pieces in conflict as restored; returns true if any was found.
-  bool find_conflicts(const Pslg& out) {
-    bool any = false;
+  // Collects the (flat) pieces in conflict; returns true if any was found.
+  bool find_conflicts(const Pslg& out, std::vector<std::size_t>* bad) {
+    std::vector<char> mark(flat_.size(), 0);
     auto restore = [&](std::size_t q) {
-      if (q != kNoPiece && !pieces_[q].restored) {
-        pieces_[q].restored = true;
-        any = true;
+      if (q != kNoPiece && !mark[q]) {
+        mark[q] = 1;
+        bad->push_back(q);
       }
     };
     const Contacts ct = find_contacts(out.points, out.segments, nullptr);
@@ -378,10 +417,10 @@ class Resampler {
       restore(pt_piece_[v]);
       restore(seg_piece_[s]);
     }
-    if (any) return true;
+    if (!bad->empty()) return true;
     // Swept regions: no other vertex may lie between a new chain piece and its input polyline.
-    Box2 box = out.bbox();
     if (out.points.empty()) return false;
+    Box2 box = out.bbox();
     double mean = 0;
     for (const auto& s : out.segments) mean += dist(out.points[s.a], out.points[s.b]);
     mean = out.segments.empty() ? 1 : mean / static_cast<double>(out.segments.size());
@@ -390,27 +429,29 @@ class Resampler {
     for (Index v = 0; v < out.points.size(); ++v) grid.add_point(v, out.points[v]);
     std::vector<Index> near;
     std::vector<Point2> poly;
-    for (std::size_t q = 0; q < pieces_.size(); ++q) {
-      const Piece& p = pieces_[q];
-      if (p.restored || !p.changed()) continue;
-      poly.clear();
-      for (std::size_t k = p.k0; k <= p.k1; ++k) poly.push_back(P(p.chain, k));
-      for (std::size_t i = p.inner.size(); i-- > 0;) poly.push_back(p.inner[i]);
-      Box2 pb;
-      for (const auto& x : poly) pb.add(x);
-      grid.points_near(pb, &near);
-      const Point2 e0 = P(p.chain, p.k0), e1 = P(p.chain, p.k1);
-      for (Index v : near) {
-        if (pt_piece_[v] == q) continue;
-        const Point2 x = out.points[v];
-        if (x == e0 || x == e1) continue;
-        if (inside_or_on(x, poly)) {
-          restore(q);
-          break;
+    std::size_t q = 0;
+    for (std::size_t c = 0; c < chains_.size(); ++c)
+      for (const Piece& p : chain_pieces_[c]) {
+        const std::size_t qi = q++;
+        if (p.restored || !p.changed()) continue;
+        poly.clear();
+        for (std::size_t k = p.k0; k <= p.k1; ++k) poly.push_back(P(p.chain, k));
+        for (std::size_t i = p.inner.size(); i-- > 0;) poly.push_back(p.inner[i]);
+        Box2 pb;
+        for (const auto& x : poly) pb.add(x);
+        grid.points_near(pb, &near);
+        const Point2 e0 = P(p.chain, p.k0), e1 = P(p.chain, p.k1);
+        for (Index v : near) {
+          if (pt_piece_[v] == qi) continue;
+          const Point2 x = out.points[v];
+          if (x == e0 || x == e1) continue;
+          if (inside_or_on(x, poly)) {
+            restore(qi);
+            break;
+          }
         }
       }
-    }
-    return any;
+    return !bad->empty();
   }
 
   // Parity test with exact orientation; points on the polygon's boundary count as inside.
@@ -434,9 +475,10 @@ class Resampler {
   const Pslg& in_;
   ResampleOptions o_;
   std::vector<Chain> chains_;
-  std::vector<Piece> pieces_;
+  std::vector<std::vector<Piece>> chain_pieces_;
+  struct Flat { std::size_t chain, k0, k1; };
+  std::vector<Flat> flat_;  // pieces of the last assembly, in order
   std::vector<std::size_t> seg_piece_, pt_piece_;
-  double max_dev_ = 0;
 };
 
 }  // namespace
