@@ -202,6 +202,8 @@ int run(int argc, char** argv) {
     o.quiet = flags["mesh:quiet"];
     if (auto it = v.find("output"); it != v.end()) o.outputs = it->second;
     o.of = str(v, "of");
+    o.slf_double = flags["mesh:slf-double"];
+    o.telemac_open = str(v, "telemac-open");
     o.report_json = str(v, "report");
 
     DelayedProgress progress(o.quiet);
