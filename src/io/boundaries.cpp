@@ -57,23 +57,36 @@ Index pinch_node(const Boundaries& b, std::size_t num_vertices) {
 Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) {
   Boundaries out;
   const std::size_t nt = m.triangles.size();
-  // Directed half-edge (a -> b) -> 3 t + k.
-  std::unordered_map<std::uint64_t, std::size_t> half;
-  half.reserve(3 * nt + 16);
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      if (!half.emplace(directed_key(a, b), 3 * t + k).second)
-        detail::fail_output(path, "invalid mesh: edge " + std::to_string(a) + "-" + std::to_string(b) +
-                                      " is used twice in the same direction (overlapping or inverted triangles)");
-    }
+  const std::size_t nv = m.vertices.size();
   auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
   auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
   auto next_in_tri = [](std::size_t h) { return 3 * (h / 3) + (h % 3 + 1) % 3; };
-  auto twin = [&](std::size_t h) -> std::size_t {
-    auto it = half.find(directed_key(head(h), tail(h)));
-    return it == half.end() ? SIZE_MAX : it->second;
+  // Half-edges h = 3 t + k grouped by their tail vertex (compressed rows): the twin of a -> b is
+  // found among the few half-edges leaving b, with no hashing.
+  std::vector<std::size_t> start(nv + 1, 0), out_he(3 * nt);
+  for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t h = 0; h < 3 * nt; ++h) out_he[fill[tail(h)]++] = h;
+  }
+  // Each row sorted by head vertex: lookups by binary search, duplicates side by side.
+  for (std::size_t v = 0; v < nv; ++v) {
+    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[v]);
+    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    std::sort(b0, b1, [&](std::size_t x, std::size_t y) { return head(x) < head(y); });
+    for (auto it = b0; it != b1 && it + 1 != b1; ++it)
+      if (head(*it) == head(*(it + 1)))
+        detail::fail_output(path, "invalid mesh: edge " + std::to_string(v) + "-" + std::to_string(head(*it)) +
+                                      " is used twice in the same direction (overlapping or inverted triangles)");
+  }
+  auto find_half = [&](Index a, Index b) -> std::size_t {  // the half-edge a -> b, or SIZE_MAX
+    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[a]);
+    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[a + 1]);
+    auto it = std::lower_bound(b0, b1, b, [&](std::size_t x, Index key) { return head(x) < key; });
+    return it != b1 && head(*it) == b ? *it : SIZE_MAX;
   };
+  auto twin = [&](std::size_t h) { return find_half(head(h), tail(h)); };
 
   // Boundary half-edges in triangle order (deterministic).
   std::vector<std::size_t> bnd;

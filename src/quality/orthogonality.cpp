@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include "predicates/predicates.hpp"
@@ -42,31 +41,46 @@ OrthogonalityStats compute_orthogonality(const mesh::MeshView& m) {
   const std::size_t nt = m.triangles.size();
   std::vector<Point2> cc(nt);
   std::vector<double> area(nt);
+  for (const auto& tr : m.triangles)
+    for (Index v : tr)
+      if (v >= m.vertices.size()) return s;  // invalid mesh: compute_quality reports it
   for (std::size_t t = 0; t < nt; ++t) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
     cc[t] = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
     area[t] = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
   }
-  // Undirected edge -> first triangle seen; the second sighting makes it interior.
-  std::unordered_map<std::uint64_t, std::size_t> first;
-  first.reserve(3 * nt / 2 + 16);
+  // Half-edges h = 3 t + k grouped by tail vertex and sorted by head (compressed rows): the twin
+  // of a -> b is a binary search among the half-edges leaving b; no hashing.
+  const std::size_t nv = m.vertices.size();
+  auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
+  auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
+  std::vector<std::size_t> start(nv + 1, 0), out_he(3 * nt);
+  for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t h = 0; h < 3 * nt; ++h) out_he[fill[tail(h)]++] = h;
+  }
+  for (std::size_t v = 0; v < nv; ++v)
+    std::sort(out_he.begin() + static_cast<std::ptrdiff_t>(start[v]), out_he.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
+              [&](std::size_t x, std::size_t y) { return head(x) < head(y); });
   std::vector<double> ortho, smooth;
   ortho.reserve(3 * nt / 2);
   smooth.reserve(3 * nt / 2);
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      if (a > b) std::swap(a, b);
-      const std::uint64_t key = static_cast<std::uint64_t>(a) << 32 ^ static_cast<std::uint64_t>(b);
-      auto [it, inserted] = first.emplace(key, t);
-      if (inserted) continue;
-      const std::size_t u = it->second;
-      const Point2 e = m.vertices[b] - m.vertices[a], l = cc[t] - cc[u];
-      const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
-      ortho.push_back(el > 0 ? std::fabs(dot(e, l)) / el : 0.0);
-      const double lo = std::min(area[t], area[u]), hi = std::max(area[t], area[u]);
-      smooth.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
-    }
+  for (std::size_t h = 0; h < 3 * nt; ++h) {
+    const Index a = tail(h), b = head(h);
+    if (a > b) continue;  // each interior edge once, from its lower-numbered end
+    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[b]);
+    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[b + 1]);
+    auto it = std::lower_bound(b0, b1, a, [&](std::size_t x, Index key) { return head(x) < key; });
+    if (it == b1 || head(*it) != a) continue;  // boundary edge
+    const std::size_t t = h / 3, u = *it / 3;
+    const Point2 e = m.vertices[b] - m.vertices[a], l = cc[t] - cc[u];
+    const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
+    ortho.push_back(el > 0 ? std::fabs(dot(e, l)) / el : 0.0);
+    const double lo = std::min(area[t], area[u]), hi = std::max(area[t], area[u]);
+    smooth.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+  }
   s.interior_edges = ortho.size();
   if (!ortho.empty()) {
     s.orthogonality_max = *std::max_element(ortho.begin(), ortho.end());

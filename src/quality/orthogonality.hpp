@@ -25,7 +25,7 @@ struct OrthogonalityStats {
   std::optional<double> smoothness_max, smoothness_p99;
 };
 
-// One pass over the triangles (hash of the edges), circumcentres by predicates::circumcenter in
+// One pass over the half-edges (rows by tail vertex, no hashing), circumcentres by predicates::circumcenter in
 // the local frame. p99 is the nearest-rank 99th percentile over the interior edges.
 OrthogonalityStats compute_orthogonality(const mesh::MeshView& m);
 
