@@ -407,3 +407,30 @@ def test_bad_telemac_codes_and_ll_without_crs(tmp_path):
     assert g["open"] == [] and len(g["land"]) == 2 and all(t == 0 for t, _ in g["land"])
     assert g["land"][0][1][-1] == g["land"][1][1][0] and g["land"][1][1][-1] == g["land"][0][1][0]
     assert sorted(os.listdir(tmp_path)) == ["a.cli", "a.gr3", "a.slf"]
+
+
+def test_gpkg_boundary_kinds_agree(run):
+    """The GeoPackage 'boundaries' layer (lines by kind) tags every boundary edge as the model formats do."""
+    ogr = pytest.importorskip("osgeo.ogr")
+    d = run["dir"]
+    f14 = parse_adcirc(d / "m.14", schism=False)
+    node_of = {v[:2]: i for i, v in f14["nodes"].items()}  # shortest round-trip text: exact doubles
+    want = {}
+    for o in f14["open"]:
+        for a, b in list_edges(o):
+            want[frozenset((a, b))] = "open"
+    for t, l in f14["land"]:
+        for a, b in list_edges(l):
+            want[frozenset((a, b))] = "island" if t == 1 else "land"
+    ds = ogr.Open(str(d / "m.gpkg"))
+    got = {}
+    for f in ds.GetLayerByName("boundaries"):
+        kind = f.GetField("kind")
+        if kind not in ("open", "land", "island"):
+            continue
+        g = f.GetGeometryRef()
+        pts = [node_of[(g.GetX(i), g.GetY(i))] for i in range(g.GetPointCount())]
+        for a, b in zip(pts, pts[1:]):
+            got[frozenset((a, b))] = kind
+    ds = None
+    assert got == want
