@@ -3,16 +3,16 @@
 #include <nlohmann/json.hpp>
 #include "base/error.hpp"
 #include "base/version.hpp"
-#include "io/writer.hpp"
+#include "pipeline/output_formats.hpp"
 
 namespace fdr::cli {
 
 namespace {
-// The output formats as the writers publish them (io::format_infos): -o help and --of choices.
+// The output formats as the writers publish them (pipeline::output_formats): -o help and --of choices.
 std::string output_help() {
   std::string s = "Output mesh; format from the extension (";
   bool first = true;
-  for (const auto& f : io::format_infos()) {
+  for (const auto& f : pipeline::output_formats()) {
     s += std::string(first ? "" : " ") + f.extensions;
     first = false;
   }
@@ -20,7 +20,7 @@ std::string output_help() {
 }
 std::vector<std::string> output_choices() {
   std::vector<std::string> c;
-  for (const auto& f : io::format_infos()) c.push_back(f.name);
+  for (const auto& f : pipeline::output_formats()) c.push_back(f.name);
   return c;
 }
 }  // namespace
@@ -133,7 +133,7 @@ std::string json_usage() {
   j["commands"] = cmds;
   // Output formats (-o by extension, --of by name) with what each file carries.
   ordered_json fmts = ordered_json::array();
-  for (const auto& f : io::format_infos()) {
+  for (const auto& f : pipeline::output_formats()) {
     ordered_json e;
     e["name"] = f.name;
     ordered_json ext = ordered_json::array();

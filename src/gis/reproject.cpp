@@ -49,39 +49,4 @@ void reproject_mesh(mesh::MeshView& m, const Frame& frame, const std::string& cr
   CPLFree(wkt);
 }
 
-std::vector<LonLat> mesh_lonlat(const mesh::MeshView& m) {
-  if (m.crs_wkt.empty())
-    throw Error(ExitCode::kCrsError, "the mesh has no CRS, so its nodes cannot be given in lon/lat (EPSG:4326)");
-  ensure_gdal_registered();
-  OGRSpatialReference src;
-  {
-    GdalQuiet quiet;
-    if (src.SetFromUserInput(m.crs_wkt.c_str()) != OGRERR_NONE)
-      throw Error(ExitCode::kCrsError, "the mesh CRS cannot be parsed");
-  }
-  src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  OGRSpatialReference dst;
-  dst.importFromEPSG(4326);
-  dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation, void (*)(OGRCoordinateTransformation*)> ct(
-      OGRCreateCoordinateTransformation(&src, &dst), OGRCoordinateTransformation::DestroyCT);
-  if (!ct) throw Error(ExitCode::kCrsError, "no transformation from the mesh CRS to EPSG:4326");
-  const std::size_t n = m.vertices.size();
-  std::vector<double> x(n), y(n);
-  std::vector<int> ok(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point2 w = m.world(static_cast<Index>(i));
-    x[i] = w.x;
-    y[i] = w.y;
-  }
-  if (n && !ct->Transform(n, x.data(), y.data(), nullptr, ok.data()))
-    for (std::size_t i = 0; i < n; ++i)
-      if (!ok[i])
-        throw Error(ExitCode::kCrsError, "node " + std::to_string(i + 1) + " at (" + std::to_string(x[i]) + ", " +
-                                             std::to_string(y[i]) + ") cannot be transformed to EPSG:4326");
-  std::vector<LonLat> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = {x[i], y[i]};
-  return out;
-}
-
 }  // namespace fdr::gis

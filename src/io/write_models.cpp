@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "base/error.hpp"
-#include "gis/reproject.hpp"
+#include "gis/lonlat.hpp"
 #include "io/boundaries.hpp"
 #include "io/detail.hpp"
 
@@ -68,7 +68,7 @@ BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& p
 void write_adcirc(const mesh::MeshView& m, const std::string& path, const WriteOptions& o, BoundaryFlavor flavor) {
   const BoundaryLists bl = model_boundary_lists(m, path, flavor);
   std::vector<LonLat> ll;
-  if (flavor == BoundaryFlavor::kLl && !m.vertices.empty()) ll = gis::mesh_lonlat(m);
+  if (flavor == BoundaryFlavor::kLl && !m.vertices.empty()) ll = gis::points_to_lonlat(m.vertices, m.origin, m.crs_wkt);
   const bool down = flavor != BoundaryFlavor::kFort14 || o.fort14_depth_positive_down;
   auto count = [](const std::vector<BoundaryList>& v) {
     std::uint64_t n = 0;
