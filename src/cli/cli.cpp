@@ -182,6 +182,8 @@ pipeline::Options bind_mesh(std::map<std::string, Values>& values, std::map<std:
     o.quiet = flags["mesh:quiet"];
     if (auto it = v.find("output"); it != v.end()) o.outputs = it->second;
     o.of = str(v, "of");
+    o.slf_double = flags["mesh:slf-double"];
+    o.telemac_open = str(v, "telemac-open");
     o.report_json = str(v, "report");
     return o;
   }

@@ -3,8 +3,27 @@
 #include <nlohmann/json.hpp>
 #include "base/error.hpp"
 #include "base/version.hpp"
+#include "pipeline/output_formats.hpp"
 
 namespace fdr::cli {
+
+namespace {
+// The output formats as the writers publish them (pipeline::output_formats): -o help and --of choices.
+std::string output_help() {
+  std::string s = "Output mesh; format from the extension (";
+  bool first = true;
+  for (const auto& f : pipeline::output_formats()) {
+    s += std::string(first ? "" : " ") + f.extensions;
+    first = false;
+  }
+  return s + "); repeatable; .slf also writes NAME.cli";
+}
+std::vector<std::string> output_choices() {
+  std::vector<std::string> c;
+  for (const auto& f : pipeline::output_formats()) c.push_back(f.name);
+  return c;
+}
+}  // namespace
 
 const std::vector<OptSpec>& option_table() {
   static const std::vector<OptSpec> t = {
@@ -57,14 +76,16 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--max-steiner", "max-steiner", "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
       {"mesh", "--check", "check", "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails)"},
       // mesh: output
-      {"mesh", "-o,--output", "output", "file_out", "FILE", "", "Output",
-       "Output mesh; format from the extension (.gpkg .2dm .14/.grd .msh .nc .node .vtu); repeatable", true},
+      {"mesh", "-o,--output", "output", "file_out", "FILE", "", "Output", output_help(), true},
       {"mesh", "--of", "of", "choice", "FORMAT", "", "Output", "Output format override",
-       false, false, {"GPKG", "2DM", "FORT14", "MSH", "UGRID", "NODE", "VTU"}},
+       false, false, output_choices()},
+      {"mesh", "--slf-double", "slf-double", "flag", "", "", "Output", "Write Selafin (.slf) in double precision (SERAFIND)"},
+      {"mesh", "--telemac-open", "telemac-open", "string", "L,U,V", "5,4,4", "Output",
+       "Telemac .cli codes LIHBOR,LIUBOR,LIVBOR of open-boundary nodes (5,4,4 prescribed elevation; 4,5,5 prescribed velocity)"},
       {"mesh", "--report", "report", "file_out", "FILE.json", "", "Output", "Write the quality report as JSON"},
       {"mesh", "-q,--quiet", "quiet", "flag", "", "", "Output", "No progress and no report on stdout"},
       // quality
-      {"quality", "mesh", "mesh", "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .msh, .node, fdrmesh .gpkg)",
+      {"quality", "mesh", "mesh", "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .gr3/.ll, .slf, .msh, .node, fdrmesh .gpkg)",
        false, true, {}, true},
       {"quality", "--spacing", "spacing", "expr", "EXPR|PRESET", "", "Spacing", "Spacing f(x,y) in the mesh's coordinates"},
       {"quality", "--raster", "raster", "raster_in", "FILE", "", "Spacing", "Spacing from a size raster in the mesh's CRS (metres)"},
@@ -115,6 +136,25 @@ std::string json_usage() {
     cmds.push_back(cmd);
   }
   j["commands"] = cmds;
+  // Output formats (-o by extension, --of by name) with what each file carries.
+  ordered_json fmts = ordered_json::array();
+  for (const auto& f : pipeline::output_formats()) {
+    ordered_json e;
+    e["name"] = f.name;
+    ordered_json ext = ordered_json::array();
+    std::string x = f.extensions;
+    for (std::size_t p = 0; p < x.size();) {
+      const auto q = x.find(' ', p);
+      ext.push_back(x.substr(p, q == std::string::npos ? std::string::npos : q - p));
+      if (q == std::string::npos) break;
+      p = q + 1;
+    }
+    e["extensions"] = ext;
+    e["label"] = f.label;
+    e["carries"] = f.carries;
+    fmts.push_back(e);
+  }
+  j["output_formats"] = fmts;
   ordered_json codes = ordered_json::object();
   for (int c = 0; c <= 11; ++c) codes[std::to_string(c)] = exit_code_name(static_cast<ExitCode>(c));
   j["exit_codes"] = codes;

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 #include "base/error.hpp"
+#include "io/boundaries.hpp"
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -105,9 +106,38 @@ double circumradius(const mesh::MeshView& m, std::size_t t, Point2& centre);
 // Distance from each vertex to its nearest neighbour over triangle edges (+inf if isolated).
 std::vector<double> nearest_neighbour_distance(const mesh::MeshView& m);
 
+// Boundary node lists as each model format writes them, all from extract_boundaries (same
+// runs, same order, same orientation: mesh on the left); only closure conventions differ:
+//  * kFort14: a closed run (an island, or an outer loop of one kind) repeats its first node at
+//    the end (ADCIRC fort.14 rule);
+//  * kGr3/kLl: islands are not repeated (SCHISM closes them itself); an outer loop of one kind is
+//    split in two segments (SCHISM refuses a looped exterior segment);
+//  * k2dm: every closed run is split in two nodestrings (SMS refuses a nodestring that starts and
+//    ends on the same node).
+enum class BoundaryFlavor { kFort14, kGr3, kLl, k2dm };
+struct BoundaryList {
+  BoundaryKind kind = BoundaryKind::kLand;
+  std::vector<Index> nodes;
+};
+struct BoundaryLists {
+  std::vector<BoundaryList> open, walls;  // walls: land and island runs, in loop order
+  std::vector<BoundaryList> all() const {
+    std::vector<BoundaryList> r = open;
+    r.insert(r.end(), walls.begin(), walls.end());
+    return r;
+  }
+};
+BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& path, BoundaryFlavor flavor);
+
 // Format back ends (write_mesh validates the mesh first and dispatches here).
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
 void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
+// ADCIRC fort.14 and SCHISM hgrid.gr3 / hgrid.ll (flavor kFort14, kGr3, kLl).
+void write_adcirc(const mesh::MeshView& m, const std::string& path, const WriteOptions& o, BoundaryFlavor flavor);
+// Telemac Selafin geometry <path> and boundary conditions <base>.cli.
+void write_selafin(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
+// Delft3D FM UGRID net file.
+void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);
 
 // Lower-case extension including the dot (".gpkg"), "" if none; and the file name part.
 std::string lower_extension(const std::string& path);

@@ -1,4 +1,5 @@
-// Mesh readers: SMS 2dm, ADCIRC fort.14, Gmsh msh 4.1 ASCII, Triangle node/ele, fdrmesh GeoPackage.
+// Mesh readers: SMS 2dm, ADCIRC fort.14, SCHISM hgrid.gr3/.ll, Telemac Selafin, Gmsh msh 4.1 ASCII,
+// Triangle node/ele, fdrmesh GeoPackage.
 #include "io/reader.hpp"
 
 #include <ogr_spatialref.h>
@@ -208,7 +209,9 @@ std::int32_t adcirc_kind(long long ibtype) {
   }
 }
 
-mesh::MeshView read_fort14(const std::string& path, const ReadOptions& o) {
+// `schism`: hgrid.gr3/.ll, where depth is always positive down and island boundaries (type 1)
+// are closed without repeating their first node.
+mesh::MeshView read_fort14(const std::string& path, const ReadOptions& o, bool schism = false) {
   Lines in(path, true);
   if (!in.next()) in.fail("empty file, expected the grid title line");
   in.require_data("NE NP");
@@ -223,7 +226,7 @@ mesh::MeshView read_fort14(const std::string& path, const ReadOptions& o) {
     if (!ids.add(in.integer(0), static_cast<Index>(i))) in.fail("node id " + std::string(in.tok(0)) + " defined twice");
     m.vertices.push_back({in.real(1), in.real(2)});
     double dp = in.real(3);
-    m.z.push_back(o.fort14_depth_positive_down ? -dp : dp);
+    m.z.push_back(o.fort14_depth_positive_down || schism ? -dp : dp);
   }
   m.triangles.reserve(static_cast<std::size_t>(ne));
   for (long long i = 0; i < ne; ++i) {
@@ -256,6 +259,7 @@ mesh::MeshView read_fort14(const std::string& path, const ReadOptions& o) {
           in.require_data("a land boundary node id");
           chain.push_back(ids.at(in, in.integer(0)));
         }
+        if (schism && ibtype == 1 && chain.size() > 2 && chain.front() != chain.back()) chain.push_back(chain.front());
         add_chain(m, chain, adcirc_kind(ibtype), part++);
       }
     }
@@ -558,6 +562,140 @@ mesh::MeshView read_gpkg(const std::string& path) {
   return m;
 }
 
+// ------------------------------------------------------------------ Telemac Selafin
+// Fortran sequential records (big-endian as Telemac writes them; little-endian files are
+// accepted too): see write_selafin in write_models.cpp for the layout. Coordinates get the
+// IPARAM(3)/(4) origin added; z is the first time step of BOTTOM (or FOND), else 0.
+mesh::MeshView read_selafin(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) unreadable(path, std::string("cannot open: ") + std::strerror(errno));
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0, std::ios::beg);
+  bool swap = true;  // file big-endian on a little-endian machine
+  auto bad = [&](const std::string& why) -> void {
+    throw Error(ExitCode::kInputMalformed, path + ": byte " + std::to_string(static_cast<long long>(in.tellg())) + ": " + why);
+  };
+  auto u32 = [&]() {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) bad("unexpected end of file");
+    return swap ? (std::uint32_t{b[0]} << 24 | std::uint32_t{b[1]} << 16 | std::uint32_t{b[2]} << 8 | b[3])
+                : (std::uint32_t{b[3]} << 24 | std::uint32_t{b[2]} << 16 | std::uint32_t{b[1]} << 8 | b[0]);
+  };
+  auto u64 = [&]() {
+    std::uint64_t hi = u32(), lo = u32();
+    return swap ? (hi << 32 | lo) : (lo << 32 | hi);
+  };
+  {
+    std::uint32_t first = u32();
+    if (first != 80) {
+      swap = !swap;
+      in.seekg(0);
+      if (u32() != 80) bad("not a Selafin file (the first record is not the 80-character title)");
+    }
+    in.seekg(0);
+  }
+  // Reads one record's length marker, checks it against `want` when want > 0.
+  auto open_rec = [&](std::uint64_t want) {
+    const std::uint64_t n = u32();
+    if (want && n != want) bad("record of " + std::to_string(n) + " bytes, expected " + std::to_string(want));
+    if (n > size) bad("record length beyond the end of the file");
+    return n;
+  };
+  auto close_rec = [&](std::uint64_t n) {
+    if (u32() != n) bad("record end marker does not match its start");
+  };
+  open_rec(80);
+  std::string title(80, ' ');
+  if (!in.read(title.data(), 80)) bad("unexpected end of file");
+  close_rec(80);
+  const std::string kind = title.substr(72, 8);
+  const bool dbl = kind == "SERAFIND";
+  if (!dbl && kind.rfind("SERAFIN", 0) != 0 && kind != "        ") bad("unknown Selafin type '" + kind + "'");
+  open_rec(8);
+  const std::uint32_t nbv1 = u32(), nbv2 = u32();
+  close_rec(8);
+  if (nbv1 > 100000 || nbv2 > 100000) bad("implausible number of variables");
+  int bottom = -1;
+  for (std::uint32_t i = 0; i < nbv1 + nbv2; ++i) {
+    open_rec(32);
+    std::string name(32, ' ');
+    if (!in.read(name.data(), 32)) bad("unexpected end of file");
+    close_rec(32);
+    std::string n16 = name.substr(0, 16);
+    while (!n16.empty() && n16.back() == ' ') n16.pop_back();
+    if (bottom < 0 && (n16 == "BOTTOM" || n16 == "FOND")) bottom = static_cast<int>(i);
+  }
+  open_rec(40);
+  std::int32_t ip[10];
+  for (auto& v : ip) v = static_cast<std::int32_t>(u32());
+  close_rec(40);
+  if (ip[6] > 1) bad("3D Selafin files (IPARAM(7) = " + std::to_string(ip[6]) + " planes) are not meshes fdrmesh reads");
+  if (ip[7] != 0 || ip[8] != 0) bad("partitioned (parallel) Selafin files are not supported");
+  if (ip[9] == 1) {
+    open_rec(24);
+    for (int k = 0; k < 6; ++k) u32();
+    close_rec(24);
+  }
+  open_rec(16);
+  const std::uint32_t nelem = u32(), npoin = u32(), ndp = u32();
+  u32();
+  close_rec(16);
+  if (ndp != 3) bad("elements with " + std::to_string(ndp) + " nodes; only triangles (3) are read");
+  if (static_cast<std::uint64_t>(nelem) * 12 > size || static_cast<std::uint64_t>(npoin) * 8 > size)
+    bad("element or node count larger than the file");
+  mesh::MeshView m;
+  m.triangles.resize(nelem);
+  open_rec(12ull * nelem);
+  for (auto& t : m.triangles)
+    for (auto& v : t) {
+      const std::uint32_t id = u32();
+      if (id < 1 || id > npoin) bad("IKLE references node " + std::to_string(id) + " of " + std::to_string(npoin));
+      v = static_cast<Index>(id - 1);
+    }
+  close_rec(12ull * nelem);
+  open_rec(4ull * npoin);
+  for (std::uint32_t i = 0; i < npoin; ++i) u32();  // IPOBO
+  close_rec(4ull * npoin);
+  const std::uint64_t rs = dbl ? 8 : 4;
+  auto real = [&]() {
+    if (dbl) {
+      std::uint64_t u = u64();
+      double d;
+      std::memcpy(&d, &u, 8);
+      return d;
+    }
+    std::uint32_t u = u32();
+    float f;
+    std::memcpy(&f, &u, 4);
+    return static_cast<double>(f);
+  };
+  std::vector<double> x(npoin), y(npoin);
+  open_rec(rs * npoin);
+  for (auto& v : x) v = real() + ip[2];
+  close_rec(rs * npoin);
+  open_rec(rs * npoin);
+  for (auto& v : y) v = real() + ip[3];
+  close_rec(rs * npoin);
+  m.vertices.resize(npoin);
+  for (std::uint32_t i = 0; i < npoin; ++i) m.vertices[i] = {x[i], y[i]};
+  m.z.assign(npoin, 0.0);
+  if (bottom >= 0 && static_cast<std::uint64_t>(in.tellg()) < size) {
+    open_rec(rs);
+    real();  // time
+    close_rec(rs);
+    for (int i = 0; i <= bottom; ++i) {
+      open_rec(rs * npoin);
+      for (std::uint32_t k = 0; k < npoin; ++k) {
+        const double v = real();
+        if (i == bottom) m.z[k] = v;
+      }
+      close_rec(rs * npoin);
+    }
+  }
+  return m;
+}
+
 }  // namespace
 
 mesh::MeshView read_mesh(const std::string& path, const ReadOptions& options) {
@@ -574,9 +712,11 @@ mesh::MeshView read_mesh(const std::string& path, const ReadOptions& options) {
   else if (ext == ".msh") m = read_msh(path);
   else if (ext == ".node" || ext == ".ele") m = read_node_ele(path);
   else if (ext == ".gpkg") m = read_gpkg(path);
+  else if (ext == ".gr3" || ext == ".ll") m = read_fort14(path, options, true);
+  else if (ext == ".slf") m = read_selafin(path);
   else
-    unreadable(path, "cannot read meshes of this type; readable: .2dm, fort.14 (.14, .grd), .msh (4.1 ASCII), "
-                     ".node/.ele, .gpkg (written by fdrmesh)");
+    unreadable(path, "cannot read meshes of this type; readable: .2dm, fort.14 (.14, .grd), .gr3/.ll (SCHISM), "
+                     ".slf (Selafin), .msh (4.1 ASCII), .node/.ele, .gpkg (written by fdrmesh)");
   orient_ccw(m);
   return m;
 }

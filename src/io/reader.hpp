@@ -1,4 +1,5 @@
-// Mesh readers (2dm, fort.14, msh 4.1 ASCII, Triangle node/ele, fdrmesh GeoPackage) for `fdrmesh quality` and tests.
+// Mesh readers (2dm, fort.14, SCHISM gr3/ll, Telemac Selafin, msh 4.1 ASCII, Triangle node/ele, fdrmesh
+// GeoPackage) for `fdrmesh quality` and tests.
 #pragma once
 #include <string>
 #include "mesh/mesh_view.hpp"
@@ -10,8 +11,8 @@ struct ReadOptions {
   bool fort14_depth_positive_down = true;
 };
 
-// Reads a mesh; the format is chosen by extension as in format_from_path (UGRID .nc and .vtu are
-// write-only). The result has origin (0,0) and world coordinates as vertices, so coordinates read
+// Reads a mesh; the format is chosen by extension as in format_from_path (UGRID .nc, *_net.nc and
+// .vtu are write-only; .gr3/.ll depths are always positive down). The result has origin (0,0) and world coordinates as vertices, so coordinates read
 // back bit-exactly. Boundary chains become `edges` (marker = EdgeKind, part = chain/nodestring id).
 // Missing/unopenable file -> Error(kInputUnreadable); malformed content ->
 // Error(kInputMalformed, "<file>:<line>: ...").

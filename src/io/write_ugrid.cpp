@@ -7,30 +7,12 @@
 #include <cstring>
 
 #include "io/detail.hpp"
+#include "io/netcdf_util.hpp"
 #include "io/gdal_util.hpp"
 
 namespace fdr::io::detail {
 
 namespace {
-
-// Owns an open netCDF id; aborts (discarding changes) unless closed explicitly.
-struct NcFile {
-  int id = -1;
-  ~NcFile() { if (id >= 0) nc_abort(id); }
-};
-
-struct Nc {
-  const std::string& path;
-  void check(int status, const char* what) const {
-    if (status != NC_NOERR) fail_output(path, std::string("netCDF ") + what + ": " + nc_strerror(status));
-  }
-  void text(int nc, int var, const char* name, const std::string& v) const {
-    check(nc_put_att_text(nc, var, name, v.size(), v.c_str()), name);
-  }
-  void integer(int nc, int var, const char* name, int v) const {
-    check(nc_put_att_int(nc, var, name, NC_INT, 1, &v), name);
-  }
-};
 
 // netCDF names: letters, digits and '_', starting with a letter.
 std::string nc_name(const std::string& key) {
@@ -41,6 +23,39 @@ std::string nc_name(const std::string& key) {
 
 }  // namespace
 
+NcCrs nc_crs(const std::string& crs_wkt, const std::string& path) {
+  NcCrs c;
+  if (crs_wkt.empty()) return c;
+  gdal_register_once();
+  GdalErrors errs;
+  OGRSpatialReference srs;
+  if (srs.SetFromUserInput(crs_wkt.c_str()) != OGRERR_NONE)
+    fail_output(path, errs.reason("the mesh CRS cannot be parsed"));
+  c.geographic = srs.IsGeographic();
+  char* s = nullptr;
+  if (srs.exportToWkt(&s) == OGRERR_NONE && s) c.wkt1 = s;
+  CPLFree(s);
+  s = nullptr;
+  const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+  if (srs.exportToWkt(&s, opts) == OGRERR_NONE && s) c.wkt2 = s;
+  CPLFree(s);
+  if (c.wkt1.empty()) c.wkt1 = crs_wkt;
+  if (c.wkt2.empty()) c.wkt2 = crs_wkt;
+  OGRSpatialReference probe(srs);
+  const char* auth = probe.GetAuthorityName(nullptr);
+  if (!(auth && std::strcmp(auth, "EPSG") == 0)) {
+    probe.AutoIdentifyEPSG();
+    auth = probe.GetAuthorityName(nullptr);
+  }
+  if (auth && std::strcmp(auth, "EPSG") == 0 && probe.GetAuthorityCode(nullptr))
+    c.epsg = std::atoi(probe.GetAuthorityCode(nullptr));
+  c.semi_major = srs.GetSemiMajor();
+  c.semi_minor = srs.GetSemiMinor();
+  c.inverse_flattening = srs.GetInvFlattening();
+  if (const char* n = srs.GetName()) c.name = n;
+  return c;
+}
+
 void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   Nc nc{path};
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size(), ne = m.edges.size();
@@ -48,34 +63,11 @@ void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOp
   const bool wide = nv > static_cast<std::size_t>(INT_MAX);
   const nc_type id_type = wide ? NC_INT64 : NC_INT;
 
-  bool geographic = false;
-  std::string wkt1, wkt2;
-  int epsg = 0;
-  if (!m.crs_wkt.empty()) {
-    gdal_register_once();
-    GdalErrors errs;
-    OGRSpatialReference srs;
-    if (srs.SetFromUserInput(m.crs_wkt.c_str()) != OGRERR_NONE)
-      fail_output(path, errs.reason("the mesh CRS cannot be parsed"));
-    geographic = srs.IsGeographic();
-    char* s = nullptr;
-    if (srs.exportToWkt(&s) == OGRERR_NONE && s) wkt1 = s;
-    CPLFree(s);
-    s = nullptr;
-    const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-    if (srs.exportToWkt(&s, opts) == OGRERR_NONE && s) wkt2 = s;
-    CPLFree(s);
-    if (wkt1.empty()) wkt1 = m.crs_wkt;
-    if (wkt2.empty()) wkt2 = m.crs_wkt;
-    OGRSpatialReference probe(srs);
-    const char* auth = probe.GetAuthorityName(nullptr);
-    if (!(auth && std::strcmp(auth, "EPSG") == 0)) {
-      probe.AutoIdentifyEPSG();
-      auth = probe.GetAuthorityName(nullptr);
-    }
-    if (auth && std::strcmp(auth, "EPSG") == 0 && probe.GetAuthorityCode(nullptr))
-      epsg = std::atoi(probe.GetAuthorityCode(nullptr));
-  }
+  const NcCrs crs = nc_crs(m.crs_wkt, path);
+  const bool geographic = crs.geographic;
+  const std::string& wkt1 = crs.wkt1;
+  const std::string& wkt2 = crs.wkt2;
+  const int epsg = crs.epsg;
 
   TempFile tf(path);
   tf.release_for_library();

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "base/error.hpp"
 #include "io/detail.hpp"
@@ -16,37 +17,59 @@ using detail::Chain;
 using detail::TempFile;
 using detail::TextOut;
 
+const std::vector<FormatInfo>& format_infos() {
+  static const std::vector<FormatInfo> t = {
+      {Format::kGpkg, "GPKG", ".gpkg", "GeoPackage (nodes, triangles, boundaries, repairs)",
+       "z positive up; boundaries as lines with kind; CRS"},
+      {Format::k2dm, "2DM", ".2dm", "SMS 2DM mesh",
+       "z positive up; nodestrings: open, then land and island boundaries; no CRS"},
+      {Format::kFort14, "FORT14", ".14 .grd fort.14", "ADCIRC fort.14 mesh",
+       "depth positive down; open (elevation) and land boundaries, IBTYPE 0 mainland / 1 island; no CRS"},
+      {Format::kGr3, "GR3", ".gr3", "SCHISM hgrid.gr3",
+       "depth positive down; open, land (0) and island (1) boundaries; no CRS (working CRS coordinates)"},
+      {Format::kLl, "LL", ".ll", "SCHISM hgrid.ll (lon/lat)",
+       "hgrid.gr3 with EPSG:4326 lon/lat nodes; depth positive down; same boundaries"},
+      {Format::kSelafin, "SELAFIN", ".slf", "Telemac Selafin geometry + .cli",
+       "BOTTOM = bed elevation positive up; IPOBO and NAME.cli boundary codes; no CRS (I_ORIG/J_ORIG offset)"},
+      {Format::kDflowfm, "DFLOWFM", "_net.nc", "Delft3D FM UGRID net file",
+       "node z positive up; every edge, edge type open/closed boundary; EPSG CRS"},
+      {Format::kUgrid, "UGRID", ".nc", "UGRID netCDF mesh",
+       "z positive up; constrained edges with kind; CRS"},
+      {Format::kMsh, "MSH", ".msh", "Gmsh 4.1 mesh", "z positive up; boundary physical groups; no CRS"},
+      {Format::kNode, "NODE", ".node .ele", "Triangle node/ele", "z, f attributes; vertex markers; no CRS"},
+      {Format::kVtu, "VTU", ".vtu", "VTK unstructured grid", "z, f point data; no boundaries; no CRS"},
+  };
+  return t;
+}
+
 const char* format_name(Format f) {
-  switch (f) {
-    case Format::kGpkg: return "GPKG";
-    case Format::k2dm: return "2DM";
-    case Format::kMsh: return "MSH";
-    case Format::kNode: return "NODE";
-    case Format::kVtu: return "VTU";
-    case Format::kFort14: return "FORT14";
-    case Format::kUgrid: return "UGRID";
-  }
+  for (const auto& i : format_infos())
+    if (i.format == f) return i.name;
   return "?";
 }
 
 namespace {
-constexpr Format kAllFormats[] = {Format::kGpkg, Format::k2dm,   Format::kMsh,  Format::kNode,
-                                  Format::kVtu,  Format::kFort14, Format::kUgrid};
-const char* const kKnownList =
-    "GPKG (.gpkg), 2DM (.2dm), MSH (.msh), NODE (.node/.ele), VTU (.vtu), FORT14 (.14, .grd, fort.14), "
-    "UGRID (.nc)";
+std::string known_list() {
+  std::string s;
+  for (const auto& i : format_infos()) {
+    if (!s.empty()) s += ", ";
+    s += std::string(i.name) + " (" + i.extensions + ")";
+  }
+  return s;
+}
 }  // namespace
 
 Format format_from_path(const std::string& path, const std::string& of_override) {
   if (!of_override.empty()) {
     std::string up = of_override;
     for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    for (Format f : kAllFormats)
-      if (up == format_name(f)) return f;
-    throw Error(ExitCode::kUsage, "unknown output format '" + of_override + "'; known formats: " + kKnownList);
+    for (const auto& i : format_infos())
+      if (up == i.name) return i.format;
+    throw Error(ExitCode::kUsage, "unknown output format '" + of_override + "'; known formats: " + known_list());
   }
   std::string name = detail::to_lower(detail::file_name(path));
   if (name == "fort.14") return Format::kFort14;
+  if (name.size() > 7 && name.compare(name.size() - 7, 7, "_net.nc") == 0) return Format::kDflowfm;
   std::string ext = detail::lower_extension(path);
   if (ext == ".gpkg") return Format::kGpkg;
   if (ext == ".2dm") return Format::k2dm;
@@ -55,8 +78,30 @@ Format format_from_path(const std::string& path, const std::string& of_override)
   if (ext == ".vtu") return Format::kVtu;
   if (ext == ".14" || ext == ".grd") return Format::kFort14;
   if (ext == ".nc") return Format::kUgrid;
+  if (ext == ".slf") return Format::kSelafin;
+  if (ext == ".gr3") return Format::kGr3;
+  if (ext == ".ll") return Format::kLl;
   throw Error(ExitCode::kUsage, "cannot tell the output format of '" + path +
-                                    "' from its extension; use --of with one of: " + kKnownList);
+                                    "' from its extension; use --of with one of: " + known_list());
+}
+
+std::array<int, 3> parse_telemac_codes(const std::string& text) {
+  std::array<int, 3> c{};
+  std::string t = text;
+  for (char& ch : t)
+    if (ch == ',' || ch == ';') ch = ' ';
+  std::istringstream in(t);
+  std::string extra;
+  int k = 0;
+  for (; k < 3 && (in >> c[k]); ++k) {
+  }
+  bool ok = k == 3 && !(in >> extra);
+  for (int v : c) ok = ok && v >= 0 && v <= 6;
+  if (!ok)
+    throw Error(ExitCode::kUsage, "--telemac-open '" + text +
+                                      "': give three Telemac codes LIHBOR,LIUBOR,LIVBOR in 0..6, e.g. 5,4,4 "
+                                      "(prescribed elevation) or 4,5,5 (prescribed velocity)");
+  return c;
 }
 
 namespace {
@@ -91,10 +136,11 @@ void write_2dm(const mesh::MeshView& m, const std::string& path, const WriteOpti
     Point2 w = m.world(static_cast<Index>(v));
     out.str("ND ").num(static_cast<std::uint64_t>(v + 1)).sp().num(w.x).sp().num(w.y).sp().num(z_of(m, v)).nl();
   }
-  for (const Chain& c : detail::build_chains(m)) {
-    if (c.marker != static_cast<std::int32_t>(mesh::EdgeKind::kOpen)) continue;
-    std::vector<Index> ids = c.nodes;
-    if (c.closed) ids.push_back(ids.front());
+  // One nodestring per boundary run (open runs first, then land and island runs; see
+  // detail::model_boundary_lists); closed runs are split in two, as SMS does not allow a
+  // nodestring that starts and ends on the same node.
+  for (const auto& ns : detail::model_boundary_lists(m, path, detail::BoundaryFlavor::k2dm).all()) {
+    const std::vector<Index>& ids = ns.nodes;
     for (std::size_t i = 0; i < ids.size(); ++i) {
       if (i % 10 == 0) out.str(i ? "\nNS" : "NS");
       auto id = static_cast<std::int64_t>(ids[i]) + 1;
@@ -309,64 +355,6 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
   tf.commit();
 }
 
-// ------------------------------------------------------------------ ADCIRC fort.14
-// AGRID / NE NP / nodes "JN X Y DP" (DP = depth positive down = -z by default) / elements
-// "JE 3 n1 n2 n3" / NOPE NETA, per open chain "NVDLL 0" + node ids / NBOU NVEL, per land chain
-// "NVELL IBTYPE" (0 mainland, 1 island) + node ids. Closed chains repeat their first node at the
-// end. Breaklines and unmarked constrained edges are not ADCIRC boundaries and are not written.
-void write_fort14(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
-  std::vector<Chain> chains = detail::build_chains(m);
-  std::vector<const Chain*> open, land;
-  for (const Chain& c : chains) {
-    auto k = static_cast<mesh::EdgeKind>(c.marker);
-    if (k == mesh::EdgeKind::kOpen) open.push_back(&c);
-    if (k == mesh::EdgeKind::kLand || k == mesh::EdgeKind::kIsland) land.push_back(&c);
-  }
-  auto count = [](const std::vector<const Chain*>& cs) {
-    std::uint64_t n = 0;
-    for (const Chain* c : cs) n += c->nodes.size() + (c->closed ? 1 : 0);
-    return n;
-  };
-  auto ids = [&](TextOut& out, const Chain& c) {
-    for (Index v : c.nodes) out.num(static_cast<std::uint64_t>(v) + 1).nl();
-    if (c.closed) out.num(static_cast<std::uint64_t>(c.nodes.front()) + 1).nl();
-  };
-  TempFile tf(path);
-  TextOut out(tf.stream(), path);
-  out.str(one_line(o.title.empty() ? "fdrmesh" : o.title)).nl();
-  out.num(static_cast<std::uint64_t>(m.triangles.size())).sp().num(static_cast<std::uint64_t>(m.vertices.size()))
-      .str(" ! NE NP").nl();
-  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-    Point2 w = m.world(static_cast<Index>(v));
-    double z = z_of(m, v);
-    double dp = o.fort14_depth_positive_down ? -z : z;
-    if (dp == 0) dp = 0;  // no "-0" in the file
-    out.num(static_cast<std::uint64_t>(v + 1)).sp().num(w.x).sp().num(w.y).sp().num(dp).nl();
-  }
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    out.num(static_cast<std::uint64_t>(t + 1)).str(" 3");
-    for (Index v : m.triangles[t]) out.sp().num(static_cast<std::uint64_t>(v) + 1);
-    out.nl();
-  }
-  out.num(static_cast<std::uint64_t>(open.size())).str(" = Number of open boundaries").nl();
-  out.num(count(open)).str(" = Total number of open boundary nodes").nl();
-  for (std::size_t i = 0; i < open.size(); ++i) {
-    out.num(static_cast<std::uint64_t>(open[i]->nodes.size() + (open[i]->closed ? 1 : 0)))
-        .str(" 0 = Number of nodes for open boundary ").num(static_cast<std::uint64_t>(i + 1)).nl();
-    ids(out, *open[i]);
-  }
-  out.num(static_cast<std::uint64_t>(land.size())).str(" = Number of land boundaries").nl();
-  out.num(count(land)).str(" = Total number of land boundary nodes").nl();
-  for (std::size_t i = 0; i < land.size(); ++i) {
-    int ibtype = static_cast<mesh::EdgeKind>(land[i]->marker) == mesh::EdgeKind::kIsland ? 1 : 0;
-    out.num(static_cast<std::uint64_t>(land[i]->nodes.size() + (land[i]->closed ? 1 : 0))).sp().num(ibtype)
-        .str(" = Number of nodes for land boundary ").num(static_cast<std::uint64_t>(i + 1)).nl();
-    ids(out, *land[i]);
-  }
-  out.flush();
-  tf.commit();
-}
-
 }  // namespace
 
 void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format format, const WriteOptions& options) {
@@ -380,8 +368,12 @@ void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format form
       case Format::kMsh: write_msh(mesh, path, options); return;
       case Format::kNode: write_node_ele(mesh, path, options); return;
       case Format::kVtu: write_vtu(mesh, path, options); return;
-      case Format::kFort14: write_fort14(mesh, path, options); return;
+      case Format::kFort14: detail::write_adcirc(mesh, path, options, detail::BoundaryFlavor::kFort14); return;
       case Format::kUgrid: detail::write_ugrid(mesh, path, options); return;
+      case Format::kGr3: detail::write_adcirc(mesh, path, options, detail::BoundaryFlavor::kGr3); return;
+      case Format::kLl: detail::write_adcirc(mesh, path, options, detail::BoundaryFlavor::kLl); return;
+      case Format::kSelafin: detail::write_selafin(mesh, path, options); return;
+      case Format::kDflowfm: detail::write_dflowfm_net(mesh, path, options); return;
     }
   } catch (const Error&) {
     throw;

@@ -1,5 +1,7 @@
-// Mesh writers for modelers' formats (GeoPackage, SMS 2dm, Gmsh msh, Triangle node/ele, VTU, ADCIRC fort.14, UGRID).
+// Mesh writers for modelers' formats (GeoPackage, SMS 2dm, Gmsh msh, Triangle node/ele, VTU, ADCIRC fort.14, UGRID,
+// Telemac Selafin + .cli, SCHISM hgrid.gr3/.ll, Delft3D FM net file).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -10,13 +12,25 @@
 
 namespace fdr::io {
 
-enum class Format { kGpkg, k2dm, kMsh, kNode, kVtu, kFort14, kUgrid };
+enum class Format { kGpkg, k2dm, kMsh, kNode, kVtu, kFort14, kUgrid, kSelafin, kGr3, kLl, kDflowfm };
+
+// What the option table publishes about each format (--help, --json-usage, the QGIS plugin).
+struct FormatInfo {
+  Format format;
+  const char* name;        // --of value (format_name)
+  const char* extensions;  // e.g. ".14 .grd fort.14"
+  const char* label;       // short description ("ADCIRC fort.14 mesh")
+  const char* carries;     // depth sign, boundaries, CRS
+};
+// Every writable format, in the order they are documented.
+const std::vector<FormatInfo>& format_infos();
 
 // Short upper-case name of a format as accepted by --of ("GPKG", "2DM", ...).
 const char* format_name(Format f);
 
-// Format from the file name (.gpkg .2dm .msh .node/.ele .vtu .14/.grd/fort.14 .nc), or from
-// `of_override` (GPKG, 2DM, MSH, NODE, VTU, FORT14, UGRID; case-insensitive) when non-empty.
+// Format from the file name (.gpkg .2dm .msh .node/.ele .vtu .14/.grd/fort.14 .nc .slf .gr3 .ll,
+// *_net.nc), or from `of_override` (GPKG, 2DM, MSH, NODE, VTU, FORT14, UGRID, SELAFIN, GR3, LL,
+// DFLOWFM; case-insensitive) when non-empty.
 // Unknown name or extension -> Error(kUsage) listing the known ones.
 Format format_from_path(const std::string& path, const std::string& of_override = "");
 
@@ -49,12 +63,21 @@ struct WriteOptions {
   const std::vector<double>* triangle_r_over_f = nullptr;
   const std::vector<double>* triangle_min_angle = nullptr;
   const std::vector<double>* triangle_area = nullptr;
+  // Telemac: Selafin in double precision ("SERAFIND") instead of single; LIHBOR LIUBOR LIVBOR
+  // of the open-boundary nodes in the .cli (default 5 4 4: prescribed elevation, free velocity).
+  bool slf_double = false;
+  std::array<int, 3> telemac_open_codes{5, 4, 4};
 };
+
+// Parses --telemac-open "L,U,V" (three Telemac boundary codes 0..6, comma or blank separated);
+// throws Error(kUsage) otherwise.
+std::array<int, 3> parse_telemac_codes(const std::string& text);
 
 // Writes `mesh` to `path` in `format`. The file is written to "<path>.tmp-XXXXXX" in the same
 // folder and renamed to `path` on success; on any failure the temp file is removed and
 // Error(kOutputError, "<path>: <reason>") is thrown, so no half-written file ever remains.
-// Format::kNode writes both <base>.node and <base>.ele (path may end in either).
+// Format::kNode writes both <base>.node and <base>.ele (path may end in either); Format::kSelafin
+// writes <path> and <base>.cli beside it.
 void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format format,
                 const WriteOptions& options = {});
 

@@ -24,6 +24,8 @@ struct Options {
   std::string of;
   std::string report_json;
   std::string write_spacing;             // GeoTIFF of the final f (GIS runs)
+  bool slf_double = false;               // Selafin in double precision (SERAFIND)
+  std::string telemac_open;              // LIHBOR,LIUBOR,LIVBOR of open nodes in the .cli ("" = 5,4,4)
   bool overwrite = true;
 
   // Spacing.

@@ -50,6 +50,12 @@ void log_info(const LogFn& log, const std::string& s) {
 }
 }  // namespace
 
+// The .cli written beside a Selafin output.
+static std::string cli_path_of(const std::string& slf) {
+  const std::string e = lower_ext(slf);
+  return (e == "slf" ? slf.substr(0, slf.size() - 4) : slf) + ".cli";
+}
+
 bool is_poly_input(const std::string& path) {
   const std::string e = lower_ext(path);
   return e == "poly" || e == "node";
@@ -69,6 +75,12 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // Resolve output formats first: a bad -o fails before any work.
   std::vector<io::Format> formats;
   for (const auto& o : opt.outputs) formats.push_back(io::format_from_path(o, opt.of));
+  const std::array<int, 3> telemac_codes =
+      opt.telemac_open.empty() ? std::array<int, 3>{5, 4, 4} : io::parse_telemac_codes(opt.telemac_open);
+  for (std::size_t i = 0; i < formats.size(); ++i)
+    if (formats[i] == io::Format::kLl && is_poly_input(opt.input))
+      throw Error(ExitCode::kUsage, opt.outputs[i] + ": hgrid.ll needs lon/lat, but a .poly/.node input has no CRS; "
+                                                     "write .gr3 instead or mesh from GIS layers");
   predicates::reset_counters();
 
   Result result;
@@ -197,6 +209,8 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   wo.f = &f;
   wo.bound_B = opt.bound;
   wo.title = source;
+  wo.slf_double = opt.slf_double;
+  wo.telemac_open_codes = telemac_codes;
   {
     std::ostringstream js;
     quality::write_json(result.report, js);
@@ -248,6 +262,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
       io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
       result.written.push_back(opt.outputs[i]);
+      if (formats[i] == io::Format::kSelafin) extra_paths.push_back(cli_path_of(opt.outputs[i]));
       if (formats[i] == io::Format::kNode) {
         const std::string& o = opt.outputs[i];
         const auto dot = o.find_last_of('.');

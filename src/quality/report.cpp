@@ -149,6 +149,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
   r.guarantees = compute_guarantees(alpha, bound_B);
   r.run = run;
+  r.orthogonality = compute_orthogonality(m);
 
   const std::size_t nv = m.num_vertices();
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
@@ -294,6 +295,8 @@ void write_json(const QualityReport& r, std::ostream& out) {
     j["vertical_error_rms_m"] = num(r.vertical_error_rms_m);
   }
   j["nn_over_f_min"] = num(r.nn_over_f_min);
+  j["orthogonality"] = {{"max", num(r.orthogonality.orthogonality_max)}, {"p99", num(r.orthogonality.orthogonality_p99)}};
+  j["smoothness"] = {{"max", num(r.orthogonality.smoothness_max)}, {"p99", num(r.orthogonality.smoothness_p99)}};
   j["min_angle_histogram"] = histogram_json(r.min_angle_histogram);
   j["max_angle_histogram"] = histogram_json(r.max_angle_histogram);
   {
@@ -366,6 +369,10 @@ void write_text(const QualityReport& r, std::ostream& out) {
   }
   line(out, "angle min / max (deg)", fmt(r.min_angle_deg, "%.4f") + " / " + fmt(r.max_angle_deg, "%.4f"));
   line(out, "max radius-edge R/l", fmt(r.max_radius_edge, "%.4f"));
+  line(out, "orthogonality max / p99", fmt(r.orthogonality.orthogonality_max, "%.3g") + " / " +
+                                           fmt(r.orthogonality.orthogonality_p99, "%.3g"));
+  line(out, "smoothness max / p99", fmt(r.orthogonality.smoothness_max, "%.4f") + " / " +
+                                        fmt(r.orthogonality.smoothness_p99, "%.4f"));
   if (r.max_R_over_f) {
     line(out, "R/f(c) max / mean", fmt(r.max_R_over_f, "%.4f") + " / " + fmt(r.mean_R_over_f, "%.4f"));
     line(out, "bad triangles (R/f(c) > B)", std::to_string(*r.bad_triangles) + "  (B = " + fmt(r.bound_B) + ")");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 #include "mesh/mesh_view.hpp"
+#include "quality/orthogonality.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::quality {
@@ -76,6 +77,8 @@ struct QualityReport {
   std::size_t spacing_invalid = 0;
   // Terrain runs: vertical error of the linear TIN against the DEM cells inside the domain.
   std::optional<double> vertical_error_max_m, vertical_error_rms_m;       // evaluations of f that were <= 0 or not finite (skipped)
+
+  OrthogonalityStats orthogonality;  // Delft3D FM grid checks (quality/orthogonality.hpp)
 
   double bound_B = 0;
   double alpha = 0;

@@ -66,13 +66,33 @@ LOG_TAG = "fdrmesh"
 _HANDLED_KEYS = {"output", "of", "quiet"}
 # Options shown on the main page of the dialog; every other option goes under "Advanced".
 _COMMON_KEYS = {"input", "open-boundary", "land", "extent", "raster", "spacing", "hmin", "hmax", "t_srs"}
-# One output parameter per mesh format (the CLI picks the format from the extension).
+# One output parameter per mesh format (the CLI picks the format from the extension). The list
+# comes from `fdrmesh --json-usage` ("output_formats", see mesh_outputs); this one is the fallback
+# for an older CLI that does not publish it.
 _MESH_OUTPUTS = [
     ("OUTPUT", "Output GeoPackage (nodes, triangles, boundaries, repairs)", "GeoPackage (*.gpkg)", False),
     ("OUTPUT_2DM", "Output SMS 2DM mesh", "SMS 2DM (*.2dm)", True),
     ("OUTPUT_UGRID", "Output UGRID netCDF mesh", "UGRID netCDF (*.nc)", True),
     ("OUTPUT_FORT14", "Output ADCIRC fort.14 mesh", "ADCIRC fort.14 (*.14 *.grd)", True),
 ]
+
+
+def mesh_outputs(usage):
+    """(parameter name, description, file filter, optional) per output format the CLI publishes:
+    OUTPUT for the GeoPackage (required: the plugin loads its layers), OUTPUT_<NAME> for the others."""
+    fmts = (usage or {}).get("output_formats")
+    if not fmts:
+        return list(_MESH_OUTPUTS)
+    out = []
+    for f in fmts:
+        name = "OUTPUT" if f["name"] == "GPKG" else "OUTPUT_" + f["name"]
+        pats = " ".join(e if not e.startswith((".", "_")) else "*" + e for e in f.get("extensions", []))
+        desc = "Output %s" % f.get("label", f["name"])
+        if f.get("carries"):
+            desc += " [%s]" % f["carries"]
+        out.append((name, desc, "%s (%s)" % (f.get("label", f["name"]), pats), name != "OUTPUT"))
+    out.sort(key=lambda o: o[0] != "OUTPUT")  # the GeoPackage first
+    return out
 _OGR_FORMATS = ["gpkg", "shp", "geojson", "json", "fgb", "gml", "kml", "sqlite", "tab", "mif"]
 _BOUNDARY_COLOURS = {"land": "#8c6d31", "island": "#31a354", "open": "#2171b5"}
 
@@ -399,7 +419,7 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             self._params.append((p.name(), opt, layer_option_key(opts, opt) if opt["type"] == "vector_in" else None))
         for p in common + advanced:
             self.addParameter(p)
-        for name, desc, filt, optional in _MESH_OUTPUTS:
+        for name, desc, filt, optional in mesh_outputs(st["usage"]):
             p = QgsProcessingParameterFileDestination(name, desc, filt, optional=optional,
                                                       createByDefault=not optional)
             self.addParameter(p)
@@ -512,7 +532,7 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
                 positional.append(value)
             else:
                 args += [flag, value]
-        for name, _desc, _filt, _optional in _MESH_OUTPUTS:
+        for name, _desc, _filt, _optional in mesh_outputs(self.status()["usage"]):
             if parameters.get(name) in (None, ""):
                 continue
             path = self.parameterAsFileOutput(parameters, name, context)
@@ -542,7 +562,10 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             args += ["--report", report]
         feedback.pushCommandInfo(" ".join(_quote(a) for a in args))
         try:
-            self._run(args, list(outputs.values()), feedback)
+            paths = list(outputs.values())
+            # A Selafin output comes with its .cli boundary file beside it.
+            paths += [os.path.splitext(p)[0] + ".cli" for p in paths if p.lower().endswith(".slf")]
+            self._run(args, paths, feedback)
             with open(report, encoding="utf-8") as f:
                 rep = json.load(f)
         finally:
@@ -665,7 +688,7 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             crs = self.parameterAsCrs(parameters, "OUTPUT_CRS", context)
         if not crs.isValid() and meta.get("crs_wkt"):
             crs = QgsCoordinateReferenceSystem.fromWkt(meta["crs_wkt"])
-        for name in ("OUTPUT_2DM", "OUTPUT_UGRID"):
+        for name in ("OUTPUT_2DM", "OUTPUT_UGRID", "OUTPUT_DFLOWFM", "OUTPUT_SELAFIN"):
             path = outputs.get(name)
             if not path:
                 continue

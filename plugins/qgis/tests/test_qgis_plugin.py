@@ -302,6 +302,12 @@ def test_parameters_follow_json_usage(qgs):
         assert p.type() == want, (o["key"], p.type())
     for out in ("OUTPUT", "OUTPUT_2DM", "OUTPUT_UGRID", "OUTPUT_FORT14"):
         assert names[out].type() == "fileDestination"
+    # One output per format the CLI publishes (Telemac, SCHISM, Delft3D FM included).
+    for f in usage["output_formats"]:
+        out = "OUTPUT" if f["name"] == "GPKG" else "OUTPUT_" + f["name"]
+        assert names[out].type() == "fileDestination", out
+        assert bool(names[out].flags() & names[out].FlagOptional) == (out != "OUTPUT")
+    assert "*_net.nc" in names["OUTPUT_DFLOWFM"].fileFilter() and "*.slf" in names["OUTPUT_SELAFIN"].fileFilter()
     # INPUT follows the CLI: optional, since --land with --extent can define the domain instead;
     # both are among the common (non-advanced) parameters.
     assert bool(names["INPUT"].flags() & names["INPUT"].FlagOptional) == (not usage_required(opts, "input"))
@@ -336,3 +342,26 @@ def test_plugin_zip_installs(tmp_path):
     assert qgis_process(prof, "plugins", "enable", "fdrmesh", QGIS_PLUGINPATH=plugin_path).returncode == 0
     h = qgis_process(prof, "help", "fdrmesh:meshcoastal", QGIS_PLUGINPATH=plugin_path)
     assert h.returncode == 0 and "OPEN_BOUNDARY" in h.stdout and "OUTPUT_UGRID" in h.stdout, h.stdout + h.stderr
+
+
+def test_mesh_outputs_fallback_and_order():
+    from fdrmesh.fdrmesh_algorithm import _MESH_OUTPUTS, mesh_outputs
+    assert mesh_outputs({}) == _MESH_OUTPUTS  # an older CLI without "output_formats"
+    usage = {"output_formats": [
+        {"name": "2DM", "extensions": [".2dm"], "label": "SMS 2DM mesh", "carries": "z up"},
+        {"name": "GPKG", "extensions": [".gpkg"], "label": "GeoPackage", "carries": ""},
+        {"name": "DFLOWFM", "extensions": ["_net.nc"], "label": "Delft3D FM net", "carries": "CRS"},
+        {"name": "FORT14", "extensions": [".14", "fort.14"], "label": "ADCIRC", "carries": ""}]}
+    outs = mesh_outputs(usage)
+    assert [o[0] for o in outs] == ["OUTPUT", "OUTPUT_2DM", "OUTPUT_DFLOWFM", "OUTPUT_FORT14"]
+    assert outs[0][3] is False and all(o[3] for o in outs[1:])
+    assert outs[2][2] == "Delft3D FM net (*_net.nc)" and outs[3][2] == "ADCIRC (*.14 fort.14)"
+
+
+def test_model_outputs_through_the_plugin(profile, tmp_path):
+    """Telemac and Delft3D FM outputs from the Processing algorithm; the .cli comes along."""
+    r = qgis_process(profile, "--json", "run", "fdrmesh:meshcoastal", "--",
+                     *chesapeake_args(tmp_path, OUTPUT="p.gpkg", OUTPUT_SELAFIN="p.slf", OUTPUT_DFLOWFM="p_net.nc",
+                                      OUTPUT_GR3="p.gr3"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert {"p.gpkg", "p.slf", "p.cli", "p_net.nc", "p.gr3"} <= set(os.listdir(tmp_path))

@@ -27,10 +27,12 @@ TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
   const std::string in = std::string(FDR_TESTDATA_DIR) + "/poly/square_with_hole.poly";
   ASSERT_EQ(run("mesh " + in + " --spacing '0.2+0.05*x' -q -o " + (dir / "m.2dm").string() + " -o " +
                 (dir / "m.14").string() + " -o " + (dir / "m.msh").string() + " -o " + (dir / "m.gpkg").string() +
-                " -o " + (dir / "m.node").string() + " --report " + (dir / "mesh.json").string()),
+                " -o " + (dir / "m.node").string() + " -o " + (dir / "m.gr3").string() + " -o " +
+                (dir / "m.slf").string() + " --report " + (dir / "mesh.json").string()),
             0);
+  ASSERT_EQ(run("mesh " + in + " --spacing '0.2+0.05*x' -q --slf-double -o " + (dir / "d.slf").string()), 0);
   const auto ref = load(dir / "mesh.json");
-  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.gpkg", "m.node"}) {
+  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.gpkg", "m.node", "m.gr3", "d.slf"}) {
     const fs::path rep = dir / (std::string(f) + ".json");
     ASSERT_EQ(run("quality " + (dir / f).string() + " --spacing '0.2+0.05*x' -q --report " + rep.string()), 0) << f;
     const auto q = load(rep);
@@ -65,10 +67,11 @@ TEST(Determinism, TwoRunsWriteIdenticalFiles) {
     ASSERT_EQ(run("mesh " + t + "/chesapeake/chesapeake_mouth_water.geojson --open-boundary " + t +
                   "/chesapeake/chesapeake_mouth_open_boundary.geojson --raster " + t +
                   "/chesapeake/chesapeake_mouth_etopo5.tif --min-angle 20 -q -o " + (o / "m.2dm").string() + " -o " +
-                  (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " + (o / "m.node").string()),
+                  (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " + (o / "m.node").string() +
+                  " -o " + (o / "m.gr3").string() + " -o " + (o / "m.ll").string() + " -o " + (o / "m.slf").string()),
               0);
   }
-  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.node", "m.ele"}) {
+  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.node", "m.ele", "m.gr3", "m.ll", "m.slf", "m.cli"}) {
     const std::string a = slurp(dir / "a" / f), b = slurp(dir / "b" / f);
     EXPECT_GT(a.size(), 1000u) << f;
     EXPECT_TRUE(a == b) << f << " differs between two runs";

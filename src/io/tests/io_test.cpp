@@ -262,11 +262,19 @@ TEST_F(IoRoundTrip, Sms2dm) {
   std::string text = slurp(p);
   EXPECT_EQ(text.rfind("MESH2D\n", 0), 0u);
   EXPECT_NE(text.find("MESHNAME \"io test mesh\""), std::string::npos);
-  EXPECT_NE(text.find("NS 2 3 -4\n"), std::string::npos) << text;  // open chain o1 o2 o3, 1-based
+  // One nodestring per boundary run (io/boundaries.hpp), 1-based: the open run o1 o2 o3 first,
+  // then the land run o3 o4 o0 o1, then the island h0 h3 h2 h1 (clockwise) split in two, since
+  // SMS refuses a nodestring that starts and ends on the same node.
+  EXPECT_NE(text.find("NS 2 3 -4\nNS 4 5 1 -2\nNS 6 9 -8\nNS 8 7 -6\n"), std::string::npos) << text;
   mesh::MeshView r = io::read_mesh(p);
   expect_same_geometry(m, r);
-  EXPECT_EQ(edge_set(r, {mk(EdgeKind::kOpen)}), edge_set(m, {mk(EdgeKind::kOpen)}));
-  EXPECT_EQ(r.edges.size(), 2u);
+  // 2DM nodestrings carry no kind: the reader marks them all open; together they cover every
+  // boundary edge.
+  EdgeSet want;
+  for (const auto& e : m.edges)
+    if (e.marker != mk(EdgeKind::kBreakline)) want.insert({std::min(e.a, e.b), std::max(e.a, e.b), mk(EdgeKind::kOpen)});
+  EXPECT_EQ(edge_set(r, {mk(EdgeKind::kOpen)}), want);
+  EXPECT_EQ(r.edges.size(), 9u);
   EXPECT_EQ(tmp.entries(), std::vector<std::string>{"mesh.2dm"});
 }
 
@@ -723,8 +731,8 @@ TEST_F(IoRoundTrip, ExistingFileIsReplaced) {
 // ---------------------------------------------------------------- failures leave nothing behind
 
 namespace {
-constexpr Format kEvery[] = {Format::kGpkg, Format::k2dm, Format::kMsh, Format::kNode,
-                             Format::kVtu, Format::kFort14, Format::kUgrid};
+constexpr Format kEvery[] = {Format::kGpkg, Format::k2dm,   Format::kMsh, Format::kNode,   Format::kVtu, Format::kFort14,
+                             Format::kUgrid, Format::kSelafin, Format::kGr3, Format::kLl, Format::kDflowfm};
 std::string ext_of(Format f) {
   switch (f) {
     case Format::kGpkg: return ".gpkg";
@@ -734,6 +742,10 @@ std::string ext_of(Format f) {
     case Format::kVtu: return ".vtu";
     case Format::kFort14: return ".14";
     case Format::kUgrid: return ".nc";
+    case Format::kSelafin: return ".slf";
+    case Format::kGr3: return ".gr3";
+    case Format::kLl: return ".ll";
+    case Format::kDflowfm: return "_net.nc";
   }
   return "";
 }
@@ -916,7 +928,7 @@ TEST_F(IoRoundTrip, EmptyMeshEveryFormat) {
     std::string p = tmp / ("empty" + ext_of(f));
     io::write_mesh(empty, p, f, {});
     EXPECT_TRUE(fs::exists(p)) << io::format_name(f);
-    if (f == Format::kVtu || f == Format::kUgrid) continue;
+    if (f == Format::kVtu || f == Format::kUgrid || f == Format::kDflowfm) continue;
     mesh::MeshView r = io::read_mesh(p);
     EXPECT_EQ(r.num_vertices(), 0u) << io::format_name(f);
     EXPECT_EQ(r.num_triangles(), 0u) << io::format_name(f);
@@ -930,4 +942,178 @@ TEST_F(IoRoundTrip, EmptyMeshEveryFormat) {
   ASSERT_EQ(nc_open((tmp / "empty.nc").c_str(), NC_NOWRITE, &nc), NC_NOERR);
   nc_close(nc);
   EXPECT_FALSE(has_temp_leftover(tmp));
+}
+
+// ---------------------------------------------------------------- boundaries and model formats
+
+#include "io/boundaries.hpp"
+
+namespace {
+std::vector<Index> ids(std::initializer_list<Index> l) { return std::vector<Index>(l); }
+}  // namespace
+
+TEST(IoBoundaries, LoopsRunsOrderAndOrientation) {
+  mesh::MeshView m = sample_mesh();
+  io::Boundaries b = io::extract_boundaries(m, "sample");
+  ASSERT_EQ(b.loops.size(), 2u);
+  // Outer loop counter-clockwise, starting at the open run after the south-west node o0.
+  EXPECT_TRUE(b.loops[0].outer);
+  EXPECT_EQ(b.loops[0].nodes, ids({1, 2, 3, 4, 0}));
+  EXPECT_EQ(b.loops[0].edge_open, (std::vector<char>{1, 1, 0, 0, 0}));
+  EXPECT_GT(b.loops[0].signed_area, 0);
+  // Island clockwise (mesh on the left), from its south-west node h0.
+  EXPECT_FALSE(b.loops[1].outer);
+  EXPECT_EQ(b.loops[1].nodes, ids({5, 8, 7, 6}));
+  EXPECT_LT(b.loops[1].signed_area, 0);
+  ASSERT_EQ(b.runs.size(), 3u);
+  EXPECT_EQ(b.runs[0].kind, io::BoundaryKind::kOpen);
+  EXPECT_EQ(b.runs[0].nodes, ids({1, 2, 3}));
+  EXPECT_EQ(b.runs[1].kind, io::BoundaryKind::kLand);
+  EXPECT_EQ(b.runs[1].nodes, ids({3, 4, 0, 1}));
+  EXPECT_EQ(b.runs[2].kind, io::BoundaryKind::kIsland);
+  EXPECT_TRUE(b.runs[2].closed);
+  EXPECT_EQ(b.runs[2].nodes, ids({5, 8, 7, 6}));
+  EXPECT_EQ(b.ordered_nodes(), ids({1, 2, 3, 4, 0, 5, 8, 7, 6}));
+  EXPECT_EQ(io::pinch_node(b, m.vertices.size()), kNoId);
+  // Renumbering the triangles does not change the lists.
+  std::reverse(m.triangles.begin(), m.triangles.end());
+  io::Boundaries b2 = io::extract_boundaries(m, "sample");
+  EXPECT_EQ(b2.ordered_nodes(), b.ordered_nodes());
+}
+
+TEST(IoBoundaries, PinchNodeIsFoundAndSelafinRefusesIt) {
+  // Two triangles touching at vertex 0 (a bow-tie): two loops through node 0.
+  mesh::MeshView m;
+  m.vertices = {{0, 0}, {1, 0}, {1, 1}, {-1, 0}, {-1, -1}};
+  m.triangles = {{0, 1, 2}, {0, 3, 4}};
+  io::Boundaries b = io::extract_boundaries(m, "bowtie");
+  EXPECT_EQ(b.loops.size(), 2u);
+  EXPECT_EQ(io::pinch_node(b, m.vertices.size()), 0u);
+  TmpDir tmp;
+  try {
+    io::write_mesh(m, tmp / "bowtie.slf", Format::kSelafin, {});
+    ADD_FAILURE() << "pinched boundary accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kOutputError);
+    EXPECT_NE(std::string(e.what()).find("node 1 at (0.000000, 0.000000) lies twice on the boundary"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(tmp.entries().empty());
+}
+
+TEST_F(IoRoundTrip, Gr3AndLl) {
+  std::string p = tmp / "hgrid.gr3";
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  std::string text = slurp(p);
+  // Open boundary without IBTYPEE, land (0) and island (1, first node not repeated).
+  EXPECT_NE(text.find("1 = Number of open boundaries\n3 = Total number of open boundary nodes\n"
+                      "3 = Number of nodes for open boundary 1\n2\n3\n4\n"
+                      "2 = Number of land boundaries\n8 = Total number of land boundary nodes\n"
+                      "4 0 = Number of nodes for land boundary 1\n4\n5\n1\n2\n"
+                      "4 1 = Number of nodes for land boundary 2\n6\n9\n8\n7\n"),
+            std::string::npos) << text;
+  mesh::MeshView r = io::read_mesh(p);
+  expect_same_geometry(m, r);  // depth positive down in the file, z back
+  std::set<std::int32_t> kinds{mk(EdgeKind::kLand), mk(EdgeKind::kIsland), mk(EdgeKind::kOpen)};
+  EXPECT_EQ(edge_set(r, kinds), edge_set(m, kinds));
+
+  std::string q = tmp / "hgrid.ll";
+  io::write_mesh(m, q, io::format_from_path(q), opts);
+  std::string lt = slurp(q);
+  EXPECT_EQ(lt.substr(lt.find("= Number of open boundaries") - 2), text.substr(text.find("= Number of open boundaries") - 2));
+  mesh::MeshView l = io::read_mesh(q);
+  ASSERT_EQ(l.vertices.size(), m.vertices.size());
+  // EPSG:32633 easting 500000 is the central meridian 15 E; northing 6400000 m is about 57.7 N.
+  EXPECT_NEAR(l.vertices[0].x, 15.0, 1e-4);
+  EXPECT_NEAR(l.vertices[0].y, 57.7, 0.1);
+  EXPECT_EQ(l.z, r.z);
+  // Without a CRS there is no lon/lat.
+  mesh::MeshView nocrs = m;
+  nocrs.crs_wkt.clear();
+  try {
+    io::write_mesh(nocrs, tmp / "x.ll", Format::kLl, opts);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kCrsError);
+  }
+}
+
+TEST_F(IoRoundTrip, SelafinAndCli) {
+  for (bool dbl : {false, true}) {
+    std::string p = tmp / (dbl ? "geo_d.slf" : "geo.slf");
+    opts.slf_double = dbl;
+    opts.telemac_open_codes = {4, 5, 5};
+    io::write_mesh(m, p, io::format_from_path(p), opts);
+    std::string bin = slurp(p);
+    ASSERT_GE(bin.size(), 84u);
+    EXPECT_EQ(bin.substr(0, 4), std::string("\0\0\0\x50", 4));
+    EXPECT_EQ(bin.substr(4 + 72, 8), dbl ? "SERAFIND" : "SERAFIN ");
+    EXPECT_EQ(bin.substr(84, 8), std::string("\0\0\0\x50\0\0\0\x08", 8));
+    mesh::MeshView r = io::read_mesh(p);
+    ASSERT_EQ(r.vertices.size(), m.vertices.size());
+    EXPECT_EQ(r.triangles, m.triangles);
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      const double tol = dbl ? 0.0 : 0.01;  // float offsets from the integer origin: < 1 cm here
+      EXPECT_NEAR(r.vertices[v].x, m.world(static_cast<Index>(v)).x, tol);
+      EXPECT_NEAR(r.vertices[v].y, m.world(static_cast<Index>(v)).y, tol);
+      EXPECT_NEAR(r.z[v], m.z[v], dbl ? 0.0 : 1e-6);
+    }
+    // .cli: boundary nodes in IPOBO order, open nodes with the chosen codes.
+    std::string cli = slurp(tmp / (dbl ? "geo_d.cli" : "geo.cli"));
+    EXPECT_EQ(cli,
+              "4 5 5 0.0 0.0 0.0 0.0 4 0.0 0.0 0.0 2 1\n"
+              "4 5 5 0.0 0.0 0.0 0.0 4 0.0 0.0 0.0 3 2\n"
+              "4 5 5 0.0 0.0 0.0 0.0 4 0.0 0.0 0.0 4 3\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 5 4\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 1 5\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 6 6\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 9 7\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 8 8\n"
+              "2 2 2 0.0 0.0 0.0 0.0 2 0.0 0.0 0.0 7 9\n");
+  }
+  EXPECT_EQ(io::parse_telemac_codes("5,4,4"), (std::array<int, 3>{5, 4, 4}));
+  EXPECT_EQ(io::parse_telemac_codes("4 5 5"), (std::array<int, 3>{4, 5, 5}));
+  for (const char* bad : {"5,4", "5,4,4,4", "5,4,x", "5,4,9", ""}) {
+    try {
+      io::parse_telemac_codes(bad);
+      ADD_FAILURE() << bad;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::kUsage);
+    }
+  }
+}
+
+TEST_F(IoRoundTrip, DflowfmNetHasEveryEdgeAndEdgeTypes) {
+  std::string p = tmp / "mesh_net.nc";
+  ASSERT_EQ(io::format_from_path(p), Format::kDflowfm);
+  io::write_mesh(m, p, io::format_from_path(p), opts);
+  int nc;
+  ASSERT_EQ(nc_open(p.c_str(), NC_NOWRITE, &nc), NC_NOERR);
+  int d;
+  std::size_t ne = 0, nf = 0, nn = 0;
+  ASSERT_EQ(nc_inq_dimid(nc, "mesh2d_nEdges", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &ne);
+  ASSERT_EQ(nc_inq_dimid(nc, "mesh2d_nFaces", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &nf);
+  ASSERT_EQ(nc_inq_dimid(nc, "mesh2d_nNodes", &d), NC_NOERR);
+  nc_inq_dimlen(nc, d, &nn);
+  EXPECT_EQ(nn, 9u);
+  EXPECT_EQ(nf, 9u);
+  EXPECT_EQ(ne, 18u);  // Euler with one hole: E = V + F - 1 + 1; also 3F = 2 E_interior + E_boundary
+  int v;
+  ASSERT_EQ(nc_inq_varid(nc, "mesh2d_edge_type", &v), NC_NOERR);
+  std::vector<int> type(ne);
+  nc_get_var_int(nc, v, type.data());
+  EXPECT_EQ(std::count(type.begin(), type.end(), 2), 2);  // open boundary edges o1-o2, o2-o3
+  EXPECT_EQ(std::count(type.begin(), type.end(), 3), 7);  // 3 land + 4 island
+  EXPECT_EQ(std::count(type.begin(), type.end(), 1), 9);
+  ASSERT_EQ(nc_inq_varid(nc, "projected_coordinate_system", &v), NC_NOERR);
+  int epsg = 0;
+  nc_get_att_int(nc, v, "epsg", &epsg);
+  EXPECT_EQ(epsg, 32633);
+  std::size_t len = 0;
+  nc_inq_attlen(nc, NC_GLOBAL, "Conventions", &len);
+  std::string conv(len, ' ');
+  nc_get_att_text(nc, NC_GLOBAL, "Conventions", conv.data());
+  EXPECT_EQ(conv, "CF-1.8 UGRID-1.0 Deltares-0.10");
+  nc_close(nc);
 }

@@ -1,0 +1,32 @@
+// Orthogonality and smoothness of a triangle mesh, the two grid checks Delft3D FM users make:
+// a flow link joins the cell centres of the two triangles of an interior edge and should cross
+// that edge at a right angle; neighbouring cells should have similar areas.
+//
+// Why not raw circumcentres: both circumcentres of the triangles sharing an edge lie on that
+// edge's perpendicular bisector, so their link is always orthogonal (cos = 0 up to rounding).
+// D-Flow FM, however, moves a circumcentre that falls outside its triangle back into the cell
+// (its default dcenterinside = 1); obtuse triangles then give non-orthogonal links. The cell
+// centre used here is therefore the circumcentre, or when it lies outside the triangle the
+// nearest point of the triangle's boundary.
+#pragma once
+#include <cstddef>
+#include <optional>
+#include "mesh/mesh_view.hpp"
+
+namespace fdr::quality {
+
+struct OrthogonalityStats {
+  std::size_t interior_edges = 0;  // edges shared by two triangles
+  // |cos| of the angle between an interior edge and the link joining the cell centres (above) of
+  // its two triangles: 0 is orthogonal. A link of zero length (two right triangles sharing their
+  // hypotenuse) counts as 0. nullopt without interior edges.
+  std::optional<double> orthogonality_max, orthogonality_p99;
+  // Area ratio of the two triangles of an interior edge, larger over smaller (>= 1).
+  std::optional<double> smoothness_max, smoothness_p99;
+};
+
+// One pass over the half-edges (rows by tail vertex, no hashing), circumcentres by predicates::circumcenter in
+// the local frame. p99 is the nearest-rank 99th percentile over the interior edges.
+OrthogonalityStats compute_orthogonality(const mesh::MeshView& m);
+
+}  // namespace fdr::quality
