@@ -174,7 +174,13 @@ pipeline::Options bind_mesh(std::map<std::string, Values>& values, std::map<std:
     o.min_depth_m = to_double(v, "min-depth", o.min_depth_m);
     o.simplify = opt_double(v, "simplify");
     o.bound = to_double(v, "bound", 1.0);
-    o.min_angle_deg = to_double(v, "min-angle", 0.0);
+    o.min_angle_deg = to_double(v, "min-angle", -1.0);
+    if (opt_double(v, "min-angle") && o.min_angle_deg < 0) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+    if (const auto sm_opt = opt_double(v, "smooth")) {
+      const double sm = *sm_opt;
+      if (!(sm >= 0 && sm <= 100) || sm != std::floor(sm)) throw Error(ExitCode::kUsage, "--smooth must be an integer in [0, 100]");
+      o.smooth_passes = static_cast<int>(sm);
+    }
     const double ms = to_double(v, "max-steiner", 20e6);
     if (!(ms >= 1) || ms != std::floor(ms)) throw Error(ExitCode::kUsage, "--max-steiner must be a positive integer");
     o.max_steiner = static_cast<std::uint64_t>(ms);

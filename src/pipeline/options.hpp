@@ -52,7 +52,8 @@ struct Options {
 
   // Refinement.
   double bound = 1.0;                    // B
-  double min_angle_deg = 0.0;
+  double min_angle_deg = -1.0;           // < 0: automatic (30 for GIS inputs, 0 for .poly/.node)
+  int smooth_passes = -1;                // quality smoothing sweeps; < 0: automatic (4 GIS, 0 .poly)
   std::uint64_t max_steiner = 20'000'000;
   bool check = false;
   bool quiet = false;

@@ -16,6 +16,7 @@
 #include "pslg/validate.hpp"
 #include "quality/rss.hpp"
 #include "refine/refine.hpp"
+#include "refine/smooth.hpp"
 #include "sizing/field_checks.hpp"
 #include "sizing/fields.hpp"
 #include "sizing/make_spacing.hpp"
@@ -71,7 +72,12 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // The name used in messages, titles and metadata.
   const std::string source = !opt.input.empty() ? opt.input : opt.land;
   if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
-  if (opt.min_angle_deg < 0 || opt.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+  if (opt.min_angle_deg >= 60 || std::isnan(opt.min_angle_deg)) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+  // Model-ready defaults for GIS inputs: a 30 degree angle bound and smoothing (README).
+  const bool gis_input = !is_poly_input(opt.input);
+  const double min_angle_deg = opt.min_angle_deg >= 0 ? opt.min_angle_deg : (gis_input ? 30.0 : 0.0);
+  const int smooth_passes = opt.smooth_passes >= 0 ? opt.smooth_passes : (gis_input ? 4 : 0);
+  if (opt.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
   // Resolve output formats first: a bad -o fails before any work.
   std::vector<io::Format> formats;
   for (const auto& o : opt.outputs) formats.push_back(io::format_from_path(o, opt.of));
@@ -148,7 +154,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   const auto t_ref = Clock::now();
   refine::RefineOptions ro;
   ro.bound = opt.bound;
-  ro.min_angle_deg = opt.min_angle_deg;
+  ro.min_angle_deg = min_angle_deg;
   ro.max_steiner = opt.max_steiner;
   ro.expected_steiner = expected / 2;
   ro.progress = [&](double frac, std::string_view) {
@@ -160,6 +166,16 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   refiner.run();
   const double refine_s = since(t_ref);
   clock.lap("refine");
+  if (smooth_passes > 0) {
+    refine::SmoothOptions so;
+    so.passes = smooth_passes;
+    so.bound = opt.bound;
+    so.min_angle_deg = min_angle_deg;
+    const refine::SmoothStats ss = refine::smooth(tri, f, so);
+    log_info(log, "smoothing: " + std::to_string(ss.moves) + " moves of " + std::to_string(ss.candidates) +
+                      " free vertices in " + std::to_string(ss.passes) + " passes");
+    clock.lap("smooth");
+  }
   report_progress(0.8, "report");
 
   if (opt.check) {
@@ -194,7 +210,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.steiner_interior = refiner.stats().circumcenters;
   ri.input_file = source;
   ri.spacing = f.describe();
-  if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
+  if (min_angle_deg > 0) ri.min_angle_option_deg = min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
   if (in.tin_error && *in.tin_error) {
     result.report.vertical_error_max_m = (*in.tin_error)->first;
@@ -219,7 +235,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
                    {"input", source},
                    {"spacing", f.describe()},
                    {"bound_B", std::to_string(opt.bound)},
-                   {"min_angle_deg", std::to_string(opt.min_angle_deg)},
+                   {"min_angle_deg", std::to_string(min_angle_deg)},
                    {"alpha", std::to_string(alpha)},
                    {"crs", result.crs_name},
                    {"quality", js.str()}};

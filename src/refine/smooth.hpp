@@ -1,0 +1,32 @@
+// Quality smoothing after FDR: free Steiner vertices (circumcentre insertions) move towards the
+// area-weighted mean of their star's circumcentres (an optimal-Delaunay-triangulation step,
+// Chen & Xu 2004), falling back to shorter steps; a move is kept only if, decided with exact
+// predicates, every triangle of the star stays counter-clockwise, the mesh stays constrained
+// Delaunay (no vertex inside the circumcircle of a moved triangle across an unconstrained
+// edge), no subsegment becomes encroached, every moved triangle keeps R/f(c) <= B, the star's
+// worst quality does not drop (and its min angle not below the --min-angle target) and its
+// summed quality rises. Input and segment vertices never move, so the constraints, the domain
+// and the FDR bound stay exactly as refinement left them. Vertices are visited in index order:
+// the result is deterministic.
+#pragma once
+#include <cstddef>
+#include "mesh/triangulation.hpp"
+#include "sizing/sizing_field.hpp"
+
+namespace fdr::refine {
+
+struct SmoothOptions {
+  int passes = 4;               // sweeps over the free vertices
+  double bound = 1.0;           // B: every moved triangle keeps R/f(c) <= B
+  double min_angle_deg = 0.0;   // a move may not make a star's min angle drop below this
+};
+
+struct SmoothStats {
+  std::size_t candidates = 0;   // free vertices
+  std::size_t moves = 0;        // accepted moves, all passes
+  int passes = 0;
+};
+
+SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options);
+
+}  // namespace fdr::refine
