@@ -22,7 +22,7 @@ double tri_quality(Point2 a, Point2 b, Point2 c) {
   return s > 0 ? kSqrt3x4 * ar / s : 0.0;
 }
 
-double min_angle_cos2_deg(Point2 a, Point2 b, Point2 c) {
+double min_angle_deg(Point2 a, Point2 b, Point2 c) {
   auto ang = [](Point2 p, Point2 q, Point2 r) {  // angle at p
     const Point2 u = q - p, v = r - p;
     return std::atan2(std::fabs(u.x * v.y - u.y * v.x), dot(u, v));
@@ -73,84 +73,152 @@ class Smoother {
   bool try_vertex(Index v) {
     if (!star(v, hs_)) return false;
     const Point2 p0 = t_.pts[v];
-    // Current star quality.
-    double qmin = 1e300, qsum = 0, amin = 1e300;
     Point2 acc{0, 0};
     double wsum = 0;
     for (HalfEdge h : hs_) {
       const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
-      const double q = tri_quality(p0, a, b);
-      qmin = std::min(qmin, q);
-      qsum += q;
-      amin = std::min(amin, min_angle_cos2_deg(p0, a, b));
       const double ar = 0.5 * ((a.x - p0.x) * (b.y - p0.y) - (a.y - p0.y) * (b.x - p0.x));
-      const Point2 c = predicates::circumcenter(p0, a, b);
-      acc = acc + ar * c;
+      acc = acc + ar * predicates::circumcenter(p0, a, b);
       wsum += ar;
     }
     if (!(wsum > 0)) return false;
     const Point2 target = (1.0 / wsum) * acc;
-    const double floor_angle = std::min(amin, o_.min_angle_deg);
     for (double step : {1.0, 0.5, 0.25}) {
       const Point2 p = p0 + step * (target - p0);
       if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) return false;
-      if (acceptable(p, qmin, qsum, floor_angle)) {
-        t_.pts[v] = p;
-        return true;
-      }
+      if (attempt(v, p0, p)) return true;
     }
     return false;
   }
 
-  bool acceptable(Point2 p, double qmin, double qsum, double floor_angle) const {
-    double nmin = 1e300, nsum = 0;
+  // Moves v to p, restores the constrained Delaunay property by Lawson flips, and keeps the
+  // result only if the touched triangles are better (see smooth.hpp); else undoes everything.
+  bool attempt(Index v, Point2 p0, Point2 p) {
+    // The move itself must keep every star triangle counter-clockwise (p in the star's kernel).
+    for (HalfEdge h : hs_)
+      if (predicates::orient2d(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]) <= 0) return false;
+    touched_.clear();
+    before_min_ = 1e300;
+    before_sum_ = 0;
+    before_angle_ = 1e300;
+    ++stamp_;
+    if (seen_.size() < t_.num_slots()) seen_.resize(t_.num_slots(), 0);
+    for (HalfEdge h : hs_) touch(mesh::tri_of(h));
+    t_.pts[v] = p;
+    flips_.clear();
+    stack_.clear();
     for (HalfEdge h : hs_) {
-      const Index ia = t_.dst(h), ib = t_.apex(h);
-      const Point2 a = t_.pts[ia], b = t_.pts[ib];
-      if (predicates::orient2d(p, a, b) <= 0) return false;
-      const double q = tri_quality(p, a, b);
+      stack_.push_back(h);
+      stack_.push_back(next_he(h));
+    }
+    bool ok = true;
+    while (!stack_.empty()) {
+      const HalfEdge e = stack_.back();
+      stack_.pop_back();
+      if (t_.constrained(e)) continue;
+      const HalfEdge g = t_.twin[e];
+      if (g == kNoId) continue;
+      const Point2 a = t_.pts[t_.org(e)], b = t_.pts[t_.dst(e)], c = t_.pts[t_.apex(e)], d = t_.pts[t_.apex(g)];
+      if (predicates::incircle(a, b, c, d) <= 0) continue;
+      if (predicates::orient2d(c, a, d) <= 0 || predicates::orient2d(d, b, c) <= 0) { ok = false; break; }
+      if (flips_.size() >= 64) { ok = false; break; }
+      touch(mesh::tri_of(e));
+      touch(mesh::tri_of(g));
+      const HalfEdge nd = flip(e);
+      flips_.push_back(nd);
+      const TriangleId t1 = mesh::tri_of(nd), t2 = mesh::tri_of(t_.twin[nd]);
+      stack_.push_back(3 * t1);
+      stack_.push_back(3 * t1 + 1);
+      stack_.push_back(3 * t2);
+      stack_.push_back(3 * t2 + 1);
+    }
+    if (ok) ok = improved();
+    if (!ok) {
+      for (std::size_t k = flips_.size(); k-- > 0;) flip(flips_[k]);
+      t_.pts[v] = p0;
+    }
+    return ok;
+  }
+
+  void touch(TriangleId t) {
+    if (seen_[t] == stamp_) return;
+    seen_[t] = stamp_;
+    touched_.push_back(t);
+    const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+    const double q = tri_quality(a, b, c);
+    before_min_ = std::min(before_min_, q);
+    before_sum_ += q;
+    before_angle_ = std::min(before_angle_, min_angle_deg(a, b, c));
+  }
+
+  // The touched triangles after the move: valid, R/f(c) <= B, no encroached subsegment, worst
+  // quality not lower, summed quality higher, min angle not below min(before, --min-angle).
+  bool improved() const {
+    double nmin = 1e300, nsum = 0;
+    const double floor_angle = std::min(before_angle_, o_.min_angle_deg);
+    for (TriangleId t : touched_) {
+      const Index ia = t_.tv[3 * t], ib = t_.tv[3 * t + 1], ic = t_.tv[3 * t + 2];
+      const Point2 a = t_.pts[ia], b = t_.pts[ib], c = t_.pts[ic];
+      if (predicates::orient2d(a, b, c) <= 0) return false;
+      const double q = tri_quality(a, b, c);
       nmin = std::min(nmin, q);
       nsum += q;
-      if (min_angle_cos2_deg(p, a, b) < floor_angle) return false;
-    }
-    if (nmin < qmin || !(nsum > qsum)) return false;
-    for (HalfEdge h : hs_) {
-      const Index ia = t_.dst(h), ib = t_.apex(h);
-      const Point2 a = t_.pts[ia], b = t_.pts[ib];
-      // Link edge a-b: the triangle across it must not have its apex inside circle(p, a, b),
-      // and a constrained link edge must not be encroached by p.
-      const HalfEdge link = next_he(h);  // a -> b
-      if (t_.constrained(link)) {
-        if (predicates::encroaches(a, b, p)) return false;
-      } else {
-        const HalfEdge tw = t_.twin[link];
-        if (tw != kNoId) {
-          const Point2 d = t_.pts[t_.apex(tw)];
-          if (predicates::incircle(p, a, b, d) > 0) return false;
-        }
+      if (min_angle_deg(a, b, c) < floor_angle) return false;
+      for (int k = 0; k < 3; ++k) {
+        const HalfEdge h = 3 * t + static_cast<HalfEdge>(k);
+        if (t_.constrained(h) && predicates::encroaches(t_.pts[t_.org(h)], t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]))
+          return false;
       }
-      // Spoke p-a (between this triangle and the previous one around p): the previous
-      // triangle's far vertex must not be inside circle(p, a, b). Spokes are never constrained
-      // (v is a free vertex), but check: a constrained spoke could not move anyway.
-      const HalfEdge prev_t = t_.twin[h];  // a -> p in the neighbouring triangle
-      if (prev_t != kNoId) {
-        const Point2 z = t_.pts[t_.apex(prev_t)];
-        if (predicates::incircle(p, a, b, z) > 0) return false;
-      }
-      // FDR bound on the moved triangle.
       double r2 = 0;
-      const Point2 c = predicates::circumcenter(p, a, b, &r2);
-      const double fc = f_(c);
-      if (!(fc > 0) || !std::isfinite(fc)) return false;
-      if (r2 > o_.bound * o_.bound * fc * fc) return false;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const double fc = f_(cc);
+      if (!(fc > 0) || !std::isfinite(fc) || r2 > o_.bound * o_.bound * fc * fc) return false;
     }
-    return true;
+    return nmin >= before_min_ && nsum > before_sum_;
+  }
+
+  // Flips the edge of half-edge e (a->b in triangle (a,b,c), twin b->a in (b,a,d)) into the
+  // diagonal c-d; returns the new half-edge d->c. Flipping that half-edge again restores the
+  // pair (in the same two slots).
+  //
+  //        c                 c
+  //       / \               /|\   .
+  //      a---b     ->      a | b
+  //       \ /               \|/   .
+  //        d                 d
+  HalfEdge flip(HalfEdge e) {
+    const HalfEdge g = t_.twin[e];
+    const TriangleId t1 = mesh::tri_of(e), t2 = mesh::tri_of(g);
+    const Index a = t_.org(e), b = t_.dst(e), c = t_.apex(e), d = t_.apex(g);
+    const HalfEdge h1 = next_he(e), h2 = prev_he(e);  // b->c, c->a
+    const HalfEdge g1 = next_he(g), g2 = prev_he(g);  // a->d, d->b
+    const HalfEdge th1 = t_.twin[h1], th2 = t_.twin[h2], tg1 = t_.twin[g1], tg2 = t_.twin[g2];
+    const bool ch1 = t_.constrained(h1), ch2 = t_.constrained(h2), cg1 = t_.constrained(g1), cg2 = t_.constrained(g2);
+    // t1 = (c, a, d), t2 = (d, b, c)
+    t_.tv[3 * t1] = c; t_.tv[3 * t1 + 1] = a; t_.tv[3 * t1 + 2] = d;
+    t_.tv[3 * t2] = d; t_.tv[3 * t2 + 1] = b; t_.tv[3 * t2 + 2] = c;
+    t_.flags[t1] = static_cast<std::uint8_t>((t_.flags[t1] & ~7u) | (ch2 ? 1u : 0u) | (cg1 ? 2u : 0u));
+    t_.flags[t2] = static_cast<std::uint8_t>((t_.flags[t2] & ~7u) | (cg2 ? 1u : 0u) | (ch1 ? 2u : 0u));
+    t_.link(3 * t1, th2);
+    t_.link(3 * t1 + 1, tg1);
+    t_.link(3 * t2, tg2);
+    t_.link(3 * t2 + 1, th1);
+    t_.link(3 * t1 + 2, 3 * t2 + 2);
+    t_.vhe[c] = 3 * t1;
+    t_.vhe[a] = 3 * t1 + 1;
+    t_.vhe[d] = 3 * t2;
+    t_.vhe[b] = 3 * t2 + 1;
+    return 3 * t1 + 2;
   }
 
   mesh::Triangulation& t_;
   const sizing::SizingField& f_;
   SmoothOptions o_;
-  std::vector<HalfEdge> hs_;
+  std::vector<HalfEdge> hs_, flips_, stack_;
+  std::vector<TriangleId> touched_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t stamp_ = 0;
+  double before_min_ = 0, before_sum_ = 0, before_angle_ = 0;
 };
 
 }  // namespace
