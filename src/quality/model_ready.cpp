@@ -352,6 +352,11 @@ Json num(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
   return *v;
 }
+// Counts among the GIS figures are doubles; integral values are written as JSON integers.
+Json figure_json(std::optional<double> v) {
+  if (v && std::isfinite(*v) && *v == std::floor(*v) && std::fabs(*v) < 9e15) return static_cast<long long>(*v);
+  return num(v);
+}
 Json xy(Point2 p) { return Json::array({p.x, p.y}); }
 std::optional<double> over(std::optional<double> v, std::optional<double> h) {
   if (!v || !h || !(*h > 0)) return std::nullopt;
@@ -397,7 +402,7 @@ nlohmann::ordered_json model_ready_json(const ModelReadiness& r) {
   j["triangles_below_30_deg"] = r.triangles_below_30_deg;
   j["mean_quality"] = num(r.mean_quality);
   j["min_quality"] = num(r.min_quality);
-  j["pieces"] = {{"mesh", r.mesh_pieces}, {"input", num(r.input_pieces)}};
+  j["pieces"] = {{"mesh", r.mesh_pieces}, {"input", figure_json(r.input_pieces)}};
   j["coast_deviation"] = {{"input_to_mesh", deviation_json(r.input_to_mesh, r.hmin_m)},
                           {"mesh_to_input", deviation_json(r.mesh_to_input, r.hmin_m)},
                           {"mesh_boundary_edges", r.mesh_boundary_edges}};
@@ -413,12 +418,12 @@ nlohmann::ordered_json model_ready_json(const ModelReadiness& r) {
   }
   j["area"] = {{"mesh_m2", num(r.mesh_area_m2)}, {"input_m2", num(r.input_area_m2)},
                {"change_pct", num(r.area_change_pct())}};
-  j["features_removed"] = {{"water_closed", num(r.figure("narrow_water_closed"))},
+  j["features_removed"] = {{"water_closed", figure_json(r.figure("narrow_water_closed"))},
                            {"water_closed_m2", num(r.figure("water_removed_m2"))},
-                           {"islands", num(r.figure("islands_removed"))},
+                           {"islands", figure_json(r.figure("islands_removed"))},
                            {"islands_m2", num(r.figure("islands_removed_m2"))}};
   Json figs = Json::object();
-  for (const auto& [k, v] : r.coast_figures) figs[k] = num(v);
+  for (const auto& [k, v] : r.coast_figures) figs[k] = figure_json(v);
   j["coast_figures"] = figs;
   return j;
 }
