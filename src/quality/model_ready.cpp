@@ -444,7 +444,8 @@ void write_model_ready_text(const ModelReadiness& r, std::ostream& out) {
   auto dev = [&](const char* label, const std::optional<CoastDeviation>& d) {
     if (!d) return;
     std::string s = fmt(d->max_m, "%.4g") + " / " + fmt(d->p99_m, "%.4g") + " m";
-    if (r.hmin_m) s += " = " + fmt(over(d->max_m, r.hmin_m), "%.3g") + " / " + fmt(over(d->p99_m, r.hmin_m), "%.3g") + " hmin";
+    if (r.hmin_m)
+      s += " = " + fmt(over(d->max_m, r.hmin_m), "%.3g") + " / " + fmt(over(d->p99_m, r.hmin_m), "%.3g") + " hmin";
     line(out, label, s);
   };
   dev("coast in->mesh max / p99", r.input_to_mesh);
@@ -456,10 +457,12 @@ void write_model_ready_text(const ModelReadiness& r, std::ostream& out) {
     line(out, "time step h/sqrt(g depth)", buf);
   }
   if (auto a = r.area_change_pct()) line(out, "area change vs input", fmt(a, "%+.4f") + " %");
-  if (auto n = r.figure("narrow_water_closed"))
-    line(out, "narrow water closed", fmt(n, "%.0f") + " (" + fmt(r.figure("water_removed_m2").value_or(0) / 1e6, "%.4g") + " km^2)");
-  if (auto n = r.figure("islands_removed"))
-    line(out, "islands removed", fmt(n, "%.0f") + " (" + fmt(r.figure("islands_removed_m2").value_or(0) / 1e6, "%.4g") + " km^2)");
+  auto removed = [&](const char* label, const char* count, const char* area) {
+    if (auto n = r.figure(count))
+      line(out, label, fmt(n, "%.0f") + " (" + fmt(r.figure(area).value_or(0) / 1e6, "%.4g") + " km^2)");
+  };
+  removed("narrow water closed", "narrow_water_closed", "water_removed_m2");
+  removed("islands removed", "islands_removed", "islands_removed_m2");
 }
 
 }  // namespace fdr::quality
