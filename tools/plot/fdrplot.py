@@ -382,11 +382,12 @@ def split_source(spec):
     raise MeshError(f"{spec}: no such file")
 
 
-def read_lines(spec, crs_wkt=None, box=None):
+def read_lines(spec, crs_wkt=None, box=None, allow_unknown_crs=False):
     """Line work (polygon rings, lines) of an OGR source FILE[:LAYER], reprojected to crs_wkt.
 
     Returns a list of (n, 2) arrays. `box` (in crs_wkt) limits the features read (spatial filter).
-    Without crs_wkt, or a layer without SRS, coordinates are taken as they are.
+    A layer without SRS is taken as it is; a layer with one needs crs_wkt (MeshError) unless
+    allow_unknown_crs (then its coordinates are taken as they are).
     """
     from osgeo import ogr
 
@@ -404,6 +405,8 @@ def read_lines(spec, crs_wkt=None, box=None):
         raise MeshError(f"{path}: no layer '{layer}' (layers: {', '.join(names)})")
     src = lyr.GetSpatialRef()
     ct = None
+    if src is not None and not crs_wkt and not allow_unknown_crs:
+        raise MeshError(f"{spec}: the layer has a CRS but the mesh's CRS is unknown (give --crs)")
     if src is not None and crs_wkt:
         src.SetAxisMappingStrategy(0)  # OAMS_TRADITIONAL_GIS_ORDER
         dst = _srs(crs_wkt)

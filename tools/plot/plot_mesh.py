@@ -201,8 +201,6 @@ def draw(mesh, args, other=None):
     box = window_of(mesh, args)
     coast = []
     for spec in args.coast:
-        if spec and mesh.crs_wkt is None:
-            pass  # coordinates taken as they are
         coast += fdrplot.read_lines(spec, mesh.crs_wkt, box)
     meshes = [mesh] + ([other] if other is not None else [])
     titles = [args.title, args.compare_title]

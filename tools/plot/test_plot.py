@@ -217,8 +217,10 @@ def test_coast_overlay_is_reprojected(tmp_path):
     west = (499000.0, 4094000.0, 499500.0, 4097000.0)
     assert len(fdrplot.read_lines(str(coast), fdrplot._srs("EPSG:32618").ExportToWkt(), west)) == 1
     # FILE:LAYER
-    assert len(fdrplot.read_lines(f"{coast}:coast")) == 2
-    with pytest.raises(fdrplot.MeshError, match="no layer 'nope'"):
+    assert len(fdrplot.read_lines(f"{coast}:coast", allow_unknown_crs=True)) == 2
+    with pytest.raises(fdrplot.MeshError, match="mesh's CRS is unknown"):
+        fdrplot.read_lines(f"{coast}:coast")
+    with pytest.raises(fdrplot.MeshError, match="no layer 'nope'"):  # before the CRS check
         fdrplot.read_lines(f"{coast}:nope")
     with pytest.raises(fdrplot.MeshError, match="no such file"):
         fdrplot.read_lines(str(tmp_path / "missing.shp:layer"))
@@ -260,6 +262,8 @@ def test_plot_mesh_compare_with_coast_and_lonlat_window(tmp_path):
     w, h = png_size(str(out))
     assert abs(w - (2 * 400 + 120)) <= 1  # two panels and the shared colorbar
     assert 300 < h <= 800
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.2dm"), "--coast", str(coast), "-o", str(tmp_path / "u.png"))
+    assert r.returncode == 1 and "mesh's CRS is unknown (give --crs)" in r.stderr
     # A 2DM without CRS: --crs makes the lon/lat window usable.
     r = run("plot_mesh.py", os.path.join(TINY, "tiny.2dm"), "--crs", "EPSG:32618", "--bbox-lonlat",
             "-79.5,0,-79.49,0.00001", "-o", str(tmp_path / "c.png"), "--size", "3", "--dpi", "50")
