@@ -212,6 +212,10 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.spacing = f.describe();
   if (min_angle_deg > 0) ri.min_angle_option_deg = min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  if (!is_poly_input(opt.input)) {  // GIS runs: model readiness against the input coast (issue 11)
+    result.report.model_ready = quality::compute_model_readiness(
+        m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
+  }
   if (in.tin_error && *in.tin_error) {
     result.report.vertical_error_max_m = (*in.tin_error)->first;
     result.report.vertical_error_rms_m = (*in.tin_error)->second;

@@ -36,6 +36,7 @@ quality::QualityReport run_quality(const QualityOptions& a, std::ostream* text) 
   ri.input_file = a.mesh;
   ri.spacing = f ? f->describe() : "none";
   quality::QualityReport r = quality::compute_quality(m, f.get(), a.bound, alpha, ri);
+  r.model_ready = quality::compute_model_readiness(m, {});  // mesh-only: no hmin, no input coast
   r.run.peak_rss_mb = quality::peak_rss_mb_value();
   if (text) quality::write_text(r, *text);
   if (!a.report_json.empty()) quality::write_json_file(r, a.report_json);

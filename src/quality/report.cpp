@@ -129,6 +129,33 @@ Guarantees compute_guarantees(double alpha, double bound_B) {
   return g;
 }
 
+std::vector<TheoremCheck> theorem_checks(const QualityReport& r) {
+  std::vector<TheoremCheck> rows;
+  auto add = [&](const char* key, const char* label, bool upper, double bound, std::optional<double> meas,
+                 bool counts = true) {
+    std::optional<bool> holds;
+    if (meas) holds = upper ? *meas <= bound : *meas >= bound;  // NaN measured: false
+    rows.push_back({key, label, upper, bound, meas, holds, counts});
+  };
+  // The refiner's invariant, the hypothesis of every theorem below (needs f).
+  if (r.max_R_over_f) add("fdr_R_over_f_max", "R/f(c) max (FDR, B)", true, r.bound_B, r.max_R_over_f);
+  const Guarantees& g = r.guarantees;
+  if (!g.valid) return rows;
+  add("theorem_4_3_R_over_l_max", "R/l max (Thm 4.3)", true, g.R_over_l_max, r.max_radius_edge);
+  add("theorem_4_3_min_angle_deg", "min angle deg", false, g.min_angle_deg, r.min_angle_deg);
+  add("theorem_4_4_nn_over_f_min", "nn/f min (Thm 4.4)", false, g.nn_over_f_min, r.nn_over_f_min);
+  add("theorem_4_5_el_over_f_max", "el/f max (Thm 4.5)", true, g.el_over_f_max, r.el_over_f_max, false);
+  add("theorem_4_5_corrected_el_over_f_max", "el/f max (4.5 fixed)", true, g.el_over_f_max_corrected, r.el_over_f_max);
+  return rows;
+}
+
+bool guarantees_hold(const QualityReport& r) {
+  if (!r.guarantees.valid) return false;
+  for (const auto& c : theorem_checks(r))
+    if (c.counts && c.holds && !*c.holds) return false;
+  return true;
+}
+
 std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) {
   std::vector<double> nn(pts.size(), kInf);
   if (pts.size() < 2) return nn;
@@ -329,12 +356,19 @@ void write_json(const QualityReport& r, std::ostream& out) {
                      {"nn_over_f_min", gv(g.nn_over_f_min)},
                      {"el_over_f_max", gv(g.el_over_f_max)},
                      {"el_over_f_max_corrected", gv(g.el_over_f_max_corrected)},
-                     {"valid", g.valid},
+                     {"valid", guarantees_hold(r)},  // applicable and every counted bound holds
+                     {"applicable", g.valid},
                      {"note", g.note}};
+  for (const auto& c : theorem_checks(r))
+    j["guarantees"][c.key] = {{"relation", c.upper ? "<=" : ">="}, {"bound", num(c.bound)},
+                              {"measured", num(c.measured)},
+                              {"holds", c.holds ? Json(*c.holds) : Json(nullptr)},
+                              {"counts_for_valid", c.counts}};
   j["measured"] = {{"R_over_l_max", num(r.max_radius_edge)},
                    {"min_angle_deg", num(r.min_angle_deg)},
                    {"nn_over_f_min", num(r.nn_over_f_min)},
                    {"el_over_f_max", num(r.el_over_f_max)}};
+  if (r.model_ready) j["model_ready"] = model_ready_json(*r.model_ready);
   out << j.dump(2) << '\n';
 }
 
@@ -425,27 +459,25 @@ void write_text(const QualityReport& r, std::ostream& out) {
     out << '\n';
   }
 
+  if (r.model_ready) write_model_ready_text(*r.model_ready, out);
+
   const Guarantees& g = r.guarantees;
   out << "\n  Theory vs measured (alpha = " << (r.alpha >= 0 ? fmt(r.alpha) : std::string("unknown"))
       << ", B = " << fmt(r.bound_B) << ")\n";
-  if (!g.valid) {
-    out << "    " << g.note << '\n';
-  } else {
-    out << "    beta = " << fmt(g.beta, "%.6f") << "; " << g.note << '\n';
+  if (!g.valid) out << "    " << g.note << '\n';
+  else out << "    beta = " << fmt(g.beta, "%.6f") << "; " << g.note << '\n';
+  const auto checks = theorem_checks(r);
+  if (!checks.empty()) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "    %-22s %-4s %12s %12s  %s\n", "quantity", "", "theory", "measured", "holds");
     out << buf;
-    auto row = [&](const char* name, const char* rel, double bound, std::optional<double> meas, bool upper) {
-      const char* ok = !meas ? "n/a" : (upper ? (*meas <= bound) : (*meas >= bound)) ? "yes" : "NO";
-      std::snprintf(buf, sizeof buf, "    %-22s %-4s %12s %12s  %s\n", name, rel, fmt(bound, "%.4f").c_str(),
-                    fmt(meas, "%.4f").c_str(), ok);
+    for (const auto& c : checks) {
+      const char* ok = !c.holds ? "n/a" : *c.holds ? "yes" : (c.counts ? "NO" : "no (printed bound)");
+      std::snprintf(buf, sizeof buf, "    %-22s %-4s %12s %12s  %s\n", c.label, c.upper ? "<=" : ">=",
+                    fmt(c.bound, "%.4f").c_str(), fmt(c.measured, "%.4f").c_str(), ok);
       out << buf;
-    };
-    row("R/l max (Thm 4.3)", "<=", g.R_over_l_max, r.max_radius_edge, true);
-    row("min angle deg", ">=", g.min_angle_deg, r.min_angle_deg, false);
-    row("nn/f min (Thm 4.4)", ">=", g.nn_over_f_min, r.nn_over_f_min, false);
-    row("el/f max (Thm 4.5)", "<=", g.el_over_f_max, r.el_over_f_max, true);
-    row("el/f max (4.5 fixed)", "<=", g.el_over_f_max_corrected, r.el_over_f_max, true);
+    }
+    if (g.valid) out << "    all bounds hold: " << (guarantees_hold(r) ? "yes" : "NO") << '\n';
   }
 }
 

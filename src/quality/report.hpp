@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 #include "mesh/mesh_view.hpp"
+#include "quality/model_ready.hpp"
 #include "quality/orthogonality.hpp"
 #include "sizing/sizing_field.hpp"
 
@@ -85,7 +86,24 @@ struct QualityReport {
   std::string spacing;  // description of f ("none" without one)
   Guarantees guarantees;
   RunInfo run;
+  std::optional<ModelReadiness> model_ready;  // model_ready.hpp (set by the pipeline / quality command)
 };
+
+// One row of the theory table: a bound of the paper against the measured value.
+struct TheoremCheck {
+  const char* key;    // JSON key in "guarantees"
+  const char* label;  // text table label
+  bool upper;         // true: measured <= bound; false: measured >= bound
+  double bound;
+  std::optional<double> measured;
+  std::optional<bool> holds;  // nullopt when not measured or no guarantee applies
+  bool counts;        // false for Theorem 4.5 as printed (known sign slip): shown, not in "valid"
+};
+// The rows for `r` (FDR bound R/f(c) <= B, Theorems 4.3, the implied min angle, 4.4, 4.5 as
+// printed and corrected); empty when no guarantee applies (alpha unknown or alpha*B >= 1).
+std::vector<TheoremCheck> theorem_checks(const QualityReport& r);
+// True when a guarantee applies and every counted row holds.
+bool guarantees_hold(const QualityReport& r);
 
 // Measures every metric of `m` (in its local frame, where `f` is evaluated). `f` may be null.
 // `alpha` is the Lipschitz constant the guarantees are computed for; negative means unknown and

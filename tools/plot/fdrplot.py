@@ -23,7 +23,8 @@ class Mesh:
     tri_fields: per-triangle arrays read from the file (GPKG: area, min_angle, R_over_f).
     """
 
-    def __init__(self, xy, tris, z=None, segments=None, tri_fields=None, source=""):
+    def __init__(self, xy, tris, z=None, segments=None, tri_fields=None, source="", crs_wkt=None):
+        self.crs_wkt = crs_wkt  # CRS of xy (GPKG: the layers' SRS), None when unknown
         self.xy = np.asarray(xy, dtype=float).reshape(-1, 2)
         self.tris = np.asarray(tris, dtype=np.int64).reshape(-1, 3)
         self.z = None if z is None else np.asarray(z, dtype=float)
@@ -306,9 +307,11 @@ def read_gpkg(path):
                 p = [vid(*part.GetPoint_2D(i)) for i in range(part.GetPointCount())]
                 segs += [(a, b, kind) for a, b in zip(p, p[1:])]
     zz = np.array(z)
+    srs = tl.GetSpatialRef()
     return Mesh(np.array(xy).reshape(-1, 2), np.array(tris).reshape(-1, 3),
                 z=None if np.all(np.isnan(zz)) else zz, segments=segs,
-                tri_fields={n: np.array(v) for n, v in vals.items()}, source=path)
+                tri_fields={n: np.array(v) for n, v in vals.items()}, source=path,
+                crs_wkt=srs.ExportToWkt() if srs is not None else None)
 
 
 def read_mesh(path, ele=None):
@@ -321,6 +324,139 @@ def read_mesh(path, ele=None):
         stem = path[:-5]
         return read_triangle(stem + ".node", ele)
     raise MeshError(f"{path}: unknown mesh format (expected .gpkg, .2dm, .node/.ele)")
+
+
+# ----------------------------------------------------------------------------- vector overlays, windows
+
+def _srs(text):
+    from osgeo import osr
+
+    s = osr.SpatialReference()
+    if s.SetFromUserInput(text) != 0:
+        raise MeshError(f"unknown CRS '{text[:60]}'")
+    s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)  # x = easting / longitude
+    return s
+
+
+def _transform(src, dst):
+    from osgeo import osr
+
+    return osr.CoordinateTransformation(src, dst)
+
+
+def _box_through(ct, box, n=21):
+    """Bounding box of `box` (xmin, ymin, xmax, ymax) mapped by ct, its edges densified."""
+    x0, y0, x1, y1 = box
+    t = np.linspace(0.0, 1.0, n)
+    xs = np.concatenate([x0 + (x1 - x0) * t, np.full(n, x1), x1 - (x1 - x0) * t, np.full(n, x0)])
+    ys = np.concatenate([np.full(n, y0), y0 + (y1 - y0) * t, np.full(n, y1), y1 - (y1 - y0) * t])
+    pts = np.array(ct.TransformPoints(np.c_[xs, ys].tolist()))[:, :2]
+    return (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
+
+
+def parse_box(text, option):
+    try:
+        v = [float(t) for t in text.split(",")]
+    except ValueError:
+        v = []
+    if len(v) != 4 or not (v[0] < v[2] and v[1] < v[3]):
+        raise MeshError(f"{option} '{text}': expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX")
+    return tuple(v)
+
+
+def lonlat_box_to_crs(box, crs_wkt):
+    """A lon/lat box (W, S, E, N degrees) as a box in crs_wkt (bounding box of its densified edges)."""
+    if not crs_wkt:
+        raise MeshError("--bbox-lonlat needs the mesh's CRS (stored in fdrmesh GeoPackages; else give --crs)")
+    return _box_through(_transform(_srs("EPSG:4326"), _srs(crs_wkt)), box)
+
+
+def split_source(spec):
+    """FILE or FILE:LAYER -> (path, layer or None); a path that exists as given wins."""
+    if os.path.exists(spec):
+        return spec, None
+    if ":" in spec:
+        path, layer = spec.rsplit(":", 1)
+        if os.path.exists(path):
+            return path, layer or None
+    raise MeshError(f"{spec}: no such file")
+
+
+def read_lines(spec, crs_wkt=None, box=None, allow_unknown_crs=False):
+    """Line work (polygon rings, lines) of an OGR source FILE[:LAYER], reprojected to crs_wkt.
+
+    Returns a list of (n, 2) arrays. `box` (in crs_wkt) limits the features read (spatial filter).
+    A layer without SRS is taken as it is; a layer with one needs crs_wkt (MeshError) unless
+    allow_unknown_crs (then its coordinates are taken as they are).
+    """
+    from osgeo import ogr
+
+    ogr.UseExceptions()
+    path, layer = split_source(spec)
+    try:
+        ds = ogr.Open(path)
+    except RuntimeError as e:
+        raise MeshError(f"{path}: cannot open ({e})") from None
+    if ds is None:
+        raise MeshError(f"{path}: cannot open")
+    lyr = ds.GetLayerByName(layer) if layer else ds.GetLayer(0)
+    if lyr is None:
+        names = [ds.GetLayer(i).GetName() for i in range(ds.GetLayerCount())]
+        raise MeshError(f"{path}: no layer '{layer}' (layers: {', '.join(names)})")
+    src = lyr.GetSpatialRef()
+    ct = None
+    if src is not None and not crs_wkt and not allow_unknown_crs:
+        raise MeshError(f"{spec}: the layer has a CRS but the mesh's CRS is unknown (give --crs)")
+    if src is not None and crs_wkt:
+        src.SetAxisMappingStrategy(0)  # OAMS_TRADITIONAL_GIS_ORDER
+        dst = _srs(crs_wkt)
+        if not src.IsSame(dst):
+            ct = _transform(src, dst)
+            if box is not None:
+                inv = _box_through(_transform(dst, src), box)
+                lyr.SetSpatialFilterRect(*inv)
+        elif box is not None:
+            lyr.SetSpatialFilterRect(*box)
+    elif box is not None:
+        lyr.SetSpatialFilterRect(*box)
+    out = []
+
+    def walk(g):
+        if g is None:
+            return
+        if g.GetGeometryCount() > 0:
+            for i in range(g.GetGeometryCount()):
+                walk(g.GetGeometryRef(i))
+        elif g.GetPointCount() > 1:
+            out.append(np.array(g.GetPoints())[:, :2])
+
+    for feat in lyr:
+        g = feat.GetGeometryRef()
+        if g is None:
+            continue
+        g = g.Clone()
+        if ct is not None:
+            g.Transform(ct)
+        walk(g)
+    return out
+
+
+def read_repairs(path):
+    """(x, y, kind) of the repairs layer of an fdrmesh GeoPackage ([] when there is none)."""
+    if not path.lower().endswith(".gpkg"):
+        return []
+    from osgeo import ogr
+
+    ds = ogr.Open(path)
+    lyr = ds.GetLayerByName("repairs") if ds is not None else None
+    if lyr is None:
+        return []
+    out = []
+    for feat in lyr:
+        g = feat.GetGeometryRef()
+        if g is not None:
+            out.append((g.GetX(), g.GetY(), feat.GetFieldAsString("kind")))
+    return out
 
 
 # ----------------------------------------------------------------------------- metrics

@@ -172,6 +172,104 @@ def test_plot_mesh_errors(tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
+def _utm_mesh_gpkg(path, shift, scale=1000.0):
+    """tiny.node scaled and shifted into UTM 18N (EPSG:32618), written as an fdrmesh-like GPKG."""
+    ogr = pytest.importorskip("osgeo.ogr")
+    from osgeo import osr
+
+    mesh = fdrplot.read_mesh(os.path.join(TINY, "tiny.node"))
+    xy = mesh.xy * scale + np.array(shift)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32618)
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    tris = ds.CreateLayer("triangles", srs=srs, geom_type=ogr.wkbPolygon)
+    for t in mesh.tris:
+        p = xy[list(t) + [t[0]]]
+        f = ogr.Feature(tris.GetLayerDefn())
+        f.SetGeometry(ogr.CreateGeometryFromWkt("POLYGON ((" + ",".join(f"{x} {y}" for x, y in p) + "))"))
+        tris.CreateFeature(f)
+    rep = ds.CreateLayer("repairs", srs=srs, geom_type=ogr.wkbPoint)
+    rep.CreateField(ogr.FieldDefn("kind", ogr.OFTString))
+    f = ogr.Feature(rep.GetLayerDefn())
+    f.SetField("kind", "island_removed")
+    f.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({xy[4][0]} {xy[4][1]})"))
+    rep.CreateFeature(f)
+    ds = None
+    return xy
+
+
+def test_coast_overlay_is_reprojected(tmp_path):
+    pytest.importorskip("osgeo.ogr")
+    coast = tmp_path / "coast.geojson"
+    coast.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+                                                           "coordinates": [[-75.0, 37.0], [-74.99, 37.01]]}},
+        {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+            [[-75.01, 37.0], [-75.0, 37.0], [-75.0, 37.01], [-75.01, 37.0]]]}}]}))
+    lines = fdrplot.read_lines(str(coast), fdrplot._srs("EPSG:32618").ExportToWkt())
+    assert len(lines) == 2 and lines[0].shape == (2, 2) and lines[1].shape == (4, 2)
+    # lon -75 is UTM 18N's central meridian: easting 500 000 m; lat 37: northing ~4 095 000 m.
+    assert lines[0][0][0] == pytest.approx(500000.0, abs=1e-6)
+    assert 4094000 < lines[0][0][1] < 4096000
+    # A spatial filter in the mesh CRS keeps only what meets the box (the polygon lies west of it).
+    box = (499990.0, 4094000.0, 502000.0, 4097000.0)
+    assert len(fdrplot.read_lines(str(coast), fdrplot._srs("EPSG:32618").ExportToWkt(), box)) == 2
+    west = (499000.0, 4094000.0, 499500.0, 4097000.0)
+    assert len(fdrplot.read_lines(str(coast), fdrplot._srs("EPSG:32618").ExportToWkt(), west)) == 1
+    # FILE:LAYER
+    assert len(fdrplot.read_lines(f"{coast}:coast", allow_unknown_crs=True)) == 2
+    with pytest.raises(fdrplot.MeshError, match="mesh's CRS is unknown"):
+        fdrplot.read_lines(f"{coast}:coast")
+    with pytest.raises(fdrplot.MeshError, match="no layer 'nope'"):  # before the CRS check
+        fdrplot.read_lines(f"{coast}:nope")
+    with pytest.raises(fdrplot.MeshError, match="no such file"):
+        fdrplot.read_lines(str(tmp_path / "missing.shp:layer"))
+    # A lon/lat window in the mesh CRS.
+    x0, y0, x1, y1 = fdrplot.lonlat_box_to_crs((-75.01, 37.0, -75.0, 37.01), fdrplot._srs("EPSG:32618").ExportToWkt())
+    assert x1 == pytest.approx(500000.0, abs=1e-6) and 880 < x1 - x0 < 900 and 1100 < y1 - y0 < 1120
+
+
+def test_plot_mesh_bbox_window(tmp_path):
+    out = tmp_path / "zoom.png"
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.node"), "-o", str(out), "--bbox", "0.5,0.5,1.5,1.0",
+            "--size", "6", "--dpi", "100")
+    assert r.returncode == 0, r.stderr
+    # The panel takes the window's shape: 6 in wide, 6 * 0.5 + 1.2 in high.
+    assert_png(str(out), 600, 420, min_kb=4)
+    for bad, msg in ((["--bbox", "1,1,0,0"], "XMIN < XMAX"), (["--bbox", "a,b"], "expected XMIN,YMIN,XMAX,YMAX"),
+                     (["--bbox-lonlat", "-75.1,37,-75,37.1"], "needs the mesh's CRS"),
+                     (["--bbox", "0,0,1,1", "--bbox-lonlat", "0,0,1,1"], "either --bbox or --bbox-lonlat"),
+                     (["--coast", str(tmp_path / "nope.gpkg")], "nope.gpkg: no such file")):
+        r = run("plot_mesh.py", os.path.join(TINY, "tiny.node"), "-o", str(tmp_path / "x.png"), *bad)
+        assert r.returncode == 1 and msg in r.stderr, (bad, r.stderr)
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_plot_mesh_compare_with_coast_and_lonlat_window(tmp_path):
+    pytest.importorskip("osgeo.ogr")
+    a, b = str(tmp_path / "a.gpkg"), str(tmp_path / "b.gpkg")
+    _utm_mesh_gpkg(a, (499000.0, 4094000.0))
+    _utm_mesh_gpkg(b, (499000.0, 4094000.0), scale=900.0)
+    coast = tmp_path / "coast.geojson"
+    coast.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+                                                           "coordinates": [[-75.02, 36.99], [-74.98, 37.0]]}}]}))
+    out = tmp_path / "cmp.png"
+    r = run("plot_mesh.py", a, "--compare", b, "--coast", f"{coast}:coast", "--bbox-lonlat", "-75.012,36.995,-74.99,37.01",
+            "--title", "default", "--compare-title", "--keep-coast", "--repairs", "--size", "4", "--dpi", "100",
+            "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    w, h = png_size(str(out))
+    assert abs(w - (2 * 400 + 120)) <= 1  # two panels and the shared colorbar
+    assert 300 < h <= 800
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.2dm"), "--coast", str(coast), "-o", str(tmp_path / "u.png"))
+    assert r.returncode == 1 and "mesh's CRS is unknown (give --crs)" in r.stderr
+    # A 2DM without CRS: --crs makes the lon/lat window usable.
+    r = run("plot_mesh.py", os.path.join(TINY, "tiny.2dm"), "--crs", "EPSG:32618", "--bbox-lonlat",
+            "-79.5,0,-79.49,0.00001", "-o", str(tmp_path / "c.png"), "--size", "3", "--dpi", "50")
+    assert r.returncode == 0, r.stderr
+
+
 def test_plot_histograms(tmp_path):
     out = tmp_path / "h.png"
     r = run("plot_histograms.py", os.path.join(TINY, "tiny.node"), os.path.join(TINY, "tiny.2dm"), "-o", str(out),

@@ -325,7 +325,12 @@ TEST(Writers, JsonHasEveryRequiredField) {
   EXPECT_EQ(j["input_file"], "square.poly");
   for (const char* k : {"beta", "R_over_l_max", "min_angle_deg", "nn_over_f_min", "el_over_f_max", "valid"})
     EXPECT_TRUE(j["guarantees"].contains(k)) << k;
-  EXPECT_EQ(j["guarantees"]["valid"], true);
+  // Applicable (alpha*B = 0.1), but not valid: f = 0.5 is too small for this grid (R/f(c) = 1.41 > B,
+  // el/f = 2.83 above 2B/(1-alpha*B)).
+  EXPECT_EQ(j["guarantees"]["applicable"], true);
+  EXPECT_EQ(j["guarantees"]["valid"], false);
+  EXPECT_EQ(j["guarantees"]["fdr_R_over_f_max"]["holds"], false);
+  EXPECT_EQ(j["guarantees"]["theorem_4_3_R_over_l_max"]["holds"], true);
   EXPECT_NEAR(j["guarantees"]["R_over_l_max"].get<double>(), 1.7380151, 1e-7);
   for (const char* k : {"R_over_l_max", "min_angle_deg", "nn_over_f_min", "el_over_f_max"})
     EXPECT_TRUE(j["measured"].contains(k)) << k;

@@ -1,0 +1,102 @@
+// Issue 11 report, from what the CLI writes: `fdrmesh mesh` on the bundled Chesapeake example
+// writes "model_ready" (every key present, values consistent) and a theory table whose per-bound
+// `holds` agrees with bound vs measured; `fdrmesh quality` on the written mesh gives the same
+// mesh-only figures (no input coast, so no coast deviation).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+int run(const std::string& args) {
+  const int st = std::system((std::string(FDR_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+nlohmann::json load(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+}  // namespace
+
+TEST(ModelReadyCli, ChesapeakeReportAndQualityCommand) {
+  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_model_ready_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string t = std::string(FDR_TESTDATA_DIR) + "/chesapeake/";
+  ASSERT_EQ(run("mesh " + t + "chesapeake_mouth.gpkg --layer water --open-boundary " + t +
+                "chesapeake_mouth.gpkg --open-boundary-layer open_boundary --raster " + t +
+                "chesapeake_mouth_etopo5.tif -q -o " + (dir / "c.2dm").string() + " --report " +
+                (dir / "c.json").string()),
+            0);
+  const auto j = load(dir / "c.json");
+  ASSERT_TRUE(j.contains("model_ready"));
+  const auto& mr = j["model_ready"];
+  for (const char* k : {"hmin_m", "edges", "shortest_edge_m", "shortest_edge_over_hmin", "shortest_edge_at",
+                        "edges_below_half_hmin_pct", "edges_below_tenth_hmin_pct", "triangles_below_20_deg_pct",
+                        "triangles_below_30_deg_pct", "mean_quality", "min_quality", "pieces", "coast_deviation",
+                        "time_step", "area", "features_removed", "coast_figures"})
+    EXPECT_TRUE(mr.contains(k)) << k;
+  const double hmin = mr["hmin_m"].get<double>();
+  EXPECT_GT(hmin, 0);
+  EXPECT_NEAR(mr["shortest_edge_over_hmin"].get<double>(), mr["shortest_edge_m"].get<double>() / hmin, 1e-12);
+  EXPECT_GT(mr["mean_quality"].get<double>(), 0.5);
+  EXPECT_LE(mr["mean_quality"].get<double>(), 1.0);
+  EXPECT_GE(mr["pieces"]["mesh"].get<int>(), 1);
+  EXPECT_GE(mr["pieces"]["input"].get<int>(), 1);
+  for (const char* dir_name : {"input_to_mesh", "mesh_to_input"}) {
+    const auto& d = mr["coast_deviation"][dir_name];
+    ASSERT_TRUE(d.is_object()) << dir_name;
+    EXPECT_GE(d["max_m"].get<double>(), d["p99_m"].get<double>()) << dir_name;
+    EXPECT_NEAR(d["p99_over_hmin"].get<double>(), d["p99_m"].get<double>() / hmin, 1e-12) << dir_name;
+    EXPECT_GT(d["samples"].get<int>(), 100) << dir_name;
+  }
+  // A raster was given: depths, hence a time step at a wet triangle.
+  ASSERT_TRUE(mr["time_step"].is_object());
+  const auto& ts = mr["time_step"];
+  EXPECT_NEAR(ts["dt_s"].get<double>(),
+              ts["h_m"].get<double>() / std::sqrt(9.81 * ts["depth_m"].get<double>()), 1e-9);
+  EXPECT_GE(ts["depth_m"].get<double>(), 1.0);  // --min-depth default
+  EXPECT_NEAR(mr["area"]["mesh_m2"].get<double>(), j["area"].get<double>(), 1e-6 * j["area"].get<double>());
+  EXPECT_TRUE(mr["features_removed"].contains("islands"));
+
+  // Theory table: every bound carries {bound, measured, holds}, holds = the relation, and valid
+  // is true exactly when every counted bound holds.
+  const auto& g = j["guarantees"];
+  ASSERT_TRUE(g["applicable"].get<bool>());
+  int rows = 0;
+  bool all = true;
+  for (auto it = g.begin(); it != g.end(); ++it) {
+    if (!it.value().is_object()) continue;
+    ++rows;
+    const auto& c = it.value();
+    const double b = c["bound"].get<double>(), m = c["measured"].get<double>();
+    const bool holds = c["relation"] == "<=" ? m <= b : m >= b;
+    EXPECT_EQ(c["holds"].get<bool>(), holds) << it.key();
+    if (c["counts_for_valid"].get<bool>()) all = all && holds;
+  }
+  EXPECT_EQ(rows, 6);
+  EXPECT_EQ(g["valid"].get<bool>(), all);
+  EXPECT_TRUE(g["fdr_R_over_f_max"]["holds"].get<bool>());  // the refiner's invariant
+
+  // `fdrmesh quality` on the written 2DM: mesh-only figures agree with the mesher's.
+  ASSERT_EQ(run("quality " + (dir / "c.2dm").string() + " -q --report " + (dir / "q.json").string()), 0);
+  const auto q = load(dir / "q.json")["model_ready"];
+  EXPECT_EQ(q["edges"], mr["edges"]);
+  EXPECT_EQ(q["pieces"]["mesh"], mr["pieces"]["mesh"]);
+  EXPECT_TRUE(q["pieces"]["input"].is_null());
+  EXPECT_TRUE(q["hmin_m"].is_null());
+  EXPECT_TRUE(q["coast_deviation"]["input_to_mesh"].is_null());
+  EXPECT_EQ(q["triangles_below_30_deg"], mr["triangles_below_30_deg"]);
+  EXPECT_NEAR(q["shortest_edge_m"].get<double>(), mr["shortest_edge_m"].get<double>(), 1e-6);
+  EXPECT_NEAR(q["mean_quality"].get<double>(), mr["mean_quality"].get<double>(), 1e-9);
+  ASSERT_TRUE(q["time_step"].is_object());  // 2DM keeps z
+  EXPECT_NEAR(q["time_step"]["dt_s"].get<double>(), ts["dt_s"].get<double>(), 1e-6 * ts["dt_s"].get<double>());
+  fs::remove_all(dir);
+}

@@ -1,0 +1,477 @@
+// Model readiness of a final mesh (issue 11): edges against hmin, skinny triangles, mean quality,
+// coast deviation both ways, connected pieces, gravity-wave time step, removed features.
+// Measurements only (double precision); no combinatorial decision is taken here.
+#include "quality/model_ready.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <ostream>
+#include <string>
+#include <nlohmann/json.hpp>
+
+#include "base/error.hpp"
+
+namespace fdr::quality {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kGravity = 9.81;                   // m/s^2
+const double kCos20 = std::cos(20.0 * 3.14159265358979323846 / 180.0);
+const double kCos30 = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+const double kFourSqrt3 = 4.0 * std::sqrt(3.0);
+constexpr std::size_t kMaxSamples = 4'000'000;      // cap on coast-deviation samples per direction
+
+// Neumaier compensated sum (areas of many triangles of very different size).
+struct CompensatedSum {
+  double sum = 0, c = 0;
+  void add(double v) {
+    const double t = sum + v;
+    if (std::fabs(sum) >= std::fabs(v)) c += (sum - t) + v;
+    else c += (v - t) + sum;
+    sum = t;
+  }
+  double value() const { return sum + c; }
+};
+
+// Uniform grid over segments for nearest-segment distance queries. Each segment is cut into
+// pieces no longer than a cell and registered in the (at most 2x2) cells of each piece's box, so
+// that every cell lists every segment passing through it. A query searches square rings of cells
+// around the query's cell and stops once the next ring cannot hold anything nearer.
+class SegmentGrid {
+ public:
+  explicit SegmentGrid(const std::vector<std::pair<Point2, Point2>>& segs) : segs_(segs) {
+    if (segs.empty()) return;
+    Box2 box;
+    double total = 0;
+    for (const auto& [a, b] : segs) {
+      box.add(a);
+      box.add(b);
+      total += dist(a, b);
+    }
+    lo_ = box.lo;
+    const double n = static_cast<double>(segs.size());
+    const double w = box.width(), h = box.height();
+    cell_ = std::max(total / n, std::sqrt(w * h / (2.0 * n)));
+    if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = std::max({w, h, 1.0});
+    // Cap the number of cells at about 4 per segment (thin domains: one long axis).
+    for (int guard = 0; guard < 200; ++guard) {
+      nx_ = static_cast<std::size_t>(w / cell_) + 1;
+      ny_ = static_cast<std::size_t>(h / cell_) + 1;
+      if (static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * n + 16.0) break;
+      cell_ *= 1.5;
+    }
+    start_.assign(nx_ * ny_ + 1, 0);
+    std::vector<std::uint32_t> last(nx_ * ny_, std::numeric_limits<std::uint32_t>::max());
+    // Two passes over the same enumeration: count per cell, then fill (CSR).
+    auto each = [&](auto&& visit) {
+      std::fill(last.begin(), last.end(), std::numeric_limits<std::uint32_t>::max());
+      for (std::size_t s = 0; s < segs.size(); ++s) {
+        const Point2 a = segs[s].first, b = segs[s].second;
+        const double len = dist(a, b);
+        const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(len / cell_)));
+        for (std::size_t i = 0; i < k; ++i) {
+          const Point2 p = a + (static_cast<double>(i) / static_cast<double>(k)) * (b - a);
+          const Point2 q = i + 1 == k ? b : a + (static_cast<double>(i + 1) / static_cast<double>(k)) * (b - a);
+          const std::size_t i0 = ix(std::min(p.x, q.x)), i1 = ix(std::max(p.x, q.x));
+          const std::size_t j0 = iy(std::min(p.y, q.y)), j1 = iy(std::max(p.y, q.y));
+          for (std::size_t j = j0; j <= j1; ++j)
+            for (std::size_t ii = i0; ii <= i1; ++ii) {
+              const std::size_t c = j * nx_ + ii;
+              if (last[c] == s) continue;
+              last[c] = static_cast<std::uint32_t>(s);
+              visit(c, static_cast<std::uint32_t>(s));
+            }
+        }
+      }
+    };
+    each([&](std::size_t c, std::uint32_t) { ++start_[c + 1]; });
+    for (std::size_t c = 0; c < nx_ * ny_; ++c) start_[c + 1] += start_[c];
+    items_.resize(start_.back());
+    std::vector<std::size_t> cursor(start_.begin(), start_.end() - 1);
+    each([&](std::size_t c, std::uint32_t s) { items_[cursor[c]++] = s; });
+  }
+
+  // Distance from q to the nearest segment (+inf without segments).
+  double nearest(Point2 q) const {
+    if (segs_.empty()) return kInf;
+    const std::size_t ci = ix(q.x), cj = iy(q.y);
+    double best2 = kInf;
+    const std::size_t rmax = std::max(nx_, ny_);
+    for (std::size_t r = 0; r <= rmax; ++r) {
+      // Cells of Chebyshev ring r around (ci, cj), clipped to the grid.
+      const long long i_lo = static_cast<long long>(ci) - static_cast<long long>(r);
+      const long long i_hi = static_cast<long long>(ci) + static_cast<long long>(r);
+      const long long j_lo = static_cast<long long>(cj) - static_cast<long long>(r);
+      const long long j_hi = static_cast<long long>(cj) + static_cast<long long>(r);
+      for (long long j = std::max(0LL, j_lo); j <= std::min<long long>(j_hi, static_cast<long long>(ny_) - 1); ++j) {
+        const bool edge_row = j == j_lo || j == j_hi;
+        for (long long i = std::max(0LL, i_lo); i <= std::min<long long>(i_hi, static_cast<long long>(nx_) - 1);) {
+          scan(static_cast<std::size_t>(j) * nx_ + static_cast<std::size_t>(i), q, best2);
+          // Inside the ring only its left and right columns belong to it.
+          if (edge_row || i == i_hi) ++i;
+          else i = i_hi;
+        }
+      }
+      // Cells of ring r+1 are at least r cells away from q (also when q lies outside the grid).
+      const double reach = static_cast<double>(r) * cell_;
+      if (best2 <= reach * reach) break;
+    }
+    return std::sqrt(best2);
+  }
+
+ private:
+  std::size_t ix(double x) const { return clampi((x - lo_.x) / cell_, nx_); }
+  std::size_t iy(double y) const { return clampi((y - lo_.y) / cell_, ny_); }
+  static std::size_t clampi(double v, std::size_t n) {
+    if (!(v > 0)) return 0;
+    if (v >= static_cast<double>(n - 1)) return n - 1;
+    return static_cast<std::size_t>(v);
+  }
+  void scan(std::size_t c, Point2 q, double& best2) const {
+    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+      const auto& [a, b] = segs_[items_[k]];
+      const Point2 d = b - a;
+      const double l2 = norm2(d);
+      const double t = l2 > 0 ? std::clamp(dot(q - a, d) / l2, 0.0, 1.0) : 0.0;
+      best2 = std::min(best2, norm2(q - (a + t * d)));
+    }
+  }
+
+  const std::vector<std::pair<Point2, Point2>>& segs_;
+  Point2 lo_{};
+  double cell_ = 1;
+  std::size_t nx_ = 1, ny_ = 1;
+  std::vector<std::size_t> start_;
+  std::vector<std::uint32_t> items_;
+};
+
+// Every segment's start and points every `step` along it (closed rings: the end is the next
+// segment's start). `step` is raised when the samples would exceed kMaxSamples.
+std::vector<Point2> sample_segments(const std::vector<std::pair<Point2, Point2>>& segs, double step) {
+  double total = 0;
+  for (const auto& [a, b] : segs) total += dist(a, b);
+  if (step > 0 && total / step > static_cast<double>(kMaxSamples)) step = total / static_cast<double>(kMaxSamples);
+  std::vector<Point2> out;
+  out.reserve(segs.size() + (step > 0 ? static_cast<std::size_t>(total / step) : 0));
+  for (const auto& [a, b] : segs) {
+    out.push_back(a);
+    if (!(step > 0)) continue;
+    const double len = dist(a, b);
+    const std::size_t k = static_cast<std::size_t>(std::ceil(len / step));
+    for (std::size_t i = 1; i < k; ++i) out.push_back(a + (static_cast<double>(i) / static_cast<double>(k)) * (b - a));
+  }
+  return out;
+}
+
+CoastDeviation deviation(const std::vector<Point2>& samples, const SegmentGrid& grid, Point2 origin) {
+  CoastDeviation d;
+  d.samples = samples.size();
+  if (samples.empty()) return d;
+  std::vector<double> dd(samples.size());
+  std::size_t arg = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    dd[i] = grid.nearest(samples[i]);
+    if (dd[i] > dd[arg]) arg = i;
+  }
+  d.max_m = dd[arg];
+  d.max_at = origin + samples[arg];
+  // p99 by nearest rank: the smallest value with at least 99 % of the samples at or below it.
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(dd.size())));
+  const std::size_t k = rank == 0 ? 0 : rank - 1;
+  std::nth_element(dd.begin(), dd.begin() + static_cast<std::ptrdiff_t>(k), dd.end());
+  d.p99_m = dd[k];
+  return d;
+}
+
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+std::vector<double> distances_to_segments(const std::vector<Point2>& points,
+                                          const std::vector<std::pair<Point2, Point2>>& segments) {
+  const SegmentGrid grid(segments);
+  std::vector<double> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = grid.nearest(points[i]);
+  return out;
+}
+
+ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReadyInputs& in) {
+  ModelReadiness r;
+  const double hmin = in.hmin > 0 && std::isfinite(in.hmin) ? in.hmin : 0.0;
+  if (hmin > 0) r.hmin_m = hmin;
+  r.min_depth_m = in.min_depth_m;
+  if (in.coast_figures) r.coast_figures = *in.coast_figures;
+  r.input_pieces = r.figure("input_pieces");
+  r.input_area_m2 = r.figure("input_area_m2");
+
+  const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
+  r.triangles = nt;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (Index v : m.triangles[t])
+      if (v >= nv)
+        throw Error(ExitCode::kInternal, "model readiness: triangle " + std::to_string(t) + " references vertex " +
+                                             std::to_string(v) + " of " + std::to_string(nv));
+
+  // Half-edges grouped by their smaller endpoint (CSR), each group sorted by the other endpoint:
+  // the triangles sharing an edge are then adjacent entries (one pass of scattered writes, then
+  // sequential work; much faster than searching vertex stars on a mesh in refinement order).
+  struct HalfEdge {
+    Index other, t;
+    bool operator<(const HalfEdge& h) const { return other != h.other ? other < h.other : t < h.t; }
+  };
+  std::vector<Index> start(nv + 1, 0);
+  for (const auto& tri : m.triangles)
+    for (int k = 0; k < 3; ++k) ++start[std::min(tri[k], tri[(k + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<HalfEdge> he(3 * nt);
+  {
+    std::vector<Index> cursor(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& tri = m.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const Index a = tri[k], b = tri[(k + 1) % 3];
+        he[cursor[std::min(a, b)]++] = {std::max(a, b), static_cast<Index>(t)};
+      }
+    }
+  }
+
+  UnionFind pieces(nt);
+  std::vector<std::pair<Point2, Point2>> boundary;  // mesh boundary edges, local frame
+  double shortest = kInf;
+  const double half = 0.5 * hmin, tenth = 0.1 * hmin;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto first = he.begin() + start[v], last = he.begin() + start[v + 1];
+    std::sort(first, last);
+    for (auto g = first; g != last;) {
+      auto e = g + 1;
+      while (e != last && e->other == g->other) pieces.unite(g->t, (e++)->t);
+      const Point2 a = m.vertices[v], b = m.vertices[g->other];
+      if (e - g == 1) boundary.push_back({a, b});  // used by one triangle
+      const double len = dist(a, b);
+      ++r.edges;
+      if (len < shortest) {
+        shortest = len;
+        r.shortest_edge_at = m.origin + 0.5 * (a + b);
+      }
+      if (hmin > 0) {
+        if (len < half) ++r.edges_below_half_hmin;
+        if (len < tenth) ++r.edges_below_tenth_hmin;
+      }
+      g = e;
+    }
+  }
+
+  const bool have_z = !m.z.empty() && m.z.size() == nv;
+  const double min_depth = in.min_depth_m > 0 ? in.min_depth_m : 0.0;
+  CompensatedSum area, qsum;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& tri = m.triangles[t];
+    const Point2 p[3] = {m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]]};
+    // len[k]: edge k from corner k to corner k+1
+    const double len[3] = {dist(p[0], p[1]), dist(p[1], p[2]), dist(p[2], p[0])};
+    const double cr = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
+    area.add(0.5 * cr);
+    const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
+    const double q = sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
+    qsum.add(q);
+    if (!r.min_quality || q < *r.min_quality) r.min_quality = q;
+    // The smallest angle is at the corner opposite the shortest edge; it is acute, so comparing
+    // its cosine decides "< 20 deg" without trigonometry.
+    const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
+    const int apex = (ks + 2) % 3;
+    const double lu = len[(ks + 1) % 3], lv = len[(ks + 2) % 3];  // the two edges at the apex
+    const double c = lu > 0 && lv > 0 ? dot(p[(apex + 1) % 3] - p[apex], p[(apex + 2) % 3] - p[apex]) / (lu * lv) : 1.0;
+    if (c > kCos20) ++r.triangles_below_20_deg;
+    if (c > kCos30) ++r.triangles_below_30_deg;
+    if (have_z) {
+      const double lmax = std::max({len[0], len[1], len[2]});
+      const double h = lmax > 0 ? std::fabs(cr) / lmax : 0.0;  // shortest altitude = 2 * area / longest edge
+      const double depth = std::max(-(m.z[tri[0]] + m.z[tri[1]] + m.z[tri[2]]) / 3.0, min_depth);
+      if (depth > 0 && std::isfinite(depth)) {
+        const double dt = h / std::sqrt(kGravity * depth);
+        if (!r.time_step || dt < r.time_step->dt_s)
+          r.time_step = TimeStep{dt, h, depth, m.origin + (1.0 / 3.0) * (p[0] + p[1] + p[2]), t};
+      }
+    }
+  }
+  if (std::isfinite(shortest)) r.shortest_edge_m = shortest;
+  if (nt > 0) r.mean_quality = qsum.value() / static_cast<double>(nt);
+  r.mesh_area_m2 = area.value();
+  for (std::size_t t = 0; t < nt; ++t)
+    if (pieces.find(static_cast<Index>(t)) == t) ++r.mesh_pieces;
+  r.mesh_boundary_edges = boundary.size();
+
+  // Coast deviation, both directions, sampled at every vertex and every hmin/2.
+  if (in.input_boundary && !in.input_boundary->empty() && !boundary.empty()) {
+    const double step = hmin > 0 ? 0.5 * hmin : 0.0;
+    const SegmentGrid mesh_grid(boundary);
+    r.input_to_mesh = deviation(sample_segments(*in.input_boundary, step), mesh_grid, m.origin);
+    const SegmentGrid input_grid(*in.input_boundary);
+    r.mesh_to_input = deviation(sample_segments(boundary, step), input_grid, m.origin);
+  }
+  return r;
+}
+
+std::optional<double> ModelReadiness::figure(const std::string& name) const {
+  for (const auto& [k, v] : coast_figures)
+    if (k == name) return v;
+  return std::nullopt;
+}
+std::optional<double> ModelReadiness::shortest_edge_over_hmin() const {
+  if (!shortest_edge_m || !hmin_m) return std::nullopt;
+  return *shortest_edge_m / *hmin_m;
+}
+static std::optional<double> pct(std::size_t k, std::size_t n) {
+  if (n == 0) return std::nullopt;
+  return 100.0 * static_cast<double>(k) / static_cast<double>(n);
+}
+std::optional<double> ModelReadiness::pct_edges_below_half_hmin() const {
+  return hmin_m ? pct(edges_below_half_hmin, edges) : std::nullopt;
+}
+std::optional<double> ModelReadiness::pct_edges_below_tenth_hmin() const {
+  return hmin_m ? pct(edges_below_tenth_hmin, edges) : std::nullopt;
+}
+double ModelReadiness::pct_triangles_below_20() const { return pct(triangles_below_20_deg, triangles).value_or(0); }
+double ModelReadiness::pct_triangles_below_30() const { return pct(triangles_below_30_deg, triangles).value_or(0); }
+std::optional<double> ModelReadiness::area_change_pct() const {
+  if (!input_area_m2 || !(*input_area_m2 > 0)) return std::nullopt;
+  return 100.0 * (mesh_area_m2 - *input_area_m2) / *input_area_m2;
+}
+
+// ---------------------------------------------------------------- writers
+
+namespace {
+using Json = nlohmann::ordered_json;
+Json num(std::optional<double> v) {
+  if (!v || !std::isfinite(*v)) return nullptr;
+  return *v;
+}
+// Counts among the GIS figures are doubles; integral values are written as JSON integers.
+Json figure_json(std::optional<double> v) {
+  if (v && std::isfinite(*v) && *v == std::floor(*v) && std::fabs(*v) < 9e15) return static_cast<long long>(*v);
+  return num(v);
+}
+Json xy(Point2 p) { return Json::array({p.x, p.y}); }
+std::optional<double> over(std::optional<double> v, std::optional<double> h) {
+  if (!v || !h || !(*h > 0)) return std::nullopt;
+  return *v / *h;
+}
+Json deviation_json(const std::optional<CoastDeviation>& d, std::optional<double> hmin) {
+  if (!d) return nullptr;
+  return {{"max_m", num(d->max_m)},
+          {"p99_m", num(d->p99_m)},
+          {"max_over_hmin", num(over(d->max_m, hmin))},
+          {"p99_over_hmin", num(over(d->p99_m, hmin))},
+          {"max_at", xy(d->max_at)},
+          {"samples", d->samples}};
+}
+std::string fmt(std::optional<double> v, const char* spec) {
+  if (!v) return "n/a";
+  if (!std::isfinite(*v)) return *v > 0 ? "inf" : "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, spec, *v);
+  return buf;
+}
+void line(std::ostream& out, const char* label, const std::string& value) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "  %-30s: ", label);
+  out << buf << value << '\n';
+}
+}  // namespace
+
+nlohmann::ordered_json model_ready_json(const ModelReadiness& r) {
+  Json j;
+  j["hmin_m"] = num(r.hmin_m);
+  j["edges"] = r.edges;
+  j["shortest_edge_m"] = num(r.shortest_edge_m);
+  j["shortest_edge_over_hmin"] = num(r.shortest_edge_over_hmin());
+  j["shortest_edge_at"] = r.shortest_edge_m ? xy(r.shortest_edge_at) : Json(nullptr);
+  j["edges_below_half_hmin_pct"] = num(r.pct_edges_below_half_hmin());
+  j["edges_below_tenth_hmin_pct"] = num(r.pct_edges_below_tenth_hmin());
+  j["edges_below_half_hmin"] = r.hmin_m ? Json(r.edges_below_half_hmin) : Json(nullptr);
+  j["edges_below_tenth_hmin"] = r.hmin_m ? Json(r.edges_below_tenth_hmin) : Json(nullptr);
+  j["triangles_below_20_deg_pct"] = r.pct_triangles_below_20();
+  j["triangles_below_30_deg_pct"] = r.pct_triangles_below_30();
+  j["triangles_below_20_deg"] = r.triangles_below_20_deg;
+  j["triangles_below_30_deg"] = r.triangles_below_30_deg;
+  j["mean_quality"] = num(r.mean_quality);
+  j["min_quality"] = num(r.min_quality);
+  j["pieces"] = {{"mesh", r.mesh_pieces}, {"input", figure_json(r.input_pieces)}};
+  j["coast_deviation"] = {{"input_to_mesh", deviation_json(r.input_to_mesh, r.hmin_m)},
+                          {"mesh_to_input", deviation_json(r.mesh_to_input, r.hmin_m)},
+                          {"mesh_boundary_edges", r.mesh_boundary_edges}};
+  if (r.time_step) {
+    j["time_step"] = {{"dt_s", num(r.time_step->dt_s)},
+                      {"at", xy(r.time_step->at)},
+                      {"h_m", num(r.time_step->h_m)},
+                      {"depth_m", num(r.time_step->depth_m)},
+                      {"h", "shortest altitude"},
+                      {"min_depth_m", num(r.min_depth_m)}};
+  } else {
+    j["time_step"] = nullptr;
+  }
+  j["area"] = {{"mesh_m2", num(r.mesh_area_m2)}, {"input_m2", num(r.input_area_m2)},
+               {"change_pct", num(r.area_change_pct())}};
+  j["features_removed"] = {{"water_closed", figure_json(r.figure("narrow_water_closed"))},
+                           {"water_closed_m2", num(r.figure("water_removed_m2"))},
+                           {"islands", figure_json(r.figure("islands_removed"))},
+                           {"islands_m2", num(r.figure("islands_removed_m2"))}};
+  Json figs = Json::object();
+  for (const auto& [k, v] : r.coast_figures) figs[k] = figure_json(v);
+  j["coast_figures"] = figs;
+  return j;
+}
+
+void write_model_ready_text(const ModelReadiness& r, std::ostream& out) {
+  out << "\n  Model readiness" << (r.hmin_m ? " (hmin = " + fmt(r.hmin_m, "%.6g") + " m)" : std::string()) << '\n';
+  std::string se = fmt(r.shortest_edge_m, "%.4g") + " m";
+  if (auto q = r.shortest_edge_over_hmin()) se += " = " + fmt(q, "%.3g") + " hmin";
+  line(out, "shortest edge", se);
+  if (r.hmin_m)
+    line(out, "edges < hmin/2, < hmin/10", fmt(r.pct_edges_below_half_hmin(), "%.3f") + " %, " +
+                                               fmt(r.pct_edges_below_tenth_hmin(), "%.3f") + " %");
+  line(out, "triangles < 20 deg, < 30 deg",
+       fmt(r.pct_triangles_below_20(), "%.3f") + " %, " + fmt(r.pct_triangles_below_30(), "%.3f") + " %");
+  line(out, "mean quality (1 = equilateral)", fmt(r.mean_quality, "%.4f"));
+  line(out, "pieces mesh / input",
+       std::to_string(r.mesh_pieces) + " / " + (r.input_pieces ? fmt(r.input_pieces, "%.0f") : std::string("n/a")));
+  auto dev = [&](const char* label, const std::optional<CoastDeviation>& d) {
+    if (!d) return;
+    std::string s = fmt(d->max_m, "%.4g") + " / " + fmt(d->p99_m, "%.4g") + " m";
+    if (r.hmin_m)
+      s += " = " + fmt(over(d->max_m, r.hmin_m), "%.3g") + " / " + fmt(over(d->p99_m, r.hmin_m), "%.3g") + " hmin";
+    line(out, label, s);
+  };
+  dev("coast in->mesh max / p99", r.input_to_mesh);
+  dev("coast mesh->in max / p99", r.mesh_to_input);
+  if (r.time_step) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.4g s at (%.1f, %.1f): h %.4g m, depth %.4g m", r.time_step->dt_s,
+                  r.time_step->at.x, r.time_step->at.y, r.time_step->h_m, r.time_step->depth_m);
+    line(out, "time step h/sqrt(g depth)", buf);
+  }
+  if (auto a = r.area_change_pct()) line(out, "area change vs input", fmt(a, "%+.4f") + " %");
+  auto removed = [&](const char* label, const char* count, const char* area) {
+    if (auto n = r.figure(count))
+      line(out, label, fmt(n, "%.0f") + " (" + fmt(r.figure(area).value_or(0) / 1e6, "%.4g") + " km^2)");
+  };
+  removed("narrow water closed", "narrow_water_closed", "water_removed_m2");
+  removed("islands removed", "islands_removed", "islands_removed_m2");
+}
+
+}  // namespace fdr::quality
