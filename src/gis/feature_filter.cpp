@@ -25,7 +25,7 @@ using GeomPtr = std::unique_ptr<OGRGeometry>;
 
 // Quarter-circle segments of the buffers: the arcs are resampled to f afterwards, so a coarse
 // polygon (15 degrees per chord, sagitta 0.9 % of r) is enough.
-constexpr int kQuadSegs = 2;
+constexpr int kQuadSegs = 4;
 
 std::string num(double v) {
   char buf[64];
@@ -406,20 +406,59 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     R = multi(kept);
   }
 
+  // 3. The changes are applied to the input itself: R's boundary is the input boundary only up
+  //    to GEOS rounding (buffers do not return the same coordinates), and breaklines, open
+  //    boundary lines and fixed points must still meet the coast exactly where nothing was
+  //    removed. Pieces of W0 - R and R - W0 thinner than a hair (rounding) are ignored.
+  std::vector<std::unique_ptr<OGRPolygon>> gone;
+  if (o.close_width > 0 || res.islands_removed > 0 || res.islands_grown > 0) {
+    const double hair = std::max(0.05 * o.close_width, 1e-9);
+    auto significant = [&](GeomPtr g, std::vector<std::unique_ptr<OGRPolygon>>& out) {
+      std::vector<std::unique_ptr<OGRPolygon>> ps;
+      polygons_of(g.get(), ps);
+      for (auto& p : ps) {
+        const double a = p->get_Area();
+        double per = p->getExteriorRing()->get_Length();
+        for (int k = 0; k < p->getNumInteriorRings(); ++k) per += p->getInteriorRing(k)->get_Length();
+        if (a > hair * hair && 2 * a > hair * per) out.push_back(std::move(p));
+      }
+    };
+    std::vector<std::unique_ptr<OGRPolygon>> added;
+    significant(checked(W0->Difference(R.get()), "input minus result"), gone);
+    significant(checked(R->Difference(W0.get()), "result minus input"), added);
+    GeomPtr fin(W0->clone());
+    if (!gone.empty()) {
+      std::vector<std::unique_ptr<OGRPolygon>> cp;
+      for (const auto& g : gone) cp.emplace_back(g->clone());
+      auto gm = multi(cp);
+      GeomPtr gu = gm->getNumGeometries() > 1 ? checked(gm->UnionCascaded(), "union of removed water") : GeomPtr(gm.release());
+      fin = checked(fin->Difference(gu.get()), "input minus removed water");
+    }
+    if (!added.empty()) {
+      auto am = multi(added);
+      am->addGeometry(fin.get());
+      fin = checked(am->UnionCascaded(), "input plus water gained");
+    }
+    R = std::move(fin);
+  }
+  lap("apply");
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
-  // 4. Removed water: W - R, listed piece by piece above list_area (whole water bodies always).
+  // 4. Removed water, listed piece by piece above list_area (whole water bodies always).
   if (o.close_width > 0) {
-    auto rm = std::make_unique<OGRMultiPolygon>();
-    for (const auto& p : outp) rm->addGeometry(p.get());
-    GeomPtr gone_all = checked(W->Difference(rm.get()), "difference input - result");
-    std::vector<std::unique_ptr<OGRPolygon>> gone, wps;
-    polygons_of(gone_all.get(), gone);
-    polygons_of(W.get(), wps);
+    std::vector<std::unique_ptr<OGRPolygon>> wps;
+    polygons_of(W0.get(), wps);
     for (const auto& g : gone) {
       const double a = g->get_Area();
       if (!(a > 0)) continue;
       res.closed_area += a;
+      bool listed = false;  // holds a cut-off water body already listed
+      for (const auto& r : res.repairs) {
+        if (r.kind != "cut_off_water_removed") continue;
+        OGRPoint pt(r.where.x, r.where.y);
+        if (g->Intersects(&pt)) listed = true;
+      }
+      if (listed) continue;
       bool whole = false;  // a whole input water body removed (nowhere min_feature wide)
       for (const auto& w : wps)
         if (std::fabs(w->get_Area() - a) <= 1e-9 * a && w->Intersects(g.get())) whole = true;

@@ -228,6 +228,9 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   // removal of small islands unless --keep-coast. hmin as below (default: domain diameter / 500).
   d.features = [&opt](const Box2& b) {
     const double hmin = opt.hmin.value_or(std::hypot(b.width(), b.height()) / 500.0);
+    if (!(hmin > 0) || (opt.hmax && !(*opt.hmax >= hmin)))
+      throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " +
+                                                 (opt.hmax ? num(*opt.hmax) : std::string("auto")) + ")");
     gis::FeatureFilterOptions fo;
     fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.25 * hmin);
     fo.min_feature = opt.min_feature.value_or(0.1 * hmin);

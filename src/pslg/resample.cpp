@@ -418,6 +418,47 @@ class Resampler {
       restore(seg_piece_[s]);
     }
     if (!bad->empty()) return true;
+    // Angles: resampling may not create a wedge between two segments at a vertex that is much
+    // sharper than any the input had there (a rounded inlet end simplified into a spike, two
+    // chains leaving a junction almost together): refinement would need tiny elements in it.
+    {
+      const std::size_t n = out.points.size();
+      std::vector<std::uint32_t> deg(n + 1, 0);
+      for (const auto& sg : out.segments) { ++deg[sg.a + 1]; ++deg[sg.b + 1]; }
+      for (std::size_t v = 0; v < n; ++v) deg[v + 1] += deg[v];
+      std::vector<std::size_t> inc(deg[n]);
+      std::vector<std::uint32_t> fill(deg.begin(), deg.end() - 1);
+      for (std::size_t k = 0; k < out.segments.size(); ++k) {
+        inc[fill[out.segments[k].a]++] = k;
+        inc[fill[out.segments[k].b]++] = k;
+      }
+      std::vector<std::pair<double, std::size_t>> dirs;
+      for (std::size_t v = 0; v < n; ++v) {
+        if (deg[v + 1] - deg[v] < 2) continue;
+        dirs.clear();
+        for (std::uint32_t k = deg[v]; k < deg[v + 1]; ++k) {
+          const auto& sg = out.segments[inc[k]];
+          const Point2 o = out.points[v], q = out.points[sg.a == v ? sg.b : sg.a];
+          dirs.push_back({std::atan2(q.y - o.y, q.x - o.x), inc[k]});
+        }
+        std::sort(dirs.begin(), dirs.end());
+        for (std::size_t i = 0; i < dirs.size(); ++i) {
+          const auto& [d1, s1] = dirs[i];
+          const auto& [d2, s2] = dirs[(i + 1) % dirs.size()];
+          double wedge = d2 - d1;
+          if (wedge <= 0) wedge += 2 * kPi;
+          if (wedge >= kSharp) continue;
+          const std::size_t q1 = seg_piece_[s1], q2 = seg_piece_[s2];
+          if (q1 == kNoPiece && q2 == kNoPiece) continue;
+          const double ref = std::min(q1 == kNoPiece ? kPi : piece_min_angle(q1), q2 == kNoPiece ? kPi : piece_min_angle(q2));
+          if (wedge < 0.7 * ref) {
+            restore(q1);
+            restore(q2);
+          }
+        }
+      }
+      if (!bad->empty()) return true;
+    }
     // Swept regions: no other vertex may lie between a new chain piece and its input polyline.
     if (out.points.empty()) return false;
     Box2 box = out.bbox();
@@ -454,6 +495,40 @@ class Resampler {
     return !bad->empty();
   }
 
+  // Smallest wedge angle at the input vertices v[k0..k1] of a (flat) piece, between the
+  // input segments at each vertex.
+  double piece_min_angle(std::size_t q) {
+    const auto& [c, k0, k1] = flat_[q];
+    double m = kPi;
+    for (std::size_t k = k0; k <= k1; ++k) m = std::min(m, input_wedge(chains_[c].v[k]));
+    return m;
+  }
+  double input_wedge(Index v) {
+    if (wedge_.empty()) {
+      // Smallest angle between consecutive input segments around every input vertex.
+      const std::size_t n = in_.points.size();
+      wedge_.assign(n, kPi);
+      std::vector<std::vector<double>> dirs(n);
+      for (const auto& sg : in_.segments) {
+        if (sg.a == sg.b) continue;
+        const Point2 a = in_.points[sg.a], b = in_.points[sg.b];
+        dirs[sg.a].push_back(std::atan2(b.y - a.y, b.x - a.x));
+        dirs[sg.b].push_back(std::atan2(a.y - b.y, a.x - b.x));
+      }
+      for (std::size_t u = 0; u < n; ++u) {
+        auto& d = dirs[u];
+        if (d.size() < 2) continue;
+        std::sort(d.begin(), d.end());
+        for (std::size_t i = 0; i < d.size(); ++i) {
+          double w = d[(i + 1) % d.size()] - d[i];
+          if (w <= 0) w += 2 * kPi;
+          wedge_[u] = std::min(wedge_[u], w);
+        }
+      }
+    }
+    return wedge_[v];
+  }
+
   // Parity test with exact orientation; points on the polygon's boundary count as inside.
   static bool inside_or_on(Point2 p, const std::vector<Point2>& poly) {
     bool in = false;
@@ -472,6 +547,9 @@ class Resampler {
   }
 
   static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
+  static constexpr double kPi = 3.14159265358979323846;
+  static constexpr double kSharp = kPi / 6;  // wedges under 30 degrees are checked
+  std::vector<double> wedge_;
   const Pslg& in_;
   ResampleOptions o_;
   std::vector<Chain> chains_;
