@@ -9,7 +9,6 @@
 //     every indexed row, naming its leaf.
 #include "io/gpkg_rtree.hpp"
 
-#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,61 +60,42 @@ std::vector<std::vector<Cell>> str_pack(std::vector<Cell> cells, std::size_t cap
   return out;
 }
 
-void put_be(std::string& hex, std::uint64_t v, int bytes) {
-  static const char* const kHex = "0123456789ABCDEF";
-  for (int i = bytes - 1; i >= 0; --i) {
-    unsigned b = (v >> (8 * i)) & 0xFF;
-    hex.push_back(kHex[b >> 4]);
-    hex.push_back(kHex[b & 15]);
-  }
+void put_be(std::string& out, std::uint64_t v, int bytes) {
+  for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
 }
 
-std::string node_blob_hex(const std::vector<Cell>& cells, int depth, std::size_t node_size) {
-  std::string hex;
-  hex.reserve(2 * node_size + 8);
-  put_be(hex, static_cast<std::uint64_t>(depth), 2);
-  put_be(hex, cells.size(), 2);
+std::string node_blob(const std::vector<Cell>& cells, int depth, std::size_t node_size) {
+  std::string b;
+  b.reserve(node_size);
+  put_be(b, static_cast<std::uint64_t>(depth), 2);
+  put_be(b, cells.size(), 2);
   for (const Cell& c : cells) {
-    put_be(hex, static_cast<std::uint64_t>(c.id), 8);
+    put_be(b, static_cast<std::uint64_t>(c.id), 8);
     for (float f : c.box) {
       std::uint32_t u;
       std::memcpy(&u, &f, 4);
-      put_be(hex, u, 4);
+      put_be(b, u, 4);
     }
   }
-  hex.append(2 * node_size - hex.size(), '0');  // zero padding to the fixed node size
-  return hex;
+  b.append(node_size - b.size(), '\0');  // zero padding to the fixed node size
+  return b;
 }
 
 std::string quoted(const std::string& name) { return "\"" + name + "\""; }
 
 }  // namespace
 
-void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vector<RtreeEntry> entries,
-                      const std::string& path, GdalErrors& errs) {
-  OGRLayer* layer = ds.GetLayerByName(layer_name.c_str());
-  if (!layer) fail_output(path, "layer '" + layer_name + "' vanished while building its spatial index");
-  const std::string t = layer_name, g = layer->GetGeometryColumn(), fid = layer->GetFIDColumn();
+void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
+                      std::vector<RtreeEntry> entries) {
+  const std::string t = table, g = geom_col, fid = fid_col;
   const std::string rt = "rtree_" + t + "_" + g;
-  auto sql = [&](const std::string& s) {
-    errs.clear();
-    OGRLayer* r = ds.ExecuteSQL(s.c_str(), nullptr, nullptr);
-    if (r) ds.ReleaseResultSet(r);
-    if (errs.any()) fail_output(path, errs.reason("building the spatial index of layer '" + layer_name + "' failed"));
-  };
+  auto sql = [&](const std::string& s) { db.exec(s); };
 
   sql("CREATE VIRTUAL TABLE " + quoted(rt) + " USING rtree(id, minx, maxx, miny, maxy)");
-  std::size_t node_size = 0;
-  {
-    errs.clear();
-    OGRLayer* r = ds.ExecuteSQL(("SELECT length(data) FROM " + quoted(rt + "_node") + " WHERE nodeno = 1").c_str(), nullptr, nullptr);
-    if (r) {
-      if (std::unique_ptr<OGRFeature> f{r->GetNextFeature()}) node_size = static_cast<std::size_t>(f->GetFieldAsInteger64(0));
-      ds.ReleaseResultSet(r);
-    }
-  }
+  const auto node_size =
+      static_cast<std::size_t>(db.query_int("SELECT length(data) FROM " + quoted(rt + "_node") + " WHERE nodeno = 1"));
   const std::size_t cell_bytes = 8 + 4 * 4;
-  if (node_size < 4 + 4 * cell_bytes) fail_output(path, errs.reason("cannot read the R-tree node size of layer '" + layer_name + "'"));
+  if (node_size < 4 + 4 * cell_bytes) fail_output(db.path(), "cannot read the R-tree node size of table '" + t + "'");
   const std::size_t cap = (node_size - 4) / cell_bytes;
 
   if (!entries.empty()) {
@@ -126,8 +106,13 @@ void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vecto
     }
     entries.clear();
     entries.shrink_to_fit();
-    std::vector<std::pair<std::int64_t, std::int64_t>> rowid_rows, parent_rows;
-    std::vector<std::pair<std::int64_t, std::string>> node_rows;
+    sql("DELETE FROM " + quoted(rt + "_node"));
+    // Leaf links are collected and written in rowid order: appending to a B-tree is much cheaper
+    // than inserting in the STR order.
+    std::vector<std::pair<std::int64_t, std::int64_t>> leaf_of;
+    leaf_of.reserve(cur.size());
+    BatchInsert parent_rows(db, rt + "_parent", {"nodeno", "parentnode"}, 256);
+    BatchInsert node_rows(db, rt + "_node", {"nodeno", "data"}, 16);
     std::int64_t next_no = 2;
     // Build level by level; a level that fits in one node becomes the root (node 1).
     for (int depth = 0;; ++depth) {
@@ -138,10 +123,16 @@ void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vecto
       for (auto& grp : groups) {
         std::int64_t no = root ? 1 : next_no++;
         for (const Cell& c : grp) {
-          if (depth == 0) rowid_rows.push_back({c.id, no});
-          else parent_rows.push_back({c.id, no});
+          if (depth == 0) {
+            leaf_of.push_back({c.id, no});
+          } else {
+            parent_rows.add_int(c.id).add_int(no);
+            parent_rows.end_row();
+          }
         }
-        node_rows.push_back({no, node_blob_hex(grp, root ? depth : 0, node_size)});
+        const std::string blob = node_blob(grp, root ? depth : 0, node_size);
+        node_rows.add_int(no).add_blob(blob.data(), blob.size());
+        node_rows.end_row();
         Cell p{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
         for (const Cell& c : grp) {
           p.box[0] = std::min(p.box[0], c.box[0]);
@@ -154,29 +145,15 @@ void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vecto
       if (root) break;
       cur = std::move(parents);
     }
-    sql("DELETE FROM " + quoted(rt + "_node"));
-    // Multi-row inserts keep the number of statements (each parsed once) small.
-    auto insert_pairs = [&](const std::string& table, const char* cols,
-                            const std::vector<std::pair<std::int64_t, std::int64_t>>& rows) {
-      for (std::size_t i = 0; i < rows.size(); i += 2000) {
-        std::string s = "INSERT INTO " + quoted(table) + cols + " VALUES ";
-        for (std::size_t k = i; k < std::min(rows.size(), i + 2000); ++k) {
-          if (k > i) s += ',';
-          s += '(' + std::to_string(rows[k].first) + ',' + std::to_string(rows[k].second) + ')';
-        }
-        sql(s);
-      }
-    };
-    for (std::size_t i = 0; i < node_rows.size(); i += 64) {
-      std::string s = "INSERT INTO " + quoted(rt + "_node") + "(nodeno, data) VALUES ";
-      for (std::size_t k = i; k < std::min(node_rows.size(), i + 64); ++k) {
-        if (k > i) s += ',';
-        s += '(' + std::to_string(node_rows[k].first) + ",X'" + node_rows[k].second + "')";
-      }
-      sql(s);
+    std::sort(leaf_of.begin(), leaf_of.end());
+    BatchInsert rowid_rows(db, rt + "_rowid", {"rowid", "nodeno"}, 256);
+    for (const auto& [id, no] : leaf_of) {
+      rowid_rows.add_int(id).add_int(no);
+      rowid_rows.end_row();
     }
-    insert_pairs(rt + "_rowid", "(rowid, nodeno)", rowid_rows);
-    insert_pairs(rt + "_parent", "(nodeno, parentnode)", parent_rows);
+    rowid_rows.finish();
+    parent_rows.finish();
+    node_rows.finish();
   }
 
   // Maintenance triggers of the GeoPackage 1.2 "gpkg_rtree_index" extension (spec, Annex F.3).
