@@ -37,23 +37,53 @@ float round_up(double v) {
   return f;
 }
 
+// Order-preserving unsigned key of a double (negatives below positives).
+std::uint64_t sort_key(double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, 8);
+  return (u >> 63) ? ~u : (u | (std::uint64_t{1} << 63));
+}
+
+// Stable LSD radix sort of [b, e) by key(cell) (8-bit digits, passes where all digits agree skipped).
+template <class Key>
+void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Key key) {
+  const auto n = static_cast<std::size_t>(e - b);
+  if (n < 2) return;
+  struct KI {
+    std::uint64_t k;
+    std::uint32_t i;
+  };
+  std::vector<KI> a(n), tmp(n);
+  for (std::size_t i = 0; i < n; ++i) a[i] = {key(b[static_cast<std::ptrdiff_t>(i)]), static_cast<std::uint32_t>(i)};
+  for (int shift = 0; shift < 64; shift += 8) {
+    std::size_t count[257] = {};
+    for (const KI& x : a) ++count[((x.k >> shift) & 0xFF) + 1];
+    if (*std::max_element(count + 1, count + 257) == n) continue;  // one digit value: nothing moves
+    for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+    for (const KI& x : a) tmp[count[(x.k >> shift) & 0xFF]++] = x;
+    a.swap(tmp);
+  }
+  std::vector<Cell> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = b[a[i].i];
+  std::copy(sorted.begin(), sorted.end(), b);
+}
+
 // Sort-Tile-Recursive: sort by x centre into vertical slices of about sqrt(#nodes) nodes each,
 // sort each slice by y centre, cut runs of `cap` cells. Nodes come out full except the last of a slice.
+// The sorts are stable (equal centres keep their order), so the packing is deterministic.
 std::vector<std::vector<Cell>> str_pack(std::vector<Cell> cells, std::size_t cap) {
-  auto cx = [](const Cell& c) { return 0.5 * (double(c.box[0]) + double(c.box[1])); };
-  auto cy = [](const Cell& c) { return 0.5 * (double(c.box[2]) + double(c.box[3])); };
+  auto cx = [](const Cell& c) { return sort_key(0.5 * (double(c.box[0]) + double(c.box[1]))); };
+  auto cy = [](const Cell& c) { return sort_key(0.5 * (double(c.box[2]) + double(c.box[3]))); };
   std::size_t nodes = (cells.size() + cap - 1) / cap;
   auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   std::size_t per_slice = slices * cap;
-  // Ties broken by id so the packing is deterministic.
-  std::sort(cells.begin(), cells.end(), [&](const Cell& a, const Cell& b) {
-    return cx(a) != cx(b) ? cx(a) < cx(b) : a.id < b.id;
-  });
+  radix_sort(cells.begin(), cells.end(), cx);
   std::vector<std::vector<Cell>> out;
+  out.reserve(nodes + slices);
   for (std::size_t s = 0; s < cells.size(); s += per_slice) {
     auto b = cells.begin() + static_cast<std::ptrdiff_t>(s);
     auto e = cells.begin() + static_cast<std::ptrdiff_t>(std::min(cells.size(), s + per_slice));
-    std::sort(b, e, [&](const Cell& p, const Cell& q) { return cy(p) != cy(q) ? cy(p) < cy(q) : p.id < q.id; });
+    radix_sort(b, e, cy);
     for (auto it = b; it < e; it += static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)))
       out.emplace_back(it, it + static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)));
   }
@@ -109,8 +139,9 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
     sql("DELETE FROM " + quoted(rt + "_node"));
     // Leaf links are collected and written in rowid order: appending to a B-tree is much cheaper
     // than inserting in the STR order.
-    std::vector<std::pair<std::int64_t, std::int64_t>> leaf_of;
-    leaf_of.reserve(cur.size());
+    std::int64_t max_id = 0;
+    for (const Cell& c : cur) max_id = std::max(max_id, c.id);
+    std::vector<std::int64_t> leaf_of(static_cast<std::size_t>(max_id) + 1, 0);  // 0: no row
     BatchInsert parent_rows(db, rt + "_parent", {"nodeno", "parentnode"}, 256);
     BatchInsert node_rows(db, rt + "_node", {"nodeno", "data"}, 16);
     std::int64_t next_no = 2;
@@ -124,7 +155,7 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
         std::int64_t no = root ? 1 : next_no++;
         for (const Cell& c : grp) {
           if (depth == 0) {
-            leaf_of.push_back({c.id, no});
+            leaf_of[static_cast<std::size_t>(c.id)] = no;
           } else {
             parent_rows.add_int(c.id).add_int(no);
             parent_rows.end_row();
@@ -145,10 +176,16 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
       if (root) break;
       cur = std::move(parents);
     }
-    std::sort(leaf_of.begin(), leaf_of.end());
-    BatchInsert rowid_rows(db, rt + "_rowid", {"rowid", "nodeno"}, 256);
-    for (const auto& [id, no] : leaf_of) {
-      rowid_rows.add_int(id).add_int(no);
+    // Dense ids 1..n (nodes, triangles) are appended without naming the rowid (SQLite then
+    // takes previous + 1 without searching the B-tree); sparse ids name it.
+    bool dense = true;
+    for (std::size_t id = 1; id < leaf_of.size() && dense; ++id) dense = leaf_of[id] != 0;
+    BatchInsert rowid_rows(db, rt + "_rowid", dense ? std::vector<std::string>{"nodeno"}
+                                                    : std::vector<std::string>{"rowid", "nodeno"}, 512);
+    for (std::size_t id = 1; id < leaf_of.size(); ++id) {
+      if (!leaf_of[id]) continue;
+      if (!dense) rowid_rows.add_int(static_cast<std::int64_t>(id));
+      rowid_rows.add_int(leaf_of[id]);
       rowid_rows.end_row();
     }
     rowid_rows.finish();

@@ -118,12 +118,13 @@ class GeomBlob {
 
  private:
   void header(std::uint8_t flags) {
-    b_.clear();
-    b_.push_back('G');
-    b_.push_back('P');
-    b_.push_back(0);
-    b_.push_back(static_cast<char>(flags));
-    put32(static_cast<std::uint32_t>(srs_));
+    b_.resize(8);
+    b_[0] = 'G';
+    b_[1] = 'P';
+    b_[2] = 0;
+    b_[3] = static_cast<char>(flags);
+    const auto srs = static_cast<std::uint32_t>(srs_);
+    std::memcpy(&b_[4], &srs, 4);
   }
   template <class Pt>
   void envelope(const Pt* p, std::uint32_t n) {
@@ -201,10 +202,12 @@ void register_table(SqliteDb& db, const std::string& table, const char* geom_typ
                     "max_y, srs_id) VALUES (" + sql_quote(table) + (features ? ",'features'," : ",'attributes',") +
                     sql_quote(table) + ",''";
   if (features && !e.empty())
-    sql += "," + real_or_null(e.minx) + "," + real_or_null(e.miny) + "," + real_or_null(e.maxx) + "," + real_or_null(e.maxy);
+    for (double v : {e.minx, e.miny, e.maxx, e.maxy}) sql.append(",").append(real_or_null(v));
   else
     sql += ",NULL,NULL,NULL,NULL";
-  sql += "," + std::to_string(features ? srs_id : 0) + ")";
+  sql += ',';
+  sql += std::to_string(features ? srs_id : 0);
+  sql += ')';
   db.exec(sql);
   if (features)
     db.exec("INSERT INTO gpkg_geometry_columns VALUES (" + sql_quote(table) + ",'geom','" + geom_type + "'," +
@@ -253,8 +256,10 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   GeomBlob gb(srs_id);
   Extent mesh_ext, repair_ext;
 
+  // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
+  // previous + 1, as the ids below assume) instead of searching the B-tree for it.
   {
-    BatchInsert ins(db, "nodes", {"fid", "geom", "id", "z", "f", "conformity", "marker"}, 256);
+    BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256);
     for (std::size_t v = 0; v < nv; ++v) {
       const Point2 p = m.world(static_cast<Index>(v));
       double f = std::nan("");
@@ -264,7 +269,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
       const std::string& g = gb.point(p.x, p.y);
       const auto fid = static_cast<std::int64_t>(v + 1);
-      ins.add_int(fid).add_blob(g.data(), g.size()).add_int(fid);
+      ins.add_blob(g.data(), g.size()).add_int(fid);
       if (m.z.empty()) ins.add_null();
       else ins.add_real_or_null(m.z[v]);
       ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
@@ -276,7 +281,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   }
   std::vector<double>().swap(nn);
   {
-    BatchInsert ins(db, "triangles", {"fid", "geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
+    BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
                     128);
     Point2 w[3];
     for (std::size_t t = 0; t < nt; ++t) {
@@ -285,7 +290,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       const std::string& g = gb.polygon(w, 3);
       const auto fid = static_cast<std::int64_t>(t + 1);
       if (index) tri_boxes.push_back({fid, gb.minx, gb.maxx, gb.miny, gb.maxy});
-      ins.add_int(fid).add_blob(g.data(), g.size()).add_int(fid);
+      ins.add_blob(g.data(), g.size()).add_int(fid);
       for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
       ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
       ins.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
@@ -309,7 +314,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   }
   {
     const std::vector<Chain> chains = build_chains(m);
-    BatchInsert ins(db, "boundaries", {"fid", "geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
+    BatchInsert ins(db, "boundaries", {"geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
     std::vector<Point2> pts;
     for (std::size_t i = 0; i < chains.size(); ++i) {
       const Chain& c = chains[i];
@@ -317,7 +322,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       for (Index v : c.nodes) pts.push_back(m.world(v));
       const std::string& g = gb.linestring(pts.data(), static_cast<std::uint32_t>(pts.size()), c.closed);
       const auto fid = static_cast<std::int64_t>(i + 1);
-      ins.add_int(fid).add_blob(g.data(), g.size()).add_int(fid).add_text(kind_name(c.marker)).add_int(c.marker);
+      ins.add_blob(g.data(), g.size()).add_int(fid).add_text(kind_name(c.marker)).add_int(c.marker);
       ins.add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
       ins.end_row();
       mesh_ext.add(gb.minx, gb.maxx, gb.miny, gb.maxy);
@@ -326,12 +331,12 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     ins.finish();
   }
   {
-    BatchInsert ins(db, "repairs", {"fid", "geom", "kind", "size", "reason", "part"}, 64);
+    BatchInsert ins(db, "repairs", {"geom", "kind", "size", "reason", "part"}, 64);
     for (std::size_t i = 0; i < o.repairs.size(); ++i) {
       const RepairRow& r = o.repairs[i];
       const std::string& g = gb.point(r.x, r.y);
       const auto fid = static_cast<std::int64_t>(i + 1);
-      ins.add_int(fid).add_blob(g.data(), g.size()).add_text(r.kind).add_real_or_null(r.size).add_text(r.reason);
+      ins.add_blob(g.data(), g.size()).add_text(r.kind).add_real_or_null(r.size).add_text(r.reason);
       ins.add_int(r.part);
       ins.end_row();
       if (std::isfinite(r.x) && std::isfinite(r.y)) {
@@ -342,10 +347,9 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     ins.finish();
   }
   {
-    BatchInsert ins(db, "metadata", {"fid", "key", "value"}, 16);
-    std::int64_t fid = 0;
+    BatchInsert ins(db, "metadata", {"key", "value"}, 16);
     auto row = [&](const std::string& k, const std::string& v) {
-      ins.add_int(++fid).add_text(k).add_text(v);
+      ins.add_text(k).add_text(v);
       ins.end_row();
     };
     bool has_title = false, has_b = false;
