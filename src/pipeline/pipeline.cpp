@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "base/version.hpp"
 #include "cdt/cdt.hpp"
+#include "io/write_many.hpp"
 #include "io/writer.hpp"
 #include "mesh/check.hpp"
 #include "pipeline/gis_stage.hpp"
@@ -181,7 +182,13 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.input_file = source;
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
-  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
+  // writers then never evaluate f, which lets them run concurrently).
+  quality::TriangleValues tri_values;
+  const bool want_tri_values = !in.to_output_crs && std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
+  });
+  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri, want_tri_values ? &tri_values : nullptr);
   if (in.tin_error && *in.tin_error) {
     result.report.vertical_error_max_m = (*in.tin_error)->first;
     result.report.vertical_error_rms_m = (*in.tin_error)->second;
@@ -243,8 +250,16 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   std::vector<std::string> extra_paths;
   if (!opt.write_spacing.empty()) extra_paths.push_back(opt.write_spacing);
   try {
+    if (want_tri_values) {
+      wo.f = nullptr;  // m.f holds f at the vertices; the triangles' values come from the report
+      wo.triangle_r_over_f = &tri_values.r_over_f;
+      wo.triangle_min_angle = &tri_values.min_angle_deg;
+      wo.triangle_area = &tri_values.area;
+    }
+    // Concurrent writers are safe: only GPKG, VTU and UGRID would evaluate f, and they get the
+    // report's values instead (or the --output-crs ones, with wo.f null).
+    io::write_meshes(*to_write, opt.outputs, formats, wo, io::max_threads());
     for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
-      io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
       result.written.push_back(opt.outputs[i]);
       if (formats[i] == io::Format::kNode) {
         const std::string& o = opt.outputs[i];

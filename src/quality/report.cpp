@@ -138,7 +138,7 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
 }
 
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
-                              double alpha, const RunInfo& run) {
+                              double alpha, const RunInfo& run, TriangleValues* per_triangle) {
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -155,6 +155,12 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
   if (f) r.bad_triangles = 0;
+  if (per_triangle) {
+    per_triangle->area.assign(m.triangles.size(), 0.0);
+    per_triangle->min_angle_deg.assign(m.triangles.size(), 0.0);
+    if (f) per_triangle->r_over_f.assign(m.triangles.size(), kInf);
+    else per_triangle->r_over_f.clear();
+  }
 
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
@@ -180,6 +186,10 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 
     const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
     const double amin = std::min({ang[0], ang[1], ang[2]});
+    if (per_triangle) {
+      per_triangle->area[t] = 0.5 * cr;
+      per_triangle->min_angle_deg[t] = amin;
+    }
     const double amax = std::max({ang[0], ang[1], ang[2]});
     update_min(r.min_angle_deg, amin);
     update_max(r.max_angle_deg, amax);
@@ -202,6 +212,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       double ratio = kInf;
       if (std::isfinite(radius)) {
         const double fc = (*f)(center);
+        if (per_triangle) per_triangle->r_over_f[t] = radius / fc;
         if (!usable_spacing(fc)) { ++r.spacing_invalid; continue; }
         ratio = radius / fc;
       }
