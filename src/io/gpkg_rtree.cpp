@@ -21,10 +21,7 @@ namespace fdr::io::detail {
 
 namespace {
 
-struct Cell {
-  std::int64_t id;
-  float box[4];  // minx maxx miny maxy
-};
+using Cell = RtreeEntry;
 
 float round_down(double v) {
   float f = static_cast<float>(v);
@@ -63,6 +60,7 @@ void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Ke
     for (const KI& x : a) tmp[count[(x.k >> shift) & 0xFF]++] = x;
     a.swap(tmp);
   }
+  std::vector<KI>().swap(tmp);
   std::vector<Cell> sorted(n);
   for (std::size_t i = 0; i < n; ++i) sorted[i] = b[a[i].i];
   std::copy(sorted.begin(), sorted.end(), b);
@@ -71,21 +69,21 @@ void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Ke
 // Sort-Tile-Recursive: sort by x centre into vertical slices of about sqrt(#nodes) nodes each,
 // sort each slice by y centre, cut runs of `cap` cells. Nodes come out full except the last of a slice.
 // The sorts are stable (equal centres keep their order), so the packing is deterministic.
-std::vector<std::vector<Cell>> str_pack(std::vector<Cell> cells, std::size_t cap) {
+// Sorts `cells` in place and returns the node sizes in order.
+std::vector<std::size_t> str_pack(std::vector<Cell>& cells, std::size_t cap) {
   auto cx = [](const Cell& c) { return sort_key(0.5 * (double(c.box[0]) + double(c.box[1]))); };
   auto cy = [](const Cell& c) { return sort_key(0.5 * (double(c.box[2]) + double(c.box[3]))); };
+  if (cells.size() <= cap) return {cells.size()};
   std::size_t nodes = (cells.size() + cap - 1) / cap;
   auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   std::size_t per_slice = slices * cap;
   radix_sort(cells.begin(), cells.end(), cx);
-  std::vector<std::vector<Cell>> out;
+  std::vector<std::size_t> out;
   out.reserve(nodes + slices);
   for (std::size_t s = 0; s < cells.size(); s += per_slice) {
-    auto b = cells.begin() + static_cast<std::ptrdiff_t>(s);
-    auto e = cells.begin() + static_cast<std::ptrdiff_t>(std::min(cells.size(), s + per_slice));
-    radix_sort(b, e, cy);
-    for (auto it = b; it < e; it += static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)))
-      out.emplace_back(it, it + static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)));
+    const std::size_t e = std::min(cells.size(), s + per_slice);
+    radix_sort(cells.begin() + static_cast<std::ptrdiff_t>(s), cells.begin() + static_cast<std::ptrdiff_t>(e), cy);
+    for (std::size_t k = s; k < e; k += cap) out.push_back(std::min(cap, e - k));
   }
   return out;
 }
@@ -94,26 +92,28 @@ void put_be(std::string& out, std::uint64_t v, int bytes) {
   for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
 }
 
-std::string node_blob(const std::vector<Cell>& cells, int depth, std::size_t node_size) {
-  std::string b;
-  b.reserve(node_size);
+void node_blob(std::string& b, const Cell* cells, std::size_t n, int depth, std::size_t node_size) {
+  b.clear();
   put_be(b, static_cast<std::uint64_t>(depth), 2);
-  put_be(b, cells.size(), 2);
-  for (const Cell& c : cells) {
-    put_be(b, static_cast<std::uint64_t>(c.id), 8);
-    for (float f : c.box) {
+  put_be(b, n, 2);
+  for (const Cell* c = cells; c != cells + n; ++c) {
+    put_be(b, static_cast<std::uint64_t>(c->id), 8);
+    for (float f : c->box) {
       std::uint32_t u;
       std::memcpy(&u, &f, 4);
       put_be(b, u, 4);
     }
   }
   b.append(node_size - b.size(), '\0');  // zero padding to the fixed node size
-  return b;
 }
 
 std::string quoted(const std::string& name) { return "\"" + name + "\""; }
 
 }  // namespace
+
+RtreeEntry RtreeEntry::of(std::int64_t id, double minx, double maxx, double miny, double maxy) {
+  return {id, {round_down(minx), round_up(maxx), round_down(miny), round_up(maxy)}};
+}
 
 void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
                       std::vector<RtreeEntry> entries) {
@@ -129,13 +129,7 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
   const std::size_t cap = (node_size - 4) / cell_bytes;
 
   if (!entries.empty()) {
-    std::vector<Cell> cur(entries.size());
-    for (std::size_t i = 0; i < entries.size(); ++i) {
-      const RtreeEntry& e = entries[i];
-      cur[i] = {e.id, {round_down(e.minx), round_up(e.maxx), round_down(e.miny), round_up(e.maxy)}};
-    }
-    entries.clear();
-    entries.shrink_to_fit();
+    std::vector<Cell> cur = std::move(entries);
     sql("DELETE FROM " + quoted(rt + "_node"));
     // Leaf links are collected and written in rowid order: appending to a B-tree is much cheaper
     // than inserting in the STR order.
@@ -147,31 +141,34 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
     std::int64_t next_no = 2;
     // Build level by level; a level that fits in one node becomes the root (node 1).
     for (int depth = 0;; ++depth) {
-      std::vector<std::vector<Cell>> groups =
-          cur.size() <= cap ? std::vector<std::vector<Cell>>{cur} : str_pack(std::move(cur), cap);
-      bool root = groups.size() == 1;
+      const std::vector<std::size_t> sizes = str_pack(cur, cap);
+      const bool root = sizes.size() == 1;
       std::vector<Cell> parents;
-      for (auto& grp : groups) {
-        std::int64_t no = root ? 1 : next_no++;
-        for (const Cell& c : grp) {
+      parents.reserve(sizes.size());
+      std::string blob;
+      const Cell* grp = cur.data();
+      for (const std::size_t n : sizes) {
+        const std::int64_t no = root ? 1 : next_no++;
+        for (const Cell* c = grp; c != grp + n; ++c) {
           if (depth == 0) {
-            leaf_of[static_cast<std::size_t>(c.id)] = no;
+            leaf_of[static_cast<std::size_t>(c->id)] = no;
           } else {
-            parent_rows.add_int(c.id).add_int(no);
+            parent_rows.add_int(c->id).add_int(no);
             parent_rows.end_row();
           }
         }
-        const std::string blob = node_blob(grp, root ? depth : 0, node_size);
+        node_blob(blob, grp, n, root ? depth : 0, node_size);
         node_rows.add_int(no).add_blob(blob.data(), blob.size());
         node_rows.end_row();
         Cell p{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
-        for (const Cell& c : grp) {
-          p.box[0] = std::min(p.box[0], c.box[0]);
-          p.box[1] = std::max(p.box[1], c.box[1]);
-          p.box[2] = std::min(p.box[2], c.box[2]);
-          p.box[3] = std::max(p.box[3], c.box[3]);
+        for (const Cell* c = grp; c != grp + n; ++c) {
+          p.box[0] = std::min(p.box[0], c->box[0]);
+          p.box[1] = std::max(p.box[1], c->box[1]);
+          p.box[2] = std::min(p.box[2], c->box[2]);
+          p.box[3] = std::max(p.box[3], c->box[3]);
         }
         parents.push_back(p);
+        grp += n;
       }
       if (root) break;
       cur = std::move(parents);

@@ -8,9 +8,12 @@
 
 namespace fdr::io::detail {
 
+// One indexed row: its feature id (FID, >= 1) and its envelope rounded outwards to float (the
+// R-tree's storage precision), so the index never loses a candidate.
 struct RtreeEntry {
-  std::int64_t id;                  // feature id (FID) of the row
-  double minx, maxx, miny, maxy;    // geometry envelope
+  std::int64_t id;
+  float box[4];  // minx maxx miny maxy
+  static RtreeEntry of(std::int64_t id, double minx, double maxx, double miny, double maxy);
 };
 
 // Creates the spatial index of `table`.`geom_col` (already filled) inside the current transaction:

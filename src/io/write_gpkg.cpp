@@ -232,7 +232,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   // The file is a private temp file renamed into place on success, so no journal and no syncs:
   // a crash leaves only the temp file, which is never renamed.
   db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; PRAGMA locking_mode = EXCLUSIVE; "
-          "PRAGMA cache_size = -32768; PRAGMA temp_store = MEMORY;");
+          "PRAGMA cache_size = -8192; PRAGMA temp_store = MEMORY;");
   db.exec("BEGIN");
   create_core_tables(db, srs);
   db.exec(
@@ -275,7 +275,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
       ins.end_row();
       mesh_ext.add(p.x, p.x, p.y, p.y);
-      if (index) node_boxes.push_back({fid, p.x, p.x, p.y, p.y});
+      if (index) node_boxes.push_back(RtreeEntry::of(fid, p.x, p.x, p.y, p.y));
     }
     ins.finish();
   }
@@ -289,7 +289,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
       const std::string& g = gb.polygon(w, 3);
       const auto fid = static_cast<std::int64_t>(t + 1);
-      if (index) tri_boxes.push_back({fid, gb.minx, gb.maxx, gb.miny, gb.maxy});
+      if (index) tri_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
       ins.add_blob(g.data(), g.size()).add_int(fid);
       for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
       ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
@@ -326,7 +326,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       ins.add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
       ins.end_row();
       mesh_ext.add(gb.minx, gb.maxx, gb.miny, gb.maxy);
-      chain_boxes.push_back({fid, gb.minx, gb.maxx, gb.miny, gb.maxy});
+      chain_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
     }
     ins.finish();
   }
@@ -340,7 +340,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       ins.add_int(r.part);
       ins.end_row();
       if (std::isfinite(r.x) && std::isfinite(r.y)) {
-        repair_boxes.push_back({fid, r.x, r.x, r.y, r.y});
+        repair_boxes.push_back(RtreeEntry::of(fid, r.x, r.x, r.y, r.y));
         repair_ext.add(r.x, r.x, r.y, r.y);
       }
     }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include "base/error.hpp"
 #include "base/version.hpp"
@@ -141,17 +142,17 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ro.progress = [&](double frac, std::string_view) {
     return !progress || progress(0.05 + 0.75 * frac, "refine");
   };
-  refine::Refiner refiner(tri, f, ro);
-  refiner.reserve(expected);
-  refiner.init();
-  refiner.run();
+  auto refiner = std::make_unique<refine::Refiner>(tri, f, ro);  // freed once the mesh is copied out
+  refiner->reserve(expected);
+  refiner->init();
+  refiner->run();
   const double refine_s = since(t_ref);
   clock.lap("refine");
   report_progress(0.8, "report");
 
   if (opt.check) {
     mesh::CheckResult cr = mesh::check_all(tri);
-    const std::size_t bad = refiner.leftovers().r_over_f_bad;
+    const std::size_t bad = refiner->leftovers().r_over_f_bad;
     if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
     if (!cr.ok()) {
       std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
@@ -163,6 +164,12 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   }
 
   result.mesh = tri.to_view();
+  // The report and the writers read the compact copy: free the refiner and the triangulation now
+  // (the peak of the write stage is then that copy plus the writers' buffers).
+  const refine::RefineStats refine_stats = refiner->stats();
+  const refine::RefineLeftovers refine_left = refiner->leftovers();
+  refiner.reset();
+  tri = mesh::Triangulation{};
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
   clock.lap("depths");
@@ -176,9 +183,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.refine_s = refine_s;
   ri.predicate_filtered = predicates::counters().filtered;
   ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = refiner.leftovers().angle_bad;
-  ri.steiner_segment = refiner.stats().segment_splits;
-  ri.steiner_interior = refiner.stats().circumcenters;
+  ri.exempt_small_angle_triangles = refine_left.angle_bad;
+  ri.steiner_segment = refine_stats.segment_splits;
+  ri.steiner_interior = refine_stats.circumcenters;
   ri.input_file = source;
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
