@@ -12,16 +12,6 @@
 
 namespace fdr::io {
 
-unsigned max_threads() {
-  if (const char* env = std::getenv("FDR_THREADS")) {
-    char* end = nullptr;
-    const long v = std::strtol(env, &end, 10);
-    if (end != env && *end == '\0' && v > 0) return static_cast<unsigned>(std::min<long>(v, 64));
-  }
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw == 0 ? 1 : std::min(hw, 2u);
-}
-
 namespace {
 // Files a write_mesh call creates: the path, plus the .ele beside a .node.
 std::vector<std::string> files_of(const std::string& path, Format f) {

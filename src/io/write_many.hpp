@@ -2,13 +2,13 @@
 #pragma once
 #include <string>
 #include <vector>
+#include "base/threads.hpp"
 #include "io/writer.hpp"
 
 namespace fdr::io {
 
-// Threads fdrmesh may use: the FDR_THREADS environment variable when it holds a positive number,
-// else min(2, hardware threads). Results never depend on it (each thread writes its own file).
-unsigned max_threads();
+// Threads fdrmesh may use (FDR_THREADS, else min(2, hardware threads)); see base/threads.hpp.
+using fdr::max_threads;
 
 // Writes mesh to every paths[i] in formats[i] like write_mesh, up to `threads` files at a time.
 // All or nothing: if any output fails, every output written by this call is removed again and

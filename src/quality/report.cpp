@@ -10,9 +10,12 @@
 #include <numeric>
 #include <ostream>
 #include <string>
+#include <exception>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
+#include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::quality {
@@ -154,7 +157,7 @@ std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
   for (const auto& tri : m.triangles)
     for (int k = 0; k < 3; ++k) {
       const Index a = tri[k], b = tri[(k + 1) % 3];
-      if (a == b) continue;
+      if (a == b || a >= p.size() || b >= p.size()) continue;
       nn[a] = std::min(nn[a], norm2(p[b] - p[a]));
       nn[b] = std::min(nn[b], norm2(p[a] - p[b]));
     }
@@ -178,6 +181,23 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.run = run;
 
   const std::size_t nv = m.num_vertices();
+  // Nearest neighbours do not need f: with a second thread they are found while the triangles
+  // are measured (same values either way).
+  std::vector<double> nn;
+  std::exception_ptr nn_error;
+  auto find_nn = [&] {
+    try {
+      nn = mesh_nearest_neighbour_distances(m);
+    } catch (...) {
+      nn_error = std::current_exception();
+    }
+  };
+  std::thread nn_thread;
+  if (max_threads() > 1 && nv >= 4096) nn_thread = std::thread(find_nn);
+  struct Join {
+    std::thread& t;
+    ~Join() { if (t.joinable()) t.join(); }
+  } join_nn{nn_thread};
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
@@ -253,7 +273,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  const std::vector<double> nn = mesh_nearest_neighbour_distances(m);
+  if (nn_thread.joinable()) nn_thread.join();
+  else find_nn();
+  if (nn_error) std::rethrow_exception(nn_error);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
