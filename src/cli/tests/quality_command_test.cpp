@@ -76,7 +76,8 @@ TEST(Determinism, TwoRunsWriteIdenticalFiles) {
   fs::remove_all(dir);
 }
 
-// The thread count (FDR_THREADS: concurrent writers) never changes what is written.
+// The thread count (FDR_THREADS: concurrent writers, report, distance to shore) never changes
+// what is written.
 TEST(Determinism, ThreadCountDoesNotChangeFiles) {
   const fs::path dir = fs::temp_directory_path() / ("fdrmesh_threads_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -92,9 +93,9 @@ TEST(Determinism, ThreadCountDoesNotChangeFiles) {
     const std::string cmd = std::string("FDR_THREADS=") + threads + " " + FDR_BINARY + " mesh " + t +
                             "/chesapeake/chesapeake_mouth_water.geojson --open-boundary " + t +
                             "/chesapeake/chesapeake_mouth_open_boundary.geojson --raster " + t +
-                            "/chesapeake/chesapeake_mouth_etopo5.tif -q -o " + (o / "m.2dm").string() + " -o " +
-                            (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " + (o / "m.node").string() +
-                            " -o " + (o / "m.vtu").string() + " -o " + (o / "m.gpkg").string() + " --report " +
+                            "/chesapeake/chesapeake_mouth_etopo5.tif --dist-grade 0.05 -q -o " + (o / "m.2dm").string() +
+                            " -o " + (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " +
+                            (o / "m.node").string() + " -o " + (o / "m.vtu").string() + " -o " + (o / "m.gpkg").string() + " --report " +
                             (o / "r.json").string() + " > /dev/null 2>&1";
     const int st = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
