@@ -163,12 +163,12 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     clock.lap("check");
   }
 
-  result.mesh = tri.to_view();
-  // The report and the writers read the compact copy: free the refiner and the triangulation now
-  // (the peak of the write stage is then that copy plus the writers' buffers).
+  // The report and the writers read a compact copy: free the refiner before copying and the
+  // triangulation after (the peak is then the triangulation plus the copy, not more).
   const refine::RefineStats refine_stats = refiner->stats();
   const refine::RefineLeftovers refine_left = refiner->leftovers();
   refiner.reset();
+  result.mesh = tri.to_view();
   tri = mesh::Triangulation{};
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
