@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cctype>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -370,7 +371,8 @@ Row run_fdr_cli(double k, const std::string& binary) {
   if (!mkdtemp(dir_tmpl)) throw fdr::Error(fdr::ExitCode::kOutputError, "bench_fdr: mkdtemp in /tmp failed");
   const std::string dir = dir_tmpl, json = dir + "/report.json", log = dir + "/log.txt";
   char spacing[64];
-  std::snprintf(spacing, sizeof spacing, "%.17g*paper-f1", k);
+  const auto end = std::to_chars(spacing, spacing + 40, k).ptr;  // shortest text that reads back as k
+  std::snprintf(end, 24, "*paper-f1");
   const ChildRun c = spawn_and_wait({binary, "mesh", std::string(FDR_TESTDATA_DIR) + "/poly/square10.poly", "--spacing",
                                      spacing, "-q", "--report", json}, log);
   if (!WIFEXITED(c.status) || WEXITSTATUS(c.status) != 0)
