@@ -17,11 +17,7 @@ using mesh::VertexKind;
 using predicates::diametral;
 
 namespace {
-// 16 buckets per doubling of (R/f(c))^2: about the paper's largest-R/f(c)-first order (0.3 % more
-// triangles than the exact order on 0.025*paper-f1, where buckets of a factor sqrt(2) made 8.4 %
-// more); newest first inside a bucket.
-constexpr int kSubBuckets = 16;
-constexpr int kBuckets = 2048 * kSubBuckets;
+constexpr int kBuckets = 2048;  // one bucket per doubling of (R/f(c))^2, i.e. a factor sqrt(2) in R/f(c)
 constexpr double kPi = 3.14159265358979323846;
 
 std::string pt(Point2 p) {
@@ -34,7 +30,7 @@ std::string pt(Point2 p) {
 int bucket_of(double key2) {
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
-  const int idx = (e - 1) * kSubBuckets + static_cast<int>((m - 0.5) * (2.0 * kSubBuckets));
+  const int idx = (e - 1) * 1 + static_cast<int>((m - 0.5) * 2.0);
   return idx < 0 ? 0 : (idx >= kBuckets ? kBuckets - 1 : idx);
 }
 }  // namespace
@@ -325,27 +321,6 @@ RefineLeftovers Refiner::leftovers() const {
   return r;
 }
 
-void Refiner::prefetch_ahead(const BadEntry& n3, const BadEntry& n2, const BadEntry& n1) const {
-  const auto& T = tri_;
-  __builtin_prefetch(&T.tv[3 * n3.t]);
-  __builtin_prefetch(&T.twin[3 * n3.t]);
-  __builtin_prefetch(&T.flags[n3.t]);
-  __builtin_prefetch(&T.pts[n3.a]);
-  __builtin_prefetch(&T.pts[n3.b]);
-  __builtin_prefetch(&T.pts[n3.c]);
-  for (int k = 0; k < 3; ++k) {  // twin of n2 was fetched a step ago
-    const HalfEdge h = T.twin[3 * n2.t + k];
-    if (h == kNoId) continue;
-    __builtin_prefetch(&T.tv[3 * (h / 3)]);
-    __builtin_prefetch(&T.twin[3 * (h / 3)]);
-    __builtin_prefetch(&T.flags[h / 3]);
-  }
-  for (int k = 0; k < 3; ++k) {  // the neighbours' far corners (in-circle tests of the cavity)
-    const HalfEdge h = T.twin[3 * n1.t + k];
-    if (h != kNoId) __builtin_prefetch(&T.pts[T.tv[3 * (h / 3) + (h % 3 + 2) % 3]]);
-  }
-}
-
 bool Refiner::step() {
   if (stats_.steiner() >= opt_.max_steiner)
     throw Error(ExitCode::kWorkLimit, "Steiner point cap reached (--max-steiner " + std::to_string(opt_.max_steiner) +
@@ -363,9 +338,6 @@ bool Refiner::step() {
     const BadEntry e = bk.back();
     bk.pop_back();
     const auto& T = tri_;
-    // Fine buckets visit the mesh in a scattered order; fetching what the next entries will touch
-    // (their triangles, corners and neighbours, a few steps ahead) hides most of the cache misses.
-    if (bk.size() >= 3) prefetch_ahead(bk[bk.size() - 3], bk[bk.size() - 2], bk.back());
     if (T.dead(e.t) || T.tv[3 * e.t] != e.a || T.tv[3 * e.t + 1] != e.b || T.tv[3 * e.t + 2] != e.c) continue;
     split_triangle(e);
     return true;

@@ -1,5 +1,5 @@
 // Functional Delaunay Refinement (FDR): split B-bad triangles (R/f(c) > B) at their circumcenters,
-// largest R/f(c) first (16 buckets per doubling of its square), encroached subsegments first, with concentric-shell segment splitting.
+// largest R/f(c) first, encroached subsegments first, with concentric-shell segment splitting.
 #pragma once
 #include <cstdint>
 #include <unordered_map>
@@ -61,7 +61,6 @@ class Refiner {
  private:
   struct BadEntry { TriangleId t; Index a, b, c; };
   void evaluate(TriangleId t);
-  void prefetch_ahead(const BadEntry& n3, const BadEntry& n2, const BadEntry& n1) const;
   void push_bad(TriangleId t, double key2);
   void check_encroached_edges(TriangleId t);
   void split_subsegment(Index a, Index b);
