@@ -37,43 +37,54 @@ struct CompensatedSum {
   double value() const { return sum + c; }
 };
 
-// Static 2-d tree over point indices (implicit: the median of each range is its node).
+// Static 2-d tree (implicit: the median of each range is its node) over copies of the points
+// kept in tree order, so a query reads contiguous memory and consecutive queries in tree order
+// share most of it.
 class KdTree {
  public:
-  explicit KdTree(const std::vector<Point2>& p) : p_(p), idx_(p.size()) {
-    std::iota(idx_.begin(), idx_.end(), Index{0});
-    build(0, idx_.size(), 0);
+  explicit KdTree(const std::vector<Point2>& p) : t_(p.size()) {
+    for (std::size_t i = 0; i < p.size(); ++i) t_[i] = {p[i], static_cast<Index>(i)};
+    build(0, t_.size(), 0);
   }
-  // Squared distance from p_[self] to the nearest point with a different index. `bound` is an
-  // upper bound that is itself a squared distance norm2(p_[v] - p_[self]) of some v != self (or
-  // +inf): only points strictly closer are searched, so the result is the same value either way.
-  double nearest_sq(Index self, double bound = kInf) const {
+  std::size_t size() const { return t_.size(); }
+  Index id_at(std::size_t pos) const { return t_[pos].id; }
+  // Squared distance from the point at tree position `pos` to the nearest point with another
+  // index. `bound` is an upper bound that is itself such a squared distance norm2(p_v - p_self)
+  // (or +inf): only points strictly closer are searched, so the result is the same value either way.
+  double nearest_sq_at(std::size_t pos, double bound = kInf) const {
     double best = bound;
-    query(p_[self], self, 0, idx_.size(), 0, best);
+    query(t_[pos].p, t_[pos].id, 0, t_.size(), 0, best);
     return best;
   }
-  // Point indices in tree order (neighbours in the tree are near in the plane): querying in this
-  // order keeps the nodes a query visits in cache.
-  const std::vector<Index>& order() const { return idx_; }
 
  private:
+  struct Node {
+    Point2 p;
+    Index id;
+  };
+  static constexpr std::size_t kScan = 8;  // ranges this small are scanned
   static double coord(Point2 q, int axis) { return axis == 0 ? q.x : q.y; }
   void build(std::size_t lo, std::size_t hi, int axis) {
     if (hi - lo <= 1) return;
     const std::size_t mid = lo + (hi - lo) / 2;
-    std::nth_element(idx_.begin() + lo, idx_.begin() + mid, idx_.begin() + hi,
-                     [&](Index a, Index b) { return coord(p_[a], axis) < coord(p_[b], axis); });
+    std::nth_element(t_.begin() + static_cast<std::ptrdiff_t>(lo), t_.begin() + static_cast<std::ptrdiff_t>(mid),
+                     t_.begin() + static_cast<std::ptrdiff_t>(hi),
+                     [axis](const Node& a, const Node& b) { return coord(a.p, axis) < coord(b.p, axis); });
     build(lo, mid, 1 - axis);
     build(mid + 1, hi, 1 - axis);
   }
   // Why the far side is visited only conditionally: points across the splitting line are at
   // least |diff| away, so they cannot beat a best distance already below diff^2.
   void query(Point2 q, Index self, std::size_t lo, std::size_t hi, int axis, double& best) const {
-    if (lo >= hi) return;
+    if (hi - lo <= kScan) {
+      for (std::size_t k = lo; k < hi; ++k)
+        if (t_[k].id != self) best = std::min(best, norm2(t_[k].p - q));
+      return;
+    }
     const std::size_t mid = lo + (hi - lo) / 2;
-    const Index v = idx_[mid];
-    if (v != self) best = std::min(best, norm2(p_[v] - q));
-    const double diff = coord(q, axis) - coord(p_[v], axis);
+    const Node& n = t_[mid];
+    if (n.id != self) best = std::min(best, norm2(n.p - q));
+    const double diff = coord(q, axis) - coord(n.p, axis);
     if (diff < 0) {
       query(q, self, lo, mid, 1 - axis, best);
       if (diff * diff < best) query(q, self, mid + 1, hi, 1 - axis, best);
@@ -82,8 +93,7 @@ class KdTree {
       if (diff * diff < best) query(q, self, lo, mid, 1 - axis, best);
     }
   }
-  const std::vector<Point2>& p_;
-  std::vector<Index> idx_;
+  std::vector<Node> t_;
 };
 
 double angle_at(Point2 apex, Point2 p, Point2 q) {
@@ -141,7 +151,7 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
   std::vector<double> nn(pts.size(), kInf);
   if (pts.size() < 2) return nn;
   const KdTree tree(pts);
-  for (Index i : tree.order()) nn[i] = std::sqrt(tree.nearest_sq(i));
+  for (std::size_t k = 0; k < tree.size(); ++k) nn[tree.id_at(k)] = std::sqrt(tree.nearest_sq_at(k));
   return nn;
 }
 
@@ -162,7 +172,10 @@ std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
       nn[b] = std::min(nn[b], norm2(p[a] - p[b]));
     }
   const KdTree tree(p);
-  for (Index i : tree.order()) nn[i] = std::sqrt(tree.nearest_sq(i, nn[i]));
+  for (std::size_t k = 0; k < tree.size(); ++k) {
+    const Index i = tree.id_at(k);
+    nn[i] = std::sqrt(tree.nearest_sq_at(k, nn[i]));
+  }
   return nn;
 }
 }  // namespace
