@@ -1,6 +1,7 @@
 // Thin SQLite helpers for the GeoPackage writer (see sqlite_db.hpp).
 #include "io/sqlite_db.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/detail.hpp"
@@ -66,6 +67,10 @@ void SqliteStmt::step_done(const char* what) {
 
 BatchInsert::BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt)
     : db_(db), table_(std::move(table)), cols_(std::move(cols)), per_stmt_(rows_per_stmt ? rows_per_stmt : 1) {
+  // Stay within this SQLite build's limit on bound parameters per statement (999 in old builds).
+  const int max_vars = sqlite3_limit(db.get(), SQLITE_LIMIT_VARIABLE_NUMBER, -1);
+  if (!cols_.empty() && max_vars > 0)
+    per_stmt_ = std::max<std::size_t>(1, std::min(per_stmt_, static_cast<std::size_t>(max_vars) / cols_.size()));
   vals_.reserve(per_stmt_ * cols_.size());
 }
 
