@@ -166,7 +166,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // The report and the writers read a compact copy: free the refiner before copying and the
   // triangulation after (the peak is then the triangulation plus the copy, not more).
   const refine::RefineStats refine_stats = refiner->stats();
-  const refine::RefineLeftovers refine_left = refiner->leftovers();
+  // leftovers() re-measures every triangle; without --min-angle its angle count is 0 by definition.
+  const refine::RefineLeftovers refine_left =
+      opt.min_angle_deg > 0 ? refiner->leftovers() : refine::RefineLeftovers{};
   refiner.reset();
   result.mesh = tri.to_view();
   tri = mesh::Triangulation{};
