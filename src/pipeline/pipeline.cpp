@@ -175,6 +175,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
   clock.lap("depths");
+  const bool f_from_field = m.f.empty();  // then m.f holds f at the vertices, which the report reuses
   if (m.f.empty()) {
     m.f.resize(m.vertices.size());
     for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = f(m.vertices[i]);
@@ -197,7 +198,8 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   const bool want_tri_values = !in.to_output_crs && std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
     return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
   });
-  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri, want_tri_values ? &tri_values : nullptr);
+  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri, want_tri_values ? &tri_values : nullptr,
+                                           f_from_field ? &m.f : nullptr);
   if (in.tin_error && *in.tin_error) {
     result.report.vertical_error_max_m = (*in.tin_error)->first;
     result.report.vertical_error_rms_m = (*in.tin_error)->second;

@@ -181,7 +181,8 @@ std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
 }  // namespace
 
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
-                              double alpha, const RunInfo& run, TriangleValues* per_triangle) {
+                              double alpha, const RunInfo& run, TriangleValues* per_triangle,
+                              const std::vector<double>* f_at_vertices) {
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -301,7 +302,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   conf.reserve(nv);
   CompensatedSum conf_sum;
   for (std::size_t i = 0; i < nv; ++i) {
-    const double fp = f ? (*f)(m.vertices[i]) : m.f[i];
+    const double fp = !f ? m.f[i] : f_at_vertices && f_at_vertices->size() == nv ? (*f_at_vertices)[i] : (*f)(m.vertices[i]);
     if (!usable_spacing(fp)) { ++r.spacing_invalid; continue; }
     const double q = nn[i] / fp;
     const double ci = std::min(q, fp / nn[i]);  // nn = 0 (duplicate point) gives 0

@@ -95,8 +95,11 @@ struct TriangleValues {
 // `alpha` is the Lipschitz constant the guarantees are computed for; negative means unknown and
 // then f->lipschitz() is used when f knows it (else no guarantee is claimed).
 // Throws fdr::Error(kInternal) if a triangle references a vertex that does not exist.
+// `f_at_vertices`, when given, holds (*f)(m.vertices[i]) already evaluated (used instead of
+// evaluating f again; must be exactly those values).
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
-                              double alpha, const RunInfo& run, TriangleValues* per_triangle = nullptr);
+                              double alpha, const RunInfo& run, TriangleValues* per_triangle = nullptr,
+                              const std::vector<double>* f_at_vertices = nullptr);
 
 // Nearest other vertex distance for every vertex (exact, kd-tree); 0 for duplicated points,
 // +inf when the mesh has a single vertex.
