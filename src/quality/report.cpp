@@ -65,7 +65,7 @@ class KdTree {
   static constexpr std::size_t kScan = 8;  // ranges this small are scanned
   static double coord(Point2 q, int axis) { return axis == 0 ? q.x : q.y; }
   void build(std::size_t lo, std::size_t hi, int axis) {
-    if (hi - lo <= 1) return;
+    if (hi - lo <= kScan) return;  // queries scan such ranges whole: no order needed inside
     const std::size_t mid = lo + (hi - lo) / 2;
     std::nth_element(t_.begin() + static_cast<std::ptrdiff_t>(lo), t_.begin() + static_cast<std::ptrdiff_t>(mid),
                      t_.begin() + static_cast<std::ptrdiff_t>(hi),
