@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 #include "base/error.hpp"
@@ -33,7 +34,14 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   auto work = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < n;) {
       try {
-        write_mesh(mesh, paths[i], formats[i], options);
+        if (formats[i] == Format::kUgrid) {
+          // The netCDF library is not thread-safe: one UGRID file at a time.
+          static std::mutex netcdf;
+          std::lock_guard<std::mutex> lock(netcdf);
+          write_mesh(mesh, paths[i], formats[i], options);
+        } else {
+          write_mesh(mesh, paths[i], formats[i], options);
+        }
         done[i] = 1;
       } catch (...) {
         errors[i] = std::current_exception();
