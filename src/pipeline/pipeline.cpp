@@ -12,6 +12,7 @@
 #include "io/write_many.hpp"
 #include "io/writer.hpp"
 #include "mesh/check.hpp"
+#include "mesh/take_view.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/poly_io.hpp"
@@ -170,8 +171,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   const refine::RefineLeftovers refine_left =
       opt.min_angle_deg > 0 ? refiner->leftovers() : refine::RefineLeftovers{};
   refiner.reset();
-  result.mesh = tri.to_view();
-  tri = mesh::Triangulation{};
+  result.mesh = mesh::take_view(tri);  // same as tri.to_view(), releasing tri on the way
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
   clock.lap("depths");
