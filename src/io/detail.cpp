@@ -275,10 +275,18 @@ std::vector<Chain> build_chains(const mesh::MeshView& m) {
   // -1 when one uses max->min, 0 when both (interior) or none.
   std::unordered_map<EdgeKey, int, PairHash> side;
   side.reserve(m.edges.size() * 2);
-  for (const auto& e : m.edges) side.emplace(key_of(e.a, e.b), 0);
+  // Only triangle edges whose both ends are on constrained edges can be constrained: a flag per
+  // vertex spares the hash lookup for the (many) other edges.
+  std::vector<char> on_edge(m.vertices.size(), 0);
+  for (const auto& e : m.edges) {
+    side.emplace(key_of(e.a, e.b), 0);
+    if (e.a < on_edge.size()) on_edge[e.a] = 1;
+    if (e.b < on_edge.size()) on_edge[e.b] = 1;
+  }
   for (const auto& tr : m.triangles) {
     for (int k = 0; k < 3; ++k) {
       Index a = tr[k], b = tr[(k + 1) % 3];
+      if (a >= on_edge.size() || b >= on_edge.size() || !on_edge[a] || !on_edge[b]) continue;
       auto it = side.find(key_of(a, b));
       if (it == side.end()) continue;
       // Encode: bit 0 = used min->max, bit 1 = used max->min.

@@ -9,7 +9,6 @@
 //     every indexed row, naming its leaf.
 #include "io/gpkg_rtree.hpp"
 
-#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,10 +21,7 @@ namespace fdr::io::detail {
 
 namespace {
 
-struct Cell {
-  std::int64_t id;
-  float box[4];  // minx maxx miny maxy
-};
+using Cell = RtreeEntry;
 
 float round_down(double v) {
   float f = static_cast<float>(v);
@@ -38,145 +34,160 @@ float round_up(double v) {
   return f;
 }
 
+// Order-preserving unsigned key of a double (negatives below positives).
+std::uint64_t sort_key(double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, 8);
+  return (u >> 63) ? ~u : (u | (std::uint64_t{1} << 63));
+}
+
+// Stable LSD radix sort of [b, e) by key(cell) (8-bit digits, passes where all digits agree skipped).
+template <class Key>
+void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Key key) {
+  const auto n = static_cast<std::size_t>(e - b);
+  if (n < 2) return;
+  struct KI {
+    std::uint64_t k;
+    std::uint32_t i;
+  };
+  std::vector<KI> a(n), tmp(n);
+  for (std::size_t i = 0; i < n; ++i) a[i] = {key(b[static_cast<std::ptrdiff_t>(i)]), static_cast<std::uint32_t>(i)};
+  for (int shift = 0; shift < 64; shift += 8) {
+    std::size_t count[257] = {};
+    for (const KI& x : a) ++count[((x.k >> shift) & 0xFF) + 1];
+    if (*std::max_element(count + 1, count + 257) == n) continue;  // one digit value: nothing moves
+    for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+    for (const KI& x : a) tmp[count[(x.k >> shift) & 0xFF]++] = x;
+    a.swap(tmp);
+  }
+  std::vector<KI>().swap(tmp);
+  std::vector<Cell> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = b[a[i].i];
+  std::copy(sorted.begin(), sorted.end(), b);
+}
+
 // Sort-Tile-Recursive: sort by x centre into vertical slices of about sqrt(#nodes) nodes each,
 // sort each slice by y centre, cut runs of `cap` cells. Nodes come out full except the last of a slice.
-std::vector<std::vector<Cell>> str_pack(std::vector<Cell> cells, std::size_t cap) {
-  auto cx = [](const Cell& c) { return 0.5 * (double(c.box[0]) + double(c.box[1])); };
-  auto cy = [](const Cell& c) { return 0.5 * (double(c.box[2]) + double(c.box[3])); };
+// The sorts are stable (equal centres keep their order), so the packing is deterministic.
+// Sorts `cells` in place and returns the node sizes in order.
+std::vector<std::size_t> str_pack(std::vector<Cell>& cells, std::size_t cap) {
+  auto cx = [](const Cell& c) { return sort_key(0.5 * (double(c.box[0]) + double(c.box[1]))); };
+  auto cy = [](const Cell& c) { return sort_key(0.5 * (double(c.box[2]) + double(c.box[3]))); };
+  if (cells.size() <= cap) return {cells.size()};
   std::size_t nodes = (cells.size() + cap - 1) / cap;
   auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   std::size_t per_slice = slices * cap;
-  // Ties broken by id so the packing is deterministic.
-  std::sort(cells.begin(), cells.end(), [&](const Cell& a, const Cell& b) {
-    return cx(a) != cx(b) ? cx(a) < cx(b) : a.id < b.id;
-  });
-  std::vector<std::vector<Cell>> out;
+  radix_sort(cells.begin(), cells.end(), cx);
+  std::vector<std::size_t> out;
+  out.reserve(nodes + slices);
   for (std::size_t s = 0; s < cells.size(); s += per_slice) {
-    auto b = cells.begin() + static_cast<std::ptrdiff_t>(s);
-    auto e = cells.begin() + static_cast<std::ptrdiff_t>(std::min(cells.size(), s + per_slice));
-    std::sort(b, e, [&](const Cell& p, const Cell& q) { return cy(p) != cy(q) ? cy(p) < cy(q) : p.id < q.id; });
-    for (auto it = b; it < e; it += static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)))
-      out.emplace_back(it, it + static_cast<std::ptrdiff_t>(std::min<std::size_t>(cap, e - it)));
+    const std::size_t e = std::min(cells.size(), s + per_slice);
+    radix_sort(cells.begin() + static_cast<std::ptrdiff_t>(s), cells.begin() + static_cast<std::ptrdiff_t>(e), cy);
+    for (std::size_t k = s; k < e; k += cap) out.push_back(std::min(cap, e - k));
   }
   return out;
 }
 
-void put_be(std::string& hex, std::uint64_t v, int bytes) {
-  static const char* const kHex = "0123456789ABCDEF";
-  for (int i = bytes - 1; i >= 0; --i) {
-    unsigned b = (v >> (8 * i)) & 0xFF;
-    hex.push_back(kHex[b >> 4]);
-    hex.push_back(kHex[b & 15]);
-  }
+void put_be(std::string& out, std::uint64_t v, int bytes) {
+  for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
 }
 
-std::string node_blob_hex(const std::vector<Cell>& cells, int depth, std::size_t node_size) {
-  std::string hex;
-  hex.reserve(2 * node_size + 8);
-  put_be(hex, static_cast<std::uint64_t>(depth), 2);
-  put_be(hex, cells.size(), 2);
-  for (const Cell& c : cells) {
-    put_be(hex, static_cast<std::uint64_t>(c.id), 8);
-    for (float f : c.box) {
+void node_blob(std::string& b, const Cell* cells, std::size_t n, int depth, std::size_t node_size) {
+  b.clear();
+  put_be(b, static_cast<std::uint64_t>(depth), 2);
+  put_be(b, n, 2);
+  for (const Cell* c = cells; c != cells + n; ++c) {
+    put_be(b, static_cast<std::uint64_t>(c->id), 8);
+    for (float f : c->box) {
       std::uint32_t u;
       std::memcpy(&u, &f, 4);
-      put_be(hex, u, 4);
+      put_be(b, u, 4);
     }
   }
-  hex.append(2 * node_size - hex.size(), '0');  // zero padding to the fixed node size
-  return hex;
+  b.append(node_size - b.size(), '\0');  // zero padding to the fixed node size
 }
 
 std::string quoted(const std::string& name) { return "\"" + name + "\""; }
 
 }  // namespace
 
-void build_gpkg_rtree(GDALDataset& ds, const std::string& layer_name, std::vector<RtreeEntry> entries,
-                      const std::string& path, GdalErrors& errs) {
-  OGRLayer* layer = ds.GetLayerByName(layer_name.c_str());
-  if (!layer) fail_output(path, "layer '" + layer_name + "' vanished while building its spatial index");
-  const std::string t = layer_name, g = layer->GetGeometryColumn(), fid = layer->GetFIDColumn();
+RtreeEntry RtreeEntry::of(std::int64_t id, double minx, double maxx, double miny, double maxy) {
+  return {id, {round_down(minx), round_up(maxx), round_down(miny), round_up(maxy)}};
+}
+
+void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
+                      std::vector<RtreeEntry> entries) {
+  const std::string t = table, g = geom_col, fid = fid_col;
   const std::string rt = "rtree_" + t + "_" + g;
-  auto sql = [&](const std::string& s) {
-    errs.clear();
-    OGRLayer* r = ds.ExecuteSQL(s.c_str(), nullptr, nullptr);
-    if (r) ds.ReleaseResultSet(r);
-    if (errs.any()) fail_output(path, errs.reason("building the spatial index of layer '" + layer_name + "' failed"));
-  };
+  auto sql = [&](const std::string& s) { db.exec(s); };
 
   sql("CREATE VIRTUAL TABLE " + quoted(rt) + " USING rtree(id, minx, maxx, miny, maxy)");
-  std::size_t node_size = 0;
-  {
-    errs.clear();
-    OGRLayer* r = ds.ExecuteSQL(("SELECT length(data) FROM " + quoted(rt + "_node") + " WHERE nodeno = 1").c_str(), nullptr, nullptr);
-    if (r) {
-      if (std::unique_ptr<OGRFeature> f{r->GetNextFeature()}) node_size = static_cast<std::size_t>(f->GetFieldAsInteger64(0));
-      ds.ReleaseResultSet(r);
-    }
-  }
+  const auto node_size =
+      static_cast<std::size_t>(db.query_int("SELECT length(data) FROM " + quoted(rt + "_node") + " WHERE nodeno = 1"));
   const std::size_t cell_bytes = 8 + 4 * 4;
-  if (node_size < 4 + 4 * cell_bytes) fail_output(path, errs.reason("cannot read the R-tree node size of layer '" + layer_name + "'"));
+  if (node_size < 4 + 4 * cell_bytes) fail_output(db.path(), "cannot read the R-tree node size of table '" + t + "'");
   const std::size_t cap = (node_size - 4) / cell_bytes;
 
   if (!entries.empty()) {
-    std::vector<Cell> cur(entries.size());
-    for (std::size_t i = 0; i < entries.size(); ++i) {
-      const RtreeEntry& e = entries[i];
-      cur[i] = {e.id, {round_down(e.minx), round_up(e.maxx), round_down(e.miny), round_up(e.maxy)}};
-    }
-    entries.clear();
-    entries.shrink_to_fit();
-    std::vector<std::pair<std::int64_t, std::int64_t>> rowid_rows, parent_rows;
-    std::vector<std::pair<std::int64_t, std::string>> node_rows;
+    std::vector<Cell> cur = std::move(entries);
+    sql("DELETE FROM " + quoted(rt + "_node"));
+    // Leaf links are collected and written in rowid order: appending to a B-tree is much cheaper
+    // than inserting in the STR order.
+    std::int64_t max_id = 0;
+    for (const Cell& c : cur) max_id = std::max(max_id, c.id);
+    std::vector<std::int64_t> leaf_of(static_cast<std::size_t>(max_id) + 1, 0);  // 0: no row
+    BatchInsert parent_rows(db, rt + "_parent", {"nodeno", "parentnode"}, 256);
+    BatchInsert node_rows(db, rt + "_node", {"nodeno", "data"}, 16);
     std::int64_t next_no = 2;
     // Build level by level; a level that fits in one node becomes the root (node 1).
     for (int depth = 0;; ++depth) {
-      std::vector<std::vector<Cell>> groups =
-          cur.size() <= cap ? std::vector<std::vector<Cell>>{cur} : str_pack(std::move(cur), cap);
-      bool root = groups.size() == 1;
+      const std::vector<std::size_t> sizes = str_pack(cur, cap);
+      const bool root = sizes.size() == 1;
       std::vector<Cell> parents;
-      for (auto& grp : groups) {
-        std::int64_t no = root ? 1 : next_no++;
-        for (const Cell& c : grp) {
-          if (depth == 0) rowid_rows.push_back({c.id, no});
-          else parent_rows.push_back({c.id, no});
+      parents.reserve(sizes.size());
+      std::string blob;
+      const Cell* grp = cur.data();
+      for (const std::size_t n : sizes) {
+        const std::int64_t no = root ? 1 : next_no++;
+        for (const Cell* c = grp; c != grp + n; ++c) {
+          if (depth == 0) {
+            leaf_of[static_cast<std::size_t>(c->id)] = no;
+          } else {
+            parent_rows.add_int(c->id).add_int(no);
+            parent_rows.end_row();
+          }
         }
-        node_rows.push_back({no, node_blob_hex(grp, root ? depth : 0, node_size)});
+        node_blob(blob, grp, n, root ? depth : 0, node_size);
+        node_rows.add_int(no).add_blob(blob.data(), blob.size());
+        node_rows.end_row();
         Cell p{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
-        for (const Cell& c : grp) {
-          p.box[0] = std::min(p.box[0], c.box[0]);
-          p.box[1] = std::max(p.box[1], c.box[1]);
-          p.box[2] = std::min(p.box[2], c.box[2]);
-          p.box[3] = std::max(p.box[3], c.box[3]);
+        for (const Cell* c = grp; c != grp + n; ++c) {
+          p.box[0] = std::min(p.box[0], c->box[0]);
+          p.box[1] = std::max(p.box[1], c->box[1]);
+          p.box[2] = std::min(p.box[2], c->box[2]);
+          p.box[3] = std::max(p.box[3], c->box[3]);
         }
         parents.push_back(p);
+        grp += n;
       }
       if (root) break;
       cur = std::move(parents);
     }
-    sql("DELETE FROM " + quoted(rt + "_node"));
-    // Multi-row inserts keep the number of statements (each parsed once) small.
-    auto insert_pairs = [&](const std::string& table, const char* cols,
-                            const std::vector<std::pair<std::int64_t, std::int64_t>>& rows) {
-      for (std::size_t i = 0; i < rows.size(); i += 2000) {
-        std::string s = "INSERT INTO " + quoted(table) + cols + " VALUES ";
-        for (std::size_t k = i; k < std::min(rows.size(), i + 2000); ++k) {
-          if (k > i) s += ',';
-          s += '(' + std::to_string(rows[k].first) + ',' + std::to_string(rows[k].second) + ')';
-        }
-        sql(s);
-      }
-    };
-    for (std::size_t i = 0; i < node_rows.size(); i += 64) {
-      std::string s = "INSERT INTO " + quoted(rt + "_node") + "(nodeno, data) VALUES ";
-      for (std::size_t k = i; k < std::min(node_rows.size(), i + 64); ++k) {
-        if (k > i) s += ',';
-        s += '(' + std::to_string(node_rows[k].first) + ",X'" + node_rows[k].second + "')";
-      }
-      sql(s);
+    // Dense ids 1..n (nodes, triangles) are appended without naming the rowid (SQLite then
+    // takes previous + 1 without searching the B-tree); sparse ids name it.
+    bool dense = true;
+    for (std::size_t id = 1; id < leaf_of.size() && dense; ++id) dense = leaf_of[id] != 0;
+    BatchInsert rowid_rows(db, rt + "_rowid", dense ? std::vector<std::string>{"nodeno"}
+                                                    : std::vector<std::string>{"rowid", "nodeno"}, 512);
+    for (std::size_t id = 1; id < leaf_of.size(); ++id) {
+      if (!leaf_of[id]) continue;
+      if (!dense) rowid_rows.add_int(static_cast<std::int64_t>(id));
+      rowid_rows.add_int(leaf_of[id]);
+      rowid_rows.end_row();
     }
-    insert_pairs(rt + "_rowid", "(rowid, nodeno)", rowid_rows);
-    insert_pairs(rt + "_parent", "(nodeno, parentnode)", parent_rows);
+    rowid_rows.finish();
+    parent_rows.finish();
+    node_rows.finish();
   }
 
   // Maintenance triggers of the GeoPackage 1.2 "gpkg_rtree_index" extension (spec, Annex F.3).

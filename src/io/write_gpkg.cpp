@@ -1,14 +1,19 @@
-// GeoPackage writer through OGR: nodes, triangles, boundaries, repairs and metadata layers in one transaction.
+// GeoPackage writer straight through SQLite: nodes, triangles, boundaries, repairs and metadata
+// tables in one transaction, geometry blobs (GeoPackage header + WKB) built by hand, batched
+// prepared inserts in fid order, R-trees bulk-loaded (gpkg_rtree.cpp). OGR is used only to turn
+// the mesh CRS into the WKT1 definition and authority code of gpkg_spatial_ref_sys.
 #include <ogr_spatialref.h>
-#include <ogrsf_frmts.h>
 
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
 #include "io/gpkg_rtree.hpp"
+#include "io/sqlite_db.hpp"
 
 namespace fdr::io::detail {
 
@@ -19,155 +24,276 @@ void gdal_register_once() {
 
 namespace {
 
-struct Writer {
-  const std::string& path;
-  GdalErrors& errs;
+constexpr std::int64_t kGpkgApplicationId = 0x47504B47;  // "GPKG"
+constexpr int kGpkgUserVersion = 10200;                  // GeoPackage 1.2
+constexpr std::int64_t kCustomSrsId = 100000;            // first id GDAL uses for a CRS without authority code
 
-  [[noreturn]] void fail(const std::string& what) const { fail_output(path, errs.reason(what)); }
+std::string sql_quote(std::string_view s) {
+  std::string r = "'";
+  for (char c : s) {
+    if (c == '\'') r += '\'';
+    r += c;
+  }
+  return r + "'";
+}
 
+std::string real_or_null(double v) {
+  if (!std::isfinite(v)) return "NULL";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
 
-  OGRLayer* layer(GDALDataset& ds, const char* name, OGRSpatialReference* srs, OGRwkbGeometryType g) {
-    // Spatial indexes are bulk-loaded at the end (gpkg_rtree.cpp), not maintained row by row.
-    const char* opts[] = {"SPATIAL_INDEX=NO", nullptr};
-    OGRLayer* l = ds.CreateLayer(name, g == wkbNone ? nullptr : srs, g, const_cast<char**>(opts));
-    if (!l) fail(std::string("cannot create layer '") + name + "'");
-    return l;
-  }
-  void field(OGRLayer* l, const char* name, OGRFieldType t, OGRFieldSubType st = OFSTNone) {
-    OGRFieldDefn fd(name, t);
-    fd.SetSubType(st);
-    if (l->CreateField(&fd) != OGRERR_NONE) fail(std::string("cannot create field '") + name + "' in layer '" + l->GetName() + "'");
-  }
-  void create(OGRLayer* l, OGRFeature& feat) {
-    if (l->CreateFeature(&feat) != OGRERR_NONE)
-      fail(std::string("cannot write feature ") + std::to_string(feat.GetFID()) + " of layer '" + l->GetName() + "'");
-  }
+// The CRS row of gpkg_spatial_ref_sys (srs_id -1: undefined Cartesian, already present).
+struct SrsRow {
+  std::int64_t id = -1;
+  std::string name, organization, definition;
+  std::int64_t org_id = -1;
 };
 
-void set_real_or_null(OGRFeature& f, int i, double v) {
-  if (std::isfinite(v)) f.SetField(i, v);
-  else f.SetFieldNull(i);
+SrsRow srs_row(const std::string& wkt, const std::string& path) {
+  SrsRow r;
+  if (wkt.empty()) return r;
+  gdal_register_once();
+  GdalErrors errs;
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (srs.SetFromUserInput(wkt.c_str()) != OGRERR_NONE) fail_output(path, errs.reason("the mesh CRS cannot be parsed"));
+  const char* name = srs.GetName();
+  r.name = name ? name : "Unnamed";
+  const char* auth = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (auth && code && EQUAL(auth, "EPSG") && std::atoll(code) > 0) {
+    r.organization = "EPSG";
+    r.org_id = r.id = std::atoll(code);
+  } else {
+    r.organization = "NONE";
+    r.org_id = r.id = kCustomSrsId;
+  }
+  // GeoPackage 1.2 definitions are WKT1 (as GDAL writes them); WKT2-only CRSs keep their WKT2.
+  char* out = nullptr;
+  const char* opts[] = {"FORMAT=WKT1", "ALLOW_ELLIPSOIDAL_HEIGHT_AS_VERTICAL_CRS=YES", nullptr};
+  if (srs.exportToWkt(&out, opts) == OGRERR_NONE && out) r.definition = out;
+  else r.definition = wkt;
+  CPLFree(out);
+  return r;
+}
+
+// GeoPackage geometry blob: "GP", version 0, flags (little endian; envelope [minx,maxx,miny,maxy]
+// except for points; empty bit), srs_id, envelope, then little-endian WKB.
+class GeomBlob {
+ public:
+  explicit GeomBlob(std::int32_t srs) : srs_(srs) {}
+  const std::string& point(double x, double y) {
+    const bool empty = !(std::isfinite(x) && std::isfinite(y));
+    header(empty ? 0x11 : 0x01);
+    wkb_head(1);
+    if (empty) x = y = std::numeric_limits<double>::quiet_NaN();
+    put(x);
+    put(y);
+    return b_;
+  }
+  // Polygon with one ring or linestring; `closed` repeats the first point (the ring always is).
+  template <class Pt>
+  const std::string& polygon(const Pt* p, std::uint32_t n) {
+    header(0x03);
+    envelope(p, n);
+    wkb_head(3);
+    put32(1);
+    put32(n + 1);
+    for (std::uint32_t i = 0; i <= n; ++i) put(p[i % n].x), put(p[i % n].y);
+    return b_;
+  }
+  template <class Pt>
+  const std::string& linestring(const Pt* p, std::uint32_t n, bool closed) {
+    header(0x03);
+    envelope(p, n);
+    wkb_head(2);
+    put32(n + (closed ? 1 : 0));
+    for (std::uint32_t i = 0; i < n; ++i) put(p[i].x), put(p[i].y);
+    if (closed) put(p[0].x), put(p[0].y);
+    return b_;
+  }
+  double minx = 0, maxx = 0, miny = 0, maxy = 0;  // envelope of the last polygon/linestring
+
+ private:
+  void header(std::uint8_t flags) {
+    b_.resize(8);
+    b_[0] = 'G';
+    b_[1] = 'P';
+    b_[2] = 0;
+    b_[3] = static_cast<char>(flags);
+    const auto srs = static_cast<std::uint32_t>(srs_);
+    std::memcpy(&b_[4], &srs, 4);
+  }
+  template <class Pt>
+  void envelope(const Pt* p, std::uint32_t n) {
+    minx = maxx = p[0].x;
+    miny = maxy = p[0].y;
+    for (std::uint32_t i = 1; i < n; ++i) {
+      minx = std::min(minx, p[i].x), maxx = std::max(maxx, p[i].x);
+      miny = std::min(miny, p[i].y), maxy = std::max(maxy, p[i].y);
+    }
+    put(minx), put(maxx), put(miny), put(maxy);
+  }
+  void wkb_head(std::uint32_t type) {
+    b_.push_back(1);
+    put32(type);
+  }
+  void put32(std::uint32_t v) {
+    char c[4];
+    std::memcpy(c, &v, 4);  // little-endian host (checked below)
+    b_.append(c, 4);
+  }
+  void put(double v) {
+    char c[8];
+    std::memcpy(c, &v, 8);
+    b_.append(c, 8);
+  }
+  std::int32_t srs_;
+  std::string b_;
+};
+static_assert(std::endian::native == std::endian::little, "GeomBlob writes the host byte order as little endian");
+
+struct Extent {
+  double minx = std::numeric_limits<double>::infinity(), maxx = -minx, miny = minx, maxy = -minx;
+  void add(double x0, double x1, double y0, double y1) {
+    minx = std::min(minx, x0), maxx = std::max(maxx, x1), miny = std::min(miny, y0), maxy = std::max(maxy, y1);
+  }
+  bool empty() const { return !(minx <= maxx); }
+};
+
+// The mandatory GeoPackage tables and the srs rows (GeoPackage 1.2, tables as GDAL creates them).
+void create_core_tables(SqliteDb& db, const SrsRow& srs) {
+  db.exec(
+      "CREATE TABLE gpkg_spatial_ref_sys (srs_name TEXT NOT NULL,srs_id INTEGER NOT NULL PRIMARY KEY,organization TEXT "
+      "NOT NULL,organization_coordsys_id INTEGER NOT NULL,definition  TEXT NOT NULL,description TEXT);"
+      "INSERT INTO gpkg_spatial_ref_sys VALUES ('Undefined Cartesian SRS',-1,'NONE',-1,'undefined','undefined Cartesian "
+      "coordinate reference system');"
+      "INSERT INTO gpkg_spatial_ref_sys VALUES ('Undefined geographic SRS',0,'NONE',0,'undefined','undefined geographic "
+      "coordinate reference system');"
+      "CREATE TABLE gpkg_contents (table_name TEXT NOT NULL PRIMARY KEY,data_type TEXT NOT NULL,identifier TEXT "
+      "UNIQUE,description TEXT DEFAULT '',last_change DATETIME NOT NULL DEFAULT "
+      "(strftime('%Y-%m-%dT%H:%M:%fZ','now')),min_x DOUBLE, min_y DOUBLE,max_x DOUBLE, max_y DOUBLE,srs_id "
+      "INTEGER,CONSTRAINT fk_gc_r_srs_id FOREIGN KEY (srs_id) REFERENCES gpkg_spatial_ref_sys(srs_id));"
+      "CREATE TABLE gpkg_geometry_columns (table_name TEXT NOT NULL,column_name TEXT NOT NULL,geometry_type_name TEXT "
+      "NOT NULL,srs_id INTEGER NOT NULL,z TINYINT NOT NULL,m TINYINT NOT NULL,CONSTRAINT pk_geom_cols PRIMARY KEY "
+      "(table_name, column_name),CONSTRAINT uk_gc_table_name UNIQUE (table_name),CONSTRAINT fk_gc_tn FOREIGN KEY "
+      "(table_name) REFERENCES gpkg_contents(table_name),CONSTRAINT fk_gc_srs FOREIGN KEY (srs_id) REFERENCES "
+      "gpkg_spatial_ref_sys (srs_id));"
+      "CREATE TABLE gpkg_extensions (table_name TEXT, column_name TEXT, extension_name TEXT NOT NULL, definition TEXT "
+      "NOT NULL, scope TEXT NOT NULL, CONSTRAINT ge_tce UNIQUE (table_name, column_name, extension_name));");
+  if (srs.id != 4326)
+    db.exec(
+        "INSERT INTO gpkg_spatial_ref_sys VALUES ('WGS 84 geodetic',4326,'EPSG',4326,'GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\","
+        "SPHEROID[\"WGS 84\",6378137,298.257223563,AUTHORITY[\"EPSG\",\"7030\"]],AUTHORITY[\"EPSG\",\"6326\"]],PRIMEM["
+        "\"Greenwich\",0,AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\",0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],"
+        "AXIS[\"Latitude\",NORTH],AXIS[\"Longitude\",EAST],AUTHORITY[\"EPSG\",\"4326\"]]','longitude/latitude "
+        "coordinates in decimal degrees on the WGS 84 spheroid')");
+  if (srs.id != -1)
+    db.exec("INSERT INTO gpkg_spatial_ref_sys VALUES (" + sql_quote(srs.name) + "," + std::to_string(srs.id) + "," +
+            sql_quote(srs.organization) + "," + std::to_string(srs.org_id) + "," + sql_quote(srs.definition) +
+            (srs.organization == "EPSG" ? ",NULL)" : ",'')"));
+}
+
+void register_table(SqliteDb& db, const std::string& table, const char* geom_type, std::int64_t srs_id, const Extent& e) {
+  const bool features = geom_type != nullptr;
+  std::string sql = "INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
+                    "max_y, srs_id) VALUES (" + sql_quote(table) + (features ? ",'features'," : ",'attributes',") +
+                    sql_quote(table) + ",''";
+  if (features && !e.empty())
+    for (double v : {e.minx, e.miny, e.maxx, e.maxy}) sql.append(",").append(real_or_null(v));
+  else
+    sql += ",NULL,NULL,NULL,NULL";
+  sql += ',';
+  sql += std::to_string(features ? srs_id : 0);
+  sql += ')';
+  db.exec(sql);
+  if (features)
+    db.exec("INSERT INTO gpkg_geometry_columns VALUES (" + sql_quote(table) + ",'geom','" + geom_type + "'," +
+            std::to_string(srs_id) + ",0,0)");
 }
 
 }  // namespace
 
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
-  gdal_register_once();
-  GdalErrors errs;
-  Writer w{path, errs};
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!drv) fail_output(path, "the GDAL GeoPackage driver is not available");
-
-  OGRSpatialReference srs;
-  OGRSpatialReference* srs_ptr = nullptr;
-  if (!m.crs_wkt.empty()) {
-    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    if (srs.SetFromUserInput(m.crs_wkt.c_str()) != OGRERR_NONE) w.fail("the mesh CRS cannot be parsed");
-  } else {
-    // No CRS: use the GeoPackage's "undefined Cartesian SRS" (srs_id -1) rather than GDAL's
-    // default "undefined geographic SRS" (0), since mesh coordinates are planar.
-    srs.SetLocalCS("Undefined cartesian SRS");
-  }
-  srs_ptr = &srs;
+  const SrsRow srs = srs_row(m.crs_wkt, path);
+  const auto srs_id = static_cast<std::int32_t>(srs.id);
 
   // Per-vertex f (from the mesh, else from the sizing field) and conformity.
-  const std::size_t nv = m.vertices.size();
-  std::vector<double> fv(nv, std::nan(""));
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!m.f.empty()) fv[v] = m.f[v];
-    else if (o.f) fv[v] = (*o.f)(m.vertices[v]);
-  }
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
   std::vector<double> nn = nearest_neighbour_distance(m);
 
-  TempFile tf(path);  // declared before the dataset: the dataset closes first on failure
+  TempFile tf(path);  // declared before the database: the database closes first on failure
   tf.release_for_library();
-  DatasetPtr ds(drv->Create(tf.path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!ds) w.fail("cannot create the GeoPackage");
+  SqliteDb db(tf.path(), path);
+  db.exec("PRAGMA application_id = " + std::to_string(kGpkgApplicationId) + "; PRAGMA user_version = " +
+          std::to_string(kGpkgUserVersion) + ";");
+  // The file is a private temp file renamed into place on success, so no journal and no syncs:
+  // a crash leaves only the temp file, which is never renamed.
+  db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; PRAGMA locking_mode = EXCLUSIVE; "
+          "PRAGMA cache_size = -8192; PRAGMA temp_store = MEMORY;");
+  db.exec("BEGIN");
+  create_core_tables(db, srs);
+  db.exec(
+      "CREATE TABLE \"nodes\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"geom\" POINT, \"id\" INTEGER, "
+      "\"z\" REAL, \"f\" REAL, \"conformity\" REAL, \"marker\" MEDIUMINT);"
+      "CREATE TABLE \"triangles\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"geom\" POLYGON, \"id\" "
+      "INTEGER, \"n1\" INTEGER, \"n2\" INTEGER, \"n3\" INTEGER, \"area\" REAL, \"min_angle\" REAL, \"R_over_f\" REAL, "
+      "\"quality\" REAL);"
+      "CREATE TABLE \"boundaries\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"geom\" LINESTRING, \"id\" "
+      "MEDIUMINT, \"kind\" TEXT, \"marker\" MEDIUMINT, \"part\" MEDIUMINT, \"closed\" BOOLEAN, \"num_nodes\" INTEGER);"
+      "CREATE TABLE \"repairs\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"geom\" POINT, \"kind\" TEXT, "
+      "\"size\" REAL, \"reason\" TEXT, \"part\" MEDIUMINT);"
+      "CREATE TABLE \"metadata\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"key\" TEXT, \"value\" TEXT);");
 
-  OGRLayer* ln = w.layer(*ds, "nodes", srs_ptr, wkbPoint);
-  w.field(ln, "id", OFTInteger64);
-  w.field(ln, "z", OFTReal);
-  w.field(ln, "f", OFTReal);
-  w.field(ln, "conformity", OFTReal);
-  w.field(ln, "marker", OFTInteger);
-  OGRLayer* lt = w.layer(*ds, "triangles", srs_ptr, wkbPolygon);
-  for (const char* n : {"id", "n1", "n2", "n3"}) w.field(lt, n, OFTInteger64);
-  for (const char* n : {"area", "min_angle", "R_over_f", "quality"}) w.field(lt, n, OFTReal);
-  OGRLayer* lb = w.layer(*ds, "boundaries", srs_ptr, wkbLineString);
-  w.field(lb, "id", OFTInteger);
-  w.field(lb, "kind", OFTString);
-  w.field(lb, "marker", OFTInteger);
-  w.field(lb, "part", OFTInteger);
-  w.field(lb, "closed", OFTInteger, OFSTBoolean);
-  w.field(lb, "num_nodes", OFTInteger64);
-  OGRLayer* lr = w.layer(*ds, "repairs", srs_ptr, wkbPoint);
-  w.field(lr, "kind", OFTString);
-  w.field(lr, "size", OFTReal);
-  w.field(lr, "reason", OFTString);
-  w.field(lr, "part", OFTInteger);
-  OGRLayer* lm = w.layer(*ds, "metadata", nullptr, wkbNone);
-  w.field(lm, "key", OFTString);
-  w.field(lm, "value", OFTString);
-
-  std::vector<RtreeEntry> node_boxes, tri_boxes, chain_boxes, repair_boxes;
   const bool index = o.gpkg_spatial_index;
+  std::vector<RtreeEntry> node_boxes, tri_boxes, chain_boxes, repair_boxes;
   if (index) {
     node_boxes.reserve(nv);
-    tri_boxes.reserve(m.triangles.size());
+    tri_boxes.reserve(nt);
   }
+  GeomBlob gb(srs_id);
+  Extent mesh_ext, repair_ext;
 
-  // One transaction for all rows: SQLite commits per statement otherwise (orders of magnitude slower).
-  if (ds->StartTransaction() != OGRERR_NONE) w.fail("cannot start a transaction");
-
+  // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
+  // previous + 1, as the ids below assume) instead of searching the B-tree for it.
   {
-    // Features and geometries are reused; only coordinates and fields change per row.
-    OGRFeature feat(ln->GetLayerDefn());
-    feat.SetGeometryDirectly(new OGRPoint(0, 0));
-    auto* pt = static_cast<OGRPoint*>(feat.GetGeometryRef());
+    BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256);
     for (std::size_t v = 0; v < nv; ++v) {
-      Point2 p = m.world(static_cast<Index>(v));
-      pt->setX(p.x);
-      pt->setY(p.y);
-      feat.SetFID(static_cast<GIntBig>(v + 1));
-      feat.SetField(0, static_cast<GIntBig>(v + 1));
-      if (m.z.empty()) feat.SetFieldNull(1);
-      else set_real_or_null(feat, 1, m.z[v]);
-      set_real_or_null(feat, 2, fv[v]);
+      const Point2 p = m.world(static_cast<Index>(v));
+      double f = std::nan("");
+      if (!m.f.empty()) f = m.f[v];
+      else if (o.f) f = (*o.f)(m.vertices[v]);
       double c = std::nan("");
-      if (fv[v] > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / fv[v], fv[v] / nn[v]);
-      set_real_or_null(feat, 3, c);
-      feat.SetField(4, m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
-      w.create(ln, feat);
-      if (index) node_boxes.push_back({static_cast<std::int64_t>(v + 1), p.x, p.x, p.y, p.y});
+      if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
+      const std::string& g = gb.point(p.x, p.y);
+      const auto fid = static_cast<std::int64_t>(v + 1);
+      ins.add_blob(g.data(), g.size()).add_int(fid);
+      if (m.z.empty()) ins.add_null();
+      else ins.add_real_or_null(m.z[v]);
+      ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
+      ins.end_row();
+      mesh_ext.add(p.x, p.x, p.y, p.y);
+      if (index) node_boxes.push_back(RtreeEntry::of(fid, p.x, p.x, p.y, p.y));
     }
+    ins.finish();
   }
+  std::vector<double>().swap(nn);
   {
-    OGRFeature feat(lt->GetLayerDefn());
-    auto* poly = new OGRPolygon();
-    auto* ring = new OGRLinearRing();
-    ring->setNumPoints(4);
-    poly->addRingDirectly(ring);
-    feat.SetGeometryDirectly(poly);
-    ring = static_cast<OGRPolygon*>(feat.GetGeometryRef())->getExteriorRing();
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
+                    128);
+    Point2 w[3];
+    for (std::size_t t = 0; t < nt; ++t) {
       const auto& tr = m.triangles[t];
-      RtreeEntry box{static_cast<std::int64_t>(t + 1), std::numeric_limits<double>::infinity(),
-                     -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                     -std::numeric_limits<double>::infinity()};
-      for (int k = 0; k < 4; ++k) {
-        Point2 p = m.world(tr[k % 3]);
-        ring->setPoint(k, p.x, p.y);
-        box.minx = std::min(box.minx, p.x);
-        box.maxx = std::max(box.maxx, p.x);
-        box.miny = std::min(box.miny, p.y);
-        box.maxy = std::max(box.maxy, p.y);
-      }
-      if (index) tri_boxes.push_back(box);
-      feat.SetFID(static_cast<GIntBig>(t + 1));
-      feat.SetField(0, static_cast<GIntBig>(t + 1));
-      for (int k = 0; k < 3; ++k) feat.SetField(1 + k, static_cast<GIntBig>(tr[k]) + 1);
-      feat.SetField(4, o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
-      feat.SetField(5, o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
+      for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
+      const std::string& g = gb.polygon(w, 3);
+      const auto fid = static_cast<std::int64_t>(t + 1);
+      if (index) tri_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
+      ins.add_blob(g.data(), g.size()).add_int(fid);
+      for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
+      ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
+      ins.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
       if (o.f || o.triangle_r_over_f) {
         double r;
         if (o.triangle_r_over_f) {
@@ -176,67 +302,55 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
           Point2 c;
           r = circumradius(m, t, c) / (*o.f)(c);
         }
-        set_real_or_null(feat, 6, r);
-        if (o.bound_B > 0) set_real_or_null(feat, 7, r / o.bound_B);
-        else feat.SetFieldNull(7);
+        ins.add_real_or_null(r);
+        if (o.bound_B > 0) ins.add_real_or_null(r / o.bound_B);
+        else ins.add_null();
       } else {
-        feat.SetFieldNull(6);
-        feat.SetFieldNull(7);
+        ins.add_null().add_null();
       }
-      w.create(lt, feat);
+      ins.end_row();
     }
+    ins.finish();
   }
   {
-    std::vector<Chain> chains = build_chains(m);
-    OGRFeature feat(lb->GetLayerDefn());
+    const std::vector<Chain> chains = build_chains(m);
+    BatchInsert ins(db, "boundaries", {"geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
+    std::vector<Point2> pts;
     for (std::size_t i = 0; i < chains.size(); ++i) {
       const Chain& c = chains[i];
-      auto* ls = new OGRLineString();
-      ls->setNumPoints(static_cast<int>(c.nodes.size() + (c.closed ? 1 : 0)));
-      for (std::size_t k = 0; k < c.nodes.size(); ++k) {
-        Point2 p = m.world(c.nodes[k]);
-        ls->setPoint(static_cast<int>(k), p.x, p.y);
-      }
-      if (c.closed) {
-        Point2 p = m.world(c.nodes[0]);
-        ls->setPoint(static_cast<int>(c.nodes.size()), p.x, p.y);
-      }
-      feat.SetGeometryDirectly(ls);
-      feat.SetFID(static_cast<GIntBig>(i + 1));
-      feat.SetField(0, static_cast<int>(i + 1));
-      feat.SetField(1, kind_name(c.marker).c_str());
-      feat.SetField(2, c.marker);
-      feat.SetField(3, c.part);
-      feat.SetField(4, c.closed ? 1 : 0);
-      feat.SetField(5, static_cast<GIntBig>(c.nodes.size()));
-      w.create(lb, feat);
-      OGREnvelope env;
-      ls->getEnvelope(&env);
-      chain_boxes.push_back({static_cast<std::int64_t>(i + 1), env.MinX, env.MaxX, env.MinY, env.MaxY});
+      pts.clear();
+      for (Index v : c.nodes) pts.push_back(m.world(v));
+      const std::string& g = gb.linestring(pts.data(), static_cast<std::uint32_t>(pts.size()), c.closed);
+      const auto fid = static_cast<std::int64_t>(i + 1);
+      ins.add_blob(g.data(), g.size()).add_int(fid).add_text(kind_name(c.marker)).add_int(c.marker);
+      ins.add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
+      ins.end_row();
+      mesh_ext.add(gb.minx, gb.maxx, gb.miny, gb.maxy);
+      chain_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
     }
+    ins.finish();
   }
   {
-    OGRFeature feat(lr->GetLayerDefn());
+    BatchInsert ins(db, "repairs", {"geom", "kind", "size", "reason", "part"}, 64);
     for (std::size_t i = 0; i < o.repairs.size(); ++i) {
       const RepairRow& r = o.repairs[i];
-      feat.SetGeometryDirectly(new OGRPoint(r.x, r.y));
-      feat.SetFID(static_cast<GIntBig>(i + 1));
-      feat.SetField(0, r.kind.c_str());
-      set_real_or_null(feat, 1, r.size);
-      feat.SetField(2, r.reason.c_str());
-      feat.SetField(3, r.part);
-      w.create(lr, feat);
-      if (std::isfinite(r.x) && std::isfinite(r.y)) repair_boxes.push_back({static_cast<std::int64_t>(i + 1), r.x, r.x, r.y, r.y});
+      const std::string& g = gb.point(r.x, r.y);
+      const auto fid = static_cast<std::int64_t>(i + 1);
+      ins.add_blob(g.data(), g.size()).add_text(r.kind).add_real_or_null(r.size).add_text(r.reason);
+      ins.add_int(r.part);
+      ins.end_row();
+      if (std::isfinite(r.x) && std::isfinite(r.y)) {
+        repair_boxes.push_back(RtreeEntry::of(fid, r.x, r.x, r.y, r.y));
+        repair_ext.add(r.x, r.x, r.y, r.y);
+      }
     }
+    ins.finish();
   }
   {
-    OGRFeature feat(lm->GetLayerDefn());
-    GIntBig fid = 0;
+    BatchInsert ins(db, "metadata", {"key", "value"}, 16);
     auto row = [&](const std::string& k, const std::string& v) {
-      feat.SetFID(++fid);
-      feat.SetField(0, k.c_str());
-      feat.SetField(1, v.c_str());
-      w.create(lm, feat);
+      ins.add_text(k).add_text(v);
+      ins.end_row();
     };
     bool has_title = false, has_b = false;
     for (const auto& [k, v] : o.metadata) {
@@ -245,22 +359,23 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       row(k, v);
     }
     if (!has_title && !o.title.empty()) row("title", o.title);
-    if (!has_b && o.bound_B > 0) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", o.bound_B);
-      row("bound_B", buf);
-    }
+    if (!has_b && o.bound_B > 0) row("bound_B", real_or_null(o.bound_B));
+    ins.finish();
   }
+  // Table order as OGR lists layers: the order of gpkg_contents rows.
+  register_table(db, "nodes", "POINT", srs.id, mesh_ext);
+  register_table(db, "triangles", "POLYGON", srs.id, mesh_ext);
+  register_table(db, "boundaries", "LINESTRING", srs.id, mesh_ext);
+  register_table(db, "repairs", "POINT", srs.id, repair_ext);
+  register_table(db, "metadata", nullptr, 0, {});
   if (index) {
-    build_gpkg_rtree(*ds, "nodes", std::move(node_boxes), path, errs);
-    build_gpkg_rtree(*ds, "triangles", std::move(tri_boxes), path, errs);
-    build_gpkg_rtree(*ds, "boundaries", std::move(chain_boxes), path, errs);
-    build_gpkg_rtree(*ds, "repairs", std::move(repair_boxes), path, errs);
+    build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_boxes));
+    build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_boxes));
+    build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
+    build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
   }
-  if (ds->CommitTransaction() != OGRERR_NONE) w.fail("cannot commit the transaction");
-  GDALDataset* raw = ds.release();
-  GDALClose(raw);
-  if (errs.any()) w.fail("closing the GeoPackage failed");
+  db.exec("COMMIT");
+  db.close();
   tf.commit();
 }
 

@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include "base/error.hpp"
 #include "base/version.hpp"
 #include "cdt/cdt.hpp"
+#include "io/write_many.hpp"
 #include "io/writer.hpp"
 #include "mesh/check.hpp"
+#include "mesh/take_view.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/poly_io.hpp"
@@ -160,10 +163,10 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ro.progress = [&](double frac, std::string_view) {
     return !progress || progress(0.05 + 0.75 * frac, "refine");
   };
-  refine::Refiner refiner(tri, f, ro);
-  refiner.reserve(expected);
-  refiner.init();
-  refiner.run();
+  auto refiner = std::make_unique<refine::Refiner>(tri, f, ro);  // freed once the mesh is copied out
+  refiner->reserve(expected);
+  refiner->init();
+  refiner->run();
   const double refine_s = since(t_ref);
   clock.lap("refine");
   if (smooth_passes > 0) {
@@ -180,7 +183,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
 
   if (opt.check) {
     mesh::CheckResult cr = mesh::check_all(tri);
-    const std::size_t bad = refiner.leftovers().r_over_f_bad;
+    const std::size_t bad = refiner->leftovers().r_over_f_bad;
     if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
     if (!cr.ok()) {
       std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
@@ -191,10 +194,18 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     clock.lap("check");
   }
 
-  result.mesh = tri.to_view();
+  // The report and the writers read a compact copy: free the refiner before copying and the
+  // triangulation after (the peak is then the triangulation plus the copy, not more).
+  const refine::RefineStats refine_stats = refiner->stats();
+  // leftovers() re-measures every triangle; without --min-angle its angle count is 0 by definition.
+  const refine::RefineLeftovers refine_left =
+      min_angle_deg > 0 ? refiner->leftovers() : refine::RefineLeftovers{};
+  refiner.reset();
+  result.mesh = mesh::take_view(tri);  // same as tri.to_view(), releasing tri on the way
   auto& m = result.mesh;
   if (in.attach) in.attach(m);  // depths, CRS (GIS runs)
   clock.lap("depths");
+  const bool f_from_field = m.f.empty();  // then m.f holds f at the vertices, which the report reuses
   if (m.f.empty()) {
     m.f.resize(m.vertices.size());
     for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = f(m.vertices[i]);
@@ -205,13 +216,20 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.refine_s = refine_s;
   ri.predicate_filtered = predicates::counters().filtered;
   ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = refiner.leftovers().angle_bad;
-  ri.steiner_segment = refiner.stats().segment_splits;
-  ri.steiner_interior = refiner.stats().circumcenters;
+  ri.exempt_small_angle_triangles = refine_left.angle_bad;
+  ri.steiner_segment = refine_stats.segment_splits;
+  ri.steiner_interior = refine_stats.circumcenters;
   ri.input_file = source;
   ri.spacing = f.describe();
   if (min_angle_deg > 0) ri.min_angle_option_deg = min_angle_deg;
-  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
+  // writers then never evaluate f, which lets them run concurrently).
+  quality::TriangleValues tri_values;
+  const bool want_tri_values = !in.to_output_crs && std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
+  });
+  result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri, want_tri_values ? &tri_values : nullptr,
+                                           f_from_field ? &m.f : nullptr);
   if (!is_poly_input(opt.input)) {  // GIS runs: model readiness against the input coast (issue 11)
     result.report.model_ready = quality::compute_model_readiness(
         m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
@@ -279,8 +297,16 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   std::vector<std::string> extra_paths;
   if (!opt.write_spacing.empty()) extra_paths.push_back(opt.write_spacing);
   try {
+    if (want_tri_values) {
+      wo.f = nullptr;  // m.f holds f at the vertices; the triangles' values come from the report
+      wo.triangle_r_over_f = &tri_values.r_over_f;
+      wo.triangle_min_angle = &tri_values.min_angle_deg;
+      wo.triangle_area = &tri_values.area;
+    }
+    // Concurrent writers are safe: only GPKG, VTU and UGRID would evaluate f, and they get the
+    // report's values instead (or the --output-crs ones, with wo.f null).
+    io::write_meshes(*to_write, opt.outputs, formats, wo, io::max_threads());
     for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
-      io::write_mesh(*to_write, opt.outputs[i], formats[i], wo);
       result.written.push_back(opt.outputs[i]);
       if (formats[i] == io::Format::kSelafin) extra_paths.push_back(cli_path_of(opt.outputs[i]));
       if (formats[i] == io::Format::kNode) {

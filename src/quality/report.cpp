@@ -10,9 +10,12 @@
 #include <numeric>
 #include <ostream>
 #include <string>
+#include <exception>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
+#include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::quality {
@@ -34,38 +37,54 @@ struct CompensatedSum {
   double value() const { return sum + c; }
 };
 
-// Static 2-d tree over point indices (implicit: the median of each range is its node).
+// Static 2-d tree (implicit: the median of each range is its node) over copies of the points
+// kept in tree order, so a query reads contiguous memory and consecutive queries in tree order
+// share most of it.
 class KdTree {
  public:
-  explicit KdTree(const std::vector<Point2>& p) : p_(p), idx_(p.size()) {
-    std::iota(idx_.begin(), idx_.end(), Index{0});
-    build(0, idx_.size(), 0);
+  explicit KdTree(const std::vector<Point2>& p) : t_(p.size()) {
+    for (std::size_t i = 0; i < p.size(); ++i) t_[i] = {p[i], static_cast<Index>(i)};
+    build(0, t_.size(), 0);
   }
-  // Squared distance from p_[self] to the nearest point with a different index.
-  double nearest_sq(Index self) const {
-    double best = kInf;
-    query(p_[self], self, 0, idx_.size(), 0, best);
+  std::size_t size() const { return t_.size(); }
+  Index id_at(std::size_t pos) const { return t_[pos].id; }
+  // Squared distance from the point at tree position `pos` to the nearest point with another
+  // index. `bound` is an upper bound that is itself such a squared distance norm2(p_v - p_self)
+  // (or +inf): only points strictly closer are searched, so the result is the same value either way.
+  double nearest_sq_at(std::size_t pos, double bound = kInf) const {
+    double best = bound;
+    query(t_[pos].p, t_[pos].id, 0, t_.size(), 0, best);
     return best;
   }
 
  private:
+  struct Node {
+    Point2 p;
+    Index id;
+  };
+  static constexpr std::size_t kScan = 8;  // ranges this small are scanned
   static double coord(Point2 q, int axis) { return axis == 0 ? q.x : q.y; }
   void build(std::size_t lo, std::size_t hi, int axis) {
-    if (hi - lo <= 1) return;
+    if (hi - lo <= kScan) return;  // queries scan such ranges whole: no order needed inside
     const std::size_t mid = lo + (hi - lo) / 2;
-    std::nth_element(idx_.begin() + lo, idx_.begin() + mid, idx_.begin() + hi,
-                     [&](Index a, Index b) { return coord(p_[a], axis) < coord(p_[b], axis); });
+    std::nth_element(t_.begin() + static_cast<std::ptrdiff_t>(lo), t_.begin() + static_cast<std::ptrdiff_t>(mid),
+                     t_.begin() + static_cast<std::ptrdiff_t>(hi),
+                     [axis](const Node& a, const Node& b) { return coord(a.p, axis) < coord(b.p, axis); });
     build(lo, mid, 1 - axis);
     build(mid + 1, hi, 1 - axis);
   }
   // Why the far side is visited only conditionally: points across the splitting line are at
   // least |diff| away, so they cannot beat a best distance already below diff^2.
   void query(Point2 q, Index self, std::size_t lo, std::size_t hi, int axis, double& best) const {
-    if (lo >= hi) return;
+    if (hi - lo <= kScan) {
+      for (std::size_t k = lo; k < hi; ++k)
+        if (t_[k].id != self) best = std::min(best, norm2(t_[k].p - q));
+      return;
+    }
     const std::size_t mid = lo + (hi - lo) / 2;
-    const Index v = idx_[mid];
-    if (v != self) best = std::min(best, norm2(p_[v] - q));
-    const double diff = coord(q, axis) - coord(p_[v], axis);
+    const Node& n = t_[mid];
+    if (n.id != self) best = std::min(best, norm2(n.p - q));
+    const double diff = coord(q, axis) - coord(n.p, axis);
     if (diff < 0) {
       query(q, self, lo, mid, 1 - axis, best);
       if (diff * diff < best) query(q, self, mid + 1, hi, 1 - axis, best);
@@ -74,8 +93,7 @@ class KdTree {
       if (diff * diff < best) query(q, self, lo, mid, 1 - axis, best);
     }
   }
-  const std::vector<Point2>& p_;
-  std::vector<Index> idx_;
+  std::vector<Node> t_;
 };
 
 double angle_at(Point2 apex, Point2 p, Point2 q) {
@@ -160,12 +178,38 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
   std::vector<double> nn(pts.size(), kInf);
   if (pts.size() < 2) return nn;
   const KdTree tree(pts);
-  for (std::size_t i = 0; i < pts.size(); ++i) nn[i] = std::sqrt(tree.nearest_sq(static_cast<Index>(i)));
+  for (std::size_t k = 0; k < tree.size(); ++k) nn[tree.id_at(k)] = std::sqrt(tree.nearest_sq_at(k));
   return nn;
 }
 
+namespace {
+// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh: every mesh edge gives
+// an upper bound (the squared length of the nearest edge, computed exactly as the tree computes
+// distances), so each query only visits the few tree nodes closer than the nearest mesh
+// neighbour; in a Delaunay mesh that neighbour is the answer and the query just confirms it.
+std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
+  const std::vector<Point2>& p = m.vertices;
+  std::vector<double> nn(p.size(), kInf);
+  if (p.size() < 2) return nn;
+  for (const auto& tri : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = tri[k], b = tri[(k + 1) % 3];
+      if (a == b || a >= p.size() || b >= p.size()) continue;
+      nn[a] = std::min(nn[a], norm2(p[b] - p[a]));
+      nn[b] = std::min(nn[b], norm2(p[a] - p[b]));
+    }
+  const KdTree tree(p);
+  for (std::size_t k = 0; k < tree.size(); ++k) {
+    const Index i = tree.id_at(k);
+    nn[i] = std::sqrt(tree.nearest_sq_at(k, nn[i]));
+  }
+  return nn;
+}
+}  // namespace
+
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
-                              double alpha, const RunInfo& run) {
+                              double alpha, const RunInfo& run, TriangleValues* per_triangle,
+                              const std::vector<double>* f_at_vertices) {
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -179,10 +223,33 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.orthogonality = compute_orthogonality(m);
 
   const std::size_t nv = m.num_vertices();
+  // Nearest neighbours do not need f: with a second thread they are found while the triangles
+  // are measured (same values either way).
+  std::vector<double> nn;
+  std::exception_ptr nn_error;
+  auto find_nn = [&] {
+    try {
+      nn = mesh_nearest_neighbour_distances(m);
+    } catch (...) {
+      nn_error = std::current_exception();
+    }
+  };
+  std::thread nn_thread;
+  if (max_threads() > 1 && nv >= 4096) nn_thread = std::thread(find_nn);
+  struct Join {
+    std::thread& t;
+    ~Join() { if (t.joinable()) t.join(); }
+  } join_nn{nn_thread};
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
   if (f) r.bad_triangles = 0;
+  if (per_triangle) {
+    per_triangle->area.assign(m.triangles.size(), 0.0);
+    per_triangle->min_angle_deg.assign(m.triangles.size(), 0.0);
+    if (f) per_triangle->r_over_f.assign(m.triangles.size(), kInf);
+    else per_triangle->r_over_f.clear();
+  }
 
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
@@ -208,6 +275,10 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 
     const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
     const double amin = std::min({ang[0], ang[1], ang[2]});
+    if (per_triangle) {
+      per_triangle->area[t] = 0.5 * cr;
+      per_triangle->min_angle_deg[t] = amin;
+    }
     const double amax = std::max({ang[0], ang[1], ang[2]});
     update_min(r.min_angle_deg, amin);
     update_max(r.max_angle_deg, amax);
@@ -230,6 +301,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       double ratio = kInf;
       if (std::isfinite(radius)) {
         const double fc = (*f)(center);
+        if (per_triangle) per_triangle->r_over_f[t] = radius / fc;
         if (!usable_spacing(fc)) { ++r.spacing_invalid; continue; }
         ratio = radius / fc;
       }
@@ -243,7 +315,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  const std::vector<double> nn = nearest_neighbour_distances(m.vertices);
+  if (nn_thread.joinable()) nn_thread.join();
+  else find_nn();
+  if (nn_error) std::rethrow_exception(nn_error);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
@@ -256,7 +330,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   conf.reserve(nv);
   CompensatedSum conf_sum;
   for (std::size_t i = 0; i < nv; ++i) {
-    const double fp = f ? (*f)(m.vertices[i]) : m.f[i];
+    const double fp = !f ? m.f[i] : f_at_vertices && f_at_vertices->size() == nv ? (*f_at_vertices)[i] : (*f)(m.vertices[i]);
     if (!usable_spacing(fp)) { ++r.spacing_invalid; continue; }
     const double q = nn[i] / fp;
     const double ci = std::min(q, fp / nn[i]);  // nn = 0 (duplicate point) gives 0

@@ -105,12 +105,22 @@ std::vector<TheoremCheck> theorem_checks(const QualityReport& r);
 // True when a guarantee applies and every counted row holds.
 bool guarantees_hold(const QualityReport& r);
 
+// Per-triangle values measured on the way (filled when asked for; writers reuse them instead of
+// evaluating f again): signed area, smallest angle in degrees, R/f(c) (only with f; +inf for a
+// degenerate triangle, R/f(c) as computed even where f(c) is unusable).
+struct TriangleValues {
+  std::vector<double> area, min_angle_deg, r_over_f;
+};
+
 // Measures every metric of `m` (in its local frame, where `f` is evaluated). `f` may be null.
 // `alpha` is the Lipschitz constant the guarantees are computed for; negative means unknown and
 // then f->lipschitz() is used when f knows it (else no guarantee is claimed).
 // Throws fdr::Error(kInternal) if a triangle references a vertex that does not exist.
+// `f_at_vertices`, when given, holds (*f)(m.vertices[i]) already evaluated (used instead of
+// evaluating f again; must be exactly those values).
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
-                              double alpha, const RunInfo& run);
+                              double alpha, const RunInfo& run, TriangleValues* per_triangle = nullptr,
+                              const std::vector<double>* f_at_vertices = nullptr);
 
 // Nearest other vertex distance for every vertex (exact, kd-tree); 0 for duplicated points,
 // +inf when the mesh has a single vertex.

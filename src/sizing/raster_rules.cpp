@@ -2,6 +2,10 @@
 // cell-wise min and clamp.
 #include "sizing/raster_rules.hpp"
 
+#include <thread>
+
+#include "base/threads.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -195,13 +199,27 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   }
   const SegmentBvh bvh(std::move(segs));
   // Why serpentine order: consecutive cells are neighbours, so the previous answer is a
-  // tight initial bound and each query prunes almost everything.
-  std::uint32_t hint = 0;
-  for (std::size_t j = 0; j < out.ny; ++j)
-    for (std::size_t k = 0; k < out.nx; ++k) {
-      const std::size_t i = (j % 2 == 0) ? k : out.nx - 1 - k;
-      out.at(i, j) = std::sqrt(bvh.nearest(out.center(i, j), hint));
-    }
+  // tight initial bound and each query prunes almost everything. Every cell's value is the exact
+  // minimum whatever the hint, so row bands can run on separate threads (same grid either way).
+  auto rows = [&](std::size_t j0, std::size_t j1) {
+    std::uint32_t hint = 0;
+    for (std::size_t j = j0; j < j1; ++j)
+      for (std::size_t k = 0; k < out.nx; ++k) {
+        const std::size_t i = (j % 2 == 0) ? k : out.nx - 1 - k;
+        out.at(i, j) = std::sqrt(bvh.nearest(out.center(i, j), hint));
+      }
+  };
+  const std::size_t threads = std::min<std::size_t>(max_threads(), out.v.size() >= (1u << 16) ? out.ny : 1);
+  if (threads <= 1) {
+    rows(0, out.ny);
+    return out;
+  }
+  std::vector<std::thread> pool;
+  const std::size_t band = (out.ny + threads - 1) / threads;
+  for (std::size_t t = 1; t < threads; ++t)
+    pool.emplace_back(rows, std::min(out.ny, t * band), std::min(out.ny, (t + 1) * band));
+  rows(0, std::min(out.ny, band));
+  for (auto& th : pool) th.join();
   return out;
 }
 

@@ -78,3 +78,50 @@ TEST(Determinism, TwoRunsWriteIdenticalFiles) {
   }
   fs::remove_all(dir);
 }
+
+// The thread count (FDR_THREADS: concurrent writers, report, distance to shore) never changes
+// what is written.
+TEST(Determinism, ThreadCountDoesNotChangeFiles) {
+  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_threads_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string t = FDR_TESTDATA_DIR;
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* threads : {"1", "2", "3"}) {
+    const fs::path o = dir / threads;
+    fs::create_directories(o);
+    const std::string cmd = std::string("FDR_THREADS=") + threads + " " + FDR_BINARY + " mesh " + t +
+                            "/chesapeake/chesapeake_mouth_water.geojson --open-boundary " + t +
+                            "/chesapeake/chesapeake_mouth_open_boundary.geojson --raster " + t +
+                            "/chesapeake/chesapeake_mouth_etopo5.tif --dist-grade 0.05 -q -o " + (o / "m.2dm").string() +
+                            " -o " + (o / "m.14").string() + " -o " + (o / "m.msh").string() + " -o " +
+                            (o / "m.node").string() + " -o " + (o / "m.vtu").string() + " -o " + (o / "m.gpkg").string() + " --report " +
+                            (o / "r.json").string() + " > /dev/null 2>&1";
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
+  }
+  for (const char* f : {"m.2dm", "m.14", "m.msh", "m.node", "m.ele", "m.vtu"}) {
+    const std::string a = slurp(dir / "1" / f);
+    EXPECT_GT(a.size(), 1000u) << f;
+    EXPECT_TRUE(a == slurp(dir / "2" / f)) << f << " differs between 1 and 2 threads";
+    EXPECT_TRUE(a == slurp(dir / "3" / f)) << f << " differs between 1 and 3 threads";
+  }
+  EXPECT_GT(fs::file_size(dir / "2" / "m.gpkg"), 10000u);
+  // The report (measured with the nearest neighbours on a second thread) has the same values;
+  // only its timings and memory figures may differ.
+  auto values = [&](const char* threads) {
+    auto j = load(dir / threads / "r.json");
+    j.erase("timings_s");
+    j.erase("run");
+    j.erase("peak_rss_mb");
+    return j;
+  };
+  const auto r1 = values("1");
+  EXPECT_TRUE(r1.contains("conformity"));
+  EXPECT_EQ(r1, values("2"));
+  EXPECT_EQ(r1, values("3"));
+  fs::remove_all(dir);
+}

@@ -567,6 +567,25 @@ TEST_F(IoRoundTrip, GeoPackagePassesGdalValidator) {
   io::write_mesh(grid_mesh(12), p, Format::kGpkg, opts);
   int rc = std::system(("/usr/bin/python3 " + std::string(validator) + " " + p + " > " + log + " 2>&1").c_str());
   EXPECT_EQ(rc, 0) << slurp(log);
+  // With an EPSG CRS, repairs and metadata rows (the SQLite writer builds every table itself).
+  std::string p2 = tmp / "valid_crs.gpkg";
+  ASSERT_FALSE(m.crs_wkt.empty());
+  ASSERT_FALSE(opts.repairs.empty());
+  io::write_mesh(m, p2, Format::kGpkg, opts);
+  rc = std::system(("/usr/bin/python3 " + std::string(validator) + " " + p2 + " > " + log + " 2>&1").c_str());
+  EXPECT_EQ(rc, 0) << slurp(log);
+  // And a CRS without an authority code (stored as a custom srs_id).
+  mesh::MeshView custom = m;
+  custom.crs_wkt = "+proj=tmerc +lat_0=43.3 +lon_0=-67.25 +k=1 +x_0=0 +y_0=0 +datum=WGS84 +units=m +no_defs";
+  std::string p3 = tmp / "valid_custom.gpkg";
+  io::write_mesh(custom, p3, Format::kGpkg, opts);
+  rc = std::system(("/usr/bin/python3 " + std::string(validator) + " " + p3 + " > " + log + " 2>&1").c_str());
+  EXPECT_EQ(rc, 0) << slurp(log);
+  mesh::MeshView back = io::read_mesh(p3);
+  OGRSpatialReference a, b;
+  a.SetFromUserInput(custom.crs_wkt.c_str());
+  b.SetFromUserInput(back.crs_wkt.c_str());
+  EXPECT_TRUE(a.IsSame(&b)) << back.crs_wkt;
 }
 
 TEST_F(IoRoundTrip, GeoPackageWithoutSizingHasNullQuality) {

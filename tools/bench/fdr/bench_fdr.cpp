@@ -1,5 +1,9 @@
 // FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1; fdrmesh's refiner beside CGAL's Delaunay_mesher_2 (same R/f(c) criterion) and Gmsh (background size field).
-// Prints refine seconds, triangles/s, peak RSS, bytes/triangle, min angle and vertex count; usage in kUsage below.
+// Prints per tool: refine seconds, whole-process wall seconds, peak RSS of the process (VmHWM / ru_maxrss, not an
+// increase), bytes/triangle, triangles per unit of the integral of 1/f^2 over the domain, min angle, vertices.
+// The "fdrmesh" row is the refiner in-process (CDT + FDR); "fdrmesh-cli" is the real command line
+// (fdrmesh mesh square10.poly --spacing K*paper-f1, no output files: read, CDT, refine, report), run as a child.
+// Usage in kUsage below.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -9,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cctype>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +29,7 @@
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <nlohmann/json.hpp>
 #include "base/error.hpp"
 #include "cdt/cdt.hpp"
 #include "refine/refine.hpp"
@@ -46,7 +52,6 @@ long proc_status_kb(const char* key) {
   return kb;
 }
 long vm_hwm_kb() { return proc_status_kb("VmHWM:"); }
-long vm_rss_kb() { return proc_status_kb("VmRSS:"); }
 
 double min_angle_of(double ax, double ay, double bx, double by, double cx, double cy) {
   auto ang = [](double px, double py, double qx, double qy, double rx, double ry) {
@@ -56,12 +61,24 @@ double min_angle_of(double ax, double ay, double bx, double by, double cx, doubl
   return std::min({ang(ax, ay, bx, by, cx, cy), ang(bx, by, cx, cy, ax, ay), ang(cx, cy, ax, ay, bx, by)});
 }
 
-struct Row { std::string tool; double k; double seconds; std::size_t tris, verts; double rss_mb, min_angle; std::string note; };
+// Whole-process wall clock and VmHWM of a forked measurement child, from its own start.
+Clock::time_point g_child_start;
+
+// Integral of 1/f^2 over [0,10]^2 for f = k * ((|x-5| + |y-5|) * 0.1 + 0.1): by symmetry
+// 4 * 100 / k^2 * int_0^5 int_0^5 (u + v + 1)^-2 du dv = 400 (2 ln 6 - ln 11) / k^2.
+double integral_inv_f2(double k) { return 400.0 * (2.0 * std::log(6.0) - std::log(11.0)) / (k * k); }
+
+struct Row {
+  std::string tool; double k; double seconds; std::size_t tris, verts; double rss_mb, min_angle; std::string note;
+  double whole_s = 0;  // whole process wall clock (0: not measured)
+};
 
 void print(const Row& r) {
-  std::printf("%-10s k=%-8g refine %8.3f s  %12zu tri  %10.0f tri/s  peak %8.1f MB  %6.1f B/tri  min angle %5.2f  %10zu vertices\n",
-              r.tool.c_str(), r.k, r.seconds, r.tris, r.tris / r.seconds, r.rss_mb, r.rss_mb * 1048576.0 / r.tris,
-              r.min_angle, r.verts);
+  std::printf("%-11s k=%-7g refine %7.3f s  whole %7.3f s (%5.2fx)  %10zu tri  %6.3f tri/int(1/f^2)  %10.0f tri/s  "
+              "peak %8.1f MiB  %6.1f B/tri  min angle %5.2f  %9zu vertices\n",
+              r.tool.c_str(), r.k, r.seconds, r.whole_s, r.seconds > 0 ? r.whole_s / r.seconds : 0.0, r.tris,
+              r.tris / integral_inv_f2(r.k), r.tris / r.seconds, r.rss_mb, r.rss_mb * 1048576.0 / r.tris, r.min_angle,
+              r.verts);
   if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
   std::fflush(stdout);
 }
@@ -72,7 +89,6 @@ Row run_fdr(double k) {
   p.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
   for (Index i = 0; i < 4; ++i) p.segments.push_back({i, (i + 1) % 4, 1, 0});
   sizing::PaperF1Field f(k);
-  const long base = vm_rss_kb();
   auto t0 = Clock::now();
   auto T = cdt::build_cdt(p);
   refine::Refiner r(T, f, {});
@@ -86,10 +102,14 @@ Row run_fdr(double k) {
     const auto& a = T.pts[T.tv[3 * t]]; const auto& b = T.pts[T.tv[3 * t + 1]]; const auto& c = T.pts[T.tv[3 * t + 2]];
     amin = std::min(amin, min_angle_of(a.x, a.y, b.x, b.y, c.x, c.y));
   }
-  return {"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.pts.size() - 3, (vm_hwm_kb() - base) / 1024.0, amin, {}};
+  Row row{"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.pts.size() - 3, vm_hwm_kb() / 1024.0, amin, {}};
+  row.note = "in-process CDT + refine (bench process peak)";
+  return row;
 }
 
 // CGAL's mesher with an R/f(c) criterion: a face is bad when circumradius / f(circumcenter) > B.
+// CGAL refines the bad face of SMALLEST Quality first, so Quality = B f(c) / R: the largest R/f(c)
+// is refined first, the paper's order (Quality = R/(B f) ran the opposite order).
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Delaunay_mesh_vertex_base_2<K>;
 using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
@@ -102,22 +122,21 @@ struct RfCriteria {
   struct Is_bad {
     double k, B;
     CGAL::Mesh_2::Face_badness operator()(const Quality q) const {
-      return q > 1 ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+      return q < 1 ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
     }
     CGAL::Mesh_2::Face_badness operator()(CDT::Face_handle fh, Quality& q) const {
       const auto& a = fh->vertex(0)->point(); const auto& b = fh->vertex(1)->point(); const auto& c = fh->vertex(2)->point();
       const auto cc = CGAL::circumcenter(a, b, c);
       const double r = std::sqrt(CGAL::squared_distance(cc, a));
       const double f = k * ((std::fabs(cc.x() - 5) + std::fabs(cc.y() - 5)) * 0.1 + 0.1);
-      q = r / (B * f);
-      return q > 1 ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+      q = (B * f) / r;
+      return q < 1 ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
     }
   };
   Is_bad is_bad_object() const { return {k, B}; }
 };
 
 Row run_cgal(double k) {
-  const long base = vm_rss_kb();
   CDT cdt;
   auto v0 = cdt.insert(K::Point_2(0, 0)), v1 = cdt.insert(K::Point_2(10, 0));
   auto v2 = cdt.insert(K::Point_2(10, 10)), v3 = cdt.insert(K::Point_2(0, 10));
@@ -135,7 +154,9 @@ Row run_cgal(double k) {
     const auto& a = f->vertex(0)->point(); const auto& b = f->vertex(1)->point(); const auto& c = f->vertex(2)->point();
     amin = std::min(amin, min_angle_of(a.x(), a.y(), b.x(), b.y(), c.x(), c.y()));
   }
-  return {"cgal", k, secs(t0, t1), n, cdt.number_of_vertices(), (vm_hwm_kb() - base) / 1024.0, amin, {}};
+  Row r{"cgal", k, secs(t0, t1), n, cdt.number_of_vertices(), vm_hwm_kb() / 1024.0, amin, {}};
+  r.note = "CGAL Delaunay_mesher_2, largest R/f(c) first (bench process peak)";
+  return r;
 }
 
 // ---- Gmsh peer: the same square and size law as a .geo with a MathEval background field, run as a child process.
@@ -333,13 +354,41 @@ double gmsh_baseline_mb(const GmshOptions& g) {
 
 Row run_gmsh(const GmshOptions& g, double k, int algorithm, const char* label, double baseline_mb) {
   GmshResult r = run_gmsh_once(g, k, algorithm, label, gmsh_factor(g, algorithm));
-  r.row.rss_mb = r.raw_mb - baseline_mb;
+  r.row.rss_mb = r.raw_mb;
+  r.row.whole_s = r.row.seconds;
+  if (r.mesh2d) r.row.seconds = *r.mesh2d;
   char note[256];
-  std::snprintf(note, sizeof note, "%s ru_maxrss %.1f MB (peak = that minus %.1f MB start-up); Gmsh's own 2D meshing wall %s",
-                label, r.raw_mb, baseline_mb,
-                r.mesh2d ? (std::to_string(*r.mesh2d) + " s, the rest is start-up, .geo parse, .msh write").c_str() : "not in log");
+  std::snprintf(note, sizeof note, "%s: refine = Gmsh's own 2D meshing wall, whole = the gmsh process (start-up %.1f MiB, "
+                "includes .msh write)", label, baseline_mb);
   r.row.note = note;
   return r.row;
+}
+
+// The real command line on the square, no output files: whole-process wall clock and ru_maxrss of
+// the fdrmesh child; refine seconds, counts and min angle from its JSON report.
+Row run_fdr_cli(double k, const std::string& binary) {
+  char dir_tmpl[] = "/tmp/bench_fdr_cli.XXXXXX";
+  if (!mkdtemp(dir_tmpl)) throw fdr::Error(fdr::ExitCode::kOutputError, "bench_fdr: mkdtemp in /tmp failed");
+  const std::string dir = dir_tmpl, json = dir + "/report.json", log = dir + "/log.txt";
+  char spacing[64];
+  const auto end = std::to_chars(spacing, spacing + 40, k).ptr;  // shortest text that reads back as k
+  std::snprintf(end, 24, "*paper-f1");
+  const ChildRun c = spawn_and_wait({binary, "mesh", std::string(FDR_TESTDATA_DIR) + "/poly/square10.poly", "--spacing",
+                                     spacing, "-q", "--report", json}, log);
+  if (!WIFEXITED(c.status) || WEXITSTATUS(c.status) != 0)
+    throw fdr::Error(fdr::ExitCode::kInternal, "bench_fdr: " + binary + " failed (status " + std::to_string(c.status) +
+                                                   "), see " + log);
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  Row r{"fdrmesh-cli", k, j["timings_s"]["refine"].get<double>(), j["triangles"].get<std::size_t>(),
+        j["vertices"].get<std::size_t>(), c.maxrss_mb, j["min_angle_deg"].get<double>(), {}};
+  r.whole_s = c.wall;
+  char note[200];
+  std::snprintf(note, sizeof note, "fdrmesh mesh square10.poly --spacing %s -q (read, CDT, refine, report; no output); "
+                "cdt %.3f s", spacing, j["timings_s"]["cdt"].get<double>());
+  r.note = note;
+  std::remove(json.c_str()); std::remove(log.c_str()); rmdir(dir.c_str());
+  return r;
 }
 
 // Runs `fn` in a child process so each measurement has its own peak RSS. Errors in the child are printed there;
@@ -349,9 +398,12 @@ int isolated(Fn fn) {
   std::fflush(stdout);
   const pid_t pid = fork();
   if (pid == 0) {
+    g_child_start = Clock::now();
     int code = 0;
     try {
-      print(fn());
+      Row r = fn();
+      if (r.whole_s == 0) r.whole_s = secs(g_child_start, Clock::now());
+      print(r);
     } catch (const fdr::Error& e) {
       std::fprintf(stderr, "%s\n", e.what());
       code = e.exit_code();
@@ -367,7 +419,7 @@ int isolated(Fn fn) {
 
 constexpr const char* kUsage =
     "usage: bench_fdr [k ...] [--no-cgal] [--no-gmsh] [--only fdr|cgal|gmsh] [--gmsh-min-k K] [--gmsh-factor F]\n"
-    "                 [--gmsh-bin PATH]\n"
+    "                 [--gmsh-bin PATH] [--fdrmesh-bin PATH] [--no-cli]\n"
     "  k             size scale, f = k * f1 (default 0.08 0.025 0.0125)\n"
     "  --no-cgal     skip CGAL's Delaunay_mesher_2\n"
     "  --no-gmsh     skip Gmsh (Algorithm 5 'gmsh-del' and 6 'gmsh-front')\n"
@@ -375,7 +427,9 @@ constexpr const char* kUsage =
     "  --gmsh-min-k  run Gmsh only for k >= K (default 0.025; Gmsh needs ~40 s per million triangles)\n"
     "  --gmsh-factor Gmsh edge length h = F * B * f for both algorithms (default 1.36 Delaunay, 1.29 Frontal,\n"
     "                calibrated so Gmsh makes as many triangles as fdrmesh)\n"
-    "  --gmsh-bin    Gmsh executable (default gmsh from PATH)\n";
+    "  --gmsh-bin    Gmsh executable (default gmsh from PATH)\n"
+    "  --fdrmesh-bin fdrmesh executable for the fdrmesh-cli row (default: the one built with this bench)\n"
+    "  --no-cli      skip the fdrmesh-cli row (whole command-line process)\n";
 
 double parse_number(const char* opt, const char* text) {
   char* e;
@@ -389,6 +443,7 @@ double parse_number(const char* opt, const char* text) {
 int run(int argc, char** argv) {
   std::vector<double> ks;
   bool fdr_on = true, cgal = true, gmsh = true;
+  std::string fdr_binary = FDR_BINARY;
   GmshOptions g;
   auto value = [&](int& i) -> const char* {
     if (i + 1 >= argc)
@@ -407,13 +462,16 @@ int run(int argc, char** argv) {
     } else if (a == "--gmsh-min-k") g.min_k = parse_number("--gmsh-min-k", value(i));
     else if (a == "--gmsh-factor") g.factor = parse_number("--gmsh-factor", value(i));
     else if (a == "--gmsh-bin") g.binary = value(i);
+    else if (a == "--fdrmesh-bin") fdr_binary = value(i);
+    else if (a == "--no-cli") fdr_binary.clear();
     else if (a == "-h" || a == "--help") { std::printf("%s", kUsage); return 0; }
     else if (!a.empty() && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')))
       throw fdr::Error(fdr::ExitCode::kUsage, "bench_fdr: unknown option " + a + "\n" + kUsage);
     else ks.push_back(parse_number("k", argv[i]));
   }
   if (ks.empty()) ks = {0.08, 0.025, 0.0125};
-  std::printf("FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1 (one core)\n");
+  std::printf("FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1; refine = meshing time, whole = the measured process\n"
+              "  from start to exit, peak = its VmHWM (ru_maxrss), tri/int(1/f^2) = triangles per unit of int 1/f^2 dA\n");
   double gmsh_base = 0;
   if (gmsh && std::any_of(ks.begin(), ks.end(), [&](double k) { return k >= g.min_k; })) {
     gmsh_base = gmsh_baseline_mb(g);
@@ -426,6 +484,7 @@ int run(int argc, char** argv) {
   auto keep_first = [&code](int c) { if (code == 0) code = c; };
   for (double k : ks) {
     if (fdr_on) keep_first(isolated([k] { return run_fdr(k); }));
+    if (fdr_on && !fdr_binary.empty()) keep_first(isolated([k, &fdr_binary] { return run_fdr_cli(k, fdr_binary); }));
     if (cgal) keep_first(isolated([k] { return run_cgal(k); }));
     if (gmsh && k < g.min_k) {
       std::printf("  note: gmsh skipped at k=%g (< --gmsh-min-k %g: Gmsh needs ~40 s per million triangles)\n", k, g.min_k);

@@ -1,0 +1,65 @@
+// Several outputs of one mesh written concurrently (see write_many.hpp).
+#include "io/write_many.hpp"
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "base/error.hpp"
+#include "io/detail.hpp"
+
+namespace fdr::io {
+
+namespace {
+// Files a write_mesh call creates: the path, plus the .ele beside a .node.
+std::vector<std::string> files_of(const std::string& path, Format f) {
+  if (f != Format::kNode) return {path};
+  std::string base = path;
+  const std::string ext = detail::lower_extension(path);
+  if (ext == ".node" || ext == ".ele") base = path.substr(0, path.size() - ext.size());
+  return {base + ".node", base + ".ele"};
+}
+}  // namespace
+
+void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& paths, const std::vector<Format>& formats,
+                  const WriteOptions& options, unsigned threads) {
+  const std::size_t n = paths.size();
+  if (formats.size() != n) throw Error(ExitCode::kInternal, "write_meshes: one format per path expected");
+  std::vector<std::exception_ptr> errors(n);
+  std::vector<char> done(n, 0);
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < n;) {
+      try {
+        if (formats[i] == Format::kUgrid) {
+          // The netCDF library is not thread-safe: one UGRID file at a time.
+          static std::mutex netcdf;
+          std::lock_guard<std::mutex> lock(netcdf);
+          write_mesh(mesh, paths[i], formats[i], options);
+        } else {
+          write_mesh(mesh, paths[i], formats[i], options);
+        }
+        done[i] = 1;
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned t = static_cast<unsigned>(std::min<std::size_t>(std::max(1u, threads), n));
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < t; ++k) pool.emplace_back(work);
+  work();
+  for (auto& th : pool) th.join();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!errors[i]) continue;
+    for (std::size_t j = 0; j < n; ++j)
+      if (done[j])
+        for (const auto& p : files_of(paths[j], formats[j])) std::remove(p.c_str());
+    std::rethrow_exception(errors[i]);
+  }
+}
+
+}  // namespace fdr::io

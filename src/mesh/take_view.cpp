@@ -1,0 +1,71 @@
+// The compact mesh of a triangulation, built while its arrays are released (see take_view.hpp).
+#include "mesh/take_view.hpp"
+
+#include <utility>
+
+namespace fdr::mesh {
+
+namespace {
+template <class V>
+void release(V& v) {
+  V().swap(v);
+}
+}  // namespace
+
+MeshView take_view(Triangulation& t) {
+  MeshView m;
+  m.origin = t.origin;
+  // Vertices in order of first use by a live triangle keeps ids stable and dense (as to_view).
+  std::vector<Index> remap(t.pts.size(), kNoId);
+  for (TriangleId s = 0; s < t.num_slots(); ++s) {
+    if (t.dead(s)) continue;
+    for (int k = 0; k < 3; ++k) remap[t.tv[3 * s + k]] = 0;
+  }
+  Index n = 0;
+  for (Index v = 0; v < t.pts.size(); ++v)
+    if (remap[v] != kNoId) remap[v] = n++;
+  m.vertices.resize(n);
+  m.vertex_marker.assign(n, 0);
+  for (Index v = 0; v < t.pts.size(); ++v) {
+    if (remap[v] == kNoId) continue;
+    m.vertices[remap[v]] = t.pts[v];
+    m.vertex_marker[remap[v]] = t.point_marker[v];
+  }
+  release(t.pts);
+  release(t.vkind);
+  release(t.vhe);
+  release(t.point_marker);
+  // Constrained edges, each once, in slot order (as to_view); vertices on a marked segment inherit
+  // its marker when they have none.
+  for (TriangleId s = 0; s < t.num_slots(); ++s) {
+    if (t.dead(s)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * s + k;
+      if (!t.constrained(h)) continue;
+      if (t.twin[h] != kNoId && t.twin[h] < h) continue;
+      MeshEdge e;
+      e.a = remap[t.org(h)];
+      e.b = remap[t.dst(h)];
+      auto it = t.seg_of.find(edge_key(t.org(h), t.dst(h)));
+      if (it != t.seg_of.end() && it->second < t.input_segments.size()) {
+        e.marker = t.input_segments[it->second].marker;
+        e.part = t.input_segments[it->second].part;
+      }
+      m.edges.push_back(e);
+      if (m.vertex_marker[e.a] == 0) m.vertex_marker[e.a] = e.marker;
+      if (m.vertex_marker[e.b] == 0) m.vertex_marker[e.b] = e.marker;
+    }
+  }
+  release(t.twin);
+  release(t.seg_of);
+  release(t.input_segments);
+  m.triangles.reserve(t.num_live_triangles());
+  for (TriangleId s = 0; s < t.num_slots(); ++s) {
+    if (t.dead(s)) continue;
+    m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
+  }
+  t = Triangulation{};
+  return m;
+}
+
+}  // namespace fdr::mesh

@@ -1,0 +1,48 @@
+// take_view gives exactly to_view's mesh (order, markers, parts) and empties the triangulation.
+#include <gtest/gtest.h>
+
+#include "cdt/cdt.hpp"
+#include "cdt/tests/test_inputs.hpp"
+#include "refine/tests/fn_field.hpp"
+#include "mesh/take_view.hpp"
+#include "refine/refine.hpp"
+
+using namespace fdr;
+
+namespace {
+void expect_same(const mesh::MeshView& a, const mesh::MeshView& b) {
+  EXPECT_EQ(a.origin, b.origin);
+  ASSERT_EQ(a.vertices.size(), b.vertices.size());
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) EXPECT_EQ(a.vertices[i], b.vertices[i]) << i;
+  EXPECT_EQ(a.triangles, b.triangles);
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].a, b.edges[i].a);
+    EXPECT_EQ(a.edges[i].b, b.edges[i].b);
+    EXPECT_EQ(a.edges[i].marker, b.edges[i].marker);
+    EXPECT_EQ(a.edges[i].part, b.edges[i].part);
+  }
+  EXPECT_EQ(a.vertex_marker, b.vertex_marker);
+}
+}  // namespace
+
+TEST(TakeView, SameAsToViewAfterCdtAndRefinement) {
+  for (unsigned seed : {3u, 17u, 42u}) {
+    pslg::Pslg p = fdr::testing::random_pslg(seed, 30, 12);
+    mesh::Triangulation t = cdt::build_cdt(p);
+    {
+      mesh::Triangulation copy = t;
+      expect_same(t.to_view(), mesh::take_view(copy));
+      EXPECT_EQ(copy.num_slots(), 0u);
+      EXPECT_TRUE(copy.pts.empty());
+    }
+    fdr::testing::FnField f([](Point2 q) { return 0.3 + 0.05 * q.x; });
+    refine::Refiner r(t, f, {});
+    r.init();
+    r.run();
+    mesh::Triangulation copy = t;
+    const mesh::MeshView want = t.to_view();
+    ASSERT_FALSE(want.edges.empty());
+    expect_same(want, mesh::take_view(copy));
+  }
+}
