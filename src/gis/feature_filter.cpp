@@ -426,6 +426,13 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     std::vector<std::unique_ptr<OGRPolygon>> added;
     significant(checked(W0->Difference(R.get()), "input minus result"), gone);
     significant(checked(R->Difference(W0.get()), "result minus input"), added);
+    if (dbg_time) {
+      double ga = 0, aa = 0;
+      for (const auto& g : gone) ga += g->get_Area();
+      for (const auto& g : added) aa += g->get_Area();
+      std::fprintf(stderr, "filter apply: W0 %.6g R %.6g gone %.6g (%zu) added %.6g (%zu) R valid %d\n", area_of(W0.get()),
+                   area_of(R.get()), ga, gone.size(), aa, added.size(), static_cast<int>(R->IsValid()));
+    }
     GeomPtr fin(W0->clone());
     if (!gone.empty()) {
       std::vector<std::unique_ptr<OGRPolygon>> cp;
@@ -435,8 +442,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       fin = checked(fin->Difference(gu.get()), "input minus removed water");
     }
     if (!added.empty()) {
+      polygons_of(fin.get(), added);  // (a MultiPolygon takes polygons only, one by one)
       auto am = multi(added);
-      am->addGeometry(fin.get());
       fin = checked(am->UnionCascaded(), "input plus water gained");
     }
     R = std::move(fin);

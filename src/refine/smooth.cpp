@@ -86,6 +86,9 @@ class Smoother {
     for (double step : {1.0, 0.5, 0.25}) {
       const Point2 p = p0 + step * (target - p0);
       if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+      // An undone attempt restores the same triangles, but its flips may have renumbered their
+      // half-edges: take the star again.
+      if (step != 1.0 && !star(v, hs_)) return false;
       if (attempt(v, p0, p)) return true;
     }
     return false;

@@ -90,9 +90,10 @@ TEST(PipelineChesapeake, GeoJsonAllOutputsReadBack) {
   PreparedInput in = prepare_gis_input(o, nullptr, nullptr);
   const double a_mesh = mesh_area(m), a_pslg = parity_area(in.pslg);
   EXPECT_NEAR(a_mesh / a_pslg, 1.0, 1e-9);
-  // ... and the raw domain area within the snapping tolerance (no island dropped by default).
-  EXPECT_NEAR(a_mesh / metadata_double(in, "domain_area_m2"), 1.0, 1e-5);
-  EXPECT_NEAR(a_mesh / 5894.49e6, 1.0, 1e-5);
+  // ... and the domain area within the coast resampling tolerance (the model-ready default
+  // closes sub-resolution water and resamples the coast to f; the issue allows 1 %).
+  EXPECT_NEAR(a_mesh / metadata_double(in, "domain_area_m2"), 1.0, 2e-3);
+  EXPECT_NEAR(a_mesh / 5894.49e6, 1.0, 2e-3);
 
   // GeoPackage: feature counts equal the report counts, EPSG:32618 stored.
   int epsg = 0;
@@ -177,8 +178,8 @@ TEST(PipelineChesapeake, GeoJsonAllOutputsReadBack) {
     names.push_back(s.name);
     EXPECT_GE(s.seconds, 0.0);
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"read", "raster", "sizing", "limit", "repair", "cdt", "refine", "check", "depths",
-                                             "report", "write"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"read", "raster", "sizing", "limit", "repair", "resample", "cdt", "refine",
+                                             "smooth", "check", "depths", "report", "write"}));
   EXPECT_EQ(r.written.size(), 6u);
   EXPECT_EQ(dir.list(), (std::set<std::string>{"m.gpkg", "m.2dm", "m.14", "m.nc", "m.msh", "r.json", "f.tif"}));
 }
@@ -283,7 +284,7 @@ TEST(PipelineGulfOfMaine, RiversAsBreaklines) {
   EXPECT_GT(brk, 0u);
   PreparedInput in = prepare_gis_input(o, nullptr, nullptr);
   EXPECT_NEAR(mesh_area(r.mesh) / parity_area(in.pslg), 1.0, 1e-9);
-  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 1e-4);
+  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 2e-3);
   // A river clipped at the coast ends 1e-11 m short of it: the coast segment is split there.
   std::size_t snapped = 0;
   for (const auto& rep : in.repairs) snapped += rep.kind == "snap_to_segment" && rep.size < 1e-6;
@@ -303,13 +304,13 @@ TEST(PipelineLuxembourg, TerrainWithCantonBordersAsBreaklines) {
   Result r = run(o, nullptr, nullptr);
   std::size_t brk = 0;
   for (const auto& e : r.mesh.edges) brk += e.marker == static_cast<int>(mesh::EdgeKind::kBreakline);
-  EXPECT_GT(brk, 1000u);
+  EXPECT_GT(brk, 500u);  // borders resampled to f (about 800 edges; 1300+ with --keep-coast)
   PreparedInput in = prepare_gis_input(o, nullptr, nullptr);
   // Cantons share borders: the domain is their union (2565.5 km^2); breaklines must not cut cantons out.
   // (domain_area_m2 is measured on the raw rings; cleaning snaps 1706 shared-border vertices, which
   // moves the area by about 2e-6 relative.)
-  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 1e-5);
-  EXPECT_NEAR(mesh_area(r.mesh) / 2565.53e6, 1.0, 1e-5);
+  EXPECT_NEAR(mesh_area(r.mesh) / metadata_double(in, "domain_area_m2"), 1.0, 2e-3);
+  EXPECT_NEAR(mesh_area(r.mesh) / 2565.53e6, 1.0, 2e-3);
   ASSERT_EQ(r.mesh.z.size(), r.mesh.num_vertices());
   for (double z : r.mesh.z) {
     ASSERT_TRUE(std::isfinite(z));
