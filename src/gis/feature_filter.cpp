@@ -406,6 +406,38 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     R = multi(kept);
   }
 
+  // 2c. Islands that the closing shrank below the resolution (thin islands leave small remnants).
+  if (o.min_island_area > 0) {
+    std::vector<std::unique_ptr<OGRPolygon>> rps;
+    polygons_of(R.get(), rps);
+    bool changed = false;
+    for (auto& p : rps) {
+      if (p->getNumInteriorRings() == 0) continue;
+      OGRPolygon q;
+      q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
+      for (int k = 0; k < p->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* h = p->getInteriorRing(k);
+        const double a = std::fabs(h->get_Area());
+        if (a < o.min_island_area) {
+          OGRPolygon hp;
+          hp.addRing(const_cast<OGRLinearRing*>(h));
+          ++res.islands_removed;
+          res.islands_area += a;
+          res.repairs.push_back({"island_removed", inside_point(&hp), a,
+                                 "island remnant of " + num(a) + " m^2 (land thinner than " + num(o.close_width) +
+                                     " m became water) is smaller than " + num(o.min_island_area) +
+                                     " m^2 (--min-island); it became water",
+                                 -1});
+          changed = true;
+        } else {
+          q.addRing(const_cast<OGRLinearRing*>(h));
+        }
+      }
+      *p = q;
+    }
+    if (changed) R = multi(rps);
+  }
+
   // 3. The changes are applied to the input itself: R's boundary is the input boundary only up
   //    to GEOS rounding (buffers do not return the same coordinates), and breaklines, open
   //    boundary lines and fixed points must still meet the coast exactly where nothing was

@@ -175,8 +175,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     so.bound = opt.bound;
     so.min_angle_deg = min_angle_deg;
     const refine::SmoothStats ss = refine::smooth(tri, f, so);
-    log_info(log, "smoothing: " + std::to_string(ss.moves) + " moves of " + std::to_string(ss.candidates) +
-                      " free vertices in " + std::to_string(ss.passes) + " passes");
+    log_info(log, "smoothing: " + std::to_string(ss.moves) + " moves (" + std::to_string(ss.segment_moves) +
+                      " along segments) of " + std::to_string(ss.candidates) + " Steiner vertices in " +
+                      std::to_string(ss.passes) + " passes");
     clock.lap("smooth");
   }
   report_progress(0.8, "report");

@@ -26,7 +26,7 @@ namespace fdr::pslg {
 
 struct ResampleOptions {
   std::function<double(Point2)> spacing;  // f in the local frame (> 0)
-  double spacing_factor = 1.0;            // target distance between boundary vertices / f
+  double spacing_factor = 1.3;            // target distance between boundary vertices / f
   double tolerance_factor = 0.25;         // max distance input vertex - new chain / f
   std::size_t max_rounds = 100;           // conflict rounds before whole chains are put back
 };

@@ -40,11 +40,16 @@ class Smoother {
     t_.rebuild_vertex_map();
     std::vector<Index> free;
     for (Index v = 0; v < t_.pts.size(); ++v)
-      if (t_.vkind[v] == mesh::VertexKind::kFree && t_.vhe[v] != kNoId) free.push_back(v);
+      if ((t_.vkind[v] == mesh::VertexKind::kFree || t_.vkind[v] == mesh::VertexKind::kSegment) && t_.vhe[v] != kNoId)
+        free.push_back(v);
     st.candidates = free.size();
     for (int pass = 0; pass < o_.passes; ++pass) {
       std::size_t moved = 0;
-      for (Index v : free) moved += try_vertex(v);
+      for (Index v : free) {
+        const bool ok = try_vertex(v);
+        moved += ok;
+        if (ok && t_.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
+      }
       st.moves += moved;
       ++st.passes;
       if (moved * 200 < free.size()) break;  // converged: under 0.5 % still moving
@@ -57,21 +62,81 @@ class Smoother {
   // is open (v on the boundary of the mesh) or a neighbour is a super vertex.
   bool star(Index v, std::vector<HalfEdge>& hs) const {
     hs.clear();
-    const HalfEdge h0 = t_.vhe[v];
+    open_ = false;
+    HalfEdge h0 = t_.vhe[v];
+    // Rotate clockwise to the start of an open fan (a vertex on the mesh boundary).
+    for (std::size_t guard = 0; guard < 1024; ++guard) {
+      const HalfEdge tw = t_.twin[h0];
+      if (tw == kNoId) { open_ = true; break; }
+      h0 = next_he(tw);
+      if (h0 == t_.vhe[v]) break;
+    }
     HalfEdge h = h0;
     for (std::size_t guard = 0; guard < 1024; ++guard) {
       if (t_.vkind[t_.dst(h)] == mesh::VertexKind::kSuper) return false;
       hs.push_back(h);
       const HalfEdge back = t_.twin[prev_he(h)];
-      if (back == kNoId) return false;
+      if (back == kNoId) return open_;
       h = back;
-      if (h == h0) return true;
+      if (h == h0) return !open_;
     }
     return false;
   }
 
+  // A segment vertex slides along its input segment: the line through that segment's input
+  // endpoints, strictly between its two neighbours on it. False if v is not such a vertex (two
+  // constrained spokes of one input segment).
+  bool slide_line(Index v, Point2* a, Point2* b, double* t_lo, double* t_hi) const {
+    Index nb[2];
+    int n = 0;
+    std::size_t seg = static_cast<std::size_t>(-1);
+    auto consider = [&](HalfEdge h) {
+      if (!t_.constrained(h)) return true;
+      if (n == 2) return false;
+      const Index u = t_.dst(h);
+      const auto it = t_.seg_of.find(mesh::edge_key(v, u));
+      if (it == t_.seg_of.end()) return false;
+      if (n == 1 && it->second != seg) return false;
+      seg = it->second;
+      nb[n++] = u;
+      return true;
+    };
+    for (HalfEdge h : hs_)
+      if (!consider(h)) return false;
+    if (open_ && !hs_.empty()) {  // the last edge of an open fan (v -> apex of the last triangle)
+      const HalfEdge last = prev_he(hs_.back());
+      if (t_.constrained(last)) {
+        const Index u = t_.org(last);
+        const auto it = t_.seg_of.find(mesh::edge_key(v, u));
+        if (it == t_.seg_of.end() || n == 2 || (n == 1 && it->second != seg)) return false;
+        seg = it->second;
+        nb[n++] = u;
+      }
+    }
+    if (n != 2 || seg >= t_.input_segments.size()) return false;
+    *a = t_.pts[t_.input_segments[seg].a];
+    *b = t_.pts[t_.input_segments[seg].b];
+    const Point2 d = *b - *a;
+    const double l2 = norm2(d);
+    if (!(l2 > 0)) return false;
+    const double t0 = dot(t_.pts[nb[0]] - *a, d) / l2, t1 = dot(t_.pts[nb[1]] - *a, d) / l2;
+    const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+    // Keep a margin of a tenth of the neighbour distance on each side.
+    *t_lo = lo + 0.1 * (hi - lo);
+    *t_hi = hi - 0.1 * (hi - lo);
+    return *t_hi > *t_lo;
+  }
+
   bool try_vertex(Index v) {
     if (!star(v, hs_)) return false;
+    const bool on_segment = t_.vkind[v] == mesh::VertexKind::kSegment;
+    Point2 la, lb;
+    double t_lo = 0, t_hi = 0;
+    if (on_segment) {
+      if (!slide_line(v, &la, &lb, &t_lo, &t_hi)) return false;
+    } else if (open_) {
+      return false;
+    }
     const Point2 p0 = t_.pts[v];
     Point2 acc{0, 0};
     double wsum = 0;
@@ -82,9 +147,18 @@ class Smoother {
       wsum += ar;
     }
     if (!(wsum > 0)) return false;
-    const Point2 target = (1.0 / wsum) * acc;
+    Point2 target = (1.0 / wsum) * acc;
+    if (on_segment) {  // projected on the segment's line, within the neighbours' span
+      const Point2 d = lb - la;
+      const double t = std::clamp(dot(target - la, d) / norm2(d), t_lo, t_hi);
+      target = la + t * d;
+    }
     for (double step : {1.0, 0.5, 0.25}) {
-      const Point2 p = p0 + step * (target - p0);
+      Point2 p = p0 + step * (target - p0);
+      if (on_segment) {
+        const Point2 d = lb - la;
+        p = la + (dot(p - la, d) / norm2(d)) * d;
+      }
       if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) return false;
       // An undone attempt restores the same triangles, but its flips may have renumbered their
       // half-edges: take the star again.
@@ -177,7 +251,9 @@ class Smoother {
       const double fc = f_(cc);
       if (!(fc > 0) || !std::isfinite(fc) || r2 > o_.bound * o_.bound * fc * fc) return false;
     }
-    return nmin >= before_min_ && nsum > before_sum_;
+    // The worst touched triangle may get worse only while it stays above 0.8 (a 40-70-70 triangle):
+    // the sum is what the smoothing raises.
+    return nmin >= std::min(before_min_, 0.8) && nsum > before_sum_;
   }
 
   // Flips the edge of half-edge e (a->b in triangle (a,b,c), twin b->a in (b,a,d)) into the
@@ -218,6 +294,7 @@ class Smoother {
   const sizing::SizingField& f_;
   SmoothOptions o_;
   std::vector<HalfEdge> hs_, flips_, stack_;
+  mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t stamp_ = 0;

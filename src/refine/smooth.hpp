@@ -24,6 +24,7 @@ struct SmoothOptions {
 struct SmoothStats {
   std::size_t candidates = 0;   // free vertices
   std::size_t moves = 0;        // accepted moves, all passes
+  std::size_t segment_moves = 0;  // of which slides of segment vertices along their segment
   int passes = 0;
 };
 
