@@ -3,6 +3,8 @@
 #include "pslg/resample.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -217,6 +219,21 @@ class Resampler {
         key[kmax] = 1;
         stack.push_back({i, kmax});
         stack.push_back({kmax, j});
+      }
+    }
+    // Keys where the simplified chain hardly turns are not corners, only where Douglas-Peucker
+    // happened to cut a smooth curve: dropping them lets the spacing run evenly along the curve
+    // (the tolerance repair in place() puts back what the chord would miss).
+    {
+      std::vector<std::size_t> ks;
+      for (std::size_t k = 0; k <= m; ++k)
+        if (key[k]) ks.push_back(k);
+      std::size_t prev = ks.front();
+      for (std::size_t i = 1; i + 1 < ks.size(); ++i) {
+        const std::size_t k = ks[i], nx = ks[i + 1];
+        if (tol_scale(c, prev, nx) == 0) { prev = k; continue; }
+        if (turn(P(c, prev), P(c, k), P(c, nx)) < kCornerTurn) key[k] = 0;
+        else prev = k;
       }
     }
     // A ring keeps at least three pieces (a non-degenerate polygon): add keys at a third and two
@@ -549,6 +566,7 @@ class Resampler {
   static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
   static constexpr double kPi = 3.14159265358979323846;
   static constexpr double kSharp = kPi / 6;  // wedges under 30 degrees are checked
+  static constexpr double kCornerTurn = kPi / 9;  // a key turning less than 20 degrees is no corner
   std::vector<double> wedge_;
   const Pslg& in_;
   ResampleOptions o_;

@@ -1,0 +1,175 @@
+// Resolution filter (gis/feature_filter.hpp): synthetic channels of known widths are kept or
+// closed and reported, connections between water bodies are kept down to --min-feature, small
+// islands are removed, overlapping polygons are united.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "base/error.hpp"
+#include "gis/feature_filter.hpp"
+
+namespace fdr::gis {
+namespace {
+
+Rings rect(double x0, double y0, double x1, double y1) { return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}; }
+
+double area(const Polygons& ps) {
+  double a = 0;
+  for (const auto& p : ps)
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      double s = 0;
+      const auto& r = p[k];
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const Point2 u = r[i], v = r[(i + 1) % r.size()];
+        s += u.x * v.y - v.x * u.y;
+      }
+      a += (k == 0 ? 1 : -1) * std::fabs(0.5 * s);
+    }
+  return a;
+}
+
+std::size_t count(const FeatureFilterResult& r, const std::string& kind) {
+  std::size_t n = 0;
+  for (const auto& x : r.repairs) n += x.kind == kind;
+  return n;
+}
+
+// A 1000 x 1000 basin with a dead-end inlet of width w and length 500 on its east side.
+Polygons basin_with_inlet(double w) {
+  Rings r{{{0, 0}, {1000, 0}, {1000, 500 - w / 2}, {1500, 500 - w / 2}, {1500, 500 + w / 2}, {1000, 500 + w / 2}, {1000, 1000}, {0, 1000}}};
+  return {r};
+}
+
+FeatureFilterOptions opts(double hmin) {
+  FeatureFilterOptions o;
+  o.close_width = 0.25 * hmin;
+  o.min_feature = 0.1 * hmin;
+  o.min_island_area = 0.1 * hmin * hmin;
+  o.list_area = 0.1 * hmin * hmin;
+  return o;
+}
+
+// Convex water corners are rounded with radius close_width / 2: r^2 (1 - pi/4) per right angle.
+double corner_loss(const FeatureFilterOptions& o, int right_angles) {
+  const double r = 0.5 * o.close_width;
+  return right_angles * r * r * (1 - 3.14159265358979 / 4) * 1.2 + 1.0;
+}
+
+TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
+  const FeatureFilterResult r = filter_features(basin_with_inlet(10), opts(100));  // 10 m < 25 m
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_NEAR(area(r.polygons), 1e6, 1e6 * 1e-3);  // the 5000 m^2 inlet is gone
+  EXPECT_GE(r.closed_area, 4900.0);
+  ASSERT_EQ(count(r, "narrow_water_closed"), 1u);
+  for (const auto& x : r.repairs)
+    if (x.kind == "narrow_water_closed") {
+      EXPECT_GT(x.where.x, 1000.0);  // located in the inlet
+      EXPECT_NEAR(x.size, 5000.0, 100.0);
+    }
+}
+
+TEST(FeatureFilter, InletWiderThanCloseWidthIsKeptAsDrawn) {
+  const Polygons in = basin_with_inlet(40);  // 40 m > 25 m
+  const FeatureFilterResult r = filter_features(in, opts(100));
+  EXPECT_NEAR(area(r.polygons), area(in), corner_loss(opts(100), 6));
+  EXPECT_EQ(count(r, "narrow_water_closed"), 0u);
+  // Straight coast keeps the input's exact coordinates (the changes are applied to the input, not
+  // re-drawn by the buffers): the inlet walls y = 480 and y = 520 are still there, exactly; only
+  // corners are rounded, with radius close_width / 2, so every vertex stays that close.
+  bool wall_lo = false, wall_hi = false;
+  const auto& ring = r.polygons[0][0];
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    wall_lo |= a.y == 480 && b.y == 480 && std::min(a.x, b.x) < 1100 && std::max(a.x, b.x) > 1400;
+    wall_hi |= a.y == 520 && b.y == 520 && std::min(a.x, b.x) < 1100 && std::max(a.x, b.x) > 1400;
+    double d = 1e300;
+    for (std::size_t k = 0; k < in[0][0].size(); ++k)
+      d = std::min(d, dist_to_segment(a, in[0][0][k], in[0][0][(k + 1) % in[0][0].size()]));
+    EXPECT_LE(d, 0.5 * opts(100).close_width) << a.x << "," << a.y;
+  }
+  EXPECT_TRUE(wall_lo);
+  EXPECT_TRUE(wall_hi);
+}
+
+// Two basins joined by a channel of width w and length 400.
+Polygons two_basins(double w) {
+  Rings r{{{0, 0}, {1000, 0}, {1000, 500 - w / 2}, {1400, 500 - w / 2}, {1400, 0}, {2400, 0}, {2400, 1000}, {1400, 1000},
+           {1400, 500 + w / 2}, {1000, 500 + w / 2}, {1000, 1000}, {0, 1000}}};
+  return {r};
+}
+
+TEST(FeatureFilter, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
+  // 15 m: narrower than close_width (25 m), wider than min_feature (10 m): kept, one piece.
+  const FeatureFilterResult r = filter_features(two_basins(15), opts(100));
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_GE(r.channels_kept, 1u);
+  EXPECT_NEAR(area(r.polygons), area(two_basins(15)), corner_loss(opts(100), 8));
+}
+
+TEST(FeatureFilter, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyListed) {
+  // 5 m < min_feature: closed; the smaller body is cut off and removed, listed with its area.
+  Polygons in = two_basins(5);
+  in[0][0][4].x = 1400;  // make the east basin smaller than the west one
+  in[0][0][5] = {1900, 0};
+  in[0][0][6] = {1900, 1000};
+  const FeatureFilterResult r = filter_features(in, opts(100));
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_EQ(r.input_pieces, 1u);
+  ASSERT_EQ(count(r, "cut_off_water_removed"), 1u);
+  for (const auto& x : r.repairs)
+    if (x.kind == "cut_off_water_removed") {
+      EXPECT_GT(x.where.x, 1400.0);
+      EXPECT_NEAR(x.size, 5e5, 5e3);
+    }
+  EXPECT_NEAR(area(r.polygons), 1e6, 1e4);
+}
+
+TEST(FeatureFilter, SmallIslandsRemovedLargeOnesKept) {
+  const Rings sea = rect(0, 0, 2000, 2000);
+  const Polygons in{{sea[0], {{100, 100}, {100, 120}, {120, 120}, {120, 100}},  // 400 m^2 < 1000 m^2
+                     {{500, 500}, {500, 800}, {800, 800}, {800, 500}}}};       // 90000 m^2
+  const FeatureFilterResult r = filter_features(in, opts(100));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 2u);  // outer + the large island
+  EXPECT_EQ(r.islands_removed, 1u);
+  EXPECT_EQ(count(r, "island_removed"), 1u);
+  EXPECT_NEAR(area(r.polygons), 4e6 - 9e4, corner_loss(opts(100), 4));
+}
+
+TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
+  // Two overlapping squares: one domain (not the symmetric difference), reported.
+  const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
+  const FeatureFilterResult r = filter_features(in, opts(100));
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_EQ(r.united, 1u);
+  EXPECT_EQ(count(r, "polygons_united"), 1u);
+  EXPECT_NEAR(area(r.polygons), 2e6 - 2.5e5, corner_loss(opts(100), 6));
+}
+
+TEST(FeatureFilter, IdenticalPolygonsAreUnited) {
+  const Polygons in{rect(0, 0, 1000, 1000), rect(0, 0, 1000, 1000)};
+  const FeatureFilterResult r = filter_features(in, opts(100));
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_NEAR(area(r.polygons), 1e6, corner_loss(opts(100), 4));
+}
+
+TEST(FeatureFilter, NothingLeftIsAnError) {
+  try {
+    filter_features({rect(0, 0, 1000, 5)}, opts(100));  // 5 m wide everywhere, min_feature 10 m
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
+    EXPECT_NE(std::string(e.what()).find("--close-width"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FeatureFilter, OffKeepsEverything) {
+  const Polygons in = basin_with_inlet(10);
+  const FeatureFilterResult r = filter_features(in, FeatureFilterOptions{});
+  EXPECT_NEAR(area(r.polygons), area(in), 1e-6);
+  EXPECT_TRUE(r.repairs.empty());
+}
+
+}  // namespace
+}  // namespace fdr::gis

@@ -1,0 +1,222 @@
+// Boundary resampling to f (pslg/resample.hpp): spacing follows f, the shape stays within the
+// tolerance, no crossings appear, rings are neither merged nor lost, anchors and fixed points stay,
+// the result is deterministic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pslg/resample.hpp"
+#include "pslg/segment_grid.hpp"
+#include "pslg/validate.hpp"
+
+namespace fdr::pslg {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A closed ring of n vertices (marker m) appended to g; returns the first vertex id.
+Index add_ring(Pslg& g, const std::vector<Point2>& pts, std::int32_t marker, std::int32_t part) {
+  const Index base = static_cast<Index>(g.points.size());
+  g.points.insert(g.points.end(), pts.begin(), pts.end());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    g.segments.push_back({base + static_cast<Index>(i), base + static_cast<Index>((i + 1) % pts.size()), marker, part});
+  return base;
+}
+
+// A wiggly circle: radius r, n vertices, amplitude a (digitising noise).
+std::vector<Point2> wiggly_circle(Point2 c, double r, std::size_t n, double a, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-a, a);
+  std::vector<Point2> p;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 2 * kPi * static_cast<double>(i) / static_cast<double>(n);
+    const double rr = r + u(rng);
+    p.push_back({c.x + rr * std::cos(t), c.y + rr * std::sin(t)});
+  }
+  return p;
+}
+
+double dist_to_chain(Point2 p, const Pslg& g, std::int32_t part) {
+  double d = 1e300;
+  for (const auto& s : g.segments)
+    if (s.part == part) d = std::min(d, dist_to_segment(p, g.points[s.a], g.points[s.b]));
+  return d;
+}
+
+ResampleOptions opts(double f, double tol = 0.25) {
+  ResampleOptions o;
+  o.spacing = [f](Point2) { return f; };
+  o.tolerance_factor = tol;
+  return o;
+}
+
+TEST(Resample, DenseRingFollowsSpacingWithinTolerance) {
+  Pslg g;
+  add_ring(g, wiggly_circle({0, 0}, 1000, 1200, 0.5, 1), 1, 0);  // 5 m digitising, 0.5 m noise
+  ResampleStats st;
+  const Pslg r = resample(g, opts(100), &st);
+  validate(r, "resampled");  // no duplicates, crossings or overlaps
+  // Perimeter 6283 m at spacing 1.3 * 100: about 48 vertices.
+  EXPECT_GE(r.points.size(), 40u);
+  EXPECT_LE(r.points.size(), 60u);
+  EXPECT_EQ(r.segments.size(), r.points.size());  // still one closed ring
+  for (const auto& s : r.segments) {
+    const double l = dist(r.points[s.a], r.points[s.b]);
+    EXPECT_GT(l, 80.0);
+    EXPECT_LT(l, 200.0);
+  }
+  // Every input vertex within the tolerance (0.25 f) of the new ring, and the reverse.
+  for (const auto& p : g.points) EXPECT_LE(dist_to_chain(p, r, 0), 25.0 + 1e-9);
+  for (const auto& p : r.points) EXPECT_LE(dist_to_chain(p, g, 0), 1e-6);
+  EXPECT_LE(st.max_deviation, 25.0 + 1e-9);
+}
+
+TEST(Resample, SpacingFollowsF) {
+  Pslg g;
+  std::vector<Point2> line;
+  for (int i = 0; i <= 10000; ++i) line.push_back({static_cast<double>(i), 0.0});
+  const Index base = static_cast<Index>(g.points.size());
+  g.points = line;
+  for (Index i = 0; i + 1 < line.size(); ++i) g.segments.push_back({base + i, base + i + 1, 4, 0});
+  ResampleOptions o;
+  o.spacing = [](Point2 p) { return 10.0 + 0.05 * p.x; };  // 10 m .. 510 m, alpha 0.05
+  const Pslg r = resample(g, o);
+  validate(r, "resampled");
+  for (const auto& s : r.segments) {
+    const Point2 a = r.points[s.a], b = r.points[s.b];
+    const double l = dist(a, b), fm = 10.0 + 0.05 * 0.5 * (a.x + b.x);
+    EXPECT_GT(l, 0.8 * 1.3 * fm) << a.x;
+    EXPECT_LT(l, 1.2 * 1.3 * fm) << a.x;
+  }
+  // The chain ends (degree-1 anchors) are kept.
+  bool has0 = false, has_end = false;
+  for (const auto& p : r.points) {
+    has0 |= p == Point2{0, 0};
+    has_end |= p == Point2{10000, 0};
+  }
+  EXPECT_TRUE(has0 && has_end);
+}
+
+TEST(Resample, CornersBeyondToleranceStay) {
+  // A square with 1 m digitising: its corners deviate far more than the tolerance.
+  Pslg g;
+  std::vector<Point2> sq;
+  for (int i = 0; i < 1000; ++i) sq.push_back({static_cast<double>(i), 0});
+  for (int i = 0; i < 1000; ++i) sq.push_back({1000, static_cast<double>(i)});
+  for (int i = 0; i < 1000; ++i) sq.push_back({1000.0 - i, 1000});
+  for (int i = 0; i < 1000; ++i) sq.push_back({0, 1000.0 - i});
+  add_ring(g, sq, 1, 0);
+  const Pslg r = resample(g, opts(100));
+  for (Point2 c : {Point2{0, 0}, Point2{1000, 0}, Point2{1000, 1000}, Point2{0, 1000}}) {
+    bool found = false;
+    for (const auto& p : r.points) found |= p == c;
+    EXPECT_TRUE(found) << c.x << "," << c.y;
+  }
+}
+
+TEST(Resample, NarrowChannelDoesNotCross) {
+  // Two wiggly banks 6 m apart, f = 100 m (tolerance 25 m > width): chords that would cross the
+  // other bank are put back closer, never crossing; the rings stay two.
+  Pslg g;
+  std::vector<Point2> a, b;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i <= 2000; ++i) a.push_back({static_cast<double>(i), 3.0 + u(rng)});
+  for (int i = 2000; i >= 0; --i) a.push_back({static_cast<double>(i), 60.0});
+  for (int i = 0; i <= 2000; ++i) b.push_back({static_cast<double>(i), -60.0});
+  for (int i = 2000; i >= 0; --i) b.push_back({static_cast<double>(i), -3.0 + u(rng)});
+  add_ring(g, a, 1, 0);
+  add_ring(g, b, 2, 1);
+  ResampleStats st;
+  const Pslg r = resample(g, opts(100), &st);
+  validate(r, "resampled");
+  EXPECT_LT(r.points.size(), g.points.size() / 4);
+  std::size_t m1 = 0, m2 = 0;
+  for (const auto& s : r.segments) (s.part == 0 ? m1 : m2) += 1;
+  EXPECT_GT(m1, 2u);
+  EXPECT_GT(m2, 2u);
+  // Every vertex of one bank stays on its side of the channel's centre line.
+  for (const auto& s : r.segments) {
+    const double ya = r.points[s.a].y, yb = r.points[s.b].y;
+    if (s.part == 0) EXPECT_TRUE(ya > 0 && yb > 0);
+    else EXPECT_TRUE(ya < 0 && yb < 0);
+  }
+}
+
+TEST(Resample, SmallIslandInsideBayIsNotSweptOut) {
+  // A bay whose mouth chord would pass over a small island: the island must stay in the water.
+  Pslg g;
+  std::vector<Point2> coast;
+  for (int i = 0; i <= 100; ++i) coast.push_back({static_cast<double>(i) * 10, 0});
+  // bay 20 m deep between x = 400 and 600
+  for (auto& p : coast)
+    if (p.x > 400 && p.x < 600) p.y = -20;
+  coast.push_back({1000, -500});
+  coast.push_back({0, -500});
+  add_ring(g, coast, 1, 0);
+  add_ring(g, {{495, -15}, {505, -15}, {500, -10}}, 2, 1);
+  const Pslg r = resample(g, opts(100));
+  validate(r, "resampled");
+  // The island's three vertices are still above the coast line under them.
+  for (const auto& s : r.segments) {
+    if (s.part != 1) continue;
+    const Point2 p = r.points[s.a];
+    double ybelow = -1e300;
+    for (const auto& c : r.segments) {
+      if (c.part != 0) continue;
+      const Point2 a = r.points[c.a], b = r.points[c.b];
+      if ((a.x - p.x) * (b.x - p.x) <= 0 && a.x != b.x && std::max(a.y, b.y) > -400)
+        ybelow = std::max(ybelow, a.y + (b.y - a.y) * (p.x - a.x) / (b.x - a.x));
+    }
+    EXPECT_GT(p.y, ybelow) << p.x;
+  }
+}
+
+TEST(Resample, FixedPointsAndJunctionsStay) {
+  Pslg g;
+  add_ring(g, wiggly_circle({0, 0}, 500, 2000, 1.0, 3), 1, 0);
+  g.points.push_back({10, 10});  // a fixed point
+  // A breakline from the ring to the centre: its ring vertex is a junction (anchor).
+  const Index ring0 = 0;
+  const Index c = static_cast<Index>(g.points.size());
+  g.points.push_back({0, 0});
+  g.segments.push_back({ring0, c, 4, 1});
+  const Pslg r = resample(g, opts(50));
+  validate(r, "resampled");
+  bool fixed = false, junction = false, centre = false;
+  for (const auto& p : r.points) {
+    fixed |= p == Point2{10, 10};
+    junction |= p == g.points[ring0];
+    centre |= p == Point2{0, 0};
+  }
+  EXPECT_TRUE(fixed);
+  EXPECT_TRUE(junction);
+  EXPECT_TRUE(centre);
+}
+
+TEST(Resample, Deterministic) {
+  Pslg g;
+  add_ring(g, wiggly_circle({0, 0}, 1000, 3000, 5.0, 11), 1, 0);
+  add_ring(g, wiggly_circle({100, 50}, 200, 800, 3.0, 12), 2, 1);
+  const Pslg a = resample(g, opts(80)), b = resample(g, opts(80));
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) EXPECT_TRUE(a.points[i] == b.points[i]);
+  ASSERT_EQ(a.segments.size(), b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i) {
+    EXPECT_EQ(a.segments[i].a, b.segments[i].a);
+    EXPECT_EQ(a.segments[i].b, b.segments[i].b);
+  }
+}
+
+TEST(Resample, TinyRingKeepsThreeVertices) {
+  Pslg g;
+  add_ring(g, wiggly_circle({0, 0}, 10, 40, 0.1, 5), 2, 0);  // perimeter 63 m, f = 100 m
+  const Pslg r = resample(g, opts(100));
+  validate(r, "resampled");
+  EXPECT_GE(r.segments.size(), 3u);
+  EXPECT_EQ(r.segments.size(), r.points.size());
+}
+
+}  // namespace
+}  // namespace fdr::pslg
