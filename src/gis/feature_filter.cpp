@@ -10,6 +10,7 @@
 #include <future>
 #include <memory>
 #include <string>
+#include <unordered_map>
 
 #include <cpl_error.h>
 #include <ogr_api.h>
@@ -308,6 +309,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
 
   // 2. Openings; the pieces of O2 - O1 are judged one by one.
   GeomPtr R;
+  std::vector<std::unique_ptr<OGRPolygon>> dropped;  // dead-end water closed
   if (o.close_width > 0) {
     const double r1 = 0.5 * o.close_width;
     const double r2 = 0.5 * std::clamp(o.min_feature, 0.0, o.close_width);
@@ -347,7 +349,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (!prep[i]) prep[i] = std::make_unique<Prepared>(comps[i].get());
         if (prep[i]->intersects(grown.get()) && ++touching >= 2) break;
       }
-      if (touching == 1) continue;  // dead end: inlet, gap, corner or sliver (closed)
+      if (touching == 1) {  // dead end: inlet, gap, corner or sliver (closed)
+        dropped.push_back(std::move(piece));
+        continue;
+      }
       if (touching >= 2) ++res.channels_kept;  // a connection between water bodies
       keep.push_back(std::move(piece));         // or a water body of its own
     }
@@ -438,79 +443,104 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     if (changed) R = multi(rps);
   }
 
-  // 3. The changes are applied to the input itself: R's boundary is the input boundary only up
-  //    to GEOS rounding (buffers do not return the same coordinates), and breaklines, open
-  //    boundary lines and fixed points must still meet the coast exactly where nothing was
-  //    removed. Pieces of W0 - R and R - W0 thinner than a hair (rounding) are ignored.
-  std::vector<std::unique_ptr<OGRPolygon>> gone;
-  if (o.close_width > 0 || res.islands_removed > 0 || res.islands_grown > 0) {
-    const double hair = std::max(0.05 * o.close_width, 1e-9);
-    auto significant = [&](GeomPtr g, std::vector<std::unique_ptr<OGRPolygon>>& out) {
-      std::vector<std::unique_ptr<OGRPolygon>> ps;
-      polygons_of(g.get(), ps);
-      for (auto& p : ps) {
-        const double a = p->get_Area();
-        double per = p->getExteriorRing()->get_Length();
-        for (int k = 0; k < p->getNumInteriorRings(); ++k) per += p->getInteriorRing(k)->get_Length();
-        if (a > hair * hair && 2 * a > hair * per) out.push_back(std::move(p));
-      }
-    };
-    std::vector<std::unique_ptr<OGRPolygon>> added;
-    significant(checked(W0->Difference(R.get()), "input minus result"), gone);
-    significant(checked(R->Difference(W0.get()), "result minus input"), added);
-    if (dbg_time) {
-      double ga = 0, aa = 0;
-      for (const auto& g : gone) ga += g->get_Area();
-      for (const auto& g : added) aa += g->get_Area();
-      std::fprintf(stderr, "filter apply: W0 %.6g R %.6g gone %.6g (%zu) added %.6g (%zu) R valid %d\n", area_of(W0.get()),
-                   area_of(R.get()), ga, gone.size(), aa, added.size(), static_cast<int>(R->IsValid()));
-    }
-    GeomPtr fin(W0->clone());
-    if (!gone.empty()) {
-      std::vector<std::unique_ptr<OGRPolygon>> cp;
-      for (const auto& g : gone) cp.emplace_back(g->clone());
-      auto gm = multi(cp);
-      GeomPtr gu = gm->getNumGeometries() > 1 ? checked(gm->UnionCascaded(), "union of removed water") : GeomPtr(gm.release());
-      fin = checked(fin->Difference(gu.get()), "input minus removed water");
-    }
-    if (!added.empty()) {
-      polygons_of(fin.get(), added);  // (a MultiPolygon takes polygons only, one by one)
-      auto am = multi(added);
-      fin = checked(am->UnionCascaded(), "input plus water gained");
-    }
-    R = std::move(fin);
-  }
-  lap("apply");
+  // 3. Back to the input's coordinates: buffers return the unchanged coast only up to rounding
+  //    (and a vertex with a slight turn as two close arc points). Every result vertex within
+  //    5 % of --close-width of an input vertex takes that vertex's exact coordinates, so coast,
+  //    breaklines, open boundaries and fixed points still meet exactly where nothing was removed.
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
-  // 4. Removed water, listed piece by piece above list_area (whole water bodies always).
   if (o.close_width > 0) {
+    const double hair = 0.05 * o.close_width;
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W0.get(), wps);
+    std::unordered_map<std::uint64_t, std::vector<Point2>> cells;
+    auto key = [hair](double x, double y) {
+      const auto i = static_cast<std::int64_t>(std::floor(x / hair)), j = static_cast<std::int64_t>(std::floor(y / hair));
+      return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+    };
+    for (const auto& w : wps)
+      for (int k = -1; k < w->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? w->getExteriorRing() : w->getInteriorRing(k);
+        for (int i = 0; i < r->getNumPoints(); ++i) cells[key(r->getX(i), r->getY(i))].push_back({r->getX(i), r->getY(i)});
+      }
+    auto snap = [&](OGRLinearRing* r) {
+      for (int i = 0; i < r->getNumPoints(); ++i) {
+        const double x = r->getX(i), y = r->getY(i);
+        double best = hair;
+        Point2 to{x, y};
+        bool found = false;
+        const auto ci = static_cast<std::int64_t>(std::floor(x / hair)), cj = static_cast<std::int64_t>(std::floor(y / hair));
+        for (std::int64_t di = -1; di <= 1; ++di)
+          for (std::int64_t dj = -1; dj <= 1; ++dj) {
+            const auto it = cells.find((static_cast<std::uint64_t>(ci + di) << 32) ^ static_cast<std::uint64_t>((cj + dj) & 0xffffffff));
+            if (it == cells.end()) continue;
+            for (const Point2 q : it->second) {
+              const double d = std::hypot(q.x - x, q.y - y);
+              if (d < best || (d == best && found && (q.x < to.x || (q.x == to.x && q.y < to.y)))) { best = d; to = q; found = true; }
+            }
+          }
+        if (found) r->setPoint(i, to.x, to.y);
+      }
+    };
+    for (auto& p : outp) {
+      snap(p->getExteriorRing());
+      for (int k = 0; k < p->getNumInteriorRings(); ++k) snap(p->getInteriorRing(k));
+    }
+    // Whole input water bodies nowhere --min-feature wide.
+    std::vector<std::unique_ptr<OGRPolygon>> rps;
+    polygons_of(R.get(), rps);
+    for (const auto& w : wps) {
+      OGREnvelope we;
+      w->getEnvelope(&we);
+      bool any = false;
+      for (const auto& rp : rps) {
+        OGREnvelope re;
+        rp->getEnvelope(&re);
+        if (!we.Intersects(re)) continue;
+        const Point2 q = inside_point(rp.get());
+        OGRPoint pt(q.x, q.y);
+        if (w->Intersects(&pt)) { any = true; break; }
+      }
+      if (any) continue;
+      const double a = w->get_Area();
+      ++res.closed;
+      res.closed_area += a;
+      res.repairs.push_back({"water_body_removed", inside_point(w.get()), a,
+                             "water body of " + num(a) + " m^2 is nowhere " + num(o.min_feature) +
+                                 " m wide (--min-feature); it was removed",
+                             -1});
+    }
+    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
+    // than the snapping distance are rounding, not features.
+    (void)dropped;
+    std::vector<std::unique_ptr<OGRPolygon>> gone;
+    {
+      auto rm = std::make_unique<OGRMultiPolygon>();
+      for (const auto& p : outp) rm->addGeometry(p.get());
+      GeomPtr g_all = checked(W0->Difference(rm.get()), "difference input - result");
+      polygons_of(g_all.get(), gone);
+    }
     for (const auto& g : gone) {
       const double a = g->get_Area();
-      if (!(a > 0)) continue;
-      res.closed_area += a;
-      bool listed = false;  // holds a cut-off water body already listed
+      double per = g->getExteriorRing()->get_Length();
+      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
+      if (!(a > 0) || 2 * a <= hair * per) continue;
+      bool listed = false;  // a cut-off water body already listed
       for (const auto& r : res.repairs) {
-        if (r.kind != "cut_off_water_removed") continue;
+        if (r.kind != "cut_off_water_removed" && r.kind != "water_body_removed") continue;
         OGRPoint pt(r.where.x, r.where.y);
         if (g->Intersects(&pt)) listed = true;
       }
       if (listed) continue;
-      bool whole = false;  // a whole input water body removed (nowhere min_feature wide)
-      for (const auto& w : wps)
-        if (std::fabs(w->get_Area() - a) <= 1e-9 * a && w->Intersects(g.get())) whole = true;
-      if (a < o.list_area && !whole) {
+      res.closed_area += a;
+      if (a < o.list_area) {
         ++res.corner_pieces;
         continue;
       }
       ++res.closed;
-      res.repairs.push_back({whole ? "water_body_removed" : "narrow_water_closed", inside_point(g.get()), a,
-                             whole ? "water body of " + num(a) + " m^2 is nowhere " + num(o.min_feature) +
-                                         " m wide (--min-feature); it was removed"
-                                   : "water narrower than the resolution (" + num(o.close_width) +
-                                         " m, --close-width) removed: " + num(a) + " m^2 (dead-end inlet, gap or sliver)",
+      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
+                             "dead-end water narrower than the resolution (" + num(o.close_width) +
+                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
                              -1});
     }
   }
