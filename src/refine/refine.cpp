@@ -17,7 +17,13 @@ using mesh::VertexKind;
 using predicates::diametral;
 
 namespace {
-constexpr int kBuckets = 2048;  // one bucket per doubling of (R/f(c))^2, i.e. a factor sqrt(2) in R/f(c)
+// Queue order: largest R/f(c) first, by buckets. One bucket per doubling of (R/f(c))^2 (a factor
+// sqrt(2) in R/f(c)), except the last doubling before the bound, 1 < (R/f(c))^2 <= 2, which is split
+// into kFineSub buckets. Why: where the final vertices go is decided there; buckets of a factor
+// sqrt(2) made 8.4 % more triangles than the exact largest-first order on 0.025*paper-f1, four fine
+// buckets at the end 0.5 % more (sixteen everywhere: 0.3 %, but 1.4-1.6x the refinement time).
+constexpr int kFineSub = 4;
+constexpr int kBuckets = 2048 + kFineSub;
 constexpr double kPi = 3.14159265358979323846;
 
 std::string pt(Point2 p) {
@@ -30,7 +36,7 @@ std::string pt(Point2 p) {
 int bucket_of(double key2) {
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
-  const int idx = (e - 1) * 1 + static_cast<int>((m - 0.5) * 2.0);
+  const int idx = e <= 1 ? static_cast<int>((m - 0.5) * (2.0 * kFineSub)) : kFineSub + (e - 2);
   return idx < 0 ? 0 : (idx >= kBuckets ? kBuckets - 1 : idx);
 }
 }  // namespace
@@ -40,6 +46,18 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
+  if (!tri_.pts.empty()) {
+    Point2 lo = tri_.pts[0], hi = tri_.pts[0];
+    for (const Point2& q : tri_.pts) {
+      lo.x = std::min(lo.x, q.x);
+      lo.y = std::min(lo.y, q.y);
+      hi.x = std::max(hi.x, q.x);
+      hi.y = std::max(hi.y, q.y);
+    }
+    zlo_ = lo;
+    const double w = std::max(hi.x - lo.x, hi.y - lo.y);
+    zscale_ = w > 0 ? 65535.0 / w : 0.0;
+  }
   // Input segments that meet another at an input vertex at less than 60 degrees (a cluster).
   in_cluster_.assign(tri_.input_segments.size(), false);
   std::unordered_map<Index, std::vector<Index>> at_vertex;
@@ -112,9 +130,26 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
   return key > 1 ? key : 0;
 }
 
+namespace {
+std::uint32_t spread16(std::uint32_t x) {
+  x &= 0xffff;
+  x = (x | (x << 8)) & 0x00ff00ffu;
+  x = (x | (x << 4)) & 0x0f0f0f0fu;
+  x = (x | (x << 2)) & 0x33333333u;
+  x = (x | (x << 1)) & 0x55555555u;
+  return x;
+}
+}  // namespace
+
 void Refiner::push_bad(TriangleId t, double key2) {
   const int b = bucket_of(key2);
-  buckets_[b].push_back({t, tri_.tv[3 * t], tri_.tv[3 * t + 1], tri_.tv[3 * t + 2]});
+  const Index a = tri_.tv[3 * t];
+  // Morton code of the first corner (the triangle is in cache now), for the spatial sort below.
+  const Point2 p = tri_.pts[a];
+  const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
+  const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
+  const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
+  buckets_[b].push_back({t, a, tri_.tv[3 * t + 1], tri_.tv[3 * t + 2], z});
   if (b > top_) top_ = b;
 }
 
@@ -321,6 +356,15 @@ RefineLeftovers Refiner::leftovers() const {
   return r;
 }
 
+// Why: a bucket reached by descending holds entries pushed long ago all over the domain; taken in
+// push order they miss the cache at nearly every step. Taken in Morton order of their first corner,
+// consecutive entries are neighbours and share the cache lines they touch. Entries pushed later
+// into the same bucket are taken first (newest first), while they are still in cache. In place
+// (no second buffer at the memory peak); std::sort is deterministic for the same input.
+void Refiner::sort_spatially(std::vector<BadEntry>& bk) {
+  std::sort(bk.begin(), bk.end(), [](const BadEntry& x, const BadEntry& y) { return x.z > y.z; });
+}
+
 bool Refiner::step() {
   if (stats_.steiner() >= opt_.max_steiner)
     throw Error(ExitCode::kWorkLimit, "Steiner point cap reached (--max-steiner " + std::to_string(opt_.max_steiner) +
@@ -334,7 +378,15 @@ bool Refiner::step() {
   }
   while (top_ >= 0) {
     auto& bk = buckets_[top_];
-    if (bk.empty()) { --top_; continue; }
+    if (bk.empty()) {
+      --top_;
+      sort_next_ = true;
+      continue;
+    }
+    if (sort_next_) {
+      sort_spatially(bk);
+      sort_next_ = false;
+    }
     const BadEntry e = bk.back();
     bk.pop_back();
     const auto& T = tri_;
