@@ -149,7 +149,7 @@ void Refiner::push_bad(TriangleId t, double key2) {
   const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
   const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
   const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
-  buckets_[b].push_back({t, a, tri_.tv[3 * t + 1], tri_.tv[3 * t + 2], z});
+  buckets_[b].push_back({t, tri_.tv[3 * t + 2], z});
   if (b > top_) top_ = b;
 }
 
@@ -277,14 +277,15 @@ void Refiner::split_subsegment(Index a, Index b) {
 // Triangles bad by R/f(c) > B are always split: that is the FDR guarantee.
 bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const {
   const auto& T = tri_;
-  const Point2 a = T.pts[e.a], b = T.pts[e.b], c = T.pts[e.c];
+  const Index ea = T.tv[3 * e.t], eb = T.tv[3 * e.t + 1], ec = e.c;
+  const Point2 a = T.pts[ea], b = T.pts[eb], c = T.pts[ec];
   double r2;
   const Point2 cc = predicates::circumcenter(a, b, c, &r2);
   const double fc = f_(cc);
   if (!(fc > 0) || r2 / (fc * fc) * b2_inv_ > 1) return true;  // R/f-bad (or f undefined there)
   // A triangle spanning the strip between two segments of a small-angle cluster is skinny
   // because of the input; it is left alone (refining it would march into the apex forever).
-  const Index sa = segment_of_vertex(e.a), sb = segment_of_vertex(e.b), sc = segment_of_vertex(e.c);
+  const Index sa = segment_of_vertex(ea), sb = segment_of_vertex(eb), sc = segment_of_vertex(ec);
   if (cluster_pair(sa, sb) || cluster_pair(sb, sc) || cluster_pair(sc, sa)) return false;
   const double lmin = std::sqrt(std::min({norm2(b - a), norm2(c - b), norm2(a - c)}));
   for (const auto& [p, q] : segs) {
@@ -300,7 +301,7 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
 
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
-  const Point2 a = T.pts[e.a], b = T.pts[e.b], c = T.pts[e.c];
+  const Point2 a = T.pts[T.tv[3 * e.t]], b = T.pts[T.tv[3 * e.t + 1]], c = T.pts[e.c];
   const Point2 cc = predicates::circumcenter(a, b, c);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
   seg_tmp_.clear();
@@ -390,7 +391,10 @@ bool Refiner::step() {
     const BadEntry e = bk.back();
     bk.pop_back();
     const auto& T = tri_;
-    if (T.dead(e.t) || T.tv[3 * e.t] != e.a || T.tv[3 * e.t + 1] != e.b || T.tv[3 * e.t + 2] != e.c) continue;
+    // Stale entry: the triangle was destroyed (and its slot maybe reused). During refinement every
+    // triangle is made by Inserter::commit with the new vertex as third corner, so slot and third
+    // corner identify a triangle (the CDT's own triangles are never made again).
+    if (T.dead(e.t) || T.tv[3 * e.t + 2] != e.c) continue;
     split_triangle(e);
     return true;
   }

@@ -60,7 +60,8 @@ class Refiner {
   double badness(TriangleId t, bool* exempt = nullptr) const;
 
  private:
-  struct BadEntry { TriangleId t; Index a, b, c; std::uint32_t z; };  // z: Morton code of corner a
+  // t: slot, c: its third corner when queued (identifies the triangle), z: Morton code of corner 0.
+  struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
   void sort_spatially(std::vector<BadEntry>& bk);
   void evaluate(TriangleId t);
   void push_bad(TriangleId t, double key2);
