@@ -360,11 +360,45 @@ RefineLeftovers Refiner::leftovers() const {
 // Why: a bucket reached by descending holds entries pushed long ago all over the domain; taken in
 // push order they miss the cache at nearly every step. Taken in Morton order of their first corner,
 // consecutive entries are neighbours and share the cache lines they touch. Entries pushed later
-// into the same bucket are taken first (newest first), while they are still in cache. In place
-// (no second buffer at the memory peak); std::sort is deterministic for the same input.
-void Refiner::sort_spatially(std::vector<BadEntry>& bk) {
-  std::sort(bk.begin(), bk.end(), [](const BadEntry& x, const BadEntry& y) { return x.z > y.z; });
+// into the same bucket are taken first (newest first), while they are still in cache. In place:
+// no second buffer at the memory peak.
+namespace {
+// In-place MSD radix sort by descending z (American flag sort, 8 bits a level; small ranges by
+// std::sort). Deterministic: the same input always gives the same order.
+template <class E>
+void radix_desc(E* first, E* last, int shift) {
+  const std::size_t n = static_cast<std::size_t>(last - first);
+  if (n < 64 || shift < 0) {
+    std::sort(first, last, [](const E& x, const E& y) { return x.z > y.z; });
+    return;
+  }
+  std::size_t count[256] = {}, start[256], next[256];
+  auto digit = [shift](const E& e) { return 255u - ((e.z >> shift) & 255u); };
+  for (E* p = first; p != last; ++p) ++count[digit(*p)];
+  std::size_t sum = 0;
+  for (int d = 0; d < 256; ++d) {
+    start[d] = next[d] = sum;
+    sum += count[d];
+  }
+  for (int d = 0; d < 256; ++d) {
+    const std::size_t end = start[d] + count[d];
+    while (next[d] < end) {
+      E e = first[next[d]];
+      unsigned g = digit(e);
+      while (g != static_cast<unsigned>(d)) {  // each swap puts one entry in its final bin
+        std::swap(e, first[next[g]++]);
+        g = digit(e);
+      }
+      first[next[d]++] = e;
+    }
+  }
+  if (shift == 0) return;
+  for (int d = 0; d < 256; ++d)
+    if (count[d] > 1) radix_desc(first + start[d], first + start[d] + count[d], shift - 8);
 }
+}  // namespace
+
+void Refiner::sort_spatially(std::vector<BadEntry>& bk) { radix_desc(bk.data(), bk.data() + bk.size(), 24); }
 
 bool Refiner::step() {
   if (stats_.steiner() >= opt_.max_steiner)
