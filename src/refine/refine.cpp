@@ -424,6 +424,15 @@ bool Refiner::step() {
     }
     const BadEntry e = bk.back();
     bk.pop_back();
+    // The entries a few places down the bucket are known now: fetch what they will touch first.
+    constexpr std::size_t kAhead = 6;
+    if (bk.size() >= kAhead) {
+      const BadEntry& n = bk[bk.size() - kAhead];
+      __builtin_prefetch(&tri_.tv[3 * n.t]);
+      __builtin_prefetch(&tri_.twin[3 * n.t]);
+      __builtin_prefetch(&tri_.flags[n.t]);
+      __builtin_prefetch(&tri_.pts[n.c]);
+    }
     const auto& T = tri_;
     // Stale entry: the triangle was destroyed (and its slot maybe reused). During refinement every
     // triangle is made by Inserter::commit with the new vertex as third corner, so slot and third
