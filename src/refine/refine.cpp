@@ -42,7 +42,7 @@ int bucket_of(double key2) {
 }  // namespace
 
 Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt)
-    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets) {
+    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets), sorted_(kBuckets, 0) {
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
@@ -419,11 +419,22 @@ bool Refiner::step() {
       continue;
     }
     if (sort_next_) {
-      sort_spatially(bk);
+      // Why only when the unsorted tail is at least as long as the sorted part: the queue can
+      // climb to a higher bucket and come back many times (segment splits near a coast); sorting
+      // the whole bucket each time would be quadratic. This way each entry is sorted O(1) times.
+      std::size_t& ns = sorted_[static_cast<std::size_t>(top_)];
+      if (bk.size() - ns >= ns) {
+        sort_spatially(bk);
+        ns = bk.size();
+      }
       sort_next_ = false;
     }
     const BadEntry e = bk.back();
     bk.pop_back();
+    {
+      std::size_t& ns = sorted_[static_cast<std::size_t>(top_)];
+      if (ns > bk.size()) ns = bk.size();
+    }
     // The entries a few places down the bucket are known now: fetch what they will touch first.
     constexpr std::size_t kAhead = 6;
     if (bk.size() >= kAhead) {

@@ -85,6 +85,7 @@ class Refiner {
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
   bool sort_next_ = false;
+  std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
   Point2 zlo_{0, 0};
   double zscale_ = 0;
   // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
