@@ -49,32 +49,44 @@ OrthogonalityStats compute_orthogonality(const mesh::MeshView& m) {
     cc[t] = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
     area[t] = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
   }
-  // Half-edges h = 3 t + k grouped by tail vertex and sorted by head (compressed rows): the twin
-  // of a -> b is a binary search among the half-edges leaving b; no hashing.
+  // Half-edges grouped by tail vertex, each stored with its head and triangle and sorted by head
+  // (compressed rows): the twin of a -> b is a binary search among the half-edges leaving b; no
+  // hashing, and no lookups back into the triangles while sorting and searching.
   const std::size_t nv = m.vertices.size();
   auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
   auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
-  std::vector<std::size_t> start(nv + 1, 0), out_he(3 * nt);
+  struct Out {
+    Index head;
+    TriangleId t;
+  };
+  std::vector<std::size_t> start(nv + 1, 0);
+  std::vector<Out> out(3 * nt);
   for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   {
     std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t h = 0; h < 3 * nt; ++h) out_he[fill[tail(h)]++] = h;
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        out[fill[m.triangles[t][k]]++] = {m.triangles[t][(k + 1) % 3], static_cast<TriangleId>(t)};
   }
-  for (std::size_t v = 0; v < nv; ++v)
-    std::sort(out_he.begin() + static_cast<std::ptrdiff_t>(start[v]), out_he.begin() + static_cast<std::ptrdiff_t>(start[v + 1]),
-              [&](std::size_t x, std::size_t y) { return head(x) < head(y); });
+  auto before = [](const Out& x, const Out& y) { return x.head < y.head || (x.head == y.head && x.t < y.t); };
+  for (std::size_t v = 0; v < nv; ++v) {
+    Out* b = out.data() + start[v];
+    Out* e = out.data() + start[v + 1];
+    for (Out* i = b + 1; i < e; ++i)  // insertion sort: a vertex has a handful of half-edges
+      for (Out* j = i; j > b && before(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+  }
   std::vector<double> ortho, smooth;
   ortho.reserve(3 * nt / 2);
   smooth.reserve(3 * nt / 2);
   for (std::size_t h = 0; h < 3 * nt; ++h) {
     const Index a = tail(h), b = head(h);
     if (a > b) continue;  // each interior edge once, from its lower-numbered end
-    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[b]);
-    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[b + 1]);
-    auto it = std::lower_bound(b0, b1, a, [&](std::size_t x, Index key) { return head(x) < key; });
-    if (it == b1 || head(*it) != a) continue;  // boundary edge
-    const std::size_t t = h / 3, u = *it / 3;
+    const Out* b0 = out.data() + start[b];
+    const Out* b1 = out.data() + start[b + 1];
+    const Out* it = std::lower_bound(b0, b1, a, [](const Out& x, Index key) { return x.head < key; });
+    if (it == b1 || it->head != a) continue;  // boundary edge
+    const std::size_t t = h / 3, u = it->t;
     const Point2 e = m.vertices[b] - m.vertices[a], l = cc[t] - cc[u];
     const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
     ortho.push_back(el > 0 ? std::fabs(dot(e, l)) / el : 0.0);

@@ -1,5 +1,6 @@
 // Functional Delaunay Refinement (FDR): split B-bad triangles (R/f(c) > B) at their circumcenters,
-// largest R/f(c) first, encroached subsegments first, with concentric-shell segment splitting.
+// largest R/f(c) first (buckets; four per doubling of (R/f)^2 just above the bound, taken in Morton
+// order when descending to them), encroached subsegments first, with concentric-shell segment splitting.
 #pragma once
 #include <cstdint>
 #include <unordered_map>
@@ -59,7 +60,9 @@ class Refiner {
   double badness(TriangleId t, bool* exempt = nullptr) const;
 
  private:
-  struct BadEntry { TriangleId t; Index a, b, c; };
+  // t: slot, c: its third corner when queued (identifies the triangle), z: Morton code of corner 0.
+  struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
+  void sort_spatially(std::vector<BadEntry>& bk);
   void evaluate(TriangleId t);
   void push_bad(TriangleId t, double key2);
   void check_encroached_edges(TriangleId t);
@@ -81,6 +84,10 @@ class Refiner {
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
+  bool sort_next_ = false;
+  std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
+  Point2 zlo_{0, 0};
+  double zscale_ = 0;
   // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
   std::unordered_map<Index, std::pair<Index, int>> shell_;
   // Input segment of every segment vertex (for small-angle clusters).
