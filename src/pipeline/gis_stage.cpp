@@ -15,6 +15,9 @@
 #include "gis/vector_input.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
+#include "pslg/snap_loose_ends.hpp"
+#include "quality/tin_error.hpp"
+#include "sizing/resample_grid.hpp"
 #include <cstdlib>
 #include "sizing/fields.hpp"
 #include "sizing/gradient_limiter.hpp"
@@ -42,158 +45,6 @@ std::string num(double v) {
   s.precision(6);
   s << v;
   return s.str();
-}
-
-// Vertical error of the linear TIN against the DEM grid: every cell centre inside a triangle is
-// compared with the plane through the triangle's three vertex elevations.
-std::pair<double, double> tin_vertical_error(const mesh::MeshView& m, const sizing::Grid& dem) {
-  double max_err = 0, sum2 = 0;
-  std::size_t n = 0;
-  for (const auto& t : m.triangles) {
-    const Point2 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-    const double za = m.z[t[0]], zb = m.z[t[1]], zc = m.z[t[2]];
-    const double det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    if (!(det > 0)) continue;
-    const double xmin = std::min({a.x, b.x, c.x}), xmax = std::max({a.x, b.x, c.x});
-    const double ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
-    const long i0 = std::max(0L, static_cast<long>(std::ceil((xmin - dem.x0) / dem.dx - 0.5)));
-    const long i1 = std::min(static_cast<long>(dem.nx) - 1, static_cast<long>(std::floor((xmax - dem.x0) / dem.dx - 0.5)));
-    const long j0 = std::max(0L, static_cast<long>(std::ceil((ymin - dem.y0) / dem.dy - 0.5)));
-    const long j1 = std::min(static_cast<long>(dem.ny) - 1, static_cast<long>(std::floor((ymax - dem.y0) / dem.dy - 0.5)));
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i) {
-        const Point2 p = dem.center(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-        const double l1 = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / det;
-        const double l2 = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / det;
-        const double l3 = 1 - l1 - l2;
-        if (l1 < 0 || l2 < 0 || l3 < 0) continue;
-        const double zd = dem.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-        if (!std::isfinite(zd)) continue;
-        const double e = std::fabs(l1 * za + l2 * zb + l3 * zc - zd);
-        max_err = std::max(max_err, e);
-        sum2 += e * e;
-        ++n;
-      }
-  }
-  return {max_err, n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0};
-}
-
-// `g` resampled onto the cells of `like` (bilinear between cell centres, clamped to their hull as
-// GridField does). A non-finite corner with a non-zero weight is passed through (NaN before +inf),
-// so nodata and "no constraint" areas are not smeared into finite values.
-sizing::Grid resample_like(const sizing::Grid& g, const sizing::Grid& like) {
-  if (g.nx == like.nx && g.ny == like.ny && g.x0 == like.x0 && g.y0 == like.y0 && g.dx == like.dx && g.dy == like.dy)
-    return g;
-  sizing::Grid r = like;
-  for (std::size_t j = 0; j < r.ny; ++j)
-    for (std::size_t i = 0; i < r.nx; ++i) {
-      const Point2 p = r.center(i, j);
-      const double u = std::clamp((p.x - g.x0) / g.dx - 0.5, 0.0, static_cast<double>(g.nx - 1));
-      const double w = std::clamp((p.y - g.y0) / g.dy - 0.5, 0.0, static_cast<double>(g.ny - 1));
-      std::size_t i0 = static_cast<std::size_t>(u), j0 = static_cast<std::size_t>(w);
-      if (i0 + 1 >= g.nx) i0 = g.nx >= 2 ? g.nx - 2 : 0;
-      if (j0 + 1 >= g.ny) j0 = g.ny >= 2 ? g.ny - 2 : 0;
-      const double s = u - static_cast<double>(i0), t = w - static_cast<double>(j0);
-      const std::size_t i1 = std::min(i0 + 1, g.nx - 1), j1 = std::min(j0 + 1, g.ny - 1);
-      const double c[4] = {g.at(i0, j0), g.at(i1, j0), g.at(i0, j1), g.at(i1, j1)};
-      const double wt[4] = {(1 - s) * (1 - t), s * (1 - t), (1 - s) * t, s * t};
-      double v = 0;
-      bool nan = false, inf = false;
-      for (int k = 0; k < 4; ++k) {
-        if (wt[k] == 0) continue;
-        if (std::isnan(c[k])) nan = true;
-        else if (std::isinf(c[k])) inf = true;
-        else v += wt[k] * c[k];
-      }
-      r.at(i, j) = nan ? std::numeric_limits<double>::quiet_NaN() : inf ? std::numeric_limits<double>::infinity() : v;
-    }
-  return r;
-}
-
-// Breakline ends and free points lying within `tol` of a boundary segment they do not touch are
-// put on it: the segment is split at the point. Why: a river clipped at the coast ends a rounding
-// error (1e-11 m) short of it; pslg::clean merges close vertices but not vertex-segment pairs, and
-// such a near-T-junction leaves a sliver the refiner cannot split (the rounded midpoint of the
-// coast segment falls outside it). Returns one Repair per split (local coordinates).
-std::vector<pslg::Repair> snap_loose_ends(pslg::Pslg& g, double tol) {
-  std::vector<pslg::Repair> reps;
-  if (!(tol > 0)) return reps;
-  const std::size_t n = g.points.size();
-  std::vector<int> bdeg(n, 0), ldeg(n, 0);
-  for (const auto& sg : g.segments) {
-    auto& d = sg.is_boundary() ? bdeg : ldeg;
-    ++d[sg.a];
-    ++d[sg.b];
-  }
-  std::vector<Index> loose;
-  for (std::size_t v = 0; v < n; ++v)
-    if (bdeg[v] == 0 && ldeg[v] <= 1) loose.push_back(static_cast<Index>(v));
-  if (loose.empty()) return reps;
-  // Loose points hashed on a grid; a segment looks at the cells its tol-widened box covers, or
-  // at every loose point when that is fewer (long segments, few points).
-  const Box2 box = g.bbox();
-  const double cell = std::max({tol, std::hypot(box.width(), box.height()) / 4096.0, 1e-300});
-  auto key = [&](long i, long j) { return i * 1000003L + j; };
-  auto ci = [&](double x) { return static_cast<long>(std::floor((x - box.lo.x) / cell)); };
-  auto cj = [&](double y) { return static_cast<long>(std::floor((y - box.lo.y) / cell)); };
-  std::unordered_map<long, std::vector<Index>> grid;
-  for (Index v : loose) grid[key(ci(g.points[v].x), cj(g.points[v].y))].push_back(v);
-  struct Hit { double d = 0, t = 0; std::size_t seg = 0; bool found = false; };
-  std::unordered_map<Index, Hit> hit;
-  auto consider = [&](Index v, std::size_t s) {
-    const auto& sg = g.segments[s];
-    if (sg.a == v || sg.b == v) return;
-    const Point2 p = g.points[v], a = g.points[sg.a], b = g.points[sg.b];
-    const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-    if (!(l2 > 0)) return;
-    const double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2;
-    if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) return;  // ends: clean's vertex snap
-    const double d = std::fabs((p.x - a.x) * dy - (p.y - a.y) * dx) / std::sqrt(l2);
-    Hit& h = hit[v];
-    if (d <= tol && (!h.found || d < h.d)) h = {d, t, s, true};
-  };
-  const std::size_t nseg = g.segments.size();
-  for (std::size_t s = 0; s < nseg; ++s) {
-    const auto& sg = g.segments[s];
-    if (!sg.is_boundary()) continue;
-    const Point2 a = g.points[sg.a], b = g.points[sg.b];
-    const long i0 = ci(std::min(a.x, b.x) - tol), i1 = ci(std::max(a.x, b.x) + tol);
-    const long j0 = cj(std::min(a.y, b.y) - tol), j1 = cj(std::max(a.y, b.y) + tol);
-    if (static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1) > static_cast<double>(loose.size())) {
-      for (Index v : loose) consider(v, s);
-      continue;
-    }
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i)
-        if (auto it = grid.find(key(i, j)); it != grid.end())
-          for (Index v : it->second) consider(v, s);
-  }
-  // Split each hit segment at its points, in order along it.
-  std::map<std::size_t, std::vector<std::pair<double, Index>>> splits;
-  for (const auto& [v, h] : hit)
-    if (h.found) splits[h.seg].push_back({h.t, v});
-  for (auto& [s, pts] : splits) {
-    std::sort(pts.begin(), pts.end());
-    const pslg::Segment orig = g.segments[s];
-    Index prev = orig.a;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      pslg::Segment piece = orig;
-      piece.a = prev;
-      piece.b = pts[k].second;
-      if (k == 0) g.segments[s] = piece;
-      else g.segments.push_back(piece);
-      prev = pts[k].second;
-      const double d = hit[pts[k].second].d;
-      reps.push_back({"snap_to_segment", g.points[prev], d,
-                      "a breakline end or fixed point lay " + num(d) +
-                          " m from a boundary segment it did not touch; the segment was split there",
-                      orig.part});
-    }
-    pslg::Segment last = orig;
-    last.a = prev;
-    g.segments.push_back(last);
-  }
-  return reps;
 }
 
 }  // namespace
@@ -315,7 +166,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
     // 5'/30" cells would miss the bends between samples that a fine TIN must follow.
     sizing::Grid zfine, depth;
     if (zgrid && (opt.slope_rule || opt.wavelength_rule || opt.vertical_tol)) {
-      zfine = resample_like(*zgrid, like);
+      zfine = sizing::resample_like(*zgrid, like);
       depth = zfine;
       for (auto& v : depth.v) v = -v;  // elevation positive up -> depth positive down
     }
@@ -335,22 +186,8 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
       names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
     }
     if (!opt.size_raster.empty()) {
-      sizing::Grid s = gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points);
-      if (s.nx != like.nx || s.ny != like.ny) {
-        // Resample onto `like` through a field (both grids cover the same box).
-        sizing::Grid r = like;
-        sizing::Grid filled = sizing::fill_nan(s, std::numeric_limits<double>::infinity());
-        for (auto& v : filled.v) if (!(v > 0)) v = std::numeric_limits<double>::infinity();
-        for (std::size_t j = 0; j < r.ny; ++j)
-          for (std::size_t i = 0; i < r.nx; ++i) {
-            const Point2 p = r.center(i, j);
-            const long ii = std::clamp(static_cast<long>((p.x - s.x0) / s.dx), 0L, static_cast<long>(s.nx) - 1);
-            const long jj = std::clamp(static_cast<long>((p.y - s.y0) / s.dy), 0L, static_cast<long>(s.ny) - 1);
-            r.at(i, j) = filled.at(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj));
-          }
-        s = std::move(r);
-      }
-      for (auto& v : s.v) if (!(v > 0) || !std::isfinite(v)) v = std::numeric_limits<double>::infinity();
+      sizing::Grid s = sizing::size_raster_rule(
+          gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points), like);
       rules.push_back(std::move(s));
       names.push_back("size raster " + opt.size_raster);
     }
@@ -393,7 +230,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   }
   co.spacing = [f](Point2 p) { return (*f)(p); };
   clock.restart();
-  std::vector<pslg::Repair> loose_reps = snap_loose_ends(g.raw, g.snap_distance_m);
+  std::vector<pslg::Repair> loose_reps = pslg::snap_loose_ends(g.raw, g.snap_distance_m);
   gis::clean_domain(g, co);
   for (auto& r : loose_reps) {
     gis::RepairRecord rec;
@@ -478,7 +315,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
       m.z = gis::sample_depths(*zgrid, m.vertices, &filled);
       if (filled > 0) warn(std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
       if (terrain) {
-        const auto [emax, erms] = tin_vertical_error(m, *zgrid);
+        const auto [emax, erms] = quality::tin_vertical_error(m, *zgrid);
         info("TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
         *tin = {emax, erms};
       }
