@@ -7,11 +7,13 @@
 #include <map>
 #include <sstream>
 #include <unordered_map>
+#include <optional>
+#include "api/stages.hpp"
 #include "base/error.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/raster_output.hpp"
-#include "pipeline/reproject_mesh.hpp"
+#include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
@@ -24,6 +26,7 @@
 #include "sizing/grid_field.hpp"
 #include "sizing/make_spacing.hpp"
 #include "sizing/raster_rules.hpp"
+#include "sizing/spacing_rules.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -148,68 +151,30 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
       like.dx = like.dy = cell;
       like.v.assign(like.nx * like.ny, 0.0);
     }
-    std::vector<sizing::Grid> rules;
-    std::vector<std::string> names;
-    // Distance to shore (land and island edges; open boundaries are not shore).
-    if (opt.dist_grade || !any_rule) {
-      std::vector<std::pair<Point2, Point2>> shore;
-      for (const auto& s : g.raw.segments)
-        if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
-          shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
-      const double grade = opt.dist_grade.value_or(0.1);
-      if (!shore.empty()) {
-        rules.push_back(sizing::rule_distance(sizing::distance_to_shore(like, shore), hmin, grade));
-        names.push_back("distance (hmin + " + num(grade) + " d)");
-      }
-    }
-    // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
-    // 5'/30" cells would miss the bends between samples that a fine TIN must follow.
-    sizing::Grid zfine, depth;
-    if (zgrid && (opt.slope_rule || opt.wavelength_rule || opt.vertical_tol)) {
-      zfine = sizing::resample_like(*zgrid, like);
-      depth = zfine;
-      for (auto& v : depth.v) v = -v;  // elevation positive up -> depth positive down
-    }
-    if (opt.slope_rule) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--slope-rule needs --raster");
-      rules.push_back(sizing::rule_slope(depth, *opt.slope_rule));
-      names.push_back("slope (slp " + num(*opt.slope_rule) + ")");
-    }
-    if (opt.wavelength_rule) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--wavelength-rule needs --raster");
-      rules.push_back(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule));
-      names.push_back("wavelength (T " + num(opt.wave_period_s) + " s, wl " + num(*opt.wavelength_rule) + ")");
-    }
-    if (opt.vertical_tol) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--vertical-tol needs --raster (the DEM)");
-      rules.push_back(sizing::rule_curvature(zfine, *opt.vertical_tol));
-      names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
-    }
-    if (!opt.size_raster.empty()) {
-      sizing::Grid s = sizing::size_raster_rule(
-          gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points), like);
-      rules.push_back(std::move(s));
-      names.push_back("size raster " + opt.size_raster);
-    }
-    sizing::Grid h;
-    if (rules.empty()) {
-      h = like;
-      std::fill(h.v.begin(), h.v.end(), hmax);
-    } else {
-      h = sizing::combine_min(rules);
-    }
-    h = sizing::clamp(h, hmin, hmax);
-    h = sizing::fill_nan(h, hmax);
-    if (!(opt.gradation > 0)) throw Error(ExitCode::kUsage, "--gradation must be positive");
+    sizing::SpacingRules rules;
+    rules.hmin = hmin;
+    rules.hmax = hmax;
+    rules.dist_grade = opt.dist_grade;
+    rules.slope = opt.slope_rule;
+    rules.wavelength = opt.wavelength_rule;
+    rules.wave_period_s = opt.wave_period_s;
+    rules.vertical_tol = opt.vertical_tol;
+    rules.size_raster = opt.size_raster;
+    std::vector<std::pair<Point2, Point2>> shore;  // land and island edges; open boundaries are not shore
+    for (const auto& s : g.raw.segments)
+      if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
+        shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
+    std::optional<sizing::Grid> size;
+    if (!opt.size_raster.empty())
+      size = sizing::size_raster_rule(gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points), like);
+    sizing::RuleGrid rg = sizing::spacing_from_rules(rules, {&like, &shore, zgrid.get(), size ? &*size : nullptr});
     clock.lap("sizing");
-    sizing::limit_gradient(h, opt.gradation);
+    sizing::limit_gradient(rg.h, opt.gradation);
     clock.lap("limit");
-    fgrid = std::make_shared<sizing::Grid>(h);
-    std::string desc = "grid " + std::to_string(h.nx) + "x" + std::to_string(h.ny) + ": min(";
-    for (std::size_t i = 0; i < names.size(); ++i) desc += (i ? ", " : "") + names[i];
-    desc += ") clamped to [" + num(hmin) + ", " + num(hmax) + "] m, gradient-limited to " + num(opt.gradation);
+    const std::string desc = sizing::describe_rules(rg, rules, opt.gradation);
+    fgrid = std::make_shared<sizing::Grid>(rg.h);
     info("spacing: " + desc);
-    f_ground = std::make_shared<sizing::GridField>(h, desc);
+    f_ground = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
   }
   if (!opt.spacing.empty()) {
     sizing::SizingPtr e = std::make_shared<ShiftedField>(sizing::make_spacing(opt.spacing), frame.origin());
@@ -305,32 +270,34 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   out.metadata.push_back({"domain_area_m2", num(g.domain_area_m2)});
   if (!opt.raster.empty()) out.metadata.push_back({"raster", opt.raster});
   out.metadata.push_back({"max_abs_scale_factor_minus_1", num(kdev)});
-  const bool terrain = opt.vertical_tol.has_value();
-  const std::string output_crs = opt.output_crs;
-  auto tin = out.tin_error;
-  out.attach = [zgrid, frame, terrain, info, warn, tin](mesh::MeshView& m) {
-    m.crs_wkt = frame.wkt();
-    if (zgrid) {
-      int filled = 0;
-      m.z = gis::sample_depths(*zgrid, m.vertices, &filled);
-      if (filled > 0) warn(std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
-      if (terrain) {
-        const auto [emax, erms] = quality::tin_vertical_error(m, *zgrid);
-        info("TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
-        *tin = {emax, erms};
-      }
-    }
-  };
-  if (!output_crs.empty()) {
-    out.to_output_crs = [frame, output_crs](mesh::MeshView& m) { reproject_mesh(m, frame, output_crs); };
-  }
-  if (!opt.write_spacing.empty() && fgrid) {
-    const std::string path = opt.write_spacing;
-    out.extra_outputs.push_back([fgrid, frame, path] { gis::write_grid_geotiff(*fgrid, frame, path); });
-  } else if (!opt.write_spacing.empty()) {
-    throw Error(ExitCode::kUsage, "--write-spacing needs a raster-based spacing (give --raster or a rule)");
-  }
+  out.frame = frame;
+  out.dem = zgrid;
+  out.spacing_grid = fgrid;
   return out;
+}
+
+PreparedInput prepare_poly_input(const Options& opt) {
+  PreparedInput in;
+  in.pslg = fdr::to_local_frame(fdr::read_pslg(opt.input));
+  // Default spacing for a bare PSLG: a twentieth of the bounding-box diagonal.
+  const std::string spec = opt.spacing.empty() ? fdr::default_spacing_spec(in.pslg) : opt.spacing;
+  in.f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(spec), in.pslg.origin);
+  return in;
+}
+
+std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log) {
+  if (!in.dem) return {};
+  int filled = 0;
+  std::vector<double> z = gis::sample_depths(*in.dem, m.vertices, &filled);
+  if (filled > 0 && log)
+    log(LogLevel::kWarning, std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
+  return z;
+}
+
+std::pair<double, double> tin_error(const mesh::MeshView& m, const sizing::Grid& dem, const LogFn& log) {
+  const auto [emax, erms] = quality::tin_vertical_error(m, dem);
+  if (log) log(LogLevel::kInfo, "TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
+  return {emax, erms};
 }
 
 }  // namespace fdr::pipeline

@@ -1,17 +1,17 @@
 // The GIS stage of the pipeline: OGR/GDAL inputs -> PSLG in a projected local frame + spacing f.
 #pragma once
-#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 #include "base/progress.hpp"
+#include "gis/crs.hpp"
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
 #include "pipeline/stage_time.hpp"
 #include "pslg/pslg.hpp"
+#include "sizing/grid.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::pipeline {
@@ -22,15 +22,10 @@ struct PreparedInput {
   std::string crs_name;                   // printed and stored
   std::vector<io::RepairRow> repairs;     // world coordinates
   std::vector<std::pair<std::string, std::string>> metadata;  // extra provenance
-  // Called on the final mesh (local frame): sets z (depth/elevation) and crs_wkt.
-  std::function<void(mesh::MeshView&)> attach;
-  // --output-crs: reprojects a copy of the mesh for writing (same topology); empty if not asked.
-  std::function<void(mesh::MeshView&)> to_output_crs;
-  // Extra outputs written after the mesh (e.g. --write-spacing GeoTIFF).
-  std::vector<std::function<void()>> extra_outputs;
-  // Terrain runs: (max, RMS) vertical error of the TIN against the DEM, filled by attach().
-  std::shared_ptr<std::optional<std::pair<double, double>>> tin_error =
-      std::make_shared<std::optional<std::pair<double, double>>>();
+  // GIS runs (plain values, used by the later stages):
+  gis::Frame frame;                       // working CRS + local origin (valid() false for .poly)
+  std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame: depths, TIN error
+  std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid in ground metres (--write-spacing)
   std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
   // Model-readiness inputs for the report (GIS runs).
   double hmin = 0;                        // metres
@@ -38,7 +33,20 @@ struct PreparedInput {
   std::vector<std::pair<std::string, double>> coast_figures;  // filter/resample counts for the report
 };
 
-// Reads OGR/GDAL inputs named in `opt` (any non-.poly input). Throws fdr::Error.
+// Read stage, GIS inputs: reads the OGR/GDAL inputs named in `opt` (any non-.poly input) into a
+// projected local frame, builds the spacing (sizing::spacing_from_rules), cleans and resamples
+// the PSLG (pslg). Throws fdr::Error.
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
+
+// Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the
+// bounding-box diagonal / 20).
+PreparedInput prepare_poly_input(const Options& opt);
+
+// Depths stage (GIS runs): the raster sampled at the vertices (positive up; the nearest valid
+// cell for nodata, with a warning); empty without a raster.
+std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log);
+
+// Terrain runs: (max, RMS) vertical error of the TIN (m.z) against the DEM, logged.
+std::pair<double, double> tin_error(const mesh::MeshView& m, const sizing::Grid& dem, const LogFn& log);
 
 }  // namespace fdr::pipeline
