@@ -11,7 +11,7 @@
 #include "base/progress.hpp"
 #include "base/version.hpp"
 #include "cli/option_table.hpp"
-#include "cli/quality_command.hpp"
+#include "pipeline/quality_run.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/summary.hpp"
 
@@ -150,7 +150,11 @@ int run(int argc, char** argv) {
   std::string cmdline;
   for (int i = 0; i < argc; ++i) cmdline += (i ? " " : "") + std::string(argv[i]);
   try {
-    if (subs["quality"]->parsed()) return run_quality(bind_parsed(p, "quality", cmdline).quality);
+    if (subs["quality"]->parsed()) {  // read -> spacing -> measure (pipeline::run_quality)
+      const pipeline::QualityOptions q = bind_parsed(p, "quality", cmdline).quality;
+      pipeline::run_quality(q, q.quiet ? nullptr : &std::cout);
+      return 0;
+    }
     if (!subs["mesh"]->parsed()) {
       std::printf("%s", app.help().c_str());
       return static_cast<int>(ExitCode::kUsage);

@@ -14,6 +14,7 @@ namespace fdr::cli {
 
 namespace {
 using MeshOptions = pipeline::Options;
+using QualityOptions = pipeline::QualityOptions;
 
 double parse_number(const std::string& key, const std::string& s) {
   char* end = nullptr;
@@ -168,13 +169,13 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--report", "report", field<&MeshOptions::report_json>, "file_out", "FILE.json", "", "Output", "Write the quality report as JSON"},
       {"mesh", "-q,--quiet", "quiet", field<&MeshOptions::quiet>, "flag", "", "", "Output", "No progress and no report on stdout"},
       // quality
-      {"quality", "mesh", "mesh", field<&QualityArgs::mesh>, "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .gr3/.ll, .slf, .msh, .node, fdrmesh .gpkg)",
+      {"quality", "mesh", "mesh", field<&QualityOptions::mesh>, "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .gr3/.ll, .slf, .msh, .node, fdrmesh .gpkg)",
        false, true, {}, true},
-      {"quality", "--spacing", "spacing", field<&QualityArgs::spacing>, "expr", "EXPR|PRESET", "", "Spacing", "Spacing f(x,y) in the mesh's coordinates"},
-      {"quality", "--raster", "raster", field<&QualityArgs::raster>, "raster_in", "FILE", "", "Spacing", "Spacing from a size raster in the mesh's CRS (metres)"},
-      {"quality", "--bound", "bound", field<&QualityArgs::bound>, "float", "B", "1", "Quality", "Bound B for counting bad triangles (R/f(c) > B)"},
-      {"quality", "--report", "report", field<&QualityArgs::report_json>, "file_out", "FILE.json", "", "Output", "Write the report as JSON"},
-      {"quality", "-q,--quiet", "quiet", field<&QualityArgs::quiet>, "flag", "", "", "Output", "No report on stdout"},
+      {"quality", "--spacing", "spacing", field<&QualityOptions::spacing>, "expr", "EXPR|PRESET", "", "Spacing", "Spacing f(x,y) in the mesh's coordinates"},
+      {"quality", "--raster", "raster", field<&QualityOptions::raster>, "raster_in", "FILE", "", "Spacing", "Spacing from a size raster in the mesh's CRS (metres)"},
+      {"quality", "--bound", "bound", field<&QualityOptions::bound>, "float", "B", "1", "Quality", "Bound B for counting bad triangles (R/f(c) > B)"},
+      {"quality", "--report", "report", field<&QualityOptions::report_json>, "file_out", "FILE.json", "", "Output", "Write the report as JSON"},
+      {"quality", "-q,--quiet", "quiet", field<&QualityOptions::quiet>, "flag", "", "", "Output", "No report on stdout"},
   };
   return t;
 }

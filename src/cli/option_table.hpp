@@ -4,7 +4,7 @@
 #include <string>
 #include <type_traits>
 #include <vector>
-#include "cli/quality_command.hpp"
+#include "pipeline/quality_run.hpp"
 #include "pipeline/options.hpp"
 
 namespace fdr::cli {
@@ -12,7 +12,7 @@ namespace fdr::cli {
 // What a command line binds to: the options of `mesh` (pipeline::Options) and of `quality`.
 struct Request {
   pipeline::Options mesh;
-  QualityArgs quality;
+  pipeline::QualityOptions quality;
 };
 
 // Stores the values given for one option (none: the option was not given; a flag given: one
