@@ -18,6 +18,13 @@ Pslg to_local_frame(Pslg pslg);
 // Error(kInvalidGeometry) naming `source` when no region is enclosed by segments.
 mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds = nullptr);
 
+// Spacing stage of the .poly path and of `fdrmesh quality`: f from a --spacing specification
+// (world coordinates) evaluated in a local frame with the given origin.
+SizingPtr spacing_in_frame(const std::string& spec, Point2 origin);
+
+// The Lipschitz constant of f: its own when it knows it, else estimated on `box` (64x64 samples).
+double lipschitz_of(const SizingField& f, const Box2& box);
+
 // What the refinement stage did (for the quality report).
 struct RefineOutcome {
   double alpha = -1;                 // Lipschitz constant of f (given or estimated on `box`)

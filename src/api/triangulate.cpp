@@ -92,14 +92,22 @@ mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, doub
   return tri;
 }
 
+SizingPtr spacing_in_frame(const std::string& spec, Point2 origin) {
+  return std::make_shared<sizing::ShiftedField>(sizing::make_spacing(spec), origin);
+}
+
+double lipschitz_of(const SizingField& f, const Box2& box) {
+  const double alpha = f.lipschitz();
+  return alpha >= 0 ? alpha : sizing::estimate_lipschitz(f, box, 64);
+}
+
 RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const Box2& box,
                            const TriangulateOptions& opt) {
   auto done = [&opt](const char* stage) {
     if (opt.stage_done) opt.stage_done(stage);
   };
   RefineOutcome out;
-  double alpha = f.lipschitz();
-  if (!(alpha >= 0)) alpha = sizing::estimate_lipschitz(f, box, 64);
+  const double alpha = lipschitz_of(f, box);
   out.alpha = alpha;
   if (alpha * opt.bound >= 1 && opt.log)
     opt.log(LogLevel::kWarning, "alpha*B = " + std::to_string(alpha * opt.bound) +

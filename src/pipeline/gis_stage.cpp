@@ -281,7 +281,7 @@ PreparedInput prepare_poly_input(const Options& opt) {
   in.pslg = fdr::to_local_frame(fdr::read_pslg(opt.input));
   // Default spacing for a bare PSLG: a twentieth of the bounding-box diagonal.
   const std::string spec = opt.spacing.empty() ? fdr::default_spacing_spec(in.pslg) : opt.spacing;
-  in.f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(spec), in.pslg.origin);
+  in.f = fdr::spacing_in_frame(spec, in.pslg.origin);
   return in;
 }
 
