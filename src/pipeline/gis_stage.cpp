@@ -1,18 +1,17 @@
-// GIS stage: read layers into a projected local frame, build the spacing from rasters and rules
-// (combined by minimum, clamped, gradient-limited), clean the PSLG, attach depths to the mesh.
+// Read stage of GIS runs: layers into a projected local frame, the spacing from rasters and rules
+// (sizing::spacing_from_rules, gradient-limited), the PSLG cleaned and resampled; the .poly read
+// stage; the depths stage (raster sampled at the mesh's vertices) and the TIN error.
 #include "pipeline/gis_stage.hpp"
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
-#include <limits>
 #include <map>
-#include <sstream>
-#include <unordered_map>
 #include <optional>
+#include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
-#include "gis/raster_output.hpp"
 #include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
 #include "pslg/poly_io.hpp"
@@ -20,12 +19,10 @@
 #include "pslg/snap_loose_ends.hpp"
 #include "quality/tin_error.hpp"
 #include "sizing/resample_grid.hpp"
-#include <cstdlib>
 #include "sizing/fields.hpp"
 #include "sizing/gradient_limiter.hpp"
 #include "sizing/grid_field.hpp"
 #include "sizing/make_spacing.hpp"
-#include "sizing/raster_rules.hpp"
 #include "sizing/spacing_rules.hpp"
 
 namespace fdr::pipeline {
@@ -57,7 +54,6 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   StageClock clock(&stages);
   if (!opt.output_crs.empty()) gis::check_crs(opt.output_crs);  // fail before any work on an unknown CRS
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
-  auto warn = [&](const std::string& s) { if (log) log(LogLevel::kWarning, s); };
   gis::DomainOptions d;
   if (!opt.land.empty()) {
     d.land = {opt.land, opt.layer, opt.where};
