@@ -2,6 +2,8 @@
 // of the local frame, the CDT, Functional Delaunay Refinement + smoothing + checks.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include "api/triangulate.hpp"
 #include "mesh/triangulation.hpp"
@@ -40,5 +42,19 @@ struct RefineOutcome {
 // options.stage_done, when set, is called after "refine", "smooth" (if any) and "check" (if any).
 RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const Box2& box,
                            const TriangulateOptions& options);
+
+// The figures of a CDT + refinement run that the quality report states.
+struct RunFigures {
+  std::optional<double> cdt_s, refine_s;  // wall times (unset: stage not run)
+  std::uint64_t segment_splits = 0, circumcenters = 0;  // Steiner points
+  std::uint64_t angle_exempt = 0;          // RefineOutcome::angle_exempt
+  double alpha = -1;                       // RefineOutcome::alpha
+};
+
+// Measure stage (core): f at the vertices when the mesh does not carry it, then the quality
+// report (quality::compute_quality) against f (may be null), options.bound and the run's figures;
+// `per_triangle`, when not null, gets the per-triangle values the writers store.
+QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& options,
+                           const RunFigures& figures, quality::TriangleValues* per_triangle = nullptr);
 
 }  // namespace fdr

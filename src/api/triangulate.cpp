@@ -197,6 +197,27 @@ Triangulator& Triangulator::refine(SizingPtr world_f) {
 
 MeshView Triangulator::view() const { return tri_.to_view(); }
 
+QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig,
+                           quality::TriangleValues* per_triangle) {
+  const bool f_filled = f && m.f.empty();  // then m.f holds f at the vertices, which the report reuses
+  if (f_filled) {
+    m.f.resize(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f)(m.vertices[i]);
+  }
+  quality::RunInfo ri;
+  ri.cdt_s = fig.cdt_s;
+  ri.refine_s = fig.refine_s;
+  ri.predicate_filtered = predicates::counters().filtered;
+  ri.predicate_exact = predicates::counters().exact;
+  ri.exempt_small_angle_triangles = fig.angle_exempt;
+  ri.steiner_segment = fig.segment_splits;
+  ri.steiner_interior = fig.circumcenters;
+  ri.input_file = opt.source;
+  ri.spacing = f ? f->describe() : "none";
+  if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
+  return quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, f_filled ? &m.f : nullptr);
+}
+
 Mesh Triangulator::mesh() const {
   if (opt_.progress && !opt_.progress(0.8, "report")) throw Error(ExitCode::kCancelled, "cancelled during report");
   Mesh out;
@@ -206,23 +227,14 @@ Mesh Triangulator::mesh() const {
   out.min_angle_deg = opt_.min_angle_deg;
   out.alpha = alpha_;
   out.source = opt_.source;
-  MeshView& m = out.view;
-  if (f_ && m.f.empty()) {
-    m.f.resize(m.vertices.size());
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f_)(m.vertices[i]);
-  }
-  quality::RunInfo ri;
-  ri.cdt_s = cdt_s_;
-  ri.refine_s = refine_s_;
-  ri.predicate_filtered = predicates::counters().filtered;
-  ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = angle_exempt_;
-  ri.steiner_segment = seg_splits_;
-  ri.steiner_interior = circumcenters_;
-  ri.input_file = opt_.source;
-  ri.spacing = f_ ? f_->describe() : "none";
-  if (opt_.min_angle_deg > 0) ri.min_angle_option_deg = opt_.min_angle_deg;
-  out.report = quality::compute_quality(m, f_.get(), opt_.bound, alpha_, ri);
+  RunFigures fig;
+  fig.cdt_s = cdt_s_;
+  fig.refine_s = refine_s_;
+  fig.segment_splits = seg_splits_;
+  fig.circumcenters = circumcenters_;
+  fig.angle_exempt = angle_exempt_;
+  fig.alpha = alpha_;
+  out.report = measure_mesh(out.view, f_.get(), opt_, fig);
   out.report.run.peak_rss_mb = quality::peak_rss_mb_value();
   return out;
 }

@@ -125,28 +125,16 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
                                const TriangulateFigures& fig, quality::TriangleValues* tri_values, const LogFn& log) {
   std::optional<std::pair<double, double>> tin;  // terrain runs: the TIN against the DEM
   if (in.dem && opt.vertical_tol) tin = tin_error(m, *in.dem, log);
-  const sizing::SizingField& f = *in.f;
-  const bool f_from_field = m.f.empty();  // then m.f holds f at the vertices, which the report reuses
-  if (m.f.empty()) {
-    m.f.resize(m.vertices.size());
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = f(m.vertices[i]);
-  }
-  const double min_angle_deg = plan.triangulate.min_angle_deg;
-  quality::RunInfo ri;
-  ri.cdt_s = fig.cdt_s;
-  ri.refine_s = fig.refine.refine_s;
-  ri.predicate_filtered = predicates::counters().filtered;
-  ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = fig.refine.angle_exempt;
-  ri.steiner_segment = fig.refine.stats.segment_splits;
-  ri.steiner_interior = fig.refine.stats.circumcenters;
-  ri.input_file = plan.source;
-  ri.spacing = f.describe();
-  if (min_angle_deg > 0) ri.min_angle_option_deg = min_angle_deg;
+  RunFigures rf;
+  rf.cdt_s = fig.cdt_s;
+  rf.refine_s = fig.refine.refine_s;
+  rf.segment_splits = fig.refine.stats.segment_splits;
+  rf.circumcenters = fig.refine.stats.circumcenters;
+  rf.angle_exempt = fig.refine.angle_exempt;
+  rf.alpha = fig.refine.alpha;
   // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
   // writers then never evaluate f, which lets them run concurrently).
-  quality::QualityReport report = quality::compute_quality(m, &f, opt.bound, fig.refine.alpha, ri, tri_values,
-                                                           f_from_field ? &m.f : nullptr);
+  quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values);
   if (plan.gis)  // model readiness against the input coast (issue 11)
     report.model_ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
   if (tin) {
