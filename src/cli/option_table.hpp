@@ -33,7 +33,7 @@ struct OptSpec {
   std::string help;
   bool repeat = false;
   bool required = false;
-  std::vector<std::string> choices;
+  std::vector<std::string> choices = {};
   bool positional = false;
 };
 

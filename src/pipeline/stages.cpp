@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include "api/stages.hpp"
 #include "base/error.hpp"
 #include "base/version.hpp"
 #include "io/write_many.hpp"
@@ -31,13 +32,6 @@ std::string lower_ext(const std::string& path) {
 std::string cli_path_of(const std::string& slf) {
   const std::string e = lower_ext(slf);
   return (e == "slf" ? slf.substr(0, slf.size() - 4) : slf) + ".cli";
-}
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
 }
 
 // Per-triangle R/f(c), min angle and area in the metric frame, for outputs written in --output-crs.
