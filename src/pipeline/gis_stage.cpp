@@ -49,9 +49,7 @@ std::string num(double v) {
 
 }  // namespace
 
-PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
-  std::vector<StageTime> stages;
-  StageClock clock(&stages);
+gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
   if (!opt.output_crs.empty()) gis::check_crs(opt.output_crs);  // fail before any work on an unknown CRS
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   gis::DomainOptions d;
@@ -102,7 +100,13 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
        " boundary segments, " + std::to_string(g.counts.open_parts) + " open-boundary parts, " +
        std::to_string(g.counts.breakline_segments) + " breakline segments, " + std::to_string(g.counts.fixed_points) +
        " fixed points; area " + num(g.domain_area_m2 / 1e6) + " km^2");
+  return g;
+}
 
+GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
+                       const LogFn& log) {
+  auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+  const gis::Frame& frame = g.frame;
   // Spacing, in ground metres on a grid over the domain box, then to grid units.
   Box2 box = g.raw.bbox();
   const double diam = std::hypot(box.width(), box.height());
@@ -179,8 +183,17 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   double kdev = 0;
   sizing::SizingPtr f = gis::ground_to_grid(f_ground, frame, box, &kdev);
   info("projection scale factor: max |k - 1| = " + num(kdev) + (kdev > 1e-3 ? " (spacing corrected)" : ""));
-  if (progress) progress(0.03, "clean");
 
+  if (progress) progress(0.03, "clean");
+  return {f, zgrid, fgrid, hmin, kdev};
+}
+
+PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& sp, StageClock& clock,
+                              const LogFn& log) {
+  auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+  const gis::Frame& frame = g.frame;
+  const sizing::SizingPtr& f = sp.f;
+  const double hmin = sp.hmin;
   // Geometry repair with the spacing known.
   pslg::CleanOptions co;
   co.snap_distance = g.snap_distance_m;
@@ -252,7 +265,6 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   for (const auto& poly : (g.input_polygons.empty() ? g.domain_polygons : g.input_polygons))
     for (const auto& ring : poly)
       for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
-  out.stages = std::move(stages);
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();
@@ -265,11 +277,19 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   out.metadata.push_back({"local_origin", num(frame.origin().x) + "," + num(frame.origin().y)});
   out.metadata.push_back({"domain_area_m2", num(g.domain_area_m2)});
   if (!opt.raster.empty()) out.metadata.push_back({"raster", opt.raster});
-  out.metadata.push_back({"max_abs_scale_factor_minus_1", num(kdev)});
+  out.metadata.push_back({"max_abs_scale_factor_minus_1", num(sp.kdev)});
   out.frame = frame;
-  out.dem = zgrid;
-  out.spacing_grid = fgrid;
+  out.dem = sp.dem;
+  out.spacing_grid = sp.spacing_grid;
   return out;
+}
+
+PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  std::vector<StageTime> stages;
+  StageClock clock(&stages);
+  gis::GisInput g = read_gis_input(opt, clock, progress, log);
+  const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
+  return clean_gis_input(opt, std::move(g), sp, clock, log);
 }
 
 PreparedInput prepare_poly_input(const Options& opt) {

@@ -6,6 +6,7 @@
 #include <vector>
 #include "base/progress.hpp"
 #include "gis/crs.hpp"
+#include "gis/vector_input.hpp"
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
@@ -26,16 +27,36 @@ struct PreparedInput {
   gis::Frame frame;                       // working CRS + local origin (valid() false for .poly)
   std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame: depths, TIN error
   std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid in ground metres (--write-spacing)
-  std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
   // Model-readiness inputs for the report (GIS runs).
   double hmin = 0;                        // metres
   std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame
   std::vector<std::pair<std::string, double>> coast_figures;  // filter/resample counts for the report
 };
 
-// Read stage, GIS inputs: reads the OGR/GDAL inputs named in `opt` (any non-.poly input) into a
-// projected local frame, builds the spacing (sizing::spacing_from_rules), cleans and resamples
-// the PSLG (pslg). Throws fdr::Error.
+// Read stage, GIS inputs: the OGR/GDAL layers named in `opt` (any non-.poly input) in a
+// projected local frame, through the resolution filter (gis::read_domain). Laps "read".
+gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log);
+
+// Spacing stage, GIS inputs: rasters and rules on a grid in ground metres
+// (sizing::spacing_from_rules), gradient-limited, min with --spacing, corrected for the
+// projection's scale. Laps "raster", "sizing", "limit".
+struct GisSpacing {
+  sizing::SizingPtr f;                               // local frame, grid units
+  std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame (depths)
+  std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid, ground metres (--write-spacing)
+  double hmin = 0;                                   // metres
+  double kdev = 0;                                   // max |k - 1| of the projection's scale
+};
+GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
+                       const LogFn& log);
+
+// Clean/resample stage, GIS inputs: loose ends snapped (pslg::snap_loose_ends), the domain
+// cleaned with f known, boundaries resampled to f (pslg::resample) unless --keep-coast; the
+// PSLG and what the later stages need. Laps "repair", "resample".
+PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& spacing, StageClock& clock,
+                              const LogFn& log);
+
+// The three GIS stages above in order (for tests and callers that want the prepared input).
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
 
 // Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the

@@ -22,13 +22,17 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   Result result;
   report_progress(0.0, "read");
   StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
-  PreparedInput in = plan.gis ? prepare_gis_input(opt, progress, log) : prepare_poly_input(opt);
-  if (in.stages.empty()) clock.lap("read");
-  else result.stages = in.stages;
+  PreparedInput in;
   if (plan.gis) {
+    gis::GisInput g = read_gis_input(opt, clock, progress, log);       // read (gis)
+    const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);   // spacing (sizing)
+    in = clean_gis_input(opt, std::move(g), sp, clock, log);           // clean, resample (pslg)
     result.crs_name = in.crs_name;
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
+  } else {
+    in = prepare_poly_input(opt);  // read (pslg), spacing from --spacing
+    clock.lap("read");
   }
   result.f = in.f;
   report_progress(0.05, "cdt");
