@@ -1,5 +1,6 @@
 // fdrmesh core API: the CLI's .poly path (pipeline.cpp) as a library function, step by step.
 #include "api/triangulate.hpp"
+#include "api/stages.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "pslg/validate.hpp"
 #include "quality/rss.hpp"
 #include "refine/refine.hpp"
+#include "refine/smooth.hpp"
 #include "sizing/field_checks.hpp"
 #include "sizing/fields.hpp"
 #include "sizing/grid_field.hpp"
@@ -70,26 +72,112 @@ SizingPtr grid_spacing(sizing::Grid grid, const std::string& label) {
   return std::make_shared<sizing::GridField>(std::move(grid), label);
 }
 
-Triangulator::Triangulator(const Pslg& in, const TriangulateOptions& opt) : opt_(opt), pslg_(in) {
+Pslg to_local_frame(Pslg p) {
+  const Point2 origin = choose_origin(p.bbox());
+  if (origin.x != 0 || origin.y != 0) {
+    for (auto& q : p.points) q = {q.x - origin.x, q.y - origin.y};
+    for (auto& q : p.holes) q = {q.x - origin.x, q.y - origin.y};
+    for (auto& r : p.regions) r.seed = {r.seed.x - origin.x, r.seed.y - origin.y};
+    p.origin = p.origin + origin;
+  }
+  return p;
+}
+
+mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds) {
+  const auto t = Clock::now();
+  mesh::Triangulation tri = cdt::build_cdt(local, {cdt::CdtOptions::Regions::kAuto, source}, nullptr);
+  if (seconds) *seconds = since(t);
+  if (tri.num_live_triangles() == 0)
+    throw Error(ExitCode::kInvalidGeometry, source + ": the domain is empty (no region enclosed by segments)");
+  return tri;
+}
+
+SizingPtr spacing_in_frame(const std::string& spec, Point2 origin) {
+  return std::make_shared<sizing::ShiftedField>(sizing::make_spacing(spec), origin);
+}
+
+double lipschitz_of(const SizingField& f, const Box2& box) {
+  const double alpha = f.lipschitz();
+  return alpha >= 0 ? alpha : sizing::estimate_lipschitz(f, box, 64);
+}
+
+RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const Box2& box,
+                           const TriangulateOptions& opt) {
+  auto done = [&opt](const char* stage) {
+    if (opt.stage_done) opt.stage_done(stage);
+  };
+  RefineOutcome out;
+  const double alpha = lipschitz_of(f, box);
+  out.alpha = alpha;
+  if (alpha * opt.bound >= 1 && opt.log)
+    opt.log(LogLevel::kWarning, "alpha*B = " + std::to_string(alpha * opt.bound) +
+                                    " >= 1: the spacing varies too fast for the FDR guarantees (termination still "
+                                    "bounded by --max-steiner); lower --bound or smooth the spacing");
+  const double expected = refine::estimate_triangles(tri, f, opt.bound);
+  info(opt.log, "expected about " + std::to_string(static_cast<long long>(expected)) + " triangles");
+  if (expected > 2.5 * static_cast<double>(opt.max_steiner))
+    throw Error(ExitCode::kWorkLimit, "the spacing asks for about " + std::to_string(static_cast<long long>(expected)) +
+                                          " triangles, more than --max-steiner " + std::to_string(opt.max_steiner) +
+                                          " allows; coarsen the spacing or raise --max-steiner");
+
+  // Functional Delaunay Refinement.
+  const auto t = Clock::now();
+  refine::RefineOptions ro;
+  ro.bound = opt.bound;
+  ro.min_angle_deg = opt.min_angle_deg;
+  ro.max_steiner = opt.max_steiner;
+  ro.expected_steiner = expected / 2;
+  const ProgressFn& progress = opt.progress;
+  ro.progress = [&progress](double frac, std::string_view) { return !progress || progress(0.05 + 0.75 * frac, "refine"); };
+  refine::Refiner refiner(tri, f, ro);  // freed on return, before the caller copies the mesh out
+  refiner.reserve(expected);
+  refiner.init();
+  refiner.run();
+  out.refine_s = since(t);
+  done("refine");
+  if (opt.smooth_passes > 0) {
+    refine::SmoothOptions so;
+    so.passes = opt.smooth_passes;
+    so.bound = opt.bound;
+    so.min_angle_deg = opt.min_angle_deg;
+    const refine::SmoothStats ss = refine::smooth(tri, f, so);
+    info(opt.log, "smoothing: " + std::to_string(ss.moves) + " moves (" + std::to_string(ss.segment_moves) +
+                      " along segments) of " + std::to_string(ss.candidates) + " Steiner vertices in " +
+                      std::to_string(ss.passes) + " passes");
+    done("smooth");
+  }
+
+  if (opt.check) {
+    mesh::CheckResult cr = mesh::check_all(tri);
+    const std::size_t bad = refiner.leftovers().r_over_f_bad;
+    if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
+    if (!cr.ok()) {
+      std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
+      for (const auto& p : cr.problems) msg += "\n  " + p;
+      throw Error(ExitCode::kCheckFailed, msg);
+    }
+    info(opt.log, "check: topology, orientation, constrained Delaunay, segments and R/f(c) <= B hold");
+    done("check");
+  }
+  out.stats = refiner.stats();
+  // leftovers() re-measures every triangle; without a min angle its angle count is 0 by definition.
+  out.angle_exempt = opt.min_angle_deg > 0 ? refiner.leftovers().angle_bad : 0;
+  return out;
+}
+
+Triangulator::Triangulator(const Pslg& in, const TriangulateOptions& opt) : opt_(opt) {
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt_.min_angle_deg < 0 || opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+  if (opt_.smooth_passes < 0 || opt_.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
   if (opt_.convex_hull)  // issue 10 adds --convex-hull to the core; wire CdtOptions here then
     throw Error(ExitCode::kUsage, "--convex-hull is not supported by this build yet");
   predicates::reset_counters();
-  pslg::validate(pslg_, opt_.source);
-  const Point2 origin = choose_origin(pslg_.bbox());
-  if (origin.x != 0 || origin.y != 0) {
-    for (auto& p : pslg_.points) p = {p.x - origin.x, p.y - origin.y};
-    for (auto& p : pslg_.holes) p = {p.x - origin.x, p.y - origin.y};
-    for (auto& r : pslg_.regions) r.seed = {r.seed.x - origin.x, r.seed.y - origin.y};
-    pslg_.origin = pslg_.origin + origin;  // (the CLI sets origin = shift: the same when it was 0)
-  }
+  pslg::validate(in, opt_.source);
+  pslg_ = to_local_frame(in);
   if (opt_.progress && !opt_.progress(0.05, "cdt")) throw Error(ExitCode::kCancelled, "cancelled during cdt");
-  const auto t = Clock::now();
-  tri_ = cdt::build_cdt(pslg_, {cdt::CdtOptions::Regions::kAuto, opt_.source}, nullptr);
-  cdt_s_ = since(t);
-  if (tri_.num_live_triangles() == 0)
-    throw Error(ExitCode::kInvalidGeometry, opt_.source + ": the domain is empty (no region enclosed by segments)");
+  double s = 0;
+  tri_ = fdr::build_cdt(pslg_, opt_.source, &s);
+  cdt_s_ = s;
 }
 
 Triangulator& Triangulator::refine(const SizingField& f) {
@@ -99,52 +187,37 @@ Triangulator& Triangulator::refine(const SizingField& f) {
 
 Triangulator& Triangulator::refine(SizingPtr world_f) {
   f_ = std::make_shared<sizing::ShiftedField>(std::move(world_f), pslg_.origin);
-  const SizingField& f = *f_;
-  Box2 box = pslg_.bbox();
-  double alpha = f.lipschitz();
-  if (!(alpha >= 0)) alpha = sizing::estimate_lipschitz(f, box, 64);
-  alpha_ = alpha;
-  if (alpha * opt_.bound >= 1 && opt_.log)
-    opt_.log(LogLevel::kWarning, "alpha*B = " + std::to_string(alpha * opt_.bound) +
-                                     " >= 1: the spacing varies too fast for the FDR guarantees (termination still "
-                                     "bounded by --max-steiner); lower --bound or smooth the spacing");
-  const double expected = refine::estimate_triangles(tri_, f, opt_.bound);
-  info(opt_.log, "expected about " + std::to_string(static_cast<long long>(expected)) + " triangles");
-  if (expected > 2.5 * static_cast<double>(opt_.max_steiner))
-    throw Error(ExitCode::kWorkLimit, "the spacing asks for about " + std::to_string(static_cast<long long>(expected)) +
-                                          " triangles, more than --max-steiner " + std::to_string(opt_.max_steiner) +
-                                          " allows; coarsen the spacing or raise --max-steiner");
-  const auto t = Clock::now();
-  refine::RefineOptions ro;
-  ro.bound = opt_.bound;
-  ro.min_angle_deg = opt_.min_angle_deg;
-  ro.max_steiner = opt_.max_steiner;
-  ro.expected_steiner = expected / 2;
-  const ProgressFn& progress = opt_.progress;
-  ro.progress = [&progress](double frac, std::string_view) { return !progress || progress(0.05 + 0.75 * frac, "refine"); };
-  refine::Refiner refiner(tri_, f, ro);
-  refiner.reserve(expected);
-  refiner.init();
-  refiner.run();
-  refine_s_ = refine_s_.value_or(0) + since(t);
-  seg_splits_ += refiner.stats().segment_splits;
-  circumcenters_ += refiner.stats().circumcenters;
-  angle_exempt_ = refiner.leftovers().angle_bad;
-  if (opt_.check) {
-    mesh::CheckResult cr = mesh::check_all(tri_);
-    const std::size_t bad = refiner.leftovers().r_over_f_bad;
-    if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
-    if (!cr.ok()) {
-      std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
-      for (const auto& p : cr.problems) msg += "\n  " + p;
-      throw Error(ExitCode::kCheckFailed, msg);
-    }
-    info(opt_.log, "check: topology, orientation, constrained Delaunay, segments and R/f(c) <= B hold");
-  }
+  const RefineOutcome r = refine_stage(tri_, *f_, pslg_.bbox(), opt_);
+  alpha_ = r.alpha;
+  refine_s_ = refine_s_.value_or(0) + r.refine_s;
+  seg_splits_ += r.stats.segment_splits;
+  circumcenters_ += r.stats.circumcenters;
+  angle_exempt_ = r.angle_exempt;
   return *this;
 }
 
 MeshView Triangulator::view() const { return tri_.to_view(); }
+
+QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig,
+                           quality::TriangleValues* per_triangle) {
+  const bool f_filled = f && m.f.empty();  // then m.f holds f at the vertices, which the report reuses
+  if (f_filled) {
+    m.f.resize(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f)(m.vertices[i]);
+  }
+  quality::RunInfo ri;
+  ri.cdt_s = fig.cdt_s;
+  ri.refine_s = fig.refine_s;
+  ri.predicate_filtered = predicates::counters().filtered;
+  ri.predicate_exact = predicates::counters().exact;
+  ri.exempt_small_angle_triangles = fig.angle_exempt;
+  ri.steiner_segment = fig.segment_splits;
+  ri.steiner_interior = fig.circumcenters;
+  ri.input_file = opt.source;
+  ri.spacing = f ? f->describe() : "none";
+  if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
+  return quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, f_filled ? &m.f : nullptr);
+}
 
 Mesh Triangulator::mesh() const {
   if (opt_.progress && !opt_.progress(0.8, "report")) throw Error(ExitCode::kCancelled, "cancelled during report");
@@ -155,23 +228,14 @@ Mesh Triangulator::mesh() const {
   out.min_angle_deg = opt_.min_angle_deg;
   out.alpha = alpha_;
   out.source = opt_.source;
-  MeshView& m = out.view;
-  if (f_ && m.f.empty()) {
-    m.f.resize(m.vertices.size());
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f_)(m.vertices[i]);
-  }
-  quality::RunInfo ri;
-  ri.cdt_s = cdt_s_;
-  ri.refine_s = refine_s_;
-  ri.predicate_filtered = predicates::counters().filtered;
-  ri.predicate_exact = predicates::counters().exact;
-  ri.exempt_small_angle_triangles = angle_exempt_;
-  ri.steiner_segment = seg_splits_;
-  ri.steiner_interior = circumcenters_;
-  ri.input_file = opt_.source;
-  ri.spacing = f_ ? f_->describe() : "none";
-  if (opt_.min_angle_deg > 0) ri.min_angle_option_deg = opt_.min_angle_deg;
-  out.report = quality::compute_quality(m, f_.get(), opt_.bound, alpha_, ri);
+  RunFigures fig;
+  fig.cdt_s = cdt_s_;
+  fig.refine_s = refine_s_;
+  fig.segment_splits = seg_splits_;
+  fig.circumcenters = circumcenters_;
+  fig.angle_exempt = angle_exempt_;
+  fig.alpha = alpha_;
+  out.report = measure_mesh(out.view, f_.get(), opt_, fig);
   out.report.run.peak_rss_mb = quality::peak_rss_mb_value();
   return out;
 }

@@ -10,6 +10,7 @@
 // fdr::api): this header and pipeline/mesh_domain.hpp are the library's front door.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +36,7 @@ using quality::QualityReport;
 struct TriangulateOptions {
   double bound = 1.0;                    // B: a triangle is bad when R / f(c) > B (--bound)
   double min_angle_deg = 0.0;            // extra minimum-angle bound, [0, 60) (--min-angle)
+  int smooth_passes = 0;                 // quality smoothing sweeps after refinement, [0, 100] (--smooth)
   std::uint64_t max_steiner = 20'000'000;  // Steiner point cap; reaching it is Error(kWorkLimit)
   bool check = false;                    // verify the invariants, Error(kCheckFailed) if one fails (--check)
   // Mesh the convex hull of the input, not the regions bounded by segments (--convex-hull).
@@ -43,6 +45,8 @@ struct TriangulateOptions {
   std::string source = "input";          // named in error messages and in the report
   ProgressFn progress;                   // fraction 0..1, may cancel (Error(kCancelled))
   LogFn log;                             // warnings (alpha*B >= 1) and info lines
+  // Called when a stage ends ("refine", "smooth", "check"): per-stage timing hooks (pipeline).
+  std::function<void(const std::string& stage)> stage_done;
 };
 
 // A finished mesh: the compact view (local frame, triangles counter-clockwise, constrained edges

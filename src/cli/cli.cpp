@@ -11,7 +11,7 @@
 #include "base/progress.hpp"
 #include "base/version.hpp"
 #include "cli/option_table.hpp"
-#include "cli/quality_command.hpp"
+#include "pipeline/quality_run.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/summary.hpp"
 
@@ -19,26 +19,6 @@ namespace fdr::cli {
 namespace {
 
 using Values = std::map<std::string, std::vector<std::string>>;
-
-double to_double(const Values& v, const std::string& key, double def) {
-  auto it = v.find(key);
-  if (it == v.end() || it->second.empty()) return def;
-  const std::string& s = it->second.back();
-  char* end = nullptr;
-  const double x = std::strtod(s.c_str(), &end);
-  if (end == s.c_str() || *end != '\0' || !std::isfinite(x))
-    throw Error(ExitCode::kUsage, "--" + key + ": '" + s + "' is not a number");
-  return x;
-}
-std::optional<double> opt_double(const Values& v, const std::string& key) {
-  auto it = v.find(key);
-  if (it == v.end() || it->second.empty()) return std::nullopt;
-  return to_double(v, key, 0);
-}
-std::string str(const Values& v, const std::string& key) {
-  auto it = v.find(key);
-  return it == v.end() || it->second.empty() ? std::string() : it->second.back();
-}
 
 // GDAL-style progress on stderr, shown only once the run has taken more than a second.
 class DelayedProgress {
@@ -97,7 +77,7 @@ Parser::Parser()
   subs["quality"] = app.add_subcommand("quality", "Report the quality of an existing mesh against a spacing f");
   for (const auto& o : option_table()) {
     CLI::App* sub = subs.at(o.command);
-    auto& slot = values[o.command][o.key];
+    auto& slot = values[o.command][o.key];  // strings; typed by OptSpec::bind
     std::string help = o.help;
     if (!o.def.empty()) help += " [default: " + o.def + "]";
     CLI::Option* opt;
@@ -115,84 +95,16 @@ Parser::Parser()
   }
 }
 
-// Binds the parsed `mesh` values to pipeline::Options (phase 2 of issue 8 replaces these lines by
-// a typed option table bound to the fields).
-pipeline::Options bind_mesh(std::map<std::string, Values>& values, std::map<std::string, bool>& flags,
-                            const std::string& cmdline) {
-  {
-    const Values& v = values["mesh"];
-    pipeline::Options o;
-    o.command_line = cmdline;
-    o.input = str(v, "input");
-    o.layer = str(v, "layer");
-    o.where = str(v, "where");
-    o.land = str(v, "land");
-    if (const std::string e = str(v, "extent"); !e.empty()) {
-      std::array<double, 4> box{};
-      std::stringstream ss(e);
-      std::string tok;
-      int k = 0;
-      while (std::getline(ss, tok, ',')) {
-        char* end = nullptr;
-        if (k >= 4) throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX");
-        box[k] = std::strtod(tok.c_str(), &end);
-        if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, "--extent: '" + tok + "' is not a number");
-        ++k;
-      }
-      if (k != 4 || !(box[0] < box[2]) || !(box[1] < box[3]))
-        throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
-      o.extent = box;
-    }
-    o.breaklines = str(v, "breaklines");
-    o.points = str(v, "points");
-    o.open_boundary = str(v, "open-boundary");
-    o.breaklines_layer = str(v, "breaklines-layer");
-    o.points_layer = str(v, "points-layer");
-    o.open_boundary_layer = str(v, "open-boundary-layer");
-    o.s_srs = str(v, "s_srs");
-    o.t_srs = str(v, "t_srs");
-    o.output_crs = str(v, "output-crs");
-    o.spacing = str(v, "spacing");
-    o.raster = str(v, "raster");
-    o.size_raster = str(v, "size-raster");
-    o.hmin = opt_double(v, "hmin");
-    o.hmax = opt_double(v, "hmax");
-    o.dist_grade = opt_double(v, "dist-grade");
-    o.slope_rule = opt_double(v, "slope-rule");
-    o.wavelength_rule = opt_double(v, "wavelength-rule");
-    o.wave_period_s = to_double(v, "wave-period", o.wave_period_s);
-    o.vertical_tol = opt_double(v, "vertical-tol");
-    o.gradation = to_double(v, "gradation", o.gradation);
-    o.cell_size = opt_double(v, "cell-size");
-    o.write_spacing = str(v, "write-spacing");
-    o.snap = opt_double(v, "snap");
-    o.min_island_factor = opt_double(v, "min-island");
-    o.keep_coast = flags["mesh:keep-coast"];
-    o.coast_tol = to_double(v, "coast-tol", o.coast_tol);
-    o.close_width = opt_double(v, "close-width");
-    o.min_feature = opt_double(v, "min-feature");
-    o.min_depth_m = to_double(v, "min-depth", o.min_depth_m);
-    o.simplify = opt_double(v, "simplify");
-    o.bound = to_double(v, "bound", 1.0);
-    o.min_angle_deg = to_double(v, "min-angle", -1.0);
-    if (opt_double(v, "min-angle") && o.min_angle_deg < 0) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
-    if (const auto sm_opt = opt_double(v, "smooth")) {
-      const double sm = *sm_opt;
-      if (!(sm >= 0 && sm <= 100) || sm != std::floor(sm)) throw Error(ExitCode::kUsage, "--smooth must be an integer in [0, 100]");
-      o.smooth_passes = static_cast<int>(sm);
-    }
-    const double ms = to_double(v, "max-steiner", 20e6);
-    if (!(ms >= 1) || ms != std::floor(ms)) throw Error(ExitCode::kUsage, "--max-steiner must be a positive integer");
-    o.max_steiner = static_cast<std::uint64_t>(ms);
-    o.check = flags["mesh:check"];
-    o.quiet = flags["mesh:quiet"];
-    if (auto it = v.find("output"); it != v.end()) o.outputs = it->second;
-    o.of = str(v, "of");
-    o.slf_double = flags["mesh:slf-double"];
-    o.telemac_open = str(v, "telemac-open");
-    o.report_json = str(v, "report");
-    return o;
-  }
+// The parsed values of `command` bound to the Request through the option table (flags given
+// count as one value).
+Request bind_parsed(Parser& p, const std::string& command, const std::string& cmdline) {
+  Values v = p.values[command];
+  for (const auto& o : option_table())
+    if (o.command == command && o.type == "flag" && p.flags[command + ":" + o.key]) v[o.key] = {"true"};
+  Request r;
+  r.mesh.command_line = cmdline;
+  bind_options(command, v, r);
+  return r;
 }
 
 }  // namespace
@@ -210,15 +122,13 @@ pipeline::Options parse_mesh_args(const std::vector<std::string>& args) {
   }
   std::string cmdline;
   for (std::size_t i = 0; i < argv.size(); ++i) cmdline += (i ? " " : "") + argv[i];
-  return bind_mesh(p.values, p.flags, cmdline);
+  return bind_parsed(p, "mesh", cmdline).mesh;
 }
 
 int run(int argc, char** argv) {
   Parser p;
   CLI::App& app = p.app;
-  auto& values = p.values;
   auto& subs = p.subs;
-  auto& flags = p.flags;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -240,22 +150,16 @@ int run(int argc, char** argv) {
   std::string cmdline;
   for (int i = 0; i < argc; ++i) cmdline += (i ? " " : "") + std::string(argv[i]);
   try {
-    if (subs["quality"]->parsed()) {
-      const Values& v = values["quality"];
-      QualityArgs q;
-      q.mesh = str(v, "mesh");
-      q.spacing = str(v, "spacing");
-      q.raster = str(v, "raster");
-      q.bound = to_double(v, "bound", 1.0);
-      q.report_json = str(v, "report");
-      q.quiet = flags["quality:quiet"];
-      return run_quality(q);
+    if (subs["quality"]->parsed()) {  // read -> spacing -> measure (pipeline::run_quality)
+      const pipeline::QualityOptions q = bind_parsed(p, "quality", cmdline).quality;
+      pipeline::run_quality(q, q.quiet ? nullptr : &std::cout);
+      return 0;
     }
     if (!subs["mesh"]->parsed()) {
       std::printf("%s", app.help().c_str());
       return static_cast<int>(ExitCode::kUsage);
     }
-    pipeline::Options o = bind_mesh(values, flags, cmdline);
+    const pipeline::Options o = bind_parsed(p, "mesh", cmdline).mesh;  // usage errors before any I/O
 
     DelayedProgress progress(o.quiet);
     auto log = [&](LogLevel lvl, std::string_view msg) {

@@ -1,11 +1,94 @@
 // The option table and its JSON rendering (--json-usage), consumed by the QGIS plugin.
 #include "cli/option_table.hpp"
 #include <nlohmann/json.hpp>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <sstream>
 #include "base/error.hpp"
 #include "base/version.hpp"
 #include "pipeline/output_formats.hpp"
 
 namespace fdr::cli {
+
+namespace {
+using MeshOptions = pipeline::Options;
+using QualityOptions = pipeline::QualityOptions;
+
+double parse_number(const std::string& key, const std::string& s) {
+  char* end = nullptr;
+  const double x = std::strtod(s.c_str(), &end);
+  if (end == s.c_str() || *end != '\0' || !std::isfinite(x))
+    throw Error(ExitCode::kUsage, "--" + key + ": '" + s + "' is not a number");
+  return x;
+}
+
+template <class M> struct Member;
+template <class C, class T> struct Member<T C::*> {
+  using Class = C;
+  using Type = T;
+};
+template <class C> C& target(Request& r) {
+  if constexpr (std::is_same_v<C, MeshOptions>) return r.mesh;
+  else return r.quality;
+}
+
+// The typed binding of a field: its type decides how the values are read.
+//   std::string: the last value; std::vector<std::string>: every value (repeatable options);
+//   bool: true when the flag is given; double / std::optional<double>: the last value, a number.
+template <auto M>
+void field(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  using T = typename Member<decltype(M)>::Type;
+  T& f = target<typename Member<decltype(M)>::Class>(r).*M;
+  if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+    if (!v.empty()) f = v;
+  } else {
+    if (v.empty()) return;
+    if constexpr (std::is_same_v<T, std::string>) f = v.back();
+    else if constexpr (std::is_same_v<T, bool>) f = true;
+    else f = parse_number(key, v.back());  // double, std::optional<double>
+  }
+}
+
+void set_extent(Request& r, const std::string&, const std::vector<std::string>& v) {
+  if (v.empty() || v.back().empty()) return;
+  std::array<double, 4> box{};
+  std::stringstream ss(v.back());
+  std::string tok;
+  int k = 0;
+  while (std::getline(ss, tok, ',')) {
+    char* end = nullptr;
+    if (k >= 4) throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX");
+    box[k] = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, "--extent: '" + tok + "' is not a number");
+    ++k;
+  }
+  if (k != 4 || !(box[0] < box[2]) || !(box[1] < box[3]))
+    throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+  r.mesh.extent = box;
+}
+
+void set_min_angle(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;  // automatic: 30 for GIS inputs, 0 for .poly (pipeline::plan_run)
+  r.mesh.min_angle_deg = parse_number(key, v.back());
+  if (r.mesh.min_angle_deg < 0) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
+}
+
+void set_smooth(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;  // automatic: 4 for GIS inputs, 0 for .poly
+  const double sm = parse_number(key, v.back());
+  if (!(sm >= 0 && sm <= 100) || sm != std::floor(sm)) throw Error(ExitCode::kUsage, "--smooth must be an integer in [0, 100]");
+  r.mesh.smooth_passes = static_cast<int>(sm);
+}
+
+void set_max_steiner(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;
+  const double ms = parse_number(key, v.back());
+  if (!(ms >= 1) || ms != std::floor(ms)) throw Error(ExitCode::kUsage, "--max-steiner must be a positive integer");
+  r.mesh.max_steiner = static_cast<std::uint64_t>(ms);
+}
+}  // namespace
 
 namespace {
 // The output formats as the writers publish them (pipeline::output_formats): -o help and --of choices.
@@ -28,73 +111,83 @@ std::vector<std::string> output_choices() {
 const std::vector<OptSpec>& option_table() {
   static const std::vector<OptSpec> t = {
       // mesh: input
-      {"mesh", "input", "input", "vector_in", "INPUT", "", "Input",
+      {"mesh", "input", "input", field<&MeshOptions::input>, "vector_in", "INPUT", "", "Input",
        "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes); "
        "not needed with --land and --extent",
        false, false, {}, true},
-      {"mesh", "--layer", "layer", "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
-      {"mesh", "--where", "where", "string", "SQL", "", "Input", "OGR attribute filter on INPUT features"},
-      {"mesh", "--land", "land", "vector_in", "FILE", "", "Input", "Land polygons subtracted from --extent (instead of water polygons)"},
-      {"mesh", "--extent", "extent", "bbox", "XMIN,YMIN,XMAX,YMAX", "", "Input", "Box (lon/lat degrees) from which --land is subtracted"},
-      {"mesh", "--breaklines", "breaklines", "vector_in", "FILE", "", "Input", "Lines kept as mesh edges (rivers, levees, channels); clipped to the domain"},
-      {"mesh", "--points", "points", "vector_in", "FILE", "", "Input", "Fixed vertices (points inside the domain)"},
-      {"mesh", "--open-boundary", "open-boundary", "vector_in", "FILE", "", "Input", "Lines marking the open-ocean parts of the boundary"},
-      {"mesh", "--breaklines-layer", "breaklines-layer", "string", "NAME", "", "Input", "Layer of --breaklines to read (default: the first)"},
-      {"mesh", "--points-layer", "points-layer", "string", "NAME", "", "Input", "Layer of --points to read (default: the first)"},
-      {"mesh", "--open-boundary-layer", "open-boundary-layer", "string", "NAME", "", "Input", "Layer of --open-boundary to read (default: the first)"},
-      {"mesh", "--s_srs", "s_srs", "crs", "SRS", "", "Input", "CRS of input layers that carry none"},
+      {"mesh", "--layer", "layer", field<&MeshOptions::layer>, "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
+      {"mesh", "--where", "where", field<&MeshOptions::where>, "string", "SQL", "", "Input", "OGR attribute filter on INPUT features"},
+      {"mesh", "--land", "land", field<&MeshOptions::land>, "vector_in", "FILE", "", "Input", "Land polygons subtracted from --extent (instead of water polygons)"},
+      {"mesh", "--extent", "extent", set_extent, "bbox", "XMIN,YMIN,XMAX,YMAX", "", "Input", "Box (lon/lat degrees) from which --land is subtracted"},
+      {"mesh", "--breaklines", "breaklines", field<&MeshOptions::breaklines>, "vector_in", "FILE", "", "Input", "Lines kept as mesh edges (rivers, levees, channels); clipped to the domain"},
+      {"mesh", "--points", "points", field<&MeshOptions::points>, "vector_in", "FILE", "", "Input", "Fixed vertices (points inside the domain)"},
+      {"mesh", "--open-boundary", "open-boundary", field<&MeshOptions::open_boundary>, "vector_in", "FILE", "", "Input", "Lines marking the open-ocean parts of the boundary"},
+      {"mesh", "--breaklines-layer", "breaklines-layer", field<&MeshOptions::breaklines_layer>, "string", "NAME", "", "Input", "Layer of --breaklines to read (default: the first)"},
+      {"mesh", "--points-layer", "points-layer", field<&MeshOptions::points_layer>, "string", "NAME", "", "Input", "Layer of --points to read (default: the first)"},
+      {"mesh", "--open-boundary-layer", "open-boundary-layer", field<&MeshOptions::open_boundary_layer>, "string", "NAME", "", "Input", "Layer of --open-boundary to read (default: the first)"},
+      {"mesh", "--s_srs", "s_srs", field<&MeshOptions::s_srs>, "crs", "SRS", "", "Input", "CRS of input layers that carry none"},
       // mesh: CRS
-      {"mesh", "--t_srs", "t_srs", "crs", "SRS", "auto: UTM zone, or a centred transverse Mercator for wide domains", "CRS", "Projected CRS to mesh in (EPSG:n, PROJ string or WKT)"},
-      {"mesh", "--output-crs", "output-crs", "crs", "SRS", "", "CRS", "Write node coordinates in this CRS (same topology), e.g. EPSG:4326"},
+      {"mesh", "--t_srs", "t_srs", field<&MeshOptions::t_srs>, "crs", "SRS", "auto: UTM zone, or a centred transverse Mercator for wide domains", "CRS", "Projected CRS to mesh in (EPSG:n, PROJ string or WKT)"},
+      {"mesh", "--output-crs", "output-crs", field<&MeshOptions::output_crs>, "crs", "SRS", "", "CRS", "Write node coordinates in this CRS (same topology), e.g. EPSG:4326"},
       // mesh: spacing
-      {"mesh", "--spacing", "spacing", "expr", "EXPR|PRESET", "bbox diagonal / 20 (.poly)", "Spacing",
+      {"mesh", "--spacing", "spacing", field<&MeshOptions::spacing>, "expr", "EXPR|PRESET", "bbox diagonal / 20 (.poly)", "Spacing",
        "Spacing f(x,y): a number, paper-f1, paper-f2, K*paper-f1, or an expression in x, y (+ - * / ^ abs sin cos tan sqrt exp log min max)"},
-      {"mesh", "--raster", "raster", "raster_in", "FILE", "", "Spacing", "Bathymetry/DEM raster (any GDAL format; elevation positive up)"},
-      {"mesh", "--size-raster", "size-raster", "raster_in", "FILE", "", "Spacing", "Explicit size raster (metres)"},
-      {"mesh", "--hmin", "hmin", "float", "M", "", "Spacing", "Smallest element size (metres)"},
-      {"mesh", "--hmax", "hmax", "float", "M", "", "Spacing", "Largest element size (metres)"},
-      {"mesh", "--dist-grade", "dist-grade", "float", "G", "", "Spacing", "Distance-to-shore rule h = hmin + G * distance"},
-      {"mesh", "--slope-rule", "slope-rule", "float", "SLP", "", "Spacing", "Bathymetric slope rule h = (2 pi / SLP) depth / |grad depth|"},
-      {"mesh", "--wavelength-rule", "wavelength-rule", "float", "WL", "", "Spacing", "Wavelength rule h = T sqrt(g depth) / WL"},
-      {"mesh", "--wave-period", "wave-period", "float", "S", "44712 (M2)", "Spacing", "Wave period T for --wavelength-rule (seconds)"},
-      {"mesh", "--vertical-tol", "vertical-tol", "float", "M", "", "Spacing", "Terrain rule h = sqrt(8 tol / |curvature|): TIN within tol metres of the DEM"},
-      {"mesh", "--gradation", "gradation", "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},
-      {"mesh", "--cell-size", "cell-size", "float", "M", "raster resolution", "Spacing", "Cell size of the spacing grid (metres)"},
-      {"mesh", "--write-spacing", "write-spacing", "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},
+      {"mesh", "--raster", "raster", field<&MeshOptions::raster>, "raster_in", "FILE", "", "Spacing", "Bathymetry/DEM raster (any GDAL format; elevation positive up)"},
+      {"mesh", "--size-raster", "size-raster", field<&MeshOptions::size_raster>, "raster_in", "FILE", "", "Spacing", "Explicit size raster (metres)"},
+      {"mesh", "--hmin", "hmin", field<&MeshOptions::hmin>, "float", "M", "", "Spacing", "Smallest element size (metres)"},
+      {"mesh", "--hmax", "hmax", field<&MeshOptions::hmax>, "float", "M", "", "Spacing", "Largest element size (metres)"},
+      {"mesh", "--dist-grade", "dist-grade", field<&MeshOptions::dist_grade>, "float", "G", "", "Spacing", "Distance-to-shore rule h = hmin + G * distance"},
+      {"mesh", "--slope-rule", "slope-rule", field<&MeshOptions::slope_rule>, "float", "SLP", "", "Spacing", "Bathymetric slope rule h = (2 pi / SLP) depth / |grad depth|"},
+      {"mesh", "--wavelength-rule", "wavelength-rule", field<&MeshOptions::wavelength_rule>, "float", "WL", "", "Spacing", "Wavelength rule h = T sqrt(g depth) / WL"},
+      {"mesh", "--wave-period", "wave-period", field<&MeshOptions::wave_period_s>, "float", "S", "44712 (M2)", "Spacing", "Wave period T for --wavelength-rule (seconds)"},
+      {"mesh", "--vertical-tol", "vertical-tol", field<&MeshOptions::vertical_tol>, "float", "M", "", "Spacing", "Terrain rule h = sqrt(8 tol / |curvature|): TIN within tol metres of the DEM"},
+      {"mesh", "--gradation", "gradation", field<&MeshOptions::gradation>, "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},
+      {"mesh", "--cell-size", "cell-size", field<&MeshOptions::cell_size>, "float", "M", "raster resolution", "Spacing", "Cell size of the spacing grid (metres)"},
+      {"mesh", "--write-spacing", "write-spacing", field<&MeshOptions::write_spacing>, "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},
       // mesh: repair
-      {"mesh", "--snap", "snap", "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},
-      {"mesh", "--min-island", "min-island", "float", "FACTOR", "1 (0 with --keep-coast)", "Repair", "Remove islands with area < FACTOR * hmin^2 (listed in repairs)"},
-      {"mesh", "--close-width", "close-width", "float", "M", "hmin (0 with --keep-coast)", "Repair", "Close dead-end water (inlets, gaps, slivers) narrower than M metres (listed in repairs; 0: keep)"},
-      {"mesh", "--min-feature", "min-feature", "float", "M", "hmin/4", "Repair", "Keep channels joining water bodies down to M metres wide; narrower ones are closed (listed)"},
-      {"mesh", "--coast-tol", "coast-tol", "float", "FACTOR", "0.25", "Repair", "Resample boundaries to f keeping the shape within FACTOR * f"},
-      {"mesh", "--keep-coast", "keep-coast", "flag", "", "", "Repair", "Keep every input boundary vertex and close nothing (no resampling)"},
-      {"mesh", "--min-depth", "min-depth", "float", "M", "1", "Output", "Depth clamp (metres) for the gravity-wave time step in the report"},
-      {"mesh", "--simplify", "simplify", "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
+      {"mesh", "--snap", "snap", field<&MeshOptions::snap>, "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},
+      {"mesh", "--min-island", "min-island", field<&MeshOptions::min_island_factor>, "float", "FACTOR", "1 (0 with --keep-coast)", "Repair", "Remove islands with area < FACTOR * hmin^2 (listed in repairs)"},
+      {"mesh", "--close-width", "close-width", field<&MeshOptions::close_width>, "float", "M", "hmin (0 with --keep-coast)", "Repair", "Close dead-end water (inlets, gaps, slivers) narrower than M metres (listed in repairs; 0: keep)"},
+      {"mesh", "--min-feature", "min-feature", field<&MeshOptions::min_feature>, "float", "M", "hmin/4", "Repair", "Keep channels joining water bodies down to M metres wide; narrower ones are closed (listed)"},
+      {"mesh", "--coast-tol", "coast-tol", field<&MeshOptions::coast_tol>, "float", "FACTOR", "0.25", "Repair", "Resample boundaries to f keeping the shape within FACTOR * f"},
+      {"mesh", "--keep-coast", "keep-coast", field<&MeshOptions::keep_coast>, "flag", "", "", "Repair", "Keep every input boundary vertex and close nothing (no resampling)"},
+      {"mesh", "--min-depth", "min-depth", field<&MeshOptions::min_depth_m>, "float", "M", "1", "Output", "Depth clamp (metres) for the gravity-wave time step in the report"},
+      {"mesh", "--simplify", "simplify", field<&MeshOptions::simplify>, "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
-      {"mesh", "--bound", "bound", "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},
-      {"mesh", "--min-angle", "min-angle", "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q); 0 turns it off"},
-      {"mesh", "--smooth", "smooth", "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
-      {"mesh", "--max-steiner", "max-steiner", "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
-      {"mesh", "--check", "check", "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails)"},
+      {"mesh", "--bound", "bound", field<&MeshOptions::bound>, "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},
+      {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q); 0 turns it off"},
+      {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
+      {"mesh", "--max-steiner", "max-steiner", set_max_steiner, "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
+      {"mesh", "--check", "check", field<&MeshOptions::check>, "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails)"},
       // mesh: output
-      {"mesh", "-o,--output", "output", "file_out", "FILE", "", "Output", output_help(), true},
-      {"mesh", "--of", "of", "choice", "FORMAT", "", "Output", "Output format override",
+      {"mesh", "-o,--output", "output", field<&MeshOptions::outputs>, "file_out", "FILE", "", "Output", output_help(), true},
+      {"mesh", "--of", "of", field<&MeshOptions::of>, "choice", "FORMAT", "", "Output", "Output format override",
        false, false, output_choices()},
-      {"mesh", "--slf-double", "slf-double", "flag", "", "", "Output", "Write Selafin (.slf) in double precision (SERAFIND)"},
-      {"mesh", "--telemac-open", "telemac-open", "string", "L,U,V", "5,4,4", "Output",
+      {"mesh", "--slf-double", "slf-double", field<&MeshOptions::slf_double>, "flag", "", "", "Output", "Write Selafin (.slf) in double precision (SERAFIND)"},
+      {"mesh", "--telemac-open", "telemac-open", field<&MeshOptions::telemac_open>, "string", "L,U,V", "5,4,4", "Output",
        "Telemac .cli codes LIHBOR,LIUBOR,LIVBOR of open-boundary nodes (5,4,4 prescribed elevation; 4,5,5 prescribed velocity)"},
-      {"mesh", "--report", "report", "file_out", "FILE.json", "", "Output", "Write the quality report as JSON"},
-      {"mesh", "-q,--quiet", "quiet", "flag", "", "", "Output", "No progress and no report on stdout"},
+      {"mesh", "--report", "report", field<&MeshOptions::report_json>, "file_out", "FILE.json", "", "Output", "Write the quality report as JSON"},
+      {"mesh", "-q,--quiet", "quiet", field<&MeshOptions::quiet>, "flag", "", "", "Output", "No progress and no report on stdout"},
       // quality
-      {"quality", "mesh", "mesh", "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .gr3/.ll, .slf, .msh, .node, fdrmesh .gpkg)",
+      {"quality", "mesh", "mesh", field<&QualityOptions::mesh>, "mesh_in", "MESH", "", "Input", "Mesh to judge (.2dm, fort.14/.grd, .gr3/.ll, .slf, .msh, .node, fdrmesh .gpkg)",
        false, true, {}, true},
-      {"quality", "--spacing", "spacing", "expr", "EXPR|PRESET", "", "Spacing", "Spacing f(x,y) in the mesh's coordinates"},
-      {"quality", "--raster", "raster", "raster_in", "FILE", "", "Spacing", "Spacing from a size raster in the mesh's CRS (metres)"},
-      {"quality", "--bound", "bound", "float", "B", "1", "Quality", "Bound B for counting bad triangles (R/f(c) > B)"},
-      {"quality", "--report", "report", "file_out", "FILE.json", "", "Output", "Write the report as JSON"},
-      {"quality", "-q,--quiet", "quiet", "flag", "", "", "Output", "No report on stdout"},
+      {"quality", "--spacing", "spacing", field<&QualityOptions::spacing>, "expr", "EXPR|PRESET", "", "Spacing", "Spacing f(x,y) in the mesh's coordinates"},
+      {"quality", "--raster", "raster", field<&QualityOptions::raster>, "raster_in", "FILE", "", "Spacing", "Spacing from a size raster in the mesh's CRS (metres)"},
+      {"quality", "--bound", "bound", field<&QualityOptions::bound>, "float", "B", "1", "Quality", "Bound B for counting bad triangles (R/f(c) > B)"},
+      {"quality", "--report", "report", field<&QualityOptions::report_json>, "file_out", "FILE.json", "", "Output", "Write the report as JSON"},
+      {"quality", "-q,--quiet", "quiet", field<&QualityOptions::quiet>, "flag", "", "", "Output", "No report on stdout"},
   };
   return t;
+}
+
+void bind_options(const std::string& command, const std::map<std::string, std::vector<std::string>>& values,
+                  Request& request) {
+  static const std::vector<std::string> none;
+  for (const auto& o : option_table()) {
+    if (o.command != command) continue;
+    const auto it = values.find(o.key);
+    o.bind(request, o.key, it == values.end() ? none : it->second);
+  }
 }
 
 std::string json_usage() {

@@ -1,26 +1,29 @@
-// GIS stage: read layers into a projected local frame, build the spacing from rasters and rules
-// (combined by minimum, clamped, gradient-limited), clean the PSLG, attach depths to the mesh.
+// Read stage of GIS runs: layers into a projected local frame, the spacing from rasters and rules
+// (sizing::spacing_from_rules, gradient-limited), the PSLG cleaned and resampled; the .poly read
+// stage; the depths stage (raster sampled at the mesh's vertices) and the TIN error.
 #include "pipeline/gis_stage.hpp"
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
-#include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
-#include <unordered_map>
+#include "api/stages.hpp"
 #include "base/error.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
-#include "gis/raster_output.hpp"
-#include "pipeline/reproject_mesh.hpp"
+#include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
-#include <cstdlib>
+#include "pslg/snap_loose_ends.hpp"
+#include "quality/tin_error.hpp"
+#include "sizing/resample_grid.hpp"
 #include "sizing/fields.hpp"
 #include "sizing/gradient_limiter.hpp"
 #include "sizing/grid_field.hpp"
 #include "sizing/make_spacing.hpp"
-#include "sizing/raster_rules.hpp"
+#include "sizing/spacing_rules.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -44,166 +47,11 @@ std::string num(double v) {
   return s.str();
 }
 
-// Vertical error of the linear TIN against the DEM grid: every cell centre inside a triangle is
-// compared with the plane through the triangle's three vertex elevations.
-std::pair<double, double> tin_vertical_error(const mesh::MeshView& m, const sizing::Grid& dem) {
-  double max_err = 0, sum2 = 0;
-  std::size_t n = 0;
-  for (const auto& t : m.triangles) {
-    const Point2 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-    const double za = m.z[t[0]], zb = m.z[t[1]], zc = m.z[t[2]];
-    const double det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    if (!(det > 0)) continue;
-    const double xmin = std::min({a.x, b.x, c.x}), xmax = std::max({a.x, b.x, c.x});
-    const double ymin = std::min({a.y, b.y, c.y}), ymax = std::max({a.y, b.y, c.y});
-    const long i0 = std::max(0L, static_cast<long>(std::ceil((xmin - dem.x0) / dem.dx - 0.5)));
-    const long i1 = std::min(static_cast<long>(dem.nx) - 1, static_cast<long>(std::floor((xmax - dem.x0) / dem.dx - 0.5)));
-    const long j0 = std::max(0L, static_cast<long>(std::ceil((ymin - dem.y0) / dem.dy - 0.5)));
-    const long j1 = std::min(static_cast<long>(dem.ny) - 1, static_cast<long>(std::floor((ymax - dem.y0) / dem.dy - 0.5)));
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i) {
-        const Point2 p = dem.center(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-        const double l1 = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / det;
-        const double l2 = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / det;
-        const double l3 = 1 - l1 - l2;
-        if (l1 < 0 || l2 < 0 || l3 < 0) continue;
-        const double zd = dem.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-        if (!std::isfinite(zd)) continue;
-        const double e = std::fabs(l1 * za + l2 * zb + l3 * zc - zd);
-        max_err = std::max(max_err, e);
-        sum2 += e * e;
-        ++n;
-      }
-  }
-  return {max_err, n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0};
-}
-
-// `g` resampled onto the cells of `like` (bilinear between cell centres, clamped to their hull as
-// GridField does). A non-finite corner with a non-zero weight is passed through (NaN before +inf),
-// so nodata and "no constraint" areas are not smeared into finite values.
-sizing::Grid resample_like(const sizing::Grid& g, const sizing::Grid& like) {
-  if (g.nx == like.nx && g.ny == like.ny && g.x0 == like.x0 && g.y0 == like.y0 && g.dx == like.dx && g.dy == like.dy)
-    return g;
-  sizing::Grid r = like;
-  for (std::size_t j = 0; j < r.ny; ++j)
-    for (std::size_t i = 0; i < r.nx; ++i) {
-      const Point2 p = r.center(i, j);
-      const double u = std::clamp((p.x - g.x0) / g.dx - 0.5, 0.0, static_cast<double>(g.nx - 1));
-      const double w = std::clamp((p.y - g.y0) / g.dy - 0.5, 0.0, static_cast<double>(g.ny - 1));
-      std::size_t i0 = static_cast<std::size_t>(u), j0 = static_cast<std::size_t>(w);
-      if (i0 + 1 >= g.nx) i0 = g.nx >= 2 ? g.nx - 2 : 0;
-      if (j0 + 1 >= g.ny) j0 = g.ny >= 2 ? g.ny - 2 : 0;
-      const double s = u - static_cast<double>(i0), t = w - static_cast<double>(j0);
-      const std::size_t i1 = std::min(i0 + 1, g.nx - 1), j1 = std::min(j0 + 1, g.ny - 1);
-      const double c[4] = {g.at(i0, j0), g.at(i1, j0), g.at(i0, j1), g.at(i1, j1)};
-      const double wt[4] = {(1 - s) * (1 - t), s * (1 - t), (1 - s) * t, s * t};
-      double v = 0;
-      bool nan = false, inf = false;
-      for (int k = 0; k < 4; ++k) {
-        if (wt[k] == 0) continue;
-        if (std::isnan(c[k])) nan = true;
-        else if (std::isinf(c[k])) inf = true;
-        else v += wt[k] * c[k];
-      }
-      r.at(i, j) = nan ? std::numeric_limits<double>::quiet_NaN() : inf ? std::numeric_limits<double>::infinity() : v;
-    }
-  return r;
-}
-
-// Breakline ends and free points lying within `tol` of a boundary segment they do not touch are
-// put on it: the segment is split at the point. Why: a river clipped at the coast ends a rounding
-// error (1e-11 m) short of it; pslg::clean merges close vertices but not vertex-segment pairs, and
-// such a near-T-junction leaves a sliver the refiner cannot split (the rounded midpoint of the
-// coast segment falls outside it). Returns one Repair per split (local coordinates).
-std::vector<pslg::Repair> snap_loose_ends(pslg::Pslg& g, double tol) {
-  std::vector<pslg::Repair> reps;
-  if (!(tol > 0)) return reps;
-  const std::size_t n = g.points.size();
-  std::vector<int> bdeg(n, 0), ldeg(n, 0);
-  for (const auto& sg : g.segments) {
-    auto& d = sg.is_boundary() ? bdeg : ldeg;
-    ++d[sg.a];
-    ++d[sg.b];
-  }
-  std::vector<Index> loose;
-  for (std::size_t v = 0; v < n; ++v)
-    if (bdeg[v] == 0 && ldeg[v] <= 1) loose.push_back(static_cast<Index>(v));
-  if (loose.empty()) return reps;
-  // Loose points hashed on a grid; a segment looks at the cells its tol-widened box covers, or
-  // at every loose point when that is fewer (long segments, few points).
-  const Box2 box = g.bbox();
-  const double cell = std::max({tol, std::hypot(box.width(), box.height()) / 4096.0, 1e-300});
-  auto key = [&](long i, long j) { return i * 1000003L + j; };
-  auto ci = [&](double x) { return static_cast<long>(std::floor((x - box.lo.x) / cell)); };
-  auto cj = [&](double y) { return static_cast<long>(std::floor((y - box.lo.y) / cell)); };
-  std::unordered_map<long, std::vector<Index>> grid;
-  for (Index v : loose) grid[key(ci(g.points[v].x), cj(g.points[v].y))].push_back(v);
-  struct Hit { double d = 0, t = 0; std::size_t seg = 0; bool found = false; };
-  std::unordered_map<Index, Hit> hit;
-  auto consider = [&](Index v, std::size_t s) {
-    const auto& sg = g.segments[s];
-    if (sg.a == v || sg.b == v) return;
-    const Point2 p = g.points[v], a = g.points[sg.a], b = g.points[sg.b];
-    const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-    if (!(l2 > 0)) return;
-    const double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2;
-    if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) return;  // ends: clean's vertex snap
-    const double d = std::fabs((p.x - a.x) * dy - (p.y - a.y) * dx) / std::sqrt(l2);
-    Hit& h = hit[v];
-    if (d <= tol && (!h.found || d < h.d)) h = {d, t, s, true};
-  };
-  const std::size_t nseg = g.segments.size();
-  for (std::size_t s = 0; s < nseg; ++s) {
-    const auto& sg = g.segments[s];
-    if (!sg.is_boundary()) continue;
-    const Point2 a = g.points[sg.a], b = g.points[sg.b];
-    const long i0 = ci(std::min(a.x, b.x) - tol), i1 = ci(std::max(a.x, b.x) + tol);
-    const long j0 = cj(std::min(a.y, b.y) - tol), j1 = cj(std::max(a.y, b.y) + tol);
-    if (static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1) > static_cast<double>(loose.size())) {
-      for (Index v : loose) consider(v, s);
-      continue;
-    }
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i)
-        if (auto it = grid.find(key(i, j)); it != grid.end())
-          for (Index v : it->second) consider(v, s);
-  }
-  // Split each hit segment at its points, in order along it.
-  std::map<std::size_t, std::vector<std::pair<double, Index>>> splits;
-  for (const auto& [v, h] : hit)
-    if (h.found) splits[h.seg].push_back({h.t, v});
-  for (auto& [s, pts] : splits) {
-    std::sort(pts.begin(), pts.end());
-    const pslg::Segment orig = g.segments[s];
-    Index prev = orig.a;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      pslg::Segment piece = orig;
-      piece.a = prev;
-      piece.b = pts[k].second;
-      if (k == 0) g.segments[s] = piece;
-      else g.segments.push_back(piece);
-      prev = pts[k].second;
-      const double d = hit[pts[k].second].d;
-      reps.push_back({"snap_to_segment", g.points[prev], d,
-                      "a breakline end or fixed point lay " + num(d) +
-                          " m from a boundary segment it did not touch; the segment was split there",
-                      orig.part});
-    }
-    pslg::Segment last = orig;
-    last.a = prev;
-    g.segments.push_back(last);
-  }
-  return reps;
-}
-
 }  // namespace
 
-PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
-  std::vector<StageTime> stages;
-  StageClock clock(&stages);
+gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
   if (!opt.output_crs.empty()) gis::check_crs(opt.output_crs);  // fail before any work on an unknown CRS
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
-  auto warn = [&](const std::string& s) { if (log) log(LogLevel::kWarning, s); };
   gis::DomainOptions d;
   if (!opt.land.empty()) {
     d.land = {opt.land, opt.layer, opt.where};
@@ -252,7 +100,13 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
        " boundary segments, " + std::to_string(g.counts.open_parts) + " open-boundary parts, " +
        std::to_string(g.counts.breakline_segments) + " breakline segments, " + std::to_string(g.counts.fixed_points) +
        " fixed points; area " + num(g.domain_area_m2 / 1e6) + " km^2");
+  return g;
+}
 
+GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
+                       const LogFn& log) {
+  auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+  const gis::Frame& frame = g.frame;
   // Spacing, in ground metres on a grid over the domain box, then to grid units.
   Box2 box = g.raw.bbox();
   const double diam = std::hypot(box.width(), box.height());
@@ -297,82 +151,30 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
       like.dx = like.dy = cell;
       like.v.assign(like.nx * like.ny, 0.0);
     }
-    std::vector<sizing::Grid> rules;
-    std::vector<std::string> names;
-    // Distance to shore (land and island edges; open boundaries are not shore).
-    if (opt.dist_grade || !any_rule) {
-      std::vector<std::pair<Point2, Point2>> shore;
-      for (const auto& s : g.raw.segments)
-        if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
-          shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
-      const double grade = opt.dist_grade.value_or(0.1);
-      if (!shore.empty()) {
-        rules.push_back(sizing::rule_distance(sizing::distance_to_shore(like, shore), hmin, grade));
-        names.push_back("distance (hmin + " + num(grade) + " d)");
-      }
-    }
-    // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
-    // 5'/30" cells would miss the bends between samples that a fine TIN must follow.
-    sizing::Grid zfine, depth;
-    if (zgrid && (opt.slope_rule || opt.wavelength_rule || opt.vertical_tol)) {
-      zfine = resample_like(*zgrid, like);
-      depth = zfine;
-      for (auto& v : depth.v) v = -v;  // elevation positive up -> depth positive down
-    }
-    if (opt.slope_rule) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--slope-rule needs --raster");
-      rules.push_back(sizing::rule_slope(depth, *opt.slope_rule));
-      names.push_back("slope (slp " + num(*opt.slope_rule) + ")");
-    }
-    if (opt.wavelength_rule) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--wavelength-rule needs --raster");
-      rules.push_back(sizing::rule_wavelength(depth, opt.wave_period_s, *opt.wavelength_rule));
-      names.push_back("wavelength (T " + num(opt.wave_period_s) + " s, wl " + num(*opt.wavelength_rule) + ")");
-    }
-    if (opt.vertical_tol) {
-      if (!zgrid) throw Error(ExitCode::kUsage, "--vertical-tol needs --raster (the DEM)");
-      rules.push_back(sizing::rule_curvature(zfine, *opt.vertical_tol));
-      names.push_back("vertical error (tol " + num(*opt.vertical_tol) + " m)");
-    }
-    if (!opt.size_raster.empty()) {
-      sizing::Grid s = gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points);
-      if (s.nx != like.nx || s.ny != like.ny) {
-        // Resample onto `like` through a field (both grids cover the same box).
-        sizing::Grid r = like;
-        sizing::Grid filled = sizing::fill_nan(s, std::numeric_limits<double>::infinity());
-        for (auto& v : filled.v) if (!(v > 0)) v = std::numeric_limits<double>::infinity();
-        for (std::size_t j = 0; j < r.ny; ++j)
-          for (std::size_t i = 0; i < r.nx; ++i) {
-            const Point2 p = r.center(i, j);
-            const long ii = std::clamp(static_cast<long>((p.x - s.x0) / s.dx), 0L, static_cast<long>(s.nx) - 1);
-            const long jj = std::clamp(static_cast<long>((p.y - s.y0) / s.dy), 0L, static_cast<long>(s.ny) - 1);
-            r.at(i, j) = filled.at(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj));
-          }
-        s = std::move(r);
-      }
-      for (auto& v : s.v) if (!(v > 0) || !std::isfinite(v)) v = std::numeric_limits<double>::infinity();
-      rules.push_back(std::move(s));
-      names.push_back("size raster " + opt.size_raster);
-    }
-    sizing::Grid h;
-    if (rules.empty()) {
-      h = like;
-      std::fill(h.v.begin(), h.v.end(), hmax);
-    } else {
-      h = sizing::combine_min(rules);
-    }
-    h = sizing::clamp(h, hmin, hmax);
-    h = sizing::fill_nan(h, hmax);
-    if (!(opt.gradation > 0)) throw Error(ExitCode::kUsage, "--gradation must be positive");
+    sizing::SpacingRules rules;
+    rules.hmin = hmin;
+    rules.hmax = hmax;
+    rules.dist_grade = opt.dist_grade;
+    rules.slope = opt.slope_rule;
+    rules.wavelength = opt.wavelength_rule;
+    rules.wave_period_s = opt.wave_period_s;
+    rules.vertical_tol = opt.vertical_tol;
+    rules.size_raster = opt.size_raster;
+    std::vector<std::pair<Point2, Point2>> shore;  // land and island edges; open boundaries are not shore
+    for (const auto& s : g.raw.segments)
+      if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
+        shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
+    std::optional<sizing::Grid> size;
+    if (!opt.size_raster.empty())
+      size = sizing::size_raster_rule(gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points), like);
+    sizing::RuleGrid rg = sizing::spacing_from_rules(rules, {&like, &shore, zgrid.get(), size ? &*size : nullptr});
     clock.lap("sizing");
-    sizing::limit_gradient(h, opt.gradation);
+    sizing::limit_gradient(rg.h, opt.gradation);
     clock.lap("limit");
-    fgrid = std::make_shared<sizing::Grid>(h);
-    std::string desc = "grid " + std::to_string(h.nx) + "x" + std::to_string(h.ny) + ": min(";
-    for (std::size_t i = 0; i < names.size(); ++i) desc += (i ? ", " : "") + names[i];
-    desc += ") clamped to [" + num(hmin) + ", " + num(hmax) + "] m, gradient-limited to " + num(opt.gradation);
+    const std::string desc = sizing::describe_rules(rg, rules, opt.gradation);
+    fgrid = std::make_shared<sizing::Grid>(rg.h);
     info("spacing: " + desc);
-    f_ground = std::make_shared<sizing::GridField>(h, desc);
+    f_ground = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
   }
   if (!opt.spacing.empty()) {
     sizing::SizingPtr e = std::make_shared<ShiftedField>(sizing::make_spacing(opt.spacing), frame.origin());
@@ -381,8 +183,17 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   double kdev = 0;
   sizing::SizingPtr f = gis::ground_to_grid(f_ground, frame, box, &kdev);
   info("projection scale factor: max |k - 1| = " + num(kdev) + (kdev > 1e-3 ? " (spacing corrected)" : ""));
-  if (progress) progress(0.03, "clean");
 
+  if (progress) progress(0.03, "clean");
+  return {f, zgrid, fgrid, hmin, kdev};
+}
+
+PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& sp, StageClock& clock,
+                              const LogFn& log) {
+  auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+  const gis::Frame& frame = g.frame;
+  const sizing::SizingPtr& f = sp.f;
+  const double hmin = sp.hmin;
   // Geometry repair with the spacing known.
   pslg::CleanOptions co;
   co.snap_distance = g.snap_distance_m;
@@ -393,7 +204,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   }
   co.spacing = [f](Point2 p) { return (*f)(p); };
   clock.restart();
-  std::vector<pslg::Repair> loose_reps = snap_loose_ends(g.raw, g.snap_distance_m);
+  std::vector<pslg::Repair> loose_reps = pslg::snap_loose_ends(g.raw, g.snap_distance_m);
   gis::clean_domain(g, co);
   for (auto& r : loose_reps) {
     gis::RepairRecord rec;
@@ -454,7 +265,6 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   for (const auto& poly : (g.input_polygons.empty() ? g.domain_polygons : g.input_polygons))
     for (const auto& ring : poly)
       for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
-  out.stages = std::move(stages);
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();
@@ -467,33 +277,43 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   out.metadata.push_back({"local_origin", num(frame.origin().x) + "," + num(frame.origin().y)});
   out.metadata.push_back({"domain_area_m2", num(g.domain_area_m2)});
   if (!opt.raster.empty()) out.metadata.push_back({"raster", opt.raster});
-  out.metadata.push_back({"max_abs_scale_factor_minus_1", num(kdev)});
-  const bool terrain = opt.vertical_tol.has_value();
-  const std::string output_crs = opt.output_crs;
-  auto tin = out.tin_error;
-  out.attach = [zgrid, frame, terrain, info, warn, tin](mesh::MeshView& m) {
-    m.crs_wkt = frame.wkt();
-    if (zgrid) {
-      int filled = 0;
-      m.z = gis::sample_depths(*zgrid, m.vertices, &filled);
-      if (filled > 0) warn(std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
-      if (terrain) {
-        const auto [emax, erms] = tin_vertical_error(m, *zgrid);
-        info("TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
-        *tin = {emax, erms};
-      }
-    }
-  };
-  if (!output_crs.empty()) {
-    out.to_output_crs = [frame, output_crs](mesh::MeshView& m) { reproject_mesh(m, frame, output_crs); };
-  }
-  if (!opt.write_spacing.empty() && fgrid) {
-    const std::string path = opt.write_spacing;
-    out.extra_outputs.push_back([fgrid, frame, path] { gis::write_grid_geotiff(*fgrid, frame, path); });
-  } else if (!opt.write_spacing.empty()) {
-    throw Error(ExitCode::kUsage, "--write-spacing needs a raster-based spacing (give --raster or a rule)");
-  }
+  out.metadata.push_back({"max_abs_scale_factor_minus_1", num(sp.kdev)});
+  out.frame = frame;
+  out.dem = sp.dem;
+  out.spacing_grid = sp.spacing_grid;
   return out;
+}
+
+PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  std::vector<StageTime> stages;
+  StageClock clock(&stages);
+  gis::GisInput g = read_gis_input(opt, clock, progress, log);
+  const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
+  return clean_gis_input(opt, std::move(g), sp, clock, log);
+}
+
+PreparedInput prepare_poly_input(const Options& opt) {
+  PreparedInput in;
+  in.pslg = fdr::to_local_frame(fdr::read_pslg(opt.input));
+  // Default spacing for a bare PSLG: a twentieth of the bounding-box diagonal.
+  const std::string spec = opt.spacing.empty() ? fdr::default_spacing_spec(in.pslg) : opt.spacing;
+  in.f = fdr::spacing_in_frame(spec, in.pslg.origin);
+  return in;
+}
+
+std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log) {
+  if (!in.dem) return {};
+  int filled = 0;
+  std::vector<double> z = gis::sample_depths(*in.dem, m.vertices, &filled);
+  if (filled > 0 && log)
+    log(LogLevel::kWarning, std::to_string(filled) + " nodes got their depth from the nearest valid raster cell (nodata)");
+  return z;
+}
+
+std::pair<double, double> tin_error(const mesh::MeshView& m, const sizing::Grid& dem, const LogFn& log) {
+  const auto [emax, erms] = quality::tin_vertical_error(m, dem);
+  if (log) log(LogLevel::kInfo, "TIN vertical error against the DEM: max " + num(emax) + " m, RMS " + num(erms) + " m");
+  return {emax, erms};
 }
 
 }  // namespace fdr::pipeline

@@ -1,17 +1,18 @@
 // The GIS stage of the pipeline: OGR/GDAL inputs -> PSLG in a projected local frame + spacing f.
 #pragma once
-#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 #include "base/progress.hpp"
+#include "gis/crs.hpp"
+#include "gis/vector_input.hpp"
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 #include "pipeline/options.hpp"
 #include "pipeline/stage_time.hpp"
 #include "pslg/pslg.hpp"
+#include "sizing/grid.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::pipeline {
@@ -22,23 +23,51 @@ struct PreparedInput {
   std::string crs_name;                   // printed and stored
   std::vector<io::RepairRow> repairs;     // world coordinates
   std::vector<std::pair<std::string, std::string>> metadata;  // extra provenance
-  // Called on the final mesh (local frame): sets z (depth/elevation) and crs_wkt.
-  std::function<void(mesh::MeshView&)> attach;
-  // --output-crs: reprojects a copy of the mesh for writing (same topology); empty if not asked.
-  std::function<void(mesh::MeshView&)> to_output_crs;
-  // Extra outputs written after the mesh (e.g. --write-spacing GeoTIFF).
-  std::vector<std::function<void()>> extra_outputs;
-  // Terrain runs: (max, RMS) vertical error of the TIN against the DEM, filled by attach().
-  std::shared_ptr<std::optional<std::pair<double, double>>> tin_error =
-      std::make_shared<std::optional<std::pair<double, double>>>();
-  std::vector<StageTime> stages;          // read, sizing, limit, repair (times of this stage's parts)
+  // GIS runs (plain values, used by the later stages):
+  gis::Frame frame;                       // working CRS + local origin (valid() false for .poly)
+  std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame: depths, TIN error
+  std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid in ground metres (--write-spacing)
   // Model-readiness inputs for the report (GIS runs).
   double hmin = 0;                        // metres
   std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame
   std::vector<std::pair<std::string, double>> coast_figures;  // filter/resample counts for the report
 };
 
-// Reads OGR/GDAL inputs named in `opt` (any non-.poly input). Throws fdr::Error.
+// Read stage, GIS inputs: the OGR/GDAL layers named in `opt` (any non-.poly input) in a
+// projected local frame, through the resolution filter (gis::read_domain). Laps "read".
+gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log);
+
+// Spacing stage, GIS inputs: rasters and rules on a grid in ground metres
+// (sizing::spacing_from_rules), gradient-limited, min with --spacing, corrected for the
+// projection's scale. Laps "raster", "sizing", "limit".
+struct GisSpacing {
+  sizing::SizingPtr f;                               // local frame, grid units
+  std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame (depths)
+  std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid, ground metres (--write-spacing)
+  double hmin = 0;                                   // metres
+  double kdev = 0;                                   // max |k - 1| of the projection's scale
+};
+GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
+                       const LogFn& log);
+
+// Clean/resample stage, GIS inputs: loose ends snapped (pslg::snap_loose_ends), the domain
+// cleaned with f known, boundaries resampled to f (pslg::resample) unless --keep-coast; the
+// PSLG and what the later stages need. Laps "repair", "resample".
+PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& spacing, StageClock& clock,
+                              const LogFn& log);
+
+// The three GIS stages above in order (for tests and callers that want the prepared input).
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
+
+// Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the
+// bounding-box diagonal / 20).
+PreparedInput prepare_poly_input(const Options& opt);
+
+// Depths stage (GIS runs): the raster sampled at the vertices (positive up; the nearest valid
+// cell for nodata, with a warning); empty without a raster.
+std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log);
+
+// Terrain runs: (max, RMS) vertical error of the TIN (m.z) against the DEM, logged.
+std::pair<double, double> tin_error(const mesh::MeshView& m, const sizing::Grid& dem, const LogFn& log);
 
 }  // namespace fdr::pipeline

@@ -29,7 +29,7 @@ GisMesh mesh_domain(const DomainOptions& options, const ProgressFn& progress, co
   g.report = std::move(r.report);
   g.f = r.f;
   g.bound = options.bound;
-  g.min_angle_deg = options.min_angle_deg;
+  g.min_angle_deg = r.min_angle_deg;  // the automatic value when options.min_angle_deg < 0
   g.alpha = g.report.alpha;
   g.source = !options.input.empty() ? options.input : options.land;
   g.crs_name = r.crs_name;

@@ -21,6 +21,8 @@ struct Result {
   std::vector<StageTime> stages;      // wall time and peak memory per stage, in order
   std::vector<io::RepairRow> repair_rows;  // the repairs themselves (world coordinates)
   sizing::SizingPtr f;                // the spacing in the mesh's local frame
+  double alpha = -1;                  // Lipschitz constant of f the guarantees were computed for
+  double min_angle_deg = 0;           // the angle bound used (--min-angle, or its automatic value)
 };
 
 // Runs one meshing job. Throws fdr::Error (exit codes in base/error.hpp) on failure; outputs are

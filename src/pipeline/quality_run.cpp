@@ -1,6 +1,7 @@
 // `fdrmesh quality`: reads a mesh (2DM, fort.14, msh, node/ele, fdrmesh GPKG), evaluates f and
 // measures the same report as `fdrmesh mesh --report` (moved here from the CLI: issue 8).
 #include "pipeline/quality_run.hpp"
+#include "api/stages.hpp"
 #include "base/error.hpp"
 #include "gis/raster_input.hpp"
 #include "io/reader.hpp"
@@ -18,19 +19,16 @@ quality::QualityReport run_quality(const QualityOptions& a, std::ostream* text) 
     throw Error(ExitCode::kUsage, "give either --spacing or --raster, not both");
   sizing::SizingPtr f;
   if (!a.spacing.empty()) {
-    f = std::make_shared<sizing::ShiftedField>(sizing::make_spacing(a.spacing), m.origin);
+    f = fdr::spacing_in_frame(a.spacing, m.origin);  // as the .poly path of `mesh`
   } else if (!a.raster.empty()) {
     sizing::Grid g = gis::read_raster_native(a.raster, m.origin);
     f = std::make_shared<sizing::GridField>(std::move(g), "size raster " + a.raster);
   }
   double alpha = -1;
   if (f) {
-    alpha = f->lipschitz();
-    if (!(alpha >= 0)) {
-      Box2 b;
-      for (const auto& p : m.vertices) b.add(p);
-      alpha = sizing::estimate_lipschitz(*f, b, 64);
-    }
+    Box2 b;
+    for (const auto& p : m.vertices) b.add(p);
+    alpha = fdr::lipschitz_of(*f, b);
   }
   quality::RunInfo ri;
   ri.input_file = a.mesh;

@@ -12,6 +12,7 @@ struct QualityOptions {
   std::string raster;       // size raster (metres); neither: no f, geometric metrics only
   std::string report_json;  // JSON report path ("" none)
   double bound = 1.0;
+  bool quiet = false;       // the CLI prints no text report
 };
 
 // Reads the mesh, evaluates f and measures; prints the text report on `text` (if not null), then

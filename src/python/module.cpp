@@ -163,7 +163,7 @@ PYBIND11_MODULE(_core, mod) {
   });
 
   // _triangulate(vertices, segments, holes, segment_markers, vertex_markers, spacing_spec, grid,
-  //              bound, min_angle, max_steiner, convex_hull, check)
+  //              bound, min_angle, max_steiner, convex_hull, check, smooth)
   // grid = None or (nx, ny, x0, y0, dx, dy, values, label): a spacing sampled by the Python side.
   mod.def("_triangulate", [](py::array_t<double, py::array::c_style | py::array::forcecast> v,
                              std::optional<py::array_t<long long, py::array::c_style | py::array::forcecast>> s,
@@ -171,7 +171,7 @@ PYBIND11_MODULE(_core, mod) {
                              std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> smark,
                              std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> vmark,
                              const std::string& spec, py::object grid, double bound, double min_angle,
-                             std::uint64_t max_steiner, bool convex_hull, bool check) {
+                             std::uint64_t max_steiner, bool convex_hull, bool check, int smooth) {
     auto out = std::make_shared<PyMesh>();
     fdr::Pslg g = make_pslg(v, s, h, smark, vmark);
     fdr::sizing::Grid gr;
@@ -198,6 +198,7 @@ PYBIND11_MODULE(_core, mod) {
     o.max_steiner = max_steiner;
     o.convex_hull = convex_hull;
     o.check = check;
+    o.smooth_passes = smooth;
     o.source = "vertices";
     o.log = collector(&out->log);
     {

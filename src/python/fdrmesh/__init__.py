@@ -130,7 +130,7 @@ def _spacing_grid(fn, vertices, resolution):
 
 def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, min_angle=0.0,
                 max_steiner=20_000_000, convex_hull=False, *, segment_markers=None, vertex_markers=None,
-                resolution=256, check=False):
+                resolution=256, check=False, smooth=0):
     """Meshes a PSLG by Functional Delaunay Refinement: every triangle gets R/f(c) <= bound.
 
     vertices (n,2), segments (m,2) 0-based vertex pairs, holes (h,2) seed points (Triangle .poly
@@ -138,8 +138,9 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     a string as --spacing (expression in x, y or preset: "paper-f1", "0.1*paper-f2"), or a
     callable f(x, y) on numpy arrays, sampled in one call on a grid of `resolution` cells along
     the longer side of the domain. convex_hull: mesh the convex hull (--convex-hull; needs a
-    build with issue 10's core support, UsageError otherwise). Returns a Mesh; the GIL is released
-    while meshing."""
+    build with issue 10's core support, UsageError otherwise). smooth: quality smoothing sweeps
+    after refinement (--smooth; 0, the CLI's value for .poly inputs, keeps the FDR mesh as is).
+    Returns a Mesh; the GIL is released while meshing."""
     v = _np.ascontiguousarray(vertices, dtype=_np.float64)
     grid, spec = None, ""
     if spacing is None:
@@ -157,7 +158,7 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     sm = None if segment_markers is None else _np.asarray(segment_markers, dtype=_np.int32)
     vm = None if vertex_markers is None else _np.asarray(vertex_markers, dtype=_np.int32)
     return _result(_core._triangulate(v, seg, hol, sm, vm, spec, grid, float(bound), float(min_angle),
-                                      int(max_steiner), bool(convex_hull), bool(check)))
+                                      int(max_steiner), bool(convex_hull), bool(check), int(smooth)))
 
 
 def _arg(value):

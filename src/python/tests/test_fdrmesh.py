@@ -193,3 +193,16 @@ def test_mesh_options_from_the_cli_table(tmp_path):
         assert len(m.triangles) > 0 and m.crs_wkt
         with pytest.raises(fdrmesh.UsageError):
             fdrmesh.mesh(land=land, extent=(-75.6, 36.75, -76.6, 37.75))  # XMIN > XMAX, the CLI's check
+
+
+def test_smooth_as_the_cli(tmp_path):
+    """triangulate(smooth=N) runs the CLI's smoothing stage (the same core function as --smooth N)."""
+    base = str(tmp_path / "cli")
+    subprocess.run([FDRMESH, "mesh", SQUARE, "--spacing", "paper-f1", "--smooth", "3", "-o", base + ".node", "-q"],
+                   check=True)
+    v_cli, t_cli = read_node_ele(base)
+    v, s, h = fdrmesh.read_poly(SQUARE)
+    m = fdrmesh.triangulate(v, s, h, spacing="paper-f1", smooth=3)
+    assert np.array_equal(m.triangles, t_cli) and np.array_equal(m.vertices, v_cli)
+    with pytest.raises(fdrmesh.UsageError):
+        fdrmesh.triangulate(v, s, h, spacing="paper-f1", smooth=101)

@@ -1,0 +1,60 @@
+// The core's stages (no GDAL), shared by fdr::Triangulator and pipeline::run: one implementation
+// of the local frame, the CDT, Functional Delaunay Refinement + smoothing + checks.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include "api/triangulate.hpp"
+#include "mesh/triangulation.hpp"
+#include "refine/refine.hpp"
+
+namespace fdr {
+
+// `pslg` shifted to a local origin when its coordinates are far from 0 relative to its extent
+// (e.g. projected metres), so that small inputs keep their exact coordinates; Pslg::origin grows
+// by the shift.
+Pslg to_local_frame(Pslg pslg);
+
+// Constrained Delaunay triangulation of a PSLG in its local frame; `seconds` gets its wall time.
+// Error(kInvalidGeometry) naming `source` when no region is enclosed by segments.
+mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds = nullptr);
+
+// Spacing stage of the .poly path and of `fdrmesh quality`: f from a --spacing specification
+// (world coordinates) evaluated in a local frame with the given origin.
+SizingPtr spacing_in_frame(const std::string& spec, Point2 origin);
+
+// The Lipschitz constant of f: its own when it knows it, else estimated on `box` (64x64 samples).
+double lipschitz_of(const SizingField& f, const Box2& box);
+
+// What the refinement stage did (for the quality report).
+struct RefineOutcome {
+  double alpha = -1;                 // Lipschitz constant of f (given or estimated on `box`)
+  double refine_s = 0;               // wall time of the refinement proper (not smoothing)
+  refine::RefineStats stats;
+  std::size_t angle_exempt = 0;      // triangles left below min_angle_deg (0 when it is 0)
+};
+
+// FDR refinement of `tri` against `f` (local frame) with options.bound / min_angle_deg /
+// max_steiner, then options.smooth_passes smoothing sweeps, then the checks when options.check.
+// Warns on alpha*B >= 1; Error(kWorkLimit) when f asks for more than max_steiner allows,
+// Error(kCheckFailed), Error(kCancelled) from options.progress (mapped to 0.05..0.8, "refine").
+// options.stage_done, when set, is called after "refine", "smooth" (if any) and "check" (if any).
+RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const Box2& box,
+                           const TriangulateOptions& options);
+
+// The figures of a CDT + refinement run that the quality report states.
+struct RunFigures {
+  std::optional<double> cdt_s, refine_s;  // wall times (unset: stage not run)
+  std::uint64_t segment_splits = 0, circumcenters = 0;  // Steiner points
+  std::uint64_t angle_exempt = 0;          // RefineOutcome::angle_exempt
+  double alpha = -1;                       // RefineOutcome::alpha
+};
+
+// Measure stage (core): f at the vertices when the mesh does not carry it, then the quality
+// report (quality::compute_quality) against f (may be null), options.bound and the run's figures;
+// `per_triangle`, when not null, gets the per-triangle values the writers store.
+QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& options,
+                           const RunFigures& figures, quality::TriangleValues* per_triangle = nullptr);
+
+}  // namespace fdr
