@@ -160,14 +160,19 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     rules.wave_period_s = opt.wave_period_s;
     rules.vertical_tol = opt.vertical_tol;
     rules.size_raster = opt.size_raster;
-    std::vector<std::pair<Point2, Point2>> shore;  // land and island edges; open boundaries are not shore
-    for (const auto& s : g.raw.segments)
+    if (opt.channel_elements > 0) rules.channel_elements = opt.channel_elements;
+    std::vector<std::pair<Point2, Point2>> shore;     // land and island edges; open boundaries are not shore
+    std::vector<std::pair<Point2, Point2>> boundary;  // every ring edge (the channel rule's water mask)
+    for (const auto& s : g.raw.segments) {
+      if (!s.is_boundary()) continue;
+      boundary.push_back({g.raw.points[s.a], g.raw.points[s.b]});
       if (s.marker == static_cast<int>(mesh::EdgeKind::kLand) || s.marker == static_cast<int>(mesh::EdgeKind::kIsland))
         shore.push_back({g.raw.points[s.a], g.raw.points[s.b]});
+    }
     std::optional<sizing::Grid> size;
     if (!opt.size_raster.empty())
       size = sizing::size_raster_rule(gis::read_raster_to_frame(opt.size_raster, frame, box, like.dx, &g.raw.points), like);
-    sizing::RuleGrid rg = sizing::spacing_from_rules(rules, {&like, &shore, zgrid.get(), size ? &*size : nullptr});
+    sizing::RuleGrid rg = sizing::spacing_from_rules(rules, {&like, &shore, zgrid.get(), size ? &*size : nullptr, &boundary});
     clock.lap("sizing");
     sizing::limit_gradient(rg.h, opt.gradation);
     clock.lap("limit");

@@ -47,6 +47,7 @@ struct Options {
   std::optional<double> min_feature;     // connections narrower than this are closed (default hmin/4)
   std::optional<double> min_island_factor;  // islands with area < factor * hmin^2 removed (default 1)
   double min_depth_m = 1.0;              // depth clamp for the gravity-wave time step in the report
+  double channel_elements = 2.0;         // channel rule: elements across narrow water (0: off)
   std::optional<double> simplify;        // thin boundary vertices closer than factor * f
   std::optional<double> snap;            // snap distance (metres)
 

@@ -1,5 +1,6 @@
 // The GIS spacing rules on a grid (moved from pipeline/gis_stage.cpp: issue 8).
 #include "sizing/spacing_rules.hpp"
+#include "sizing/channel_rule.hpp"
 #include <algorithm>
 #include <sstream>
 #include "sizing/raster_rules.hpp"
@@ -21,12 +22,20 @@ RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {
   std::vector<Grid> rules;
   auto& names = out.names;
   // Distance to shore (land and island edges; open boundaries are not shore).
+  Grid dist;
+  const bool have_shore = in.shore && !in.shore->empty();
+  if (have_shore && (r.dist_grade || !r.any() || r.channel_elements)) dist = distance_to_shore(like, *in.shore);
   if (r.dist_grade || !r.any()) {
     const double grade = r.dist_grade.value_or(0.1);
-    if (in.shore && !in.shore->empty()) {
-      rules.push_back(rule_distance(distance_to_shore(like, *in.shore), r.hmin, grade));
+    if (have_shore) {
+      rules.push_back(rule_distance(dist, r.hmin, grade));
       names.push_back("distance (hmin + " + num(grade) + " d)");
     }
+  }
+  // Channels: N elements across narrow water (its medial ridge of the distance to shore).
+  if (r.channel_elements && have_shore && in.boundary && !in.boundary->empty()) {
+    rules.push_back(rule_channel(dist, inside_mask(like, *in.boundary), *r.channel_elements));
+    names.push_back("channel (" + num(*r.channel_elements) + " elements across)");
   }
   // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
   // 5'/30" cells would miss the bends between samples that a fine TIN must follow.

@@ -17,6 +17,9 @@ struct SpacingRules {
   double wave_period_s = 44712.0;           // T
   std::optional<double> vertical_tol;       // h = sqrt(8 tol / |curvature|)          (needs a DEM)
   std::string size_raster;                  // name of an explicit size raster ("" none)
+  // Channel rule (channel_rule.hpp): at least N elements across narrow water; combined with the
+  // others by minimum; not counted by any() (it refines, it does not replace the default rule).
+  std::optional<double> channel_elements;
   // True if any rule is named; without one the distance rule h = hmin + 0.1 d is used.
   bool any() const { return dist_grade || slope || wavelength || vertical_tol || !size_raster.empty(); }
 };
@@ -27,6 +30,7 @@ struct RuleInputs {
   const std::vector<std::pair<Point2, Point2>>* shore = nullptr;  // land and island segments
   const Grid* dem = nullptr;                                 // elevation (positive up), any cells
   const Grid* size = nullptr;                                // size_raster_rule() of the size raster
+  const std::vector<std::pair<Point2, Point2>>* boundary = nullptr;  // every domain boundary segment (water mask)
 };
 
 struct RuleGrid {
