@@ -176,6 +176,26 @@ std::vector<Point2> ring_points(const OGRLinearRing* r, bool ccw) {
 
 }  // namespace
 
+Polygons offset_polygons(const Polygons& input, double d) {
+  GdalQuiet quiet;
+  auto m = std::make_unique<OGRMultiPolygon>();
+  for (const auto& rings : input) {
+    OGRPolygon p = to_ogr(rings);
+    if (!p.IsEmpty()) m->addGeometry(&p);
+  }
+  GeomPtr g = offset(*m, d);
+  std::vector<std::unique_ptr<OGRPolygon>> ps;
+  polygons_of(g.get(), ps);
+  Polygons out;
+  for (const auto& p : ps) {
+    Rings rings;
+    rings.push_back(ring_points(p->getExteriorRing(), true));
+    for (int k = 0; k < p->getNumInteriorRings(); ++k) rings.push_back(ring_points(p->getInteriorRing(k), false));
+    if (rings[0].size() >= 3) out.push_back(std::move(rings));
+  }
+  return out;
+}
+
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& o) {
   GdalQuiet quiet;
   const bool dbg_time = std::getenv("FDR_DEBUG_FILTER") != nullptr;
@@ -187,6 +207,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     t_last = now;
   };
   FeatureFilterResult res;
+  res.close_width = o.close_width;
   // 1. Valid copies of every polygon, then their union: overlapping water polygons from merged
   //    layers become one (the parity rule of the mesher would make the overlap a hole).
   std::vector<std::unique_ptr<OGRPolygon>> valid;

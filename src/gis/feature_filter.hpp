@@ -52,9 +52,13 @@ struct FeatureFilterResult {
   std::size_t islands_removed = 0;
   double islands_area = 0;
   double input_area = 0, output_area = 0;
+  double close_width = 0;            // the close width used (0: no opening)
 };
 
 // Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
+
+// The polygons grown (d > 0) or shrunk (d < 0) by |d| (GEOS buffer, ring by ring).
+Polygons offset_polygons(const Polygons& input, double d);
 
 }  // namespace fdr::gis

@@ -618,7 +618,13 @@ GisInput read_domain(const DomainOptions& o) {
   if (o.breaklines.given()) {
     LayerData bl = read_layer(o.breaklines, o.s_srs, "--breaklines");
     GdalQuiet quiet;
-    std::unique_ptr<OGRGeometry> clip = local_domain_geometry(in.domain_polygons);
+    // After the resolution filter, clip to the domain shrunk by a hair (5 % of --close-width):
+    // a breakline drawn along the coast (a border) would otherwise run a fraction of a metre from
+    // the rounded corners the filter made, a sliver no mesher can split. Its ends are put back
+    // on the coast by snap_loose_ends (pipeline).
+    const double hair = 0.05 * in.features.close_width;
+    std::unique_ptr<OGRGeometry> clip =
+        local_domain_geometry(hair > 0 ? offset_polygons(in.domain_polygons, -hair) : in.domain_polygons);
     if (!clip->IsValid()) {  // raw (self-intersecting) rings: GEOS needs a valid copy to clip against
       std::unique_ptr<OGRGeometry> v(clip->MakeValid());
       if (!v) throw Error(ExitCode::kInvalidGeometry, dom.label() + ": cannot make a valid copy of the domain "

@@ -209,7 +209,10 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   }
   co.spacing = [f](Point2 p) { return (*f)(p); };
   clock.restart();
-  std::vector<pslg::Repair> loose_reps = pslg::snap_loose_ends(g.raw, g.snap_distance_m);
+  // Breaklines were clipped a hair inside a filtered domain (vector_input.cpp): their ends go
+  // back onto the coast.
+  std::vector<pslg::Repair> loose_reps =
+      pslg::snap_loose_ends(g.raw, std::max(g.snap_distance_m, 0.1 * g.features.close_width));
   gis::clean_domain(g, co);
   for (auto& r : loose_reps) {
     gis::RepairRecord rec;
