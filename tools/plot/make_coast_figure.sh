@@ -45,12 +45,12 @@ mkdir -p "$WORK"
 common=("$SRC" --layer water --open-boundary "$SRC" --open-boundary-layer open_boundary
         --raster "$RASTER" --hmin "$HMIN" --hmax "$HMAX" -q)
 "$FDRMESH" mesh "${common[@]}" -o "$WORK/default.gpkg" --report "$WORK/default.json"
-"$FDRMESH" mesh "${common[@]}" --keep-coast -o "$WORK/keep_coast.gpkg" --report "$WORK/keep_coast.json"
+"$FDRMESH" mesh "${common[@]}" --keep-coast --min-angle 0 --smooth 0 -o "$WORK/keep_coast.gpkg" --report "$WORK/keep_coast.json"
 
 "$PYTHON" "$HERE/plot_mesh.py" "$WORK/default.gpkg" --compare "$WORK/keep_coast.gpkg" \
   --bbox-lonlat "$BBOX_LONLAT" --coast "$SRC:water" --repairs \
   --title "default (coast resampled to f, sub-resolution features removed)" \
-  --compare-title "--keep-coast (every input vertex kept)" \
+  --compare-title "--keep-coast --min-angle 0 --smooth 0 (fdrmesh 0.1)" \
   --size 6 --dpi 100 -o "$WORK/figure.png"
 # A palette PNG (no dithering) keeps the README picture small.
 "$PYTHON" - "$WORK/figure.png" "$OUT" "$COLORS" <<'EOF'
@@ -67,7 +67,7 @@ mv "$OUT.tmp.png" "$OUT"
 import json, sys
 print("| run | triangles | min angle | < 30° | mean quality | shortest edge / hmin | coast p99 in→mesh / mesh→in (hmin) | pieces mesh/input | time step (s) |")
 print("|---|---|---|---|---|---|---|---|---|")
-for name, path in zip(("default", "--keep-coast"), sys.argv[1:]):
+for name, path in zip(("default", "--keep-coast --min-angle 0 --smooth 0"), sys.argv[1:]):
     j = json.load(open(path)); m = j["model_ready"]; d = m["coast_deviation"]
     print(f"| {name} | {j['triangles']} | {j['min_angle_deg']:.2f}° | {m['triangles_below_30_deg_pct']:.2f} % | "
           f"{m['mean_quality']:.3f} | {m['shortest_edge_over_hmin']:.3f} | "
