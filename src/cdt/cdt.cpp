@@ -193,6 +193,14 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
 }
 
 Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* stats) {
+  if (opt.resolve) {
+    pslg::ResolveOptions ro;
+    ro.source = opt.source;
+    const pslg::Pslg resolved = pslg::resolve(in, ro, opt.repairs);
+    CdtOptions o2 = opt;
+    o2.resolve = false;
+    return build_cdt(resolved, o2, stats);
+  }
   CdtStats local;
   if (!stats) stats = &local;
   Triangulation T;
@@ -329,16 +337,38 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
   std::vector<bool> remove(ncomp, false);
   for (Index k = 0; k < ncomp; ++k) {
     if (mode == CdtOptions::Regions::kParity) remove[k] = depth[k] < 0 || depth[k] % 2 == 0;
+    else if (mode == CdtOptions::Regions::kHull) remove[k] = false;  // super triangles go below
     else remove[k] = depth[k] == 0 || depth[k] < 0;
   }
-  if (mode == CdtOptions::Regions::kSeeds) {
-    for (const Point2& hp : in.holes) {
-      if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) continue;
+  if (mode == CdtOptions::Regions::kSeeds || mode == CdtOptions::Regions::kHull) {
+    for (std::size_t h = 0; h < in.holes.size(); ++h) {
+      const Point2 hp = in.holes[h];
+      auto hole_error = [&](const std::string& what) {
+        throw Error(ExitCode::kInvalidGeometry, opt.source + ": hole " + std::to_string(h) + " seed at " +
+                                                    pt(T.origin + hp) + " " + what);
+      };
+      if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) hole_error("has a non-finite coordinate");
       TriangleId start = 0;
       while (T.dead(start)) ++start;
       const Location loc = locate_visibility(T, start, hp);
-      if (loc.he == kNoId) continue;
-      remove[comp[mesh::tri_of(loc.he)]] = true;
+      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked)
+        hole_error("lies outside the domain (outside the convex hull of the vertices)");
+      if (loc.kind == LocateKind::kOnVertex) hole_error("lies on vertex " + std::to_string(T.org(loc.he)));
+      if (loc.kind == LocateKind::kOnEdge && T.constrained(loc.he)) {
+        auto it = T.seg_of.find(mesh::edge_key(T.org(loc.he), T.dst(loc.he)));
+        hole_error("lies on segment " +
+                   (it != T.seg_of.end() ? std::to_string(it->second) : std::string("(a constrained edge)")) +
+                   " (a seed must be strictly inside the region to remove)");
+      }
+      const TriangleId t = mesh::tri_of(loc.he);
+      bool sup = false;
+      for (int k = 0; k < 3; ++k) sup |= T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper;
+      const Index k = comp[t];
+      if (sup || (mode == CdtOptions::Regions::kSeeds && depth[k] <= 0))
+        hole_error(mode == CdtOptions::Regions::kHull
+                       ? "lies outside the domain (outside the convex hull of the vertices)"
+                       : "lies outside the domain (in no region enclosed by segments)");
+      remove[k] = true;
     }
   }
   // Delete removed triangles; touching super-vertex triangles always go.

@@ -199,6 +199,8 @@ int run(int argc, char** argv) {
     if (!(ms >= 1) || ms != std::floor(ms)) throw Error(ExitCode::kUsage, "--max-steiner must be a positive integer");
     o.max_steiner = static_cast<std::uint64_t>(ms);
     o.check = flags["mesh:check"];
+    o.strict = flags["mesh:strict"];
+    o.convex_hull = flags["mesh:convex-hull"];
     o.quiet = flags["mesh:quiet"];
     if (auto it = v.find("output"); it != v.end()) o.outputs = it->second;
     o.of = str(v, "of");

@@ -45,6 +45,10 @@ const std::vector<OptSpec>& option_table() {
       // mesh: repair
       {"mesh", "--snap", "snap", "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},
       {"mesh", "--min-island", "min-island", "float", "FACTOR", "0", "Repair", "Drop islands with area < FACTOR * f^2"},
+      {"mesh", "--strict", "strict", "flag", "", "", "Repair",
+       "Refuse crossing, overlapping, duplicate or zero-length constraints in a .poly/.node INPUT (exit 5 naming the first) instead of resolving them"},
+      {"mesh", "--convex-hull", "convex-hull", "flag", "", "", "Input",
+       "The convex hull of all vertices bounds the domain (.poly/.node INPUT; like Triangle -c): point sets and dangling breaklines mesh"},
       {"mesh", "--simplify", "simplify", "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
       {"mesh", "--bound", "bound", "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},

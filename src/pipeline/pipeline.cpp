@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include "base/error.hpp"
 #include "base/version.hpp"
@@ -13,6 +15,7 @@
 #include "pipeline/gis_stage.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/poly_io.hpp"
+#include "pslg/resolve.hpp"
 #include "pslg/validate.hpp"
 #include "quality/rss.hpp"
 #include "refine/refine.hpp"
@@ -48,6 +51,29 @@ Point2 choose_origin(const Box2& b) {
 void log_info(const LogFn& log, const std::string& s) {
   if (log) log(LogLevel::kInfo, s);
 }
+
+// Text report of the constraint repairs of a .poly input: counts per kind, then each fix (the
+// first 20). The GIS path prints its own summary line.
+void log_repairs(const LogFn& log, const std::vector<io::RepairRow>& reps, bool poly) {
+  if (!poly || reps.empty()) return;
+  std::map<std::string, std::size_t> kinds;
+  for (const auto& r : reps) ++kinds[r.kind];
+  std::string s = "repairs: " + std::to_string(reps.size());
+  for (const auto& [k, n] : kinds) s += ", " + k + " " + std::to_string(n);
+  log_info(log, s + " (--strict refuses conflicting constraints instead)");
+  char buf[128];
+  for (std::size_t i = 0; i < reps.size() && i < 20; ++i) {
+    const auto& r = reps[i];
+    std::snprintf(buf, sizeof buf, "  %s at (%.17g, %.17g)", r.kind.c_str(), r.x, r.y);
+    std::string line = buf;
+    if (!r.ids.empty()) {
+      line += " ids";
+      for (auto id : r.ids) line += " " + std::to_string(id);
+    }
+    log_info(log, line + ": " + r.reason);
+  }
+  if (reps.size() > 20) log_info(log, "  ... " + std::to_string(reps.size() - 20) + " more (see the JSON report)");
+}
 }  // namespace
 
 bool is_poly_input(const std::string& path) {
@@ -77,13 +103,30 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
   if (is_poly_input(opt.input)) {
     in.pslg = lower_ext(opt.input) == "node" ? pslg::read_node(opt.input) : pslg::read_poly(opt.input);
-    pslg::validate(in.pslg, opt.input);
+    // --strict: today's refusal (exit 5 naming the first conflict) in the input's coordinates.
+    if (opt.strict) pslg::validate(in.pslg, opt.input);
+    else
+      for (std::size_t i = 0; i < in.pslg.points.size(); ++i)  // before the bbox below
+        if (!std::isfinite(in.pslg.points[i].x) || !std::isfinite(in.pslg.points[i].y))
+          throw Error(ExitCode::kInvalidGeometry, opt.input + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
     const Point2 origin = choose_origin(in.pslg.bbox());
     if (origin.x != 0 || origin.y != 0) {
       for (auto& p : in.pslg.points) p = {p.x - origin.x, p.y - origin.y};
       for (auto& p : in.pslg.holes) p = {p.x - origin.x, p.y - origin.y};
       for (auto& r : in.pslg.regions) r.seed = {r.seed.x - origin.x, r.seed.y - origin.y};
       in.pslg.origin = origin;
+    }
+    // Conflicting constraints are resolved in the local frame, where the CDT decides.
+    if (!opt.strict) {
+      std::vector<pslg::Repair> reps;
+      pslg::ResolveOptions ro;
+      ro.source = opt.input;
+      in.pslg = pslg::resolve(in.pslg, ro, &reps);
+      for (const auto& r : reps) {
+        const Point2 w = in.pslg.origin + r.where;
+        in.repairs.push_back({r.kind, w.x, w.y, r.size, r.reason, r.part});
+        in.repairs.back().ids = r.ids;
+      }
     }
     // Default spacing for a bare PSLG: a twentieth of the bounding-box diagonal.
     std::string spec = opt.spacing;
@@ -98,8 +141,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   } else {
     in = prepare_gis_input(opt, progress, log);
     result.crs_name = in.crs_name;
-    result.repairs = in.repairs.size();
   }
+  result.repairs = in.repairs.size();
+  log_repairs(log, in.repairs, is_poly_input(opt.input));
   if (in.stages.empty()) clock.lap("read");
   else result.stages = in.stages;
   report_progress(0.05, "cdt");
@@ -108,11 +152,18 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // Constrained Delaunay triangulation.
   const auto t_cdt = Clock::now();
   cdt::CdtStats cstats;
-  mesh::Triangulation tri = cdt::build_cdt(in.pslg, {cdt::CdtOptions::Regions::kAuto, source}, &cstats);
+  cdt::CdtOptions copt;
+  copt.regions = opt.convex_hull ? cdt::CdtOptions::Regions::kHull : cdt::CdtOptions::Regions::kAuto;
+  copt.source = source;
+  mesh::Triangulation tri = cdt::build_cdt(in.pslg, copt, &cstats);
   const double cdt_s = since(t_cdt);
   clock.lap("cdt");
   if (tri.num_live_triangles() == 0)
-    throw Error(ExitCode::kInvalidGeometry, source + ": the domain is empty (no region enclosed by segments)");
+    throw Error(ExitCode::kInvalidGeometry,
+                source + ": the domain is empty (no region enclosed by segments)" +
+                    (is_poly_input(opt.input) && !opt.convex_hull
+                         ? "; give --convex-hull to mesh the convex hull of the vertices (point sets, dangling breaklines)"
+                         : ""));
 
   // Spacing checks: alpha, positivity inside the domain (during the estimate), work estimate.
   const sizing::SizingField& f = *in.f;
@@ -182,6 +233,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ri.spacing = f.describe();
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
   result.report = quality::compute_quality(m, &f, opt.bound, alpha, ri);
+  for (const auto& r : in.repairs) result.report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});
   if (in.tin_error && *in.tin_error) {
     result.report.vertical_error_max_m = (*in.tin_error)->first;
     result.report.vertical_error_rms_m = (*in.tin_error)->second;

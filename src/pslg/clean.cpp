@@ -52,8 +52,9 @@ class Cleaner {
   }
 
  private:
-  void report(const char* kind, Point2 where, double size, std::string reason, std::int32_t part) {
-    if (repairs_) repairs_->push_back(Repair{kind, where, size, std::move(reason), part});
+  void report(const char* kind, Point2 where, double size, std::string reason, std::int32_t part,
+              std::vector<std::int64_t> ids = {}) {
+    if (repairs_) repairs_->push_back(Repair{kind, where, size, std::move(reason), part, std::move(ids)});
   }
 
   Point2 world(Point2 p) const { return in_.origin + p; }
@@ -155,7 +156,7 @@ class Cleaner {
       report("snap", pts_[r], d,
              "vertex " + std::to_string(i) + (d == 0 ? " duplicates" : " snapped onto") + " vertex " +
                  std::to_string(r) + (d == 0 ? "" : " (" + std::to_string(d) + " m away)"),
-             point_part[i]);
+             point_part[i], {static_cast<std::int64_t>(i), static_cast<std::int64_t>(r)});
     }
     segs_.reserve(in_.segments.size());
     for (Index s = 0; s < in_.segments.size(); ++s) {
@@ -165,7 +166,8 @@ class Cleaner {
       sg.b = map[sg.b];
       if (sg.a == sg.b) {
         report("zero_length", pts_[sg.a], dist(a, b),
-               "segment " + std::to_string(s) + " collapsed to a point and was removed", sg.part);
+               "segment " + std::to_string(s) + " collapsed to a point and was removed", sg.part,
+               {static_cast<std::int64_t>(s)});
         continue;
       }
       segs_.push_back(sg);
@@ -188,7 +190,19 @@ class Cleaner {
     for (std::size_t g = 0; g < order.size();) {
       std::size_t e = g + 1;
       while (e < order.size() && key(order[e]) == key(order[g])) ++e;
-      if (e - g > 1) {
+      if (e - g > 1 && !opt_.boundary_parity) {
+        // Triangle .poly semantics: every copy merges into the first (lowest index) one.
+        changed = true;
+        const Segment& kept = segs_[order[g]];
+        for (std::size_t k = g + 1; k < e; ++k) {
+          const Segment& s = segs_[order[k]];
+          keep[order[k]] = 0;
+          report("duplicate_segment", mid(pts_[s.a], pts_[s.b]), dist(pts_[s.a], pts_[s.b]),
+                 "segment between vertices " + std::to_string(s.a) + " and " + std::to_string(s.b) +
+                     " duplicates another segment and was merged into it",
+                 s.part, {s.part, kept.part});
+        }
+      } else if (e - g > 1) {
         changed = true;
         std::size_t nb = 0;
         for (std::size_t k = g; k < e; ++k) nb += segs_[order[k]].is_boundary();
@@ -236,13 +250,66 @@ class Cleaner {
   }
 
   // --- step 3: split at crossings, at vertices on segments and at collinear overlaps ------------
+
+  // Why: a rounded crossing point p lies a few ulps off segment ab, so the pieces a-p, p-b sweep
+  // the thin triangle (a, p, b); a vertex q inside it (or on a-p, p-b) would change sides of the
+  // constraint. Such a q is made a cut point of ab too (snap rounding's "hot pixel" rule), so the
+  // subdivided segment passes through it and no orientation flips. New contacts this creates are
+  // found by the exact re-check of the next round (capped by max_iterations).
+  void route_through_hot_vertices(std::vector<std::vector<Index>>* splits, const std::vector<char>& present) {
+    bool any = false;
+    for (std::size_t i = 0; i < segs_.size() && !any; ++i)
+      for (Index v : (*splits)[i])
+        if (orient2d(pts_[segs_[i].a], pts_[segs_[i].b], pts_[v]) != 0) { any = true; break; }
+    if (!any) return;
+    Box2 box;
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < pts_.size(); ++v)
+      if (v >= present.size() || present[v]) box.add(pts_[v]), ++n;
+    SegmentGrid grid(box, n, std::max(box.width(), box.height()) / std::sqrt(static_cast<double>(n) + 1));
+    for (Index v = 0; v < pts_.size(); ++v)
+      if (v >= present.size() || present[v]) grid.add_point(v, pts_[v]);
+    std::vector<Index> extra;
+    for (std::size_t i = 0; i < segs_.size(); ++i) {
+      auto& sp = (*splits)[i];
+      if (sp.empty()) continue;
+      const Point2 a = pts_[segs_[i].a], b = pts_[segs_[i].b];
+      extra.clear();
+      for (Index v : sp) {
+        const Point2 p = pts_[v];
+        const int o = orient2d(a, b, p);
+        if (o == 0) continue;
+        auto test_cell = [&](std::size_t cell) {
+          for (Index q : grid.points_in(cell)) {
+            if (q == segs_[i].a || q == segs_[i].b || q == v) continue;
+            const Point2 x = pts_[q];
+            // Closed triangle (a, b, p) without its corners and without the open side ab
+            // (a vertex there already is a cut point).
+            const int s1 = orient2d(a, b, x) * o, s2 = orient2d(b, p, x) * o, s3 = orient2d(p, a, x) * o;
+            if (s1 > 0 && s2 >= 0 && s3 >= 0) extra.push_back(q);
+          }
+        };
+        grid.for_segment_cells(a, p, test_cell);
+        grid.for_segment_cells(p, b, test_cell);
+      }
+      for (Index q : extra) {
+        if (std::find(sp.begin(), sp.end(), q) != sp.end()) continue;
+        sp.push_back(q);
+        report("hot_vertex", pts_[q], dist_to_segment(pts_[q], a, b),
+               "segment routed through vertex " + std::to_string(q) +
+                   " so that a rounded cut point does not move the constraint across it",
+               segs_[i].part, {static_cast<std::int64_t>(q), segs_[i].part});
+      }
+    }
+  }
+
   void split_until_clean() {
     for (std::size_t round = 0;; ++round) {
       normalize();
       // Points orphaned by cancellation are no cut candidates; used and free points are.
       std::vector<char> present(pts_.size(), 0);
       for (const Segment& s : segs_) present[s.a] = present[s.b] = 1;
-      for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || input_free_[v]);
+      for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || kept_unused(v));
       const Contacts c = find_contacts(pts_, segs_, &present);
       if (c.segment_pairs.empty() && c.vertex_on_segment.empty()) return;
       if (round >= opt_.max_iterations) {
@@ -269,7 +336,8 @@ class Cleaner {
       for (const auto& [v, s] : c.vertex_on_segment) {
         splits[s].push_back(v);
         report("vertex_on_segment", pts_[v], 0,
-               "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part);
+               "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part,
+               {static_cast<std::int64_t>(v), segs_[s].part});
       }
       for (std::size_t k = 0; k < c.segment_pairs.size(); ++k) {
         const auto [i, j] = c.segment_pairs[k];
@@ -277,7 +345,7 @@ class Cleaner {
         if (c.kinds[k] == Contact::kOverlap) {
           // The overlapping stretch is cut at each other's endpoints (found as vertex_on_segment).
           report("overlap_split", mid(pts_[s.a], pts_[s.b]), 0,
-                 "collinear overlapping segments split at each other's endpoints", s.part);
+                 "collinear overlapping segments split at each other's endpoints", s.part, {s.part, t.part});
           continue;
         }
         if (c.kinds[k] != Contact::kProper) continue;  // a touch is a vertex_on_segment
@@ -300,7 +368,7 @@ class Cleaner {
             report("snap", pts_[id], best,
                    "crossing point snapped onto a vertex " + std::to_string(best) + " m away (round " +
                        std::to_string(round) + " of splitting)",
-                   s.part);
+                   s.part, {static_cast<std::int64_t>(id)});
         }
         if (id == kNoId) id = add_point(p);
         splits[i].push_back(id);
@@ -308,8 +376,9 @@ class Cleaner {
         report("crossing_split", pts_[id], 0,
                "crossing segments split at their intersection" +
                    std::string(s.part == t.part && s.part >= 0 ? " (self-intersecting ring)" : ""),
-               s.part);
+               s.part, {s.part, t.part});
       }
+      route_through_hot_vertices(&splits, present);
       std::vector<Segment> out;
       out.reserve(segs_.size() + 2 * c.segment_pairs.size() + c.vertex_on_segment.size());
       for (std::size_t i = 0; i < segs_.size(); ++i) {
@@ -516,7 +585,7 @@ class Cleaner {
     std::vector<Index> map(np, kNoId);
     for (Index v = 0; v < np; ++v) {
       if (!alive_[v]) continue;
-      if (!used[v] && !input_free_[v]) continue;  // orphaned by cancellation/removal
+      if (!used[v] && !kept_unused(v)) continue;  // orphaned by cancellation/removal
       map[v] = static_cast<Index>(out.points.size());
       out.points.push_back(pts_[v]);
       if (with_markers) out.point_markers.push_back(markers_[v]);
@@ -533,6 +602,12 @@ class Cleaner {
       throw Error(ExitCode::kInternal, std::string("internal error: ") + e.what());
     }
     return out;
+  }
+
+  // A point kept even when no segment uses it: a free input point, or (Triangle semantics) any
+  // input vertex, e.g. the end of a dropped zero-length segment.
+  bool kept_unused(std::size_t v) const {
+    return input_free_[v] || (!opt_.boundary_parity && v < in_.points.size());
   }
 
   const Pslg& in_;

@@ -16,6 +16,10 @@ struct Repair {
   double size = 0;           // a length or area that quantifies it (metres / m^2)
   std::string reason;        // one human sentence
   std::int32_t part = -1;    // Segment::part (input ring/line id) it concerns, -1 if unknown
+  // Ids concerned, in the order named by `reason`: vertex ids (snap: the dropped vertex and the
+  // one kept) and/or Segment::part values of the segments involved (the .poly path sets part to
+  // the input segment index, see resolve.hpp).
+  std::vector<std::int64_t> ids;
 };
 
 struct CleanOptions {
@@ -29,6 +33,9 @@ struct CleanOptions {
   double simplify_tolerance = 0;
   std::function<double(Point2)> spacing;  // f in the local frame; required when a factor > 0
   std::size_t max_iterations = 64;        // cap on crossing-split rounds (error if exceeded)
+  // true (GIS): coincident boundary segments cancel in pairs (the domain is defined by crossing
+  // parity). false (Triangle .poly semantics): every copy of a segment merges into the first.
+  bool boundary_parity = true;
 };
 
 // Returns a PSLG with no duplicate points, no zero-length or duplicate segments and no two

@@ -82,6 +82,14 @@ struct QualityReport {
   std::string spacing;  // description of f ("none" without one)
   Guarantees guarantees;
   RunInfo run;
+  // Fixes made to the input constraints before triangulation (JSON "repairs").
+  struct Repair {
+    std::string kind;
+    double x = 0, y = 0;  // world coordinates
+    std::vector<std::int64_t> ids;
+    std::string reason;
+  };
+  std::vector<Repair> repairs;
 };
 
 // Measures every metric of `m` (in its local frame, where `f` is evaluated). `f` may be null.

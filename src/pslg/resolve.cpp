@@ -1,0 +1,42 @@
+// Triangle-semantics constraint resolution on top of pslg::clean's exact splitting core.
+#include "pslg/resolve.hpp"
+#include <cmath>
+#include "base/error.hpp"
+#include "pslg/validate.hpp"
+
+namespace fdr::pslg {
+
+Pslg resolve(const Pslg& in, const ResolveOptions& options, std::vector<Repair>* repairs) {
+  if (options.strict) {
+    validate(in, options.source);
+    return in;
+  }
+  // Errors that no repair can fix, worded as validate() words them.
+  const std::size_t n = in.points.size();
+  for (Index i = 0; i < n; ++i)
+    if (!std::isfinite(in.points[i].x) || !std::isfinite(in.points[i].y))
+      throw Error(ExitCode::kInvalidGeometry, options.source + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+  for (Index s = 0; s < in.segments.size(); ++s)
+    if (in.segments[s].a >= n || in.segments[s].b >= n)
+      throw Error(ExitCode::kInvalidGeometry, options.source + ": segment " + std::to_string(s) + " refers to vertex " +
+                                                  std::to_string(std::max(in.segments[s].a, in.segments[s].b)) +
+                                                  " but there are only " + std::to_string(n) + " vertices");
+  Pslg work = in;
+  for (std::size_t s = 0; s < work.segments.size(); ++s) work.segments[s].part = static_cast<std::int32_t>(s);
+  CleanOptions co;
+  co.boundary_parity = false;
+  co.max_iterations = options.max_iterations;
+  Pslg out;
+  try {
+    out = clean(work, co, repairs);
+  } catch (const Error& e) {
+    if (e.code() == ExitCode::kInternal) throw;
+    std::string msg = e.what();
+    if (msg.rfind("clean: ", 0) == 0) msg = msg.substr(7);
+    throw Error(e.code(), options.source + ": " + msg);
+  }
+  for (Segment& s : out.segments) s.part = in.segments[static_cast<std::size_t>(s.part)].part;
+  return out;
+}
+
+}  // namespace fdr::pslg
