@@ -372,6 +372,25 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
     }
   }
   // Delete removed triangles; touching super-vertex triangles always go.
+  auto removed = [&](TriangleId t) {
+    if (remove[comp[t]]) return true;
+    for (int k = 0; k < 3; ++k)
+      if (T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper) return true;
+    return false;
+  };
+  // An input segment with an edge between two removed triangles lies (partly) outside the
+  // domain, e.g. a boundary segment between two even-depth regions (parity) or between a hole and
+  // the exterior: it is marked gone (b = a), so checkers and refinement ignore it.
+  for (TriangleId t = 0; t < nt; ++t) {
+    if (T.dead(t) || !removed(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + static_cast<Index>(k);
+      if (!T.constrained(h) || T.twin[h] == kNoId || !removed(mesh::tri_of(T.twin[h]))) continue;
+      auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
+      if (it != T.seg_of.end() && it->second < T.input_segments.size())
+        T.input_segments[it->second].b = T.input_segments[it->second].a;
+    }
+  }
   for (TriangleId t = 0; t < nt; ++t) {
     if (T.dead(t)) continue;
     bool sup = false;

@@ -35,7 +35,8 @@ struct CdtStats {
   std::size_t removed_triangles = 0;
 };
 
-// Builds the CDT of `in` (local coordinates). Vertex i of the PSLG becomes vertex i of the
+// Builds the CDT of `in` (local coordinates). An input segment that ends up (partly) between two
+// removed regions is outside the domain: its Triangulation::input_segments entry gets b = a. Vertex i of the PSLG becomes vertex i of the
 // triangulation (duplicates are merged into the first one). Throws fdr::Error
 // (kInvalidGeometry) when two segments cross, naming both segments and the location.
 mesh::Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt = {}, CdtStats* stats = nullptr);

@@ -153,7 +153,11 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   const auto t_cdt = Clock::now();
   cdt::CdtStats cstats;
   cdt::CdtOptions copt;
-  copt.regions = opt.convex_hull ? cdt::CdtOptions::Regions::kHull : cdt::CdtOptions::Regions::kAuto;
+  // .poly: Triangle's semantics (the exterior and hole seeds are removed, nested rings are not
+  // holes by themselves); GIS: constraint parity (kAuto).
+  copt.regions = opt.convex_hull                 ? cdt::CdtOptions::Regions::kHull
+                 : is_poly_input(opt.input) && !in.pslg.segments.empty() ? cdt::CdtOptions::Regions::kSeeds
+                                                 : cdt::CdtOptions::Regions::kAuto;
   copt.source = source;
   mesh::Triangulation tri = cdt::build_cdt(in.pslg, copt, &cstats);
   const double cdt_s = since(t_cdt);

@@ -28,6 +28,7 @@ std::string pt(Point2 p) {
 }
 
 int bucket_of(double key2) {
+  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent (fuzz_pslg_mesh_1)
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
   const int idx = (e - 1) * 1 + static_cast<int>((m - 0.5) * 2.0);
