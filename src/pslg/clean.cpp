@@ -153,7 +153,7 @@ class Cleaner {
       if (markers_[r] == 0) markers_[r] = markers_[i];
       if (!input_free_[i]) input_free_[r] = 0;
       const double d = dist(pts_[i], pts_[r]);
-      report("snap", pts_[r], d,
+      report(d == 0 && !opt_.boundary_parity ? "duplicate_vertex" : "snap", pts_[r], d,
              "vertex " + std::to_string(i) + (d == 0 ? " duplicates" : " snapped onto") + " vertex " +
                  std::to_string(r) + (d == 0 ? "" : " (" + std::to_string(d) + " m away)"),
              point_part[i], {static_cast<std::int64_t>(i), static_cast<std::int64_t>(r)});
