@@ -303,6 +303,42 @@ class Cleaner {
     }
   }
 
+  // Appends (vertex, segment) pairs where a present vertex lies off the segment's line but within
+  // opt_.segment_snap of its open interior (exact ones are already in c).
+  void add_vertices_near_segments(Contacts* c, const std::vector<char>& present) const {
+    if (segs_.empty()) return;
+    Box2 box;
+    double total = 0;
+    for (const Segment& s : segs_) box.add(pts_[s.a]), box.add(pts_[s.b]), total += dist(pts_[s.a], pts_[s.b]);
+    SegmentGrid grid(box, segs_.size(), total / static_cast<double>(segs_.size()));
+    for (Index i = 0; i < segs_.size(); ++i) grid.add_segment(i, pts_[segs_[i].a], pts_[segs_[i].b]);
+    const double tol = opt_.segment_snap;
+    std::vector<Index> near;
+    std::vector<std::pair<Index, Index>> found;
+    for (Index v = 0; v < pts_.size(); ++v) {
+      if (!present[v]) continue;
+      const Point2 p = pts_[v];
+      if (!(p.x >= box.lo.x - tol && p.x <= box.hi.x + tol && p.y >= box.lo.y - tol && p.y <= box.hi.y + tol)) continue;
+      Box2 q;
+      q.add({p.x - tol, p.y - tol});
+      q.add({p.x + tol, p.y + tol});
+      grid.segments_near(q, &near);
+      for (Index s : near) {
+        const Segment& sg = segs_[s];
+        if (sg.a == v || sg.b == v) continue;
+        const Point2 a = pts_[sg.a], b = pts_[sg.b];
+        if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
+        const Point2 d = b - a;
+        const double t = dot(p - a, d) / dot(d, d);
+        if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) continue;
+        if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
+      }
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    c->vertex_on_segment.insert(c->vertex_on_segment.end(), found.begin(), found.end());
+  }
+
   void split_until_clean() {
     std::size_t xround = 0;  // rounds that split crossings (the snap tolerance grows with them)
     for (std::size_t round = 0;; ++round) {
@@ -311,7 +347,9 @@ class Cleaner {
       std::vector<char> present(pts_.size(), 0);
       for (const Segment& s : segs_) present[s.a] = present[s.b] = 1;
       for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || kept_unused(v));
-      const Contacts c = find_contacts(pts_, segs_, &present);
+      Contacts c = find_contacts(pts_, segs_, &present);
+      const std::size_t n_exact = c.vertex_on_segment.size();
+      if (opt_.segment_snap > 0) add_vertices_near_segments(&c, present);
       if (c.segment_pairs.empty() && c.vertex_on_segment.empty()) return;
       if (round >= opt_.max_iterations) {
         Point2 where;
@@ -336,11 +374,17 @@ class Cleaner {
       std::vector<std::vector<Index>> splits(segs_.size());
       const bool defer_crossings = !c.vertex_on_segment.empty();  // overlaps imply a vertex on a segment
       const std::size_t xr = defer_crossings ? xround : xround++;  // 0-based crossing round
-      for (const auto& [v, s] : c.vertex_on_segment) {
+      for (std::size_t k = 0; k < c.vertex_on_segment.size(); ++k) {
+        const auto [v, s] = c.vertex_on_segment[k];
         splits[s].push_back(v);
-        report("vertex_on_segment", pts_[v], 0,
-               "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part,
-               {static_cast<std::int64_t>(v), segs_[s].part});
+        if (k < n_exact)
+          report("vertex_on_segment", pts_[v], 0,
+                 "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part,
+                 {static_cast<std::int64_t>(v), segs_[s].part});
+        else
+          report("snap_to_segment", pts_[v], dist_to_segment(pts_[v], pts_[segs_[s].a], pts_[segs_[s].b]),
+                 "segment routed through vertex " + std::to_string(v) + " lying within the snap tolerance of it",
+                 segs_[s].part, {static_cast<std::int64_t>(v), segs_[s].part});
       }
       for (std::size_t k = 0; k < c.segment_pairs.size(); ++k) {
         const auto [i, j] = c.segment_pairs[k];
@@ -378,7 +422,13 @@ class Cleaner {
                        std::to_string(xr) + " of splitting)",
                    s.part, {static_cast<std::int64_t>(id)});
         }
-        if (id == kNoId) id = add_point(p);
+        if (id == kNoId) {
+          id = add_point(p);
+          if (pts_[id] != p)  // merged with a vertex within the snap distance
+            report("snap", pts_[id], dist(pts_[id], p),
+                   "crossing point merged with vertex " + std::to_string(id) + " within the snap distance", s.part,
+                   {static_cast<std::int64_t>(id)});
+        }
         splits[i].push_back(id);
         splits[j].push_back(id);
         report("crossing_split", pts_[id], 0,

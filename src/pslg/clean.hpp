@@ -36,6 +36,10 @@ struct CleanOptions {
   // true (GIS): coincident boundary segments cancel in pairs (the domain is defined by crossing
   // parity). false (Triangle .poly semantics): every copy of a segment merges into the first.
   bool boundary_parity = true;
+  // > 0: a vertex within this distance of a segment's interior splits it there (the segment is
+  // routed through the vertex: snap rounding's hot-pixel rule), so that no feature far below
+  // floating-point resolution is left for the triangulator (reported as "snap_to_segment").
+  double segment_snap = 0;
 };
 
 // Returns a PSLG with no duplicate points, no zero-length or duplicate segments and no two

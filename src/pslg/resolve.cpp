@@ -1,5 +1,6 @@
 // Triangle-semantics constraint resolution on top of pslg::clean's exact splitting core.
 #include "pslg/resolve.hpp"
+#include <algorithm>
 #include <cmath>
 #include "base/error.hpp"
 #include "pslg/validate.hpp"
@@ -25,6 +26,16 @@ Pslg resolve(const Pslg& in, const ResolveOptions& options, std::vector<Repair>*
   for (std::size_t s = 0; s < work.segments.size(); ++s) work.segments[s].part = static_cast<std::int32_t>(s);
   CleanOptions co;
   co.boundary_parity = false;
+  // Snap tolerance ("pixel"): 2^-36 of the extent, at least 16 ulps of the largest coordinate.
+  // Vertices closer than this merge, and a vertex this close to a segment splits it, so the
+  // resolved PSLG has no feature far below floating-point resolution (which the refiner could
+  // not split) while moving nothing by more than ~1.5e-11 of the extent.
+  {
+    const Box2 b = in.bbox();
+    const double mag = std::max({std::fabs(b.lo.x), std::fabs(b.hi.x), std::fabs(b.lo.y), std::fabs(b.hi.y)});
+    const double pixel = std::max(std::ldexp(std::max(b.width(), b.height()), -36), std::ldexp(mag, -48));
+    if (options.snap && pixel > 0 && std::isfinite(pixel)) co.snap_distance = co.segment_snap = pixel;
+  }
   co.max_iterations = options.max_iterations;
   Pslg out;
   try {

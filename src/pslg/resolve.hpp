@@ -13,6 +13,10 @@ struct ResolveOptions {
   bool strict = false;
   std::string source = "input";   // named in error messages
   std::size_t max_iterations = 64;  // cap on crossing-split rounds (clean's cascade cap)
+  // Snap rounding with a tolerance of max(2^-36 * extent, 2^-48 * largest |coordinate|):
+  // vertices closer than it merge ("snap"), a vertex that close to a segment splits it
+  // ("snap_to_segment"). false: exact coincidences only.
+  bool snap = true;
 };
 
 // Returns a PSLG without conflicts: exact duplicate vertices merged into the lowest id,

@@ -221,8 +221,15 @@ void Refiner::split_subsegment(Index a, Index b) {
   if (m == pa || m == pb)
     throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
                                           " further: the spacing is below floating-point resolution there");
-  if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h}))
+  if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h})) {
+    // A rounded split point off the segment's line fell behind a neighbouring constraint: the
+    // geometry is at floating-point resolution there (a resolution limit, not a bug).
+    if (predicates::orient2d(pa, pb, m) != 0)
+      throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
+                                            ": its rounded midpoint falls behind a neighbouring constraint (the input "
+                                            "has features near floating-point resolution there)");
     throw Error(ExitCode::kInternal, "could not split subsegment at " + pt(T.origin + m));
+  }
   auto sid = T.seg_of.find(mesh::edge_key(a, b));
   const Index seg_id = sid != T.seg_of.end() ? sid->second : kNoId;
   const Index v = ins_.commit(m, VertexKind::kSegment);
