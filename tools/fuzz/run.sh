@@ -64,12 +64,14 @@ for t in "${targets[@]}"; do
   log=$out/$t.log
   echo "== $t: $secs s" >&2
   set +e
+  cd "$out"  # fork mode writes fuzz-N.log into the working directory
   # -fork=1 (one worker process at a time): a crash is saved and fuzzing goes on, so one run
   # finds every crash; the status lines give execs, cov, ft and oom/timeout/crash counts.
   nice -n 19 "$bin" -max_total_time="$secs" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
     -print_final_stats=1 -timeout=20 -rss_limit_mb=2048 -max_len=4096 -artifact_prefix="$out/$t/crashes/" \
     "$out/$t/corpus" "$out/$t/seeds" >"$log" 2>&1
   rc=$?
+  cd - >/dev/null
   set -e
   grep -E '^#[0-9]+: cov:' "$log" | tail -1 >&2 || true
   n=$(find "$out/$t/crashes" -type f | wc -l)
