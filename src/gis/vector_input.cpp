@@ -101,7 +101,9 @@ CoordLimits coord_limits(const OGRSpatialReference& srs) {
   const double m = std::max(b.width(), b.height());
   c.xmin = std::max(c.xmin, b.lo.x - m), c.xmax = std::min(c.xmax, b.hi.x + m);
   c.ymin = std::max(c.ymin, b.lo.y - m), c.ymax = std::min(c.ymax, b.hi.y + m);
-  c.what = "within the CRS's area of use" + std::string(name && *name ? " (" + std::string(name) + ")" : "") +
+  std::string area = name ? name : "";
+  if (area.size() > 48) area = area.substr(0, 45) + "...";
+  c.what = "within the CRS's area of use" + (area.empty() ? std::string() : " (" + area + ")") +
            ", widened by its size: x in [" + num(c.xmin) + ", " + num(c.xmax) + "], y in [" + num(c.ymin) + ", " +
            num(c.ymax) + "]";
   return c;
