@@ -371,6 +371,24 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
       remove[k] = true;
     }
   }
+  // Regional attributes / area constraints (Triangle semantics): a seed marks the whole region
+  // bounded by segments around it; a later seed in the same region wins. Seeds outside every
+  // triangle are ignored, as Triangle does.
+  if (!in.regions.empty()) {
+    std::vector<std::int32_t> region_of_comp(ncomp, -1);
+    TriangleId start = 0;
+    while (T.dead(start)) ++start;
+    for (std::size_t r = 0; r < in.regions.size(); ++r) {
+      const Point2 rp = in.regions[r].seed;
+      if (!std::isfinite(rp.x) || !std::isfinite(rp.y)) continue;
+      const Location loc = locate_visibility(T, start, rp);
+      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked) continue;
+      region_of_comp[comp[mesh::tri_of(loc.he)]] = static_cast<std::int32_t>(r);
+    }
+    T.region.assign(nt, -1);
+    for (TriangleId t = 0; t < nt; ++t)
+      if (!T.dead(t)) T.region[t] = region_of_comp[comp[t]];
+  }
   // Delete removed triangles; touching super-vertex triangles always go.
   auto removed = [&](TriangleId t) {
     if (remove[comp[t]]) return true;

@@ -110,6 +110,11 @@ Index Inserter::commit(Point2 p, mesh::VertexKind kind) {
     split_b = T.dst(split_he_);
     split_cons = T.constrained(split_he_);
   }
+  // A new triangle inherits the region of the cavity triangle that owned its rim edge (a split
+  // constrained edge can separate two regions inside one cavity).
+  rim_region_.clear();
+  if (!T.region.empty())
+    for (HalfEdge h : boundary_) rim_region_.push_back(T.region[mesh::tri_of(h)]);
   for (TriangleId t : cavity_) T.kill_triangle(t);
   new_tris_.clear();
   by_start_.clear();
@@ -119,6 +124,10 @@ Index Inserter::commit(Point2 p, mesh::VertexKind kind) {
     if (r.cons) T.set_constrained(3 * t, true);
     new_tris_.push_back(t);
     by_start_.push_back({r.x, t});
+  }
+  if (!T.region.empty()) {
+    if (T.region.size() < T.num_slots()) T.region.resize(T.num_slots(), -1);
+    for (std::size_t k = 0; k < new_tris_.size(); ++k) T.region[new_tris_[k]] = rim_region_[k];
   }
   std::sort(by_start_.begin(), by_start_.end());
   for (TriangleId t : new_tris_) {

@@ -192,6 +192,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   ro.min_angle_deg = opt.min_angle_deg;
   ro.max_steiner = opt.max_steiner;
   ro.expected_steiner = expected / 2;
+  for (const auto& r : in.pslg.regions) ro.region_max_area.push_back(r.max_area);
   ro.progress = [&](double frac, std::string_view) {
     return !progress || progress(0.05 + 0.75 * frac, "refine");
   };

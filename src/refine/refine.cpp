@@ -110,6 +110,13 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
       key = ka;
     }
   }
+  if (!opt_.region_max_area.empty() && t < T.region.size()) {  // regional area constraint
+    const std::int32_t r = T.region[t];
+    if (r >= 0 && static_cast<std::size_t>(r) < opt_.region_max_area.size() && opt_.region_max_area[r] > 0) {
+      const double area = 0.5 * std::fabs(bx * cy - by * cx);
+      if (area > opt_.region_max_area[r]) key = std::max(key, std::max(area / opt_.region_max_area[r], 1.0 + 1e-9));
+    }
+  }
   return key > 1 ? key : 0;
 }
 

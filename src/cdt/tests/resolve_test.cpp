@@ -352,3 +352,39 @@ TEST(Resolve, ConvexHullMeshesPointsAndDanglingBreaklines) {
 }
 
 }  // namespace
+
+namespace {
+// Triangle .poly regions: the seed's region (bounded by segments) gets its area constraint, and
+// refinement makes every triangle there at most that large; the other region is unaffected.
+TEST(Regions, AreaConstraintBoundsTriangleAreaInItsRegionOnly) {
+  pslg::Pslg g;
+  g.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {3, 3}, {6, 3}, {6, 6}, {3, 6}};
+  for (Index k = 0; k < 4; ++k) {
+    g.segments.push_back({k, (k + 1) % 4, 1, -1});
+    g.segments.push_back({4 + k, 4 + (k + 1) % 4, 2, -1});
+  }
+  g.regions.push_back({{4.5, 4.5}, 7, 0.02});  // inner square
+  g.regions.push_back({{1, 1}, 3, -1});        // outer ring: attribute only
+  mesh::Triangulation tri = cdt::build_cdt(g, {cdt::CdtOptions::Regions::kSeeds, "r"});
+  const auto f = sizing::make_spacing("4");
+  refine::RefineOptions ro;
+  ro.region_max_area = {0.02, -1};
+  refine::Refiner refiner(tri, *f, ro);
+  refiner.init();
+  refiner.run();
+  ASSERT_TRUE(mesh::check_all(tri).ok());
+  ASSERT_EQ(tri.region.size(), tri.num_slots());
+  double inner_max = 0, outer_max = 0, inner_area = 0;
+  for (TriangleId t = 0; t < tri.num_slots(); ++t) {
+    if (tri.dead(t)) continue;
+    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    ASSERT_GE(tri.region[t], 0);
+    if (tri.region[t] == 0) inner_max = std::max(inner_max, area), inner_area += area;
+    else outer_max = std::max(outer_max, area);
+  }
+  EXPECT_LE(inner_max, 0.02);
+  EXPECT_NEAR(inner_area, 9.0, 1e-9);  // the inner square keeps its triangles: region 0 exactly
+  EXPECT_GT(outer_max, 0.5);           // no constraint there
+}
+}  // namespace
