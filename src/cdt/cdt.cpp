@@ -41,35 +41,6 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
   return d;
 }
 
-// Flips the edge of half-edge h (and its twin): triangles (a,b,c) + (b,a,d) become (c,a,d) +
-// (d,b,c), i.e. the diagonal a-b is replaced by c-d. Caller guarantees a strictly convex quad.
-//
-//          c                    c
-//        /   \                / | \   .
-//       a --- b      ->      a  |  b
-//        \   /                \ | /
-//          d                    d
-void flip(Triangulation& T, HalfEdge h) {
-  const HalfEdge g = T.twin[h];
-  const TriangleId t1 = mesh::tri_of(h), t2 = mesh::tri_of(g);
-  const Index a = T.org(h), b = T.dst(h), c = T.apex(h), d = T.apex(g);
-  const HalfEdge o_bc = T.twin[mesh::next_he(h)], o_ca = T.twin[mesh::prev_he(h)];
-  const HalfEdge o_ad = T.twin[mesh::next_he(g)], o_db = T.twin[mesh::prev_he(g)];
-  const bool c_bc = T.constrained(mesh::next_he(h)), c_ca = T.constrained(mesh::prev_he(h));
-  const bool c_ad = T.constrained(mesh::next_he(g)), c_db = T.constrained(mesh::prev_he(g));
-  // t1 = (c, a, d): edges c->a, a->d, d->c.  t2 = (d, b, c): edges d->b, b->c, c->d.
-  T.tv[3 * t1] = c; T.tv[3 * t1 + 1] = a; T.tv[3 * t1 + 2] = d;
-  T.tv[3 * t2] = d; T.tv[3 * t2 + 1] = b; T.tv[3 * t2 + 2] = c;
-  T.flags[t1] &= static_cast<std::uint8_t>(~7u);
-  T.flags[t2] &= static_cast<std::uint8_t>(~7u);
-  T.link(3 * t1, o_ca);     T.set_constrained(3 * t1, c_ca);
-  T.link(3 * t1 + 1, o_ad); T.set_constrained(3 * t1 + 1, c_ad);
-  T.link(3 * t2, o_db);     T.set_constrained(3 * t2, c_db);
-  T.link(3 * t2 + 1, o_bc); T.set_constrained(3 * t2 + 1, c_bc);
-  T.link(3 * t1 + 2, 3 * t2 + 2);
-  T.vhe[a] = 3 * t1 + 1; T.vhe[d] = 3 * t1 + 2; T.vhe[b] = 3 * t2 + 1; T.vhe[c] = 3 * t2 + 2;
-}
-
 [[noreturn]] void crossing_error(const Triangulation& T, Index a, Index b, Index sid, HalfEdge h,
                                  const std::string& source) {
   auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
@@ -165,7 +136,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
         crossing.push_back({u, w});
         continue;
       }
-      flip(T, e);
+      flip_edge(T, e);
       stall = 0;
       const int sc = orient2d(pa, pe, T.pts[c]), sd = orient2d(pa, pe, T.pts[d]);
       if ((c == a || c == end || d == a || d == end) || sc * sd >= 0) fresh.push_back({c, d});
@@ -182,7 +153,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
       if (e == kNoId || T.constrained(e) || T.twin[e] == kNoId) continue;
       const Index c = T.apex(e), d = T.apex(T.twin[e]);
       if (incircle(T.pts[u], T.pts[w], T.pts[c], T.pts[d]) <= 0) continue;
-      flip(T, e);
+      flip_edge(T, e);
       fresh.push_back({u, c});
       fresh.push_back({c, w});
       fresh.push_back({w, d});

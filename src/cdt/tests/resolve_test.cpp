@@ -142,12 +142,6 @@ std::vector<Case> cases() {
   return out;
 }
 
-// Cases where FDR (src/refine, not this issue's code) currently leaves a Delaunay violation.
-bool known_refine_issue(const std::string& name, double /*scale*/) {
-  return name == "angles_90_to_1em6_deg" || name == "near_parallel_1em1_to_1em12" ||
-         name == "nearly_parallel_crossing_pairs";
-}
-
 pslg::Pslg transform(const Case& c, double scale, Point2 offset) {
   pslg::Pslg g;
   for (const Point2& p : c.pts) g.points.push_back({offset.x + scale * p.x, offset.y + scale * p.y});
@@ -261,13 +255,6 @@ void run_case(const Case& c, double scale, Point2 offset) {
     GTEST_LOG_(INFO) << what << ": " << e.what();
   }
   cr = mesh::check_all(tri);
-  if (!cr.ok() && known_refine_issue(c.name, scale)) {
-    // Known refine defect (not in the resolver): the resolved PSLG is valid and its CDT passes
-    // every check, but FDR leaves a non-locally-Delaunay edge next to features within ~1e-12 of
-    // the extent; reproduced with the refine of main on the same resolved PSLG. See the report.
-    GTEST_LOG_(WARNING) << what << ": known refine issue: " << cr.problems.front();
-    return;
-  }
   ASSERT_TRUE(cr.ok()) << what << " FDR: " << cr.problems.front();
   if (!stopped) EXPECT_EQ(refiner.leftovers().r_over_f_bad, 0u) << what;
 }

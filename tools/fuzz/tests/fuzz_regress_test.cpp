@@ -32,11 +32,11 @@ TEST(FuzzRegress, PslgMesh2to20UlpFeatures) {
   for (int k = 2; k <= 20; ++k) replay("fuzz_pslg_mesh_" + std::to_string(k) + ".bin");
 }
 
-// Known defect outside the resolver: FDR refinement leaves a non-locally-Delaunay edge next to
-// near-degenerate constraints (the CDT before refinement passes every check). Kept as
-// regression files for the refine owner; enable when fixed.
-TEST(FuzzRegress, DISABLED_KnownRefineDelaunay) {
-  for (int k = 1; k <= 6; ++k) replay("known_refine_delaunay_" + std::to_string(k) + ".bin");
+// FDR refinement left a non-locally-Delaunay edge after a subsegment split: the rounded split
+// point lay a hair off the edge, outside the circumcircle of the triangle across it, which the
+// cavity destroys anyway. Fixed by Lawson flips after such insertions (cdt::Inserter).
+TEST(FuzzRegress, PslgMesh21to29SplitOffEdgeDelaunay) {
+  for (int k = 21; k <= 29; ++k) replay("fuzz_pslg_mesh_" + std::to_string(k) + ".bin");
 }
 
 // Every regression file replays clean (covers files added without a named case yet).
