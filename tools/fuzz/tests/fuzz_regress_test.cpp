@@ -35,8 +35,8 @@ TEST(FuzzRegress, PslgMesh2to20UlpFeatures) {
 // FDR refinement left a non-locally-Delaunay edge after a subsegment split: the rounded split
 // point lay a hair off the edge, outside the circumcircle of the triangle across it, which the
 // cavity destroys anyway. Fixed by Lawson flips after such insertions (cdt::Inserter).
-TEST(FuzzRegress, PslgMesh21to29SplitOffEdgeDelaunay) {
-  for (int k = 21; k <= 29; ++k) replay("fuzz_pslg_mesh_" + std::to_string(k) + ".bin");
+TEST(FuzzRegress, PslgMesh21to34SplitOffEdgeDelaunay) {
+  for (int k = 21; k <= 34; ++k) replay("fuzz_pslg_mesh_" + std::to_string(k) + ".bin");
 }
 
 // Every regression file replays clean (covers files added without a named case yet).
