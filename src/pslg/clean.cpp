@@ -37,6 +37,45 @@ std::string fmt(Point2 p) {
 
 Point2 mid(Point2 a, Point2 b) { return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}; }
 
+}  // namespace
+
+std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Point2>& pts_,
+                                                            const std::vector<Segment>& segs_,
+                                                            const std::vector<char>* present, double tol) {
+  std::vector<std::pair<Index, Index>> found;
+  if (segs_.empty() || !(tol > 0)) return found;
+  Box2 box;
+  double total = 0;
+  for (const Segment& s : segs_) box.add(pts_[s.a]), box.add(pts_[s.b]), total += dist(pts_[s.a], pts_[s.b]);
+  SegmentGrid grid(box, segs_.size(), total / static_cast<double>(segs_.size()));
+  for (Index i = 0; i < segs_.size(); ++i) grid.add_segment(i, pts_[segs_[i].a], pts_[segs_[i].b]);
+  std::vector<Index> near;
+  for (Index v = 0; v < pts_.size(); ++v) {
+    if (present && !(*present)[v]) continue;
+    const Point2 p = pts_[v];
+    if (!(p.x >= box.lo.x - tol && p.x <= box.hi.x + tol && p.y >= box.lo.y - tol && p.y <= box.hi.y + tol)) continue;
+    Box2 q;
+    q.add({p.x - tol, p.y - tol});
+    q.add({p.x + tol, p.y + tol});
+    grid.segments_near(q, &near);
+    for (Index s : near) {
+      const Segment& sg = segs_[s];
+      if (sg.a == v || sg.b == v) continue;
+      const Point2 a = pts_[sg.a], b = pts_[sg.b];
+      if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
+      const Point2 d = b - a;
+      const double t = dot(p - a, d) / dot(d, d);
+      if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) continue;
+      if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
+    }
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+namespace {
+
 class Cleaner {
  public:
   Cleaner(const Pslg& in, const CleanOptions& opt, std::vector<Repair>* repairs)
@@ -303,39 +342,8 @@ class Cleaner {
     }
   }
 
-  // Appends (vertex, segment) pairs where a present vertex lies off the segment's line but within
-  // opt_.segment_snap of its open interior (exact ones are already in c).
   void add_vertices_near_segments(Contacts* c, const std::vector<char>& present) const {
-    if (segs_.empty()) return;
-    Box2 box;
-    double total = 0;
-    for (const Segment& s : segs_) box.add(pts_[s.a]), box.add(pts_[s.b]), total += dist(pts_[s.a], pts_[s.b]);
-    SegmentGrid grid(box, segs_.size(), total / static_cast<double>(segs_.size()));
-    for (Index i = 0; i < segs_.size(); ++i) grid.add_segment(i, pts_[segs_[i].a], pts_[segs_[i].b]);
-    const double tol = opt_.segment_snap;
-    std::vector<Index> near;
-    std::vector<std::pair<Index, Index>> found;
-    for (Index v = 0; v < pts_.size(); ++v) {
-      if (!present[v]) continue;
-      const Point2 p = pts_[v];
-      if (!(p.x >= box.lo.x - tol && p.x <= box.hi.x + tol && p.y >= box.lo.y - tol && p.y <= box.hi.y + tol)) continue;
-      Box2 q;
-      q.add({p.x - tol, p.y - tol});
-      q.add({p.x + tol, p.y + tol});
-      grid.segments_near(q, &near);
-      for (Index s : near) {
-        const Segment& sg = segs_[s];
-        if (sg.a == v || sg.b == v) continue;
-        const Point2 a = pts_[sg.a], b = pts_[sg.b];
-        if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
-        const Point2 d = b - a;
-        const double t = dot(p - a, d) / dot(d, d);
-        if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) continue;
-        if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
-      }
-    }
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
+    const auto found = vertices_near_segments(pts_, segs_, &present, opt_.segment_snap);
     c->vertex_on_segment.insert(c->vertex_on_segment.end(), found.begin(), found.end());
   }
 

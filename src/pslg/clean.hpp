@@ -48,4 +48,10 @@ struct CleanOptions {
 // domain by parity); breaklines are merged. Appends every change to `repairs`.
 Pslg clean(const Pslg& in, const CleanOptions& options, std::vector<Repair>* repairs);
 
+// Sorted (vertex, segment) pairs where the vertex lies off the segment's line but within `tol`
+// of its open interior and farther than `tol` from its endpoints (`present` masks vertices).
+std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Point2>& points,
+                                                            const std::vector<Segment>& segments,
+                                                            const std::vector<char>* present, double tol);
+
 }  // namespace fdr::pslg
