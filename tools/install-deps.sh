@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fdrmesh needs to build, test and benchmark.
-# Usage: tools/install-deps.sh [--no-qgis]   (root, or sudo available)
+# Usage: tools/install-deps.sh [--no-qgis] [--fuzz]   (root, or sudo available)
+#   --fuzz also installs clang and libFuzzer for tools/fuzz/run.sh (not needed by CI).
 set -euo pipefail
 want_qgis=1
-[ "${1:-}" = "--no-qgis" ] && want_qgis=0
+want_fuzz=0
+for a in "$@"; do
+  [ "$a" = "--no-qgis" ] && want_qgis=0
+  [ "$a" = "--fuzz" ] && want_fuzz=1
+done
 pkgs=(build-essential cmake ninja-build pkg-config git
       libcgal-dev libgmp-dev libmpfr-dev libboost-dev
       libgdal-dev gdal-bin libsqlite3-dev libproj-dev proj-bin libgeographiclib-dev
@@ -12,6 +17,7 @@ pkgs=(build-essential cmake ninja-build pkg-config git
       gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4 python3-pytest
       python3-dev python3-pybind11 pybind11-dev)
 [ "$want_qgis" = 1 ] && pkgs+=(qgis python3-qgis)
+[ "$want_fuzz" = 1 ] && pkgs+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 #include "api/triangulate.hpp"
+#include "cdt/cdt.hpp"
+#include "pslg/clean.hpp"
 #include "mesh/triangulation.hpp"
 #include "refine/refine.hpp"
 
@@ -16,9 +18,23 @@ namespace fdr {
 // by the shift.
 Pslg to_local_frame(Pslg pslg);
 
+// A .poly/library PSLG made ready for the CDT, in its local frame: with `strict`, conflicting
+// constraints are refused (pslg::validate, exit 5 naming the first); else they are resolved
+// exactly (pslg::resolve: crossings split, overlaps and duplicates merged, vertices on segments
+// split there, zero-length segments dropped), each fix appended to `repairs` (local coordinates).
+Pslg prepare_pslg(Pslg pslg, const std::string& source, bool strict, std::vector<pslg::Repair>* repairs);
+
 // Constrained Delaunay triangulation of a PSLG in its local frame; `seconds` gets its wall time.
-// Error(kInvalidGeometry) naming `source` when no region is enclosed by segments.
-mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds = nullptr);
+// `regions`: kAuto (GIS: parity), kSeeds (Triangle .poly semantics), kHull (--convex-hull).
+// Error(kInvalidGeometry) naming `source` when no region is enclosed by segments (suggesting
+// --convex-hull when `suggest_hull`).
+mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds = nullptr,
+                              cdt::CdtOptions::Regions regions = cdt::CdtOptions::Regions::kAuto,
+                              bool suggest_hull = false);
+
+// The region mode of a .poly/library input: --convex-hull, else Triangle's seeds when there are
+// segments, else parity.
+cdt::CdtOptions::Regions poly_regions(const Pslg& pslg, bool convex_hull);
 
 // Spacing stage of the .poly path and of `fdrmesh quality`: f from a --spacing specification
 // (world coordinates) evaluated in a local frame with the given origin.

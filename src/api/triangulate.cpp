@@ -9,6 +9,7 @@
 #include "mesh/check.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/poly_io.hpp"
+#include "pslg/resolve.hpp"
 #include "pslg/validate.hpp"
 #include "quality/rss.hpp"
 #include "refine/refine.hpp"
@@ -48,9 +49,30 @@ void info(const LogFn& log, const std::string& s) {
 }  // namespace
 
 Pslg read_pslg(const std::string& path) {
-  Pslg p = lower_ext(path) == "node" ? pslg::read_node(path) : pslg::read_poly(path);
-  pslg::validate(p, path);
+  // Conflicting constraints are resolved (or refused with --strict) by prepare_pslg.
+  return lower_ext(path) == "node" ? pslg::read_node(path) : pslg::read_poly(path);
+}
+
+Pslg prepare_pslg(Pslg p, const std::string& source, bool strict, std::vector<pslg::Repair>* repairs) {
+  if (strict) {
+    pslg::validate(p, source);  // today's refusal, in the input's coordinates
+  } else {
+    for (std::size_t i = 0; i < p.points.size(); ++i)
+      if (!std::isfinite(p.points[i].x) || !std::isfinite(p.points[i].y))
+        throw Error(ExitCode::kInvalidGeometry, source + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+  }
+  p = to_local_frame(std::move(p));
+  if (!strict) {  // resolved in the local frame, where the CDT decides
+    pslg::ResolveOptions ro;
+    ro.source = source;
+    p = pslg::resolve(p, ro, repairs);
+  }
   return p;
+}
+
+cdt::CdtOptions::Regions poly_regions(const Pslg& p, bool convex_hull) {
+  if (convex_hull) return cdt::CdtOptions::Regions::kHull;
+  return p.segments.empty() ? cdt::CdtOptions::Regions::kAuto : cdt::CdtOptions::Regions::kSeeds;
 }
 
 SizingPtr make_spacing(const std::string& spec) { return sizing::make_spacing(spec); }
@@ -83,12 +105,20 @@ Pslg to_local_frame(Pslg p) {
   return p;
 }
 
-mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds) {
+mesh::Triangulation build_cdt(const Pslg& local, const std::string& source, double* seconds,
+                              cdt::CdtOptions::Regions regions, bool suggest_hull) {
   const auto t = Clock::now();
-  mesh::Triangulation tri = cdt::build_cdt(local, {cdt::CdtOptions::Regions::kAuto, source}, nullptr);
+  cdt::CdtOptions co;
+  co.regions = regions;
+  co.source = source;
+  mesh::Triangulation tri = cdt::build_cdt(local, co, nullptr);
   if (seconds) *seconds = since(t);
   if (tri.num_live_triangles() == 0)
-    throw Error(ExitCode::kInvalidGeometry, source + ": the domain is empty (no region enclosed by segments)");
+    throw Error(ExitCode::kInvalidGeometry,
+                source + ": the domain is empty (no region enclosed by segments)" +
+                    (suggest_hull && regions != cdt::CdtOptions::Regions::kHull
+                         ? "; give --convex-hull to mesh the convex hull of the vertices (point sets, dangling breaklines)"
+                         : ""));
   return tri;
 }
 
@@ -126,6 +156,7 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
   ro.bound = opt.bound;
   ro.min_angle_deg = opt.min_angle_deg;
   ro.max_steiner = opt.max_steiner;
+  ro.region_max_area = opt.region_max_area;
   ro.expected_steiner = expected / 2;
   const ProgressFn& progress = opt.progress;
   ro.progress = [&progress](double frac, std::string_view) { return !progress || progress(0.05 + 0.75 * frac, "refine"); };
@@ -169,14 +200,18 @@ Triangulator::Triangulator(const Pslg& in, const TriangulateOptions& opt) : opt_
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt_.min_angle_deg < 0 || opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   if (opt_.smooth_passes < 0 || opt_.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
-  if (opt_.convex_hull)  // issue 10 adds --convex-hull to the core; wire CdtOptions here then
-    throw Error(ExitCode::kUsage, "--convex-hull is not supported by this build yet");
   predicates::reset_counters();
-  pslg::validate(in, opt_.source);
-  pslg_ = to_local_frame(in);
+  std::vector<pslg::Repair> reps;
+  pslg_ = prepare_pslg(in, opt_.source, opt_.strict, &reps);
+  for (const auto& r : reps) {
+    const Point2 w = pslg_.origin + r.where;
+    repairs_.push_back({r.kind, w.x, w.y, r.ids, r.reason});
+  }
+  if (opt_.region_max_area.empty())
+    for (const auto& r : pslg_.regions) opt_.region_max_area.push_back(r.max_area);
   if (opt_.progress && !opt_.progress(0.05, "cdt")) throw Error(ExitCode::kCancelled, "cancelled during cdt");
   double s = 0;
-  tri_ = fdr::build_cdt(pslg_, opt_.source, &s);
+  tri_ = fdr::build_cdt(pslg_, opt_.source, &s, poly_regions(pslg_, opt_.convex_hull), true);
   cdt_s_ = s;
 }
 
@@ -236,6 +271,7 @@ Mesh Triangulator::mesh() const {
   fig.angle_exempt = angle_exempt_;
   fig.alpha = alpha_;
   out.report = measure_mesh(out.view, f_.get(), opt_, fig);
+  out.report.repairs = repairs_;
   out.report.run.peak_rss_mb = quality::peak_rss_mb_value();
   return out;
 }

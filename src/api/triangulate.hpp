@@ -40,8 +40,12 @@ struct TriangulateOptions {
   std::uint64_t max_steiner = 20'000'000;  // Steiner point cap; reaching it is Error(kWorkLimit)
   bool check = false;                    // verify the invariants, Error(kCheckFailed) if one fails (--check)
   // Mesh the convex hull of the input, not the regions bounded by segments (--convex-hull).
-  // Hook for issue 10: refused with Error(kUsage) until the core supports it.
   bool convex_hull = false;
+  // Refuse crossing, overlapping, duplicate or zero-length constraints (Error(kInvalidGeometry)
+  // naming the first) instead of resolving them with pslg::resolve (--strict).
+  bool strict = false;
+  // Triangle .poly regions: maximum triangle area per region (in Pslg::regions order; < 0 none).
+  std::vector<double> region_max_area;
   std::string source = "input";          // named in error messages and in the report
   ProgressFn progress;                   // fraction 0..1, may cancel (Error(kCancelled))
   LogFn log;                             // warnings (alpha*B >= 1) and info lines
@@ -110,6 +114,7 @@ class Triangulator {
   SizingPtr f_;        // last refinement's spacing, local frame
   double alpha_ = -1;
   std::optional<double> cdt_s_, refine_s_;
+  std::vector<quality::QualityReport::Repair> repairs_;  // constraint fixes (world coordinates)
   std::uint64_t seg_splits_ = 0, circumcenters_ = 0, angle_exempt_ = 0;
 };
 

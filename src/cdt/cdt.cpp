@@ -41,35 +41,6 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
   return d;
 }
 
-// Flips the edge of half-edge h (and its twin): triangles (a,b,c) + (b,a,d) become (c,a,d) +
-// (d,b,c), i.e. the diagonal a-b is replaced by c-d. Caller guarantees a strictly convex quad.
-//
-//          c                    c
-//        /   \                / | \   .
-//       a --- b      ->      a  |  b
-//        \   /                \ | /
-//          d                    d
-void flip(Triangulation& T, HalfEdge h) {
-  const HalfEdge g = T.twin[h];
-  const TriangleId t1 = mesh::tri_of(h), t2 = mesh::tri_of(g);
-  const Index a = T.org(h), b = T.dst(h), c = T.apex(h), d = T.apex(g);
-  const HalfEdge o_bc = T.twin[mesh::next_he(h)], o_ca = T.twin[mesh::prev_he(h)];
-  const HalfEdge o_ad = T.twin[mesh::next_he(g)], o_db = T.twin[mesh::prev_he(g)];
-  const bool c_bc = T.constrained(mesh::next_he(h)), c_ca = T.constrained(mesh::prev_he(h));
-  const bool c_ad = T.constrained(mesh::next_he(g)), c_db = T.constrained(mesh::prev_he(g));
-  // t1 = (c, a, d): edges c->a, a->d, d->c.  t2 = (d, b, c): edges d->b, b->c, c->d.
-  T.tv[3 * t1] = c; T.tv[3 * t1 + 1] = a; T.tv[3 * t1 + 2] = d;
-  T.tv[3 * t2] = d; T.tv[3 * t2 + 1] = b; T.tv[3 * t2 + 2] = c;
-  T.flags[t1] &= static_cast<std::uint8_t>(~7u);
-  T.flags[t2] &= static_cast<std::uint8_t>(~7u);
-  T.link(3 * t1, o_ca);     T.set_constrained(3 * t1, c_ca);
-  T.link(3 * t1 + 1, o_ad); T.set_constrained(3 * t1 + 1, c_ad);
-  T.link(3 * t2, o_db);     T.set_constrained(3 * t2, c_db);
-  T.link(3 * t2 + 1, o_bc); T.set_constrained(3 * t2 + 1, c_bc);
-  T.link(3 * t1 + 2, 3 * t2 + 2);
-  T.vhe[a] = 3 * t1 + 1; T.vhe[d] = 3 * t1 + 2; T.vhe[b] = 3 * t2 + 1; T.vhe[c] = 3 * t2 + 2;
-}
-
 [[noreturn]] void crossing_error(const Triangulation& T, Index a, Index b, Index sid, HalfEdge h,
                                  const std::string& source) {
   auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
@@ -165,7 +136,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
         crossing.push_back({u, w});
         continue;
       }
-      flip(T, e);
+      flip_edge(T, e);
       stall = 0;
       const int sc = orient2d(pa, pe, T.pts[c]), sd = orient2d(pa, pe, T.pts[d]);
       if ((c == a || c == end || d == a || d == end) || sc * sd >= 0) fresh.push_back({c, d});
@@ -182,7 +153,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
       if (e == kNoId || T.constrained(e) || T.twin[e] == kNoId) continue;
       const Index c = T.apex(e), d = T.apex(T.twin[e]);
       if (incircle(T.pts[u], T.pts[w], T.pts[c], T.pts[d]) <= 0) continue;
-      flip(T, e);
+      flip_edge(T, e);
       fresh.push_back({u, c});
       fresh.push_back({c, w});
       fresh.push_back({w, d});
@@ -193,6 +164,14 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
 }
 
 Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* stats) {
+  if (opt.resolve) {
+    pslg::ResolveOptions ro;
+    ro.source = opt.source;
+    const pslg::Pslg resolved = pslg::resolve(in, ro, opt.repairs);
+    CdtOptions o2 = opt;
+    o2.resolve = false;
+    return build_cdt(resolved, o2, stats);
+  }
   CdtStats local;
   if (!stats) stats = &local;
   Triangulation T;
@@ -329,19 +308,78 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
   std::vector<bool> remove(ncomp, false);
   for (Index k = 0; k < ncomp; ++k) {
     if (mode == CdtOptions::Regions::kParity) remove[k] = depth[k] < 0 || depth[k] % 2 == 0;
+    else if (mode == CdtOptions::Regions::kHull) remove[k] = false;  // super triangles go below
     else remove[k] = depth[k] == 0 || depth[k] < 0;
   }
-  if (mode == CdtOptions::Regions::kSeeds) {
-    for (const Point2& hp : in.holes) {
-      if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) continue;
+  if (mode == CdtOptions::Regions::kSeeds || mode == CdtOptions::Regions::kHull) {
+    for (std::size_t h = 0; h < in.holes.size(); ++h) {
+      const Point2 hp = in.holes[h];
+      auto hole_error = [&](const std::string& what) {
+        throw Error(ExitCode::kInvalidGeometry, opt.source + ": hole " + std::to_string(h) + " seed at " +
+                                                    pt(T.origin + hp) + " " + what);
+      };
+      if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) hole_error("has a non-finite coordinate");
       TriangleId start = 0;
       while (T.dead(start)) ++start;
       const Location loc = locate_visibility(T, start, hp);
-      if (loc.he == kNoId) continue;
-      remove[comp[mesh::tri_of(loc.he)]] = true;
+      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked)
+        hole_error("lies outside the domain (outside the convex hull of the vertices)");
+      if (loc.kind == LocateKind::kOnVertex) hole_error("lies on vertex " + std::to_string(T.org(loc.he)));
+      if (loc.kind == LocateKind::kOnEdge && T.constrained(loc.he)) {
+        auto it = T.seg_of.find(mesh::edge_key(T.org(loc.he), T.dst(loc.he)));
+        hole_error("lies on segment " +
+                   (it != T.seg_of.end() ? std::to_string(it->second) : std::string("(a constrained edge)")) +
+                   " (a seed must be strictly inside the region to remove)");
+      }
+      const TriangleId t = mesh::tri_of(loc.he);
+      bool sup = false;
+      for (int k = 0; k < 3; ++k) sup |= T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper;
+      const Index k = comp[t];
+      if (sup || (mode == CdtOptions::Regions::kSeeds && depth[k] <= 0))
+        hole_error(mode == CdtOptions::Regions::kHull
+                       ? "lies outside the domain (outside the convex hull of the vertices)"
+                       : "lies outside the domain (in no region enclosed by segments)");
+      remove[k] = true;
     }
   }
+  // Regional attributes / area constraints (Triangle semantics): a seed marks the whole region
+  // bounded by segments around it; a later seed in the same region wins. Seeds outside every
+  // triangle are ignored, as Triangle does.
+  if (!in.regions.empty()) {
+    std::vector<std::int32_t> region_of_comp(ncomp, -1);
+    TriangleId start = 0;
+    while (T.dead(start)) ++start;
+    for (std::size_t r = 0; r < in.regions.size(); ++r) {
+      const Point2 rp = in.regions[r].seed;
+      if (!std::isfinite(rp.x) || !std::isfinite(rp.y)) continue;
+      const Location loc = locate_visibility(T, start, rp);
+      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked) continue;
+      region_of_comp[comp[mesh::tri_of(loc.he)]] = static_cast<std::int32_t>(r);
+    }
+    T.region.assign(nt, -1);
+    for (TriangleId t = 0; t < nt; ++t)
+      if (!T.dead(t)) T.region[t] = region_of_comp[comp[t]];
+  }
   // Delete removed triangles; touching super-vertex triangles always go.
+  auto removed = [&](TriangleId t) {
+    if (remove[comp[t]]) return true;
+    for (int k = 0; k < 3; ++k)
+      if (T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper) return true;
+    return false;
+  };
+  // An input segment with an edge between two removed triangles lies (partly) outside the
+  // domain, e.g. a boundary segment between two even-depth regions (parity) or between a hole and
+  // the exterior: it is marked gone (b = a), so checkers and refinement ignore it.
+  for (TriangleId t = 0; t < nt; ++t) {
+    if (T.dead(t) || !removed(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge h = 3 * t + static_cast<Index>(k);
+      if (!T.constrained(h) || T.twin[h] == kNoId || !removed(mesh::tri_of(T.twin[h]))) continue;
+      auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
+      if (it != T.seg_of.end() && it->second < T.input_segments.size())
+        T.input_segments[it->second].b = T.input_segments[it->second].a;
+    }
+  }
   for (TriangleId t = 0; t < nt; ++t) {
     if (T.dead(t)) continue;
     bool sup = false;

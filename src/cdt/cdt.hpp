@@ -4,6 +4,7 @@
 #include <vector>
 #include "mesh/triangulation.hpp"
 #include "pslg/pslg.hpp"
+#include "pslg/resolve.hpp"
 
 namespace fdr::cdt {
 
@@ -15,8 +16,17 @@ struct CdtOptions {
   //           breaklines, marker 4, are interior constraints and do not count).
   //  kSeeds: remove the exterior and the regions containing hole seeds.
   //  kNone: keep the convex hull (only the super-triangle is removed).
-  enum class Regions { kAuto, kParity, kSeeds, kNone } regions = Regions::kAuto;
+  //  kHull: the convex hull of all vertices bounds the domain (Triangle -c); hole seeds remove
+  //         their regions.
+  // With kSeeds and kHull a hole seed that lies outside the domain, on a segment or on a vertex
+  // is an error (kInvalidGeometry naming the hole index and its world coordinates).
+  enum class Regions { kAuto, kParity, kSeeds, kNone, kHull } regions = Regions::kAuto;
   std::string source = "input";  // named in error messages
+  // true: the input is first resolved by pslg::resolve (crossings split, duplicates and
+  // overlaps merged, ...; see pslg/resolve.hpp) and vertex ids refer to the resolved PSLG.
+  // false: conflicts throw, as documented for build_cdt.
+  bool resolve = false;
+  std::vector<pslg::Repair>* repairs = nullptr;  // fixes made by resolve (optional)
 };
 
 struct CdtStats {
@@ -25,7 +35,8 @@ struct CdtStats {
   std::size_t removed_triangles = 0;
 };
 
-// Builds the CDT of `in` (local coordinates). Vertex i of the PSLG becomes vertex i of the
+// Builds the CDT of `in` (local coordinates). An input segment that ends up (partly) between two
+// removed regions is outside the domain: its Triangulation::input_segments entry gets b = a. Vertex i of the PSLG becomes vertex i of the
 // triangulation (duplicates are merged into the first one). Throws fdr::Error
 // (kInvalidGeometry) when two segments cross, naming both segments and the location.
 mesh::Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt = {}, CdtStats* stats = nullptr);

@@ -40,17 +40,50 @@ void Inserter::clear_marks() {
   rejected_.clear();
 }
 
+// Flips the edge of half-edge h (and its twin): triangles (a,b,c) + (b,a,d) become (c,a,d) +
+// (d,b,c), i.e. the diagonal a-b is replaced by c-d. Caller guarantees a strictly convex quad.
+//
+//          c                    c
+//        /   \                / | \   .
+//       a --- b      ->      a  |  b
+//        \   /                \ | /
+//          d                    d
+void flip_edge(mesh::Triangulation& T, HalfEdge h) {
+  const HalfEdge g = T.twin[h];
+  const TriangleId t1 = mesh::tri_of(h), t2 = mesh::tri_of(g);
+  const Index a = T.org(h), b = T.dst(h), c = T.apex(h), d = T.apex(g);
+  const HalfEdge o_bc = T.twin[mesh::next_he(h)], o_ca = T.twin[mesh::prev_he(h)];
+  const HalfEdge o_ad = T.twin[mesh::next_he(g)], o_db = T.twin[mesh::prev_he(g)];
+  const bool c_bc = T.constrained(mesh::next_he(h)), c_ca = T.constrained(mesh::prev_he(h));
+  const bool c_ad = T.constrained(mesh::next_he(g)), c_db = T.constrained(mesh::prev_he(g));
+  // t1 = (c, a, d): edges c->a, a->d, d->c.  t2 = (d, b, c): edges d->b, b->c, c->d.
+  T.tv[3 * t1] = c; T.tv[3 * t1 + 1] = a; T.tv[3 * t1 + 2] = d;
+  T.tv[3 * t2] = d; T.tv[3 * t2 + 1] = b; T.tv[3 * t2 + 2] = c;
+  T.flags[t1] &= static_cast<std::uint8_t>(~7u);
+  T.flags[t2] &= static_cast<std::uint8_t>(~7u);
+  T.link(3 * t1, o_ca);     T.set_constrained(3 * t1, c_ca);
+  T.link(3 * t1 + 1, o_ad); T.set_constrained(3 * t1 + 1, c_ad);
+  T.link(3 * t2, o_db);     T.set_constrained(3 * t2, c_db);
+  T.link(3 * t2 + 1, o_bc); T.set_constrained(3 * t2 + 1, c_bc);
+  T.link(3 * t1 + 2, 3 * t2 + 2);
+  T.vhe[a] = 3 * t1 + 1; T.vhe[d] = 3 * t1 + 2; T.vhe[b] = 3 * t2 + 1; T.vhe[c] = 3 * t2 + 2;
+}
+
 bool Inserter::build_cavity(Point2 p, Location loc) {
   auto& T = tri_;
   cavity_.clear();
   rejected_.clear();
   boundary_.clear();
   split_he_ = split_twin_ = kNoId;
+  needs_flips_ = false;
   if (loc.kind == LocateKind::kOnVertex || loc.kind == LocateKind::kBlocked || loc.he == kNoId) return false;
   const TriangleId t0 = mesh::tri_of(loc.he);
   T.flags[t0] |= Triangulation::kMarkA;
   cavity_.push_back(t0);
   if (loc.kind == LocateKind::kOnEdge) {
+    // A rounded split point a hair off the edge may lie outside the circumcircle of the triangle
+    // across it, which is destroyed anyway: the fan is then repaired by flips (commit).
+    needs_flips_ = orient2d(T.pts[T.org(loc.he)], T.pts[T.dst(loc.he)], p) != 0;
     split_he_ = loc.he;
     split_twin_ = T.twin[loc.he];
     if (split_twin_ != kNoId) {
@@ -84,6 +117,7 @@ bool Inserter::build_cavity(Point2 p, Location loc) {
       return false;
     }
     const TriangleId u = mesh::tri_of(n);
+    needs_flips_ = true;
     T.flags[u] &= static_cast<std::uint8_t>(~Triangulation::kMarkB);
     T.flags[u] |= Triangulation::kMarkA;
     cavity_.push_back(u);
@@ -110,6 +144,11 @@ Index Inserter::commit(Point2 p, mesh::VertexKind kind) {
     split_b = T.dst(split_he_);
     split_cons = T.constrained(split_he_);
   }
+  // A new triangle inherits the region of the cavity triangle that owned its rim edge (a split
+  // constrained edge can separate two regions inside one cavity).
+  rim_region_.clear();
+  if (!T.region.empty())
+    for (HalfEdge h : boundary_) rim_region_.push_back(T.region[mesh::tri_of(h)]);
   for (TriangleId t : cavity_) T.kill_triangle(t);
   new_tris_.clear();
   by_start_.clear();
@@ -119,6 +158,10 @@ Index Inserter::commit(Point2 p, mesh::VertexKind kind) {
     if (r.cons) T.set_constrained(3 * t, true);
     new_tris_.push_back(t);
     by_start_.push_back({r.x, t});
+  }
+  if (!T.region.empty()) {
+    if (T.region.size() < T.num_slots()) T.region.resize(T.num_slots(), -1);
+    for (std::size_t k = 0; k < new_tris_.size(); ++k) T.region[new_tris_[k]] = rim_region_[k];
   }
   std::sort(by_start_.begin(), by_start_.end());
   for (TriangleId t : new_tris_) {
@@ -141,7 +184,41 @@ Index Inserter::commit(Point2 p, mesh::VertexKind kind) {
     }
   }
   cavity_.clear();
+  if (needs_flips_) restore_delaunay();
   return v;
+}
+
+// Why: the cavity of a point placed "on" an edge by rounding, or grown by the repair loop, can
+// hold a triangle whose circumcircle does not contain p; the fan is then not constrained
+// Delaunay (fuzz: testdata/regress/fuzz_pslg_mesh_21..). Lawson flips over every unconstrained
+// edge of the new triangles and of the triangles they flip restore it (the flip algorithm
+// terminates on any triangulation). Flipped triangles join new_tris_ for re-evaluation.
+void Inserter::restore_delaunay() {
+  auto& T = tri_;
+  std::vector<std::pair<Index, Index>> stack;
+  for (TriangleId t : new_tris_)
+    for (int k = 0; k < 3; ++k) stack.push_back({T.tv[3 * t + k], T.tv[3 * t + (k + 1) % 3]});
+  const std::size_t cap = 16 * (T.num_slots() + 64);
+  for (std::size_t guard = 0; !stack.empty() && guard < cap; ++guard) {
+    const auto [u, w] = stack.back();
+    stack.pop_back();
+    const HalfEdge e = T.find_edge(u, w);
+    if (e == kNoId || T.constrained(e) || T.twin[e] == kNoId) continue;
+    const Index a = T.org(e), b = T.dst(e), c = T.apex(e), d = T.apex(T.twin[e]);
+    if (incircle(T.pts[a], T.pts[b], T.pts[c], T.pts[d]) <= 0) continue;
+    // Convex iff c-d separates a and b strictly (always so when d is inside the circle).
+    if (orient2d(T.pts[c], T.pts[d], T.pts[a]) * orient2d(T.pts[c], T.pts[d], T.pts[b]) >= 0) continue;
+    const TriangleId t1 = mesh::tri_of(e), t2 = mesh::tri_of(T.twin[e]);
+    flip_edge(T, e);
+    new_tris_.push_back(t1);
+    new_tris_.push_back(t2);
+    stack.push_back({a, c});
+    stack.push_back({c, b});
+    stack.push_back({b, d});
+    stack.push_back({d, a});
+  }
+  std::sort(new_tris_.begin(), new_tris_.end());
+  new_tris_.erase(std::unique(new_tris_.begin(), new_tris_.end()), new_tris_.end());
 }
 
 }  // namespace fdr::cdt

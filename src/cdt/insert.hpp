@@ -11,6 +11,10 @@ namespace fdr::cdt {
 //   Inserter ins(tri);
 //   if (ins.build_cavity(p, loc)) { ... inspect ins.boundary() ...; v = ins.commit(p, kind); }
 //   else ins.abort();
+// Flips the edge of half-edge h (and its twin): triangles (a,b,c) + (b,a,d) become (c,a,d) +
+// (d,b,c). The caller guarantees a strictly convex quadrilateral.
+void flip_edge(mesh::Triangulation& T, HalfEdge h);
+
 class Inserter {
  public:
   explicit Inserter(mesh::Triangulation& tri) : tri_(tri) {}
@@ -35,6 +39,8 @@ class Inserter {
 
  private:
   void grow(TriangleId seed, Point2 p);
+  void restore_delaunay();
+  bool needs_flips_ = false;  // p off its split edge, or the repair loop ran (see build_cavity)
   void clear_marks();
 
   mesh::Triangulation& tri_;
@@ -43,6 +49,7 @@ class Inserter {
   HalfEdge split_he_ = kNoId, split_twin_ = kNoId;
   struct Rim { Index x, y; HalfEdge outer; bool cons; };
   std::vector<Rim> rim_;
+  std::vector<std::int32_t> rim_region_;  // Triangulation::region per rim edge (if regions are used)
   std::vector<std::pair<Index, TriangleId>> by_start_;
 };
 

@@ -153,6 +153,10 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--keep-coast", "keep-coast", field<&MeshOptions::keep_coast>, "flag", "", "", "Repair", "Keep every input boundary vertex and close nothing (no resampling)"},
       {"mesh", "--channel-elements", "channel-elements", field<&MeshOptions::channel_elements>, "float", "N", "2", "Spacing", "Channel rule: spacing at most width / N in narrow water (N elements across; 0: off)"},
       {"mesh", "--min-depth", "min-depth", field<&MeshOptions::min_depth_m>, "float", "M", "1", "Output", "Depth clamp (metres) for the gravity-wave time step in the report"},
+      {"mesh", "--strict", "strict", field<&MeshOptions::strict>, "flag", "", "", "Repair",
+       "Refuse crossing, overlapping, duplicate or zero-length constraints in a .poly/.node INPUT (exit 5 naming the first) instead of resolving them"},
+      {"mesh", "--convex-hull", "convex-hull", field<&MeshOptions::convex_hull>, "flag", "", "", "Input",
+       "The convex hull of all vertices bounds the domain (.poly/.node INPUT; like Triangle -c): point sets and dangling breaklines mesh"},
       {"mesh", "--simplify", "simplify", field<&MeshOptions::simplify>, "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
       {"mesh", "--bound", "bound", field<&MeshOptions::bound>, "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},

@@ -26,8 +26,9 @@ namespace {
 
 DatasetPtr open_any(const std::string& path, unsigned flags, const char* kind) {
   ensure_gdal_registered();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
+  // VSIStatL: plain files and GDAL virtual paths (/vsimem/, /vsizip/, ...) alike.
+  VSIStatBufL st;
+  if (VSIStatL(path.c_str(), &st) != 0)
     throw Error(ExitCode::kInputUnreadable, path + ": cannot open (no such file)");
   GdalQuiet quiet;
   CPLErrorReset();

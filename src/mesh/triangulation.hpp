@@ -64,6 +64,9 @@ class Triangulation {
   std::vector<InputSegmentInfo> input_segments;
   Point2 origin{0, 0};
   std::vector<std::int32_t> point_marker;  // input point markers (0 for Steiner points)
+  // Empty, or per triangle slot the index of the Pslg::regions entry whose seed lies in its
+  // region (-1: none). Set by cdt::build_cdt, inherited by triangles the Inserter creates.
+  std::vector<std::int32_t> region;
 
   std::size_t num_slots() const { return flags.size(); }
   std::size_t num_live_triangles() const { return flags.size() - free_list.size(); }

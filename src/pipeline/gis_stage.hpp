@@ -61,7 +61,7 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
 
 // Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the
 // bounding-box diagonal / 20).
-PreparedInput prepare_poly_input(const Options& opt);
+PreparedInput prepare_poly_input(const Options& opt, const LogFn& log);
 
 // Depths stage (GIS runs): the raster sampled at the vertices (positive up; the nearest valid
 // cell for nodata, with a warning); empty without a raster.

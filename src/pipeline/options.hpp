@@ -50,6 +50,11 @@ struct Options {
   double channel_elements = 2.0;         // channel rule: elements across narrow water (0: off)
   std::optional<double> simplify;        // thin boundary vertices closer than factor * f
   std::optional<double> snap;            // snap distance (metres)
+  // .poly/.node input: refuse conflicting constraints (exit 5 naming the first) instead of
+  // resolving them (pslg::resolve).
+  bool strict = false;
+  // .poly/.node input: the convex hull of all vertices bounds the domain (Triangle -c).
+  bool convex_hull = false;
 
   // Refinement.
   double bound = 1.0;                    // B

@@ -31,7 +31,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
   } else {
-    in = prepare_poly_input(opt);  // read (pslg), spacing from --spacing
+    in = prepare_poly_input(opt, log);  // read, resolve or refuse conflicts (pslg), spacing from --spacing
+    result.repairs = in.repairs.size();
+    result.repair_rows = in.repairs;
     clock.lap("read");
   }
   result.f = in.f;
@@ -39,9 +41,13 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   clock.restart();
 
   TriangulateFigures fig;
-  mesh::Triangulation tri = fdr::build_cdt(in.pslg, plan.source, &fig.cdt_s);
+  // .poly: Triangle's semantics (exterior and hole seeds removed; --convex-hull); GIS: parity.
+  mesh::Triangulation tri =
+      fdr::build_cdt(in.pslg, plan.source, &fig.cdt_s,
+                     plan.gis ? cdt::CdtOptions::Regions::kAuto : fdr::poly_regions(in.pslg, opt.convex_hull), !plan.gis);
   clock.lap("cdt");
   TriangulateOptions to = plan.triangulate;
+  for (const auto& r : in.pslg.regions) to.region_max_area.push_back(r.max_area);
   to.progress = progress;
   to.log = log;
   to.stage_done = [&clock](const std::string& stage) { clock.lap(stage); };

@@ -131,6 +131,7 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values);
   if (plan.gis)  // model readiness against the input coast (issue 11)
     report.model_ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
+  for (const auto& r : in.repairs) report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});
   if (tin) {
     report.vertical_error_max_m = tin->first;
     report.vertical_error_rms_m = tin->second;

@@ -27,6 +27,11 @@ int orient2d_exact(Point2 a, Point2 b, Point2 c);
 int incircle_exact(Point2 a, Point2 b, Point2 c, Point2 d);
 int diametral_exact(Point2 a, Point2 b, Point2 p);
 
+// Intersection of the lines ab and cd computed exactly (rationals), each coordinate rounded to
+// the nearest double. Returns false when the lines are parallel (or a degenerate segment).
+// A construction, not a predicate: used where constraints are split at their crossings.
+bool line_intersection_rounded(Point2 a, Point2 b, Point2 c, Point2 d, Point2* out);
+
 namespace detail {
 inline constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
 inline constexpr double kCcwBound = (3.0 + 16.0 * kEps) * kEps;

@@ -37,6 +37,45 @@ std::string fmt(Point2 p) {
 
 Point2 mid(Point2 a, Point2 b) { return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}; }
 
+}  // namespace
+
+std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Point2>& pts_,
+                                                            const std::vector<Segment>& segs_,
+                                                            const std::vector<char>* present, double tol) {
+  std::vector<std::pair<Index, Index>> found;
+  if (segs_.empty() || !(tol > 0)) return found;
+  Box2 box;
+  double total = 0;
+  for (const Segment& s : segs_) box.add(pts_[s.a]), box.add(pts_[s.b]), total += dist(pts_[s.a], pts_[s.b]);
+  SegmentGrid grid(box, segs_.size(), total / static_cast<double>(segs_.size()));
+  for (Index i = 0; i < segs_.size(); ++i) grid.add_segment(i, pts_[segs_[i].a], pts_[segs_[i].b]);
+  std::vector<Index> near;
+  for (Index v = 0; v < pts_.size(); ++v) {
+    if (present && !(*present)[v]) continue;
+    const Point2 p = pts_[v];
+    if (!(p.x >= box.lo.x - tol && p.x <= box.hi.x + tol && p.y >= box.lo.y - tol && p.y <= box.hi.y + tol)) continue;
+    Box2 q;
+    q.add({p.x - tol, p.y - tol});
+    q.add({p.x + tol, p.y + tol});
+    grid.segments_near(q, &near);
+    for (Index s : near) {
+      const Segment& sg = segs_[s];
+      if (sg.a == v || sg.b == v) continue;
+      const Point2 a = pts_[sg.a], b = pts_[sg.b];
+      if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
+      const Point2 d = b - a;
+      const double t = dot(p - a, d) / dot(d, d);
+      if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) continue;
+      if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
+    }
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+namespace {
+
 class Cleaner {
  public:
   Cleaner(const Pslg& in, const CleanOptions& opt, std::vector<Repair>* repairs)
@@ -52,8 +91,9 @@ class Cleaner {
   }
 
  private:
-  void report(const char* kind, Point2 where, double size, std::string reason, std::int32_t part) {
-    if (repairs_) repairs_->push_back(Repair{kind, where, size, std::move(reason), part});
+  void report(const char* kind, Point2 where, double size, std::string reason, std::int32_t part,
+              std::vector<std::int64_t> ids = {}) {
+    if (repairs_) repairs_->push_back(Repair{kind, where, size, std::move(reason), part, std::move(ids)});
   }
 
   Point2 world(Point2 p) const { return in_.origin + p; }
@@ -152,10 +192,10 @@ class Cleaner {
       if (markers_[r] == 0) markers_[r] = markers_[i];
       if (!input_free_[i]) input_free_[r] = 0;
       const double d = dist(pts_[i], pts_[r]);
-      report("snap", pts_[r], d,
+      report(d == 0 && !opt_.boundary_parity ? "duplicate_vertex" : "snap", pts_[r], d,
              "vertex " + std::to_string(i) + (d == 0 ? " duplicates" : " snapped onto") + " vertex " +
                  std::to_string(r) + (d == 0 ? "" : " (" + std::to_string(d) + " m away)"),
-             point_part[i]);
+             point_part[i], {static_cast<std::int64_t>(i), static_cast<std::int64_t>(r)});
     }
     segs_.reserve(in_.segments.size());
     for (Index s = 0; s < in_.segments.size(); ++s) {
@@ -165,7 +205,8 @@ class Cleaner {
       sg.b = map[sg.b];
       if (sg.a == sg.b) {
         report("zero_length", pts_[sg.a], dist(a, b),
-               "segment " + std::to_string(s) + " collapsed to a point and was removed", sg.part);
+               "segment " + std::to_string(s) + " collapsed to a point and was removed", sg.part,
+               {static_cast<std::int64_t>(s)});
         continue;
       }
       segs_.push_back(sg);
@@ -188,7 +229,19 @@ class Cleaner {
     for (std::size_t g = 0; g < order.size();) {
       std::size_t e = g + 1;
       while (e < order.size() && key(order[e]) == key(order[g])) ++e;
-      if (e - g > 1) {
+      if (e - g > 1 && !opt_.boundary_parity) {
+        // Triangle .poly semantics: every copy merges into the first (lowest index) one.
+        changed = true;
+        const Segment& kept = segs_[order[g]];
+        for (std::size_t k = g + 1; k < e; ++k) {
+          const Segment& s = segs_[order[k]];
+          keep[order[k]] = 0;
+          report("duplicate_segment", mid(pts_[s.a], pts_[s.b]), dist(pts_[s.a], pts_[s.b]),
+                 "segment between vertices " + std::to_string(s.a) + " and " + std::to_string(s.b) +
+                     " duplicates another segment and was merged into it",
+                 s.part, {s.part, kept.part});
+        }
+      } else if (e - g > 1) {
         changed = true;
         std::size_t nb = 0;
         for (std::size_t k = g; k < e; ++k) nb += segs_[order[k]].is_boundary();
@@ -236,14 +289,75 @@ class Cleaner {
   }
 
   // --- step 3: split at crossings, at vertices on segments and at collinear overlaps ------------
+
+  // Why: a rounded crossing point p lies a few ulps off segment ab, so the pieces a-p, p-b sweep
+  // the thin triangle (a, p, b); a vertex q inside it (or on a-p, p-b) would change sides of the
+  // constraint. Such a q is made a cut point of ab too (snap rounding's "hot pixel" rule), so the
+  // subdivided segment passes through it and no orientation flips. New contacts this creates are
+  // found by the exact re-check of the next round (capped by max_iterations).
+  void route_through_hot_vertices(std::vector<std::vector<Index>>* splits, const std::vector<char>& present) {
+    bool any = false;
+    for (std::size_t i = 0; i < segs_.size() && !any; ++i)
+      for (Index v : (*splits)[i])
+        if (orient2d(pts_[segs_[i].a], pts_[segs_[i].b], pts_[v]) != 0) { any = true; break; }
+    if (!any) return;
+    Box2 box;
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < pts_.size(); ++v)
+      if (v >= present.size() || present[v]) box.add(pts_[v]), ++n;
+    SegmentGrid grid(box, n, std::max(box.width(), box.height()) / std::sqrt(static_cast<double>(n) + 1));
+    for (Index v = 0; v < pts_.size(); ++v)
+      if (v >= present.size() || present[v]) grid.add_point(v, pts_[v]);
+    std::vector<Index> extra;
+    for (std::size_t i = 0; i < segs_.size(); ++i) {
+      auto& sp = (*splits)[i];
+      if (sp.empty()) continue;
+      const Point2 a = pts_[segs_[i].a], b = pts_[segs_[i].b];
+      extra.clear();
+      for (Index v : sp) {
+        const Point2 p = pts_[v];
+        const int o = orient2d(a, b, p);
+        if (o == 0) continue;
+        auto test_cell = [&](std::size_t cell) {
+          for (Index q : grid.points_in(cell)) {
+            if (q == segs_[i].a || q == segs_[i].b || q == v) continue;
+            const Point2 x = pts_[q];
+            // Closed triangle (a, b, p) without its corners and without the open side ab
+            // (a vertex there already is a cut point).
+            const int s1 = orient2d(a, b, x) * o, s2 = orient2d(b, p, x) * o, s3 = orient2d(p, a, x) * o;
+            if (s1 > 0 && s2 >= 0 && s3 >= 0) extra.push_back(q);
+          }
+        };
+        grid.for_segment_cells(a, p, test_cell);
+        grid.for_segment_cells(p, b, test_cell);
+      }
+      for (Index q : extra) {
+        if (std::find(sp.begin(), sp.end(), q) != sp.end()) continue;
+        sp.push_back(q);
+        report("hot_vertex", pts_[q], dist_to_segment(pts_[q], a, b),
+               "segment routed through vertex " + std::to_string(q) +
+                   " so that a rounded cut point does not move the constraint across it",
+               segs_[i].part, {static_cast<std::int64_t>(q), segs_[i].part});
+      }
+    }
+  }
+
+  void add_vertices_near_segments(Contacts* c, const std::vector<char>& present) const {
+    const auto found = vertices_near_segments(pts_, segs_, &present, opt_.segment_snap);
+    c->vertex_on_segment.insert(c->vertex_on_segment.end(), found.begin(), found.end());
+  }
+
   void split_until_clean() {
+    std::size_t xround = 0;  // rounds that split crossings (the snap tolerance grows with them)
     for (std::size_t round = 0;; ++round) {
       normalize();
       // Points orphaned by cancellation are no cut candidates; used and free points are.
       std::vector<char> present(pts_.size(), 0);
       for (const Segment& s : segs_) present[s.a] = present[s.b] = 1;
-      for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || input_free_[v]);
-      const Contacts c = find_contacts(pts_, segs_, &present);
+      for (std::size_t v = 0; v < pts_.size(); ++v) present[v] = alive_[v] && (present[v] || kept_unused(v));
+      Contacts c = find_contacts(pts_, segs_, &present);
+      const std::size_t n_exact = c.vertex_on_segment.size();
+      if (opt_.segment_snap > 0) add_vertices_near_segments(&c, present);
       if (c.segment_pairs.empty() && c.vertex_on_segment.empty()) return;
       if (round >= opt_.max_iterations) {
         Point2 where;
@@ -266,10 +380,19 @@ class Cleaner {
       for (std::size_t v = 0; v < pts_.size(); ++v)
         if (present[v]) mag = std::max({mag, std::fabs(pts_[v].x), std::fabs(pts_[v].y)});
       std::vector<std::vector<Index>> splits(segs_.size());
-      for (const auto& [v, s] : c.vertex_on_segment) {
+      const bool defer_crossings = !c.vertex_on_segment.empty();  // overlaps imply a vertex on a segment
+      const std::size_t xr = defer_crossings ? xround : xround++;  // 0-based crossing round
+      for (std::size_t k = 0; k < c.vertex_on_segment.size(); ++k) {
+        const auto [v, s] = c.vertex_on_segment[k];
         splits[s].push_back(v);
-        report("vertex_on_segment", pts_[v], 0,
-               "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part);
+        if (k < n_exact)
+          report("vertex_on_segment", pts_[v], 0,
+                 "segment split at vertex " + std::to_string(v) + " lying on it", segs_[s].part,
+                 {static_cast<std::int64_t>(v), segs_[s].part});
+        else
+          report("snap_to_segment", pts_[v], dist_to_segment(pts_[v], pts_[segs_[s].a], pts_[segs_[s].b]),
+                 "segment routed through vertex " + std::to_string(v) + " lying within the snap tolerance of it",
+                 segs_[s].part, {static_cast<std::int64_t>(v), segs_[s].part});
       }
       for (std::size_t k = 0; k < c.segment_pairs.size(); ++k) {
         const auto [i, j] = c.segment_pairs[k];
@@ -277,17 +400,22 @@ class Cleaner {
         if (c.kinds[k] == Contact::kOverlap) {
           // The overlapping stretch is cut at each other's endpoints (found as vertex_on_segment).
           report("overlap_split", mid(pts_[s.a], pts_[s.b]), 0,
-                 "collinear overlapping segments split at each other's endpoints", s.part);
+                 "collinear overlapping segments split at each other's endpoints", s.part, {s.part, t.part});
           continue;
         }
         if (c.kinds[k] != Contact::kProper) continue;  // a touch is a vertex_on_segment
+        // Why defer: collinear overlapping copies that both cross a third segment would each get
+        // their own rounded crossing point, ulps apart, leaving a sliver between two near-copies
+        // of the line (fuzz_pslg_mesh_1). Overlaps and touches are cut first; the copies then
+        // merge (normalize) and the crossing is computed once.
+        if (defer_crossings) continue;
         const Point2 p = crossing_point(pts_[s.a], pts_[s.b], pts_[t.a], pts_[t.b]);
         // Why snap here: in near-parallel bundles rounded crossing points keep creating new
         // crossings next to each other. From round 2 on, a crossing point within a tolerance that
         // grows 4x per round merges with a nearby endpoint or cut point of the same two segments.
         Index id = kNoId;
-        if (round >= 2) {
-          const double eps = std::ldexp(mag * 0x1p-52, 2 * static_cast<int>(std::min<std::size_t>(round, 400)));
+        if (xr >= 2) {
+          const double eps = std::ldexp(mag * 0x1p-52, 2 * static_cast<int>(std::min<std::size_t>(xr, 400)));
           double best = eps;
           auto consider = [&](Index q) {
             const double d = dist(pts_[q], p);
@@ -299,17 +427,24 @@ class Cleaner {
           if (id != kNoId)
             report("snap", pts_[id], best,
                    "crossing point snapped onto a vertex " + std::to_string(best) + " m away (round " +
-                       std::to_string(round) + " of splitting)",
-                   s.part);
+                       std::to_string(xr) + " of splitting)",
+                   s.part, {static_cast<std::int64_t>(id)});
         }
-        if (id == kNoId) id = add_point(p);
+        if (id == kNoId) {
+          id = add_point(p);
+          if (pts_[id] != p)  // merged with a vertex within the snap distance
+            report("snap", pts_[id], dist(pts_[id], p),
+                   "crossing point merged with vertex " + std::to_string(id) + " within the snap distance", s.part,
+                   {static_cast<std::int64_t>(id)});
+        }
         splits[i].push_back(id);
         splits[j].push_back(id);
         report("crossing_split", pts_[id], 0,
                "crossing segments split at their intersection" +
                    std::string(s.part == t.part && s.part >= 0 ? " (self-intersecting ring)" : ""),
-               s.part);
+               s.part, {s.part, t.part});
       }
+      route_through_hot_vertices(&splits, present);
       std::vector<Segment> out;
       out.reserve(segs_.size() + 2 * c.segment_pairs.size() + c.vertex_on_segment.size());
       for (std::size_t i = 0; i < segs_.size(); ++i) {
@@ -516,7 +651,7 @@ class Cleaner {
     std::vector<Index> map(np, kNoId);
     for (Index v = 0; v < np; ++v) {
       if (!alive_[v]) continue;
-      if (!used[v] && !input_free_[v]) continue;  // orphaned by cancellation/removal
+      if (!used[v] && !kept_unused(v)) continue;  // orphaned by cancellation/removal
       map[v] = static_cast<Index>(out.points.size());
       out.points.push_back(pts_[v]);
       if (with_markers) out.point_markers.push_back(markers_[v]);
@@ -533,6 +668,12 @@ class Cleaner {
       throw Error(ExitCode::kInternal, std::string("internal error: ") + e.what());
     }
     return out;
+  }
+
+  // A point kept even when no segment uses it: a free input point, or (Triangle semantics) any
+  // input vertex, e.g. the end of a dropped zero-length segment.
+  bool kept_unused(std::size_t v) const {
+    return input_free_[v] || (!opt_.boundary_parity && v < in_.points.size());
   }
 
   const Pslg& in_;

@@ -1,5 +1,6 @@
 // Triangle .poly/.node reader and writer: strict field counts, line-numbered errors.
 #include "pslg/poly_io.hpp"
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -34,6 +35,10 @@ class Reader {
     if (in.bad()) throw Error(ExitCode::kInputUnreadable, path_ + ": read error");
     text_ = ss.str();
   }
+
+  // Upper bound on the records left (a record line has at least 5 bytes plus a newline): caps
+  // reservations, so a header claiming billions of entries cannot allocate gigabytes (fuzz_poly_reader_1).
+  std::size_t max_records_left() const { return (text_.size() - std::min(pos_, text_.size())) / 5 + 1; }
 
   // Advances to the next record; false at end of file.
   bool next() {
@@ -153,8 +158,9 @@ int read_nodes(Reader& r, long long n, Pslg* g) {
   if (r.size() >= 4) nmark = r.count(3, "number of vertex boundary markers", 1);
   const std::size_t want = 3 + static_cast<std::size_t>(nattr + nmark);
   int base = 0;
-  g->points.reserve(static_cast<std::size_t>(n));
-  if (nmark) g->point_markers.reserve(static_cast<std::size_t>(n));
+  const std::size_t cap = std::min(static_cast<std::size_t>(n), r.max_records_left());
+  g->points.reserve(cap);
+  if (nmark) g->point_markers.reserve(cap);
   for (long long i = 0; i < n; ++i) {
     r.need(std::to_string(n) + " vertices, found " + std::to_string(i));
     r.expect_fields(want, want, "vertex line (id x y" + std::string(nattr ? " attributes" : "") +
@@ -231,7 +237,7 @@ Pslg read_poly(const std::string& path) {
   const long long ns = r.count(0, "number of segments", kMaxCount);
   long long smark = 0;
   if (r.size() >= 2) smark = r.count(1, "number of segment boundary markers", 1);
-  g.segments.reserve(static_cast<std::size_t>(ns));
+  g.segments.reserve(std::min(static_cast<std::size_t>(ns), r.max_records_left()));
   for (long long i = 0; i < ns; ++i) {
     r.need(std::to_string(ns) + " segments, found " + std::to_string(i));
     const std::size_t want = 3 + static_cast<std::size_t>(smark);

@@ -422,6 +422,12 @@ void write_json(const QualityReport& r, std::ostream& out) {
   j["spacing"] = r.spacing;
   j["input_file"] = r.run.input_file;
   j["min_angle_option_deg"] = num(r.run.min_angle_option_deg);
+  {
+    Json reps = Json::array();
+    for (const auto& rp : r.repairs)
+      reps.push_back({{"kind", rp.kind}, {"x", num(rp.x)}, {"y", num(rp.y)}, {"ids", rp.ids}, {"reason", rp.reason}});
+    j["repairs"] = reps;
+  }
   const Guarantees& g = r.guarantees;
   auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
   j["guarantees"] = {{"beta", gv(g.beta)},

@@ -87,6 +87,14 @@ struct QualityReport {
   Guarantees guarantees;
   RunInfo run;
   std::optional<ModelReadiness> model_ready;  // model_ready.hpp (set by the pipeline / quality command)
+  // Fixes made to the input constraints before triangulation (JSON "repairs").
+  struct Repair {
+    std::string kind;
+    double x = 0, y = 0;  // world coordinates
+    std::vector<std::int64_t> ids;
+    std::string reason;
+  };
+  std::vector<Repair> repairs;
 };
 
 // One row of the theory table: a bound of the paper against the measured value.

@@ -34,6 +34,7 @@ std::string pt(Point2 p) {
 }
 
 int bucket_of(double key2) {
+  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent (fuzz_pslg_mesh_1)
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
   const int idx = e <= 1 ? static_cast<int>((m - 0.5) * (2.0 * kFineSub)) : kFineSub + (e - 2);
@@ -125,6 +126,13 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
         return kf > 1 ? kf : 0;
       }
       key = ka;
+    }
+  }
+  if (!opt_.region_max_area.empty() && t < T.region.size()) {  // regional area constraint
+    const std::int32_t r = T.region[t];
+    if (r >= 0 && static_cast<std::size_t>(r) < opt_.region_max_area.size() && opt_.region_max_area[r] > 0) {
+      const double area = 0.5 * std::fabs(bx * cy - by * cx);
+      if (area > opt_.region_max_area[r]) key = std::max(key, std::max(area / opt_.region_max_area[r], 1.0 + 1e-9));
     }
   }
   return key > 1 ? key : 0;
@@ -255,8 +263,15 @@ void Refiner::split_subsegment(Index a, Index b) {
   if (m == pa || m == pb)
     throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
                                           " further: the spacing is below floating-point resolution there");
-  if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h}))
+  if (!ins_.build_cavity(m, {cdt::LocateKind::kOnEdge, h})) {
+    // A rounded split point off the segment's line fell behind a neighbouring constraint: the
+    // geometry is at floating-point resolution there (a resolution limit, not a bug).
+    if (predicates::orient2d(pa, pb, m) != 0)
+      throw Error(ExitCode::kWorkLimit, "cannot split subsegment " + pt(T.origin + pa) + "-" + pt(T.origin + pb) +
+                                            ": its rounded midpoint falls behind a neighbouring constraint (the input "
+                                            "has features near floating-point resolution there)");
     throw Error(ExitCode::kInternal, "could not split subsegment at " + pt(T.origin + m));
+  }
   auto sid = T.seg_of.find(mesh::edge_key(a, b));
   const Index seg_id = sid != T.seg_of.end() ? sid->second : kNoId;
   const Index v = ins_.commit(m, VertexKind::kSegment);

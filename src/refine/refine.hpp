@@ -17,6 +17,9 @@ struct RefineOptions {
   double min_angle_deg = 0.0;  // optional extra bound (like Triangle -q); 0 disables
   // Cap on inserted Steiner points; reaching it ends in Error(kWorkLimit). Documented default.
   std::uint64_t max_steiner = 20'000'000;
+  // Triangle .poly area constraints: per Pslg::regions index the largest triangle area (<= 0:
+  // none); a triangle of Triangulation::region r with a larger area is bad too.
+  std::vector<double> region_max_area;
   ProgressFn progress;              // called every few thousand insertions (may cancel)
   double expected_steiner = 0;      // for progress fractions (0: unknown)
 };

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <random>
 #include <set>
 
@@ -414,3 +415,69 @@ INSTANTIATE_TEST_SUITE_P(
                   [](Options& o, const TempDir& d) { o.outputs = {d.file("m.2dm"), d.file("no/such/dir/m.gpkg")}; },
                   ExitCode::kOutputError, [](const Options&) { return std::string("no/such/dir/m.gpkg"); }}),
     [](const ::testing::TestParamInfo<ErrorCase>& i) { return std::string(i.param.name); });
+
+// Issue 10: a messy .poly is resolved (repairs in the JSON report and the GeoPackage repairs
+// layer, with kinds, world coordinates and input ids); --strict refuses it and writes nothing.
+TEST(PipelinePoly, MessyConstraintsResolvedAndReported) {
+  TempDir dir("messy");
+  Options o;
+  o.input = kT + "/poly/messy_star.poly";
+  o.check = true;
+  o.quiet = true;
+  o.outputs = {dir.file("m.gpkg")};
+  o.report_json = dir.file("r.json");
+  Result r = run(o, nullptr, nullptr);
+  EXPECT_EQ(r.repairs, 17u);
+  EXPECT_EQ(feature_count(dir.file("m.gpkg"), "repairs"), 17);
+  std::ifstream in(dir.file("r.json"));
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_TRUE(j.contains("repairs"));
+  ASSERT_EQ(j["repairs"].size(), 17u);
+  std::map<std::string, int> kinds;
+  for (const auto& rp : j["repairs"]) {
+    ++kinds[rp["kind"].get<std::string>()];
+    EXPECT_TRUE(rp["x"].is_number() && rp["y"].is_number());
+    EXPECT_FALSE(rp["ids"].empty()) << rp.dump();
+  }
+  EXPECT_EQ(kinds["crossing_split"], 9);
+  EXPECT_EQ(kinds["duplicate_vertex"], 1);
+  EXPECT_EQ(kinds["duplicate_segment"], 1);
+  EXPECT_EQ(kinds["zero_length"], 1);
+  EXPECT_EQ(kinds["vertex_on_segment"], 5);
+  // The duplicate vertex 8 of vertex 0, named by input ids.
+  for (const auto& rp : j["repairs"])
+    if (rp["kind"] == "duplicate_vertex") EXPECT_EQ(rp["ids"], nlohmann::json::array({8, 0}));
+
+  Options s = o;
+  s.strict = true;
+  s.outputs = {dir.file("s.gpkg")};
+  s.report_json = dir.file("s.json");
+  try {
+    run(s, nullptr, nullptr);
+    FAIL() << "--strict accepted a messy PSLG";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
+    EXPECT_NE(std::string(e.what()).find("vertices 0 and 8 are both at (0, 0)"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir.file("s.gpkg")));
+  EXPECT_FALSE(fs::exists(dir.file("s.json")));
+}
+
+// --convex-hull: survey points with a dangling breakline mesh (Triangle -c); without it the
+// empty-domain error suggests the option.
+TEST(PipelinePoly, ConvexHullForPointsAndDanglingBreaklines) {
+  Options o;
+  o.input = kT + "/poly/points_breakline.poly";
+  o.check = true;
+  o.quiet = true;
+  try {
+    run(o, nullptr, nullptr);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--convex-hull"), std::string::npos) << e.what();
+  }
+  o.convex_hull = true;
+  Result r = run(o, nullptr, nullptr);
+  EXPECT_GT(r.mesh.num_triangles(), 6u);
+  EXPECT_NEAR(mesh_area(r.mesh), 52.5, 1e-9);  // hull (0,0) (8,0) (9,6) (1,7): shoelace area
+}

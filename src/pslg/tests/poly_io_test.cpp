@@ -211,3 +211,19 @@ TEST(PolyIo, WriteErrors) {
   g.points = {{0, 0}, {1, 0}};
   expect_error([&] { write_poly(g, "/nonexistent/dir/out.poly"); }, ExitCode::kOutputError, {"/nonexistent/dir/out.poly"});
 }
+
+// Found by fuzzing (tools/fuzz, target poly_reader): headers claiming billions of vertices made
+// the reader reserve that many entries first (std::bad_alloc: "ERROR 7: out of memory" for a
+// 26-byte file; 3 GB allocations under ASan). Reservations are now capped by the file's size,
+// and the file is reported as malformed.
+TEST(PolyIo, FuzzHugeCountsAreMalformedNotOutOfMemory) {
+  for (int k = 1; k <= 3; ++k) {
+    const std::string path = std::string(FDR_TESTDATA_DIR) + "/regress/fuzz_poly_reader_" + std::to_string(k) + ".poly";
+    try {
+      (void)fdr::pslg::read_poly(path);
+      ADD_FAILURE() << path << " was accepted";
+    } catch (const fdr::Error& e) {
+      EXPECT_EQ(e.code(), fdr::ExitCode::kInputMalformed) << path << ": " << e.what();
+    }
+  }
+}
