@@ -140,8 +140,18 @@ def test_errors():
     with pytest.raises(fdrmesh.UsageError) as e:
         fdrmesh.mesh(SQUARE, bound="abc")
     assert cli.returncode == 2 and cli.stderr.strip() == f"ERROR 2: {e.value}"
-    with pytest.raises(fdrmesh.UsageError):
-        fdrmesh.triangulate(v, s, spacing=1, convex_hull=True)  # until issue 10's core support
+
+
+
+def test_convex_hull_meshes_a_point_set():
+    # Triangle's -c (issue 10): the convex hull of the vertices bounds the domain.
+    pts = np.array([[0, 0], [4, 0], [4, 3], [0, 3], [2, 1.5], [1, 2]], dtype=float)
+    with pytest.raises(fdrmesh.GeometryError):
+        fdrmesh.triangulate(pts, np.array([[4, 5]]), spacing=1)  # a dangling breakline: no domain
+    m = fdrmesh.triangulate(pts, np.array([[4, 5]]), spacing=1, convex_hull=True)
+    a = m.vertices[m.triangles]
+    area = 0.5 * np.abs((a[:, 1, 0] - a[:, 0, 0]) * (a[:, 2, 1] - a[:, 0, 1]) - (a[:, 1, 1] - a[:, 0, 1]) * (a[:, 2, 0] - a[:, 0, 0]))
+    assert abs(area.sum() - 12.0) < 1e-9
 
 
 def test_mesh_poly_equals_cli(tmp_path):
