@@ -1,4 +1,5 @@
 // fdrmesh core API: the CLI's .poly path (pipeline.cpp) as a library function, step by step.
+#include "base/path_util.hpp"
 #include "api/triangulate.hpp"
 #include "api/stages.hpp"
 #include <algorithm>
@@ -24,14 +25,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::string lower_ext(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
 
 // Local origin (same rule as pipeline.cpp): shift only when the coordinates are far from 0
 // relative to the extent, so that small inputs keep their exact coordinates.

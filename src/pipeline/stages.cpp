@@ -1,4 +1,5 @@
 // The run's plan (usage checks before any I/O), the measure stage and the write stage.
+#include "base/path_util.hpp"
 #include "pipeline/stages.hpp"
 #include <algorithm>
 #include <cmath>
@@ -19,14 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::string lower_ext(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
 
 // The .cli written beside a Selafin output.
 std::string cli_path_of(const std::string& slf) {

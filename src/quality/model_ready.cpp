@@ -1,6 +1,7 @@
 // Model readiness of a final mesh (issue 11): edges against hmin, skinny triangles, mean quality,
 // coast deviation both ways, connected pieces, gravity-wave time step, removed features.
 // Measurements only (double precision); no combinatorial decision is taken here.
+#include "quality/compensated_sum.hpp"
 #include "quality/model_ready.hpp"
 
 #include <algorithm>
@@ -24,17 +25,6 @@ const double kCos30 = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 const double kFourSqrt3 = 4.0 * std::sqrt(3.0);
 constexpr std::size_t kMaxSamples = 4'000'000;      // cap on coast-deviation samples per direction
 
-// Neumaier compensated sum (areas of many triangles of very different size).
-struct CompensatedSum {
-  double sum = 0, c = 0;
-  void add(double v) {
-    const double t = sum + v;
-    if (std::fabs(sum) >= std::fabs(v)) c += (sum - t) + v;
-    else c += (v - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + c; }
-};
 
 // Uniform grid over segments for nearest-segment distance queries. Each segment is cut into
 // pieces no longer than a cell and registered in the (at most 2x2) cells of each piece's box, so

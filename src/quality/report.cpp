@@ -1,4 +1,5 @@
 // Mesh quality measurement and report writers (FDR paper: Definition 2.1, Theorems 4.3-4.5).
+#include "quality/compensated_sum.hpp"
 #include "quality/report.hpp"
 #include <cstdio>
 #include <fstream>
@@ -26,16 +27,6 @@ constexpr double kDeg = 180.0 / kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Kahan-Babuska (Neumaier) compensated sum: areas of millions of triangles of very different size.
-struct CompensatedSum {
-  double sum = 0, c = 0;
-  void add(double v) {
-    const double t = sum + v;
-    if (std::fabs(sum) >= std::fabs(v)) c += (sum - t) + v;
-    else c += (v - t) + sum;
-    sum = t;
-  }
-  double value() const { return sum + c; }
-};
 
 // Static 2-d tree (implicit: the median of each range is its node) over copies of the points
 // kept in tree order, so a query reads contiguous memory and consecutive queries in tree order
