@@ -23,14 +23,14 @@ for line in open(os.path.join(src, "modules.txt")):
 
 
 def allowed(m):
-    seen, todo = set(), list(uses[m])
-    while todo:
-        d = todo.pop()
+    seen, pending = set(), list(uses[m])
+    while pending:
+        d = pending.pop()
         if d in seen:
             continue
         seen.add(d)
         if d not in facade:
-            todo.extend(uses[d])
+            pending.extend(uses[d])
     return seen | {m, "base"}
 
 

@@ -631,7 +631,7 @@ mesh::MeshView read_selafin(const std::string& path) {
   for (auto& v : ip) v = static_cast<std::int32_t>(u32());
   close_rec(40);
   if (ip[6] > 1) bad("3D Selafin files (IPARAM(7) = " + std::to_string(ip[6]) + " planes) are not meshes fdrmesh reads");
-  if (ip[7] != 0 || ip[8] != 0) bad("partitioned (parallel) Selafin files are not supported");
+  if (ip[7] != 0 || ip[8] != 0) bad("a partition of a parallel run (IPARAM(8..9) set): merge the partitions into one Selafin file first");
   if (ip[9] == 1) {
     open_rec(24);
     for (int k = 0; k < 6; ++k) u32();

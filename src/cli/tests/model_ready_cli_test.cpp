@@ -3,6 +3,7 @@
 // `holds` agrees with bound vs measured; `fdrmesh quality` on the written mesh gives the same
 // mesh-only figures (no input coast, so no coast deviation).
 #include <gtest/gtest.h>
+#include "cli_test_util.hpp"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,16 +15,8 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-int run(const std::string& args) {
-  const int st = std::system((std::string(FDR_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-nlohmann::json load(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
-}  // namespace
+using fdr::cli_test::load;
+using fdr::cli_test::run;
 
 TEST(ModelReadyCli, ChesapeakeReportAndQualityCommand) {
   const fs::path dir = fs::temp_directory_path() / ("fdrmesh_model_ready_" + std::to_string(::getpid()));

@@ -1,6 +1,7 @@
 // `fdrmesh quality` on meshes written by `fdrmesh mesh` in every readable format: the same counts,
 // the same R/f(c) maximum and the same bad-triangle count as the mesher's own report.
 #include <gtest/gtest.h>
+#include "cli_test_util.hpp"
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
@@ -9,16 +10,8 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-int run(const std::string& args) {
-  const int st = std::system((std::string(FDR_BINARY) + " " + args + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-nlohmann::json load(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
-}  // namespace
+using fdr::cli_test::load;
+using fdr::cli_test::run;
 
 TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
   const fs::path dir = fs::temp_directory_path() / ("fdrmesh_quality_" + std::to_string(::getpid()));
