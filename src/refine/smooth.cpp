@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "predicates/predicates.hpp"
@@ -202,7 +204,7 @@ class Smoother {
       touch(mesh::tri_of(e));
       touch(mesh::tri_of(g));
       const HalfEdge nd = flip(e);
-      flips_.push_back(nd);
+      flips_.push_back({t_.org(nd), t_.dst(nd)});
       const TriangleId t1 = mesh::tri_of(nd), t2 = mesh::tri_of(t_.twin[nd]);
       stack_.push_back(3 * t1);
       stack_.push_back(3 * t1 + 1);
@@ -211,7 +213,10 @@ class Smoother {
     }
     if (ok) ok = improved();
     if (!ok) {
-      for (std::size_t k = flips_.size(); k-- > 0;) flip(flips_[k]);
+      // Undone in reverse order, each by its vertices: undoing a flip puts the pair back with
+      // the two triangles exchanged between their slots, so a half-edge id kept from an
+      // earlier flip may no longer name that flip's diagonal.
+      for (std::size_t k = flips_.size(); k-- > 0;) flip(find_half_edge(flips_[k].first, flips_[k].second));
       t_.pts[v] = p0;
     }
     return ok;
@@ -256,6 +261,27 @@ class Smoother {
     return nmin >= std::min(before_min_, 0.8) && nsum > before_sum_;
   }
 
+  // The half-edge from u to w (an interior edge of the triangulation, found around u).
+  HalfEdge find_half_edge(Index u, Index w) const {
+    const HalfEdge h0 = t_.vhe[u];
+    HalfEdge h = h0;
+    for (std::size_t guard = 0; guard < 4096; ++guard) {  // counter-clockwise
+      if (t_.dst(h) == w) return h;
+      const HalfEdge back = t_.twin[prev_he(h)];
+      if (back == kNoId || back == h0) break;
+      h = back;
+    }
+    h = h0;
+    for (std::size_t guard = 0; guard < 4096; ++guard) {  // clockwise
+      const HalfEdge tw = t_.twin[h];
+      if (tw == kNoId) break;
+      h = next_he(tw);
+      if (h == h0) break;
+      if (t_.dst(h) == w) return h;
+    }
+    throw std::logic_error("smooth: flipped edge not found while undoing a move");
+  }
+
   // Flips the edge of half-edge e (a->b in triangle (a,b,c), twin b->a in (b,a,d)) into the
   // diagonal c-d; returns the new half-edge d->c. Flipping that half-edge again restores the
   // pair (in the same two slots).
@@ -293,7 +319,8 @@ class Smoother {
   mesh::Triangulation& t_;
   const sizing::SizingField& f_;
   SmoothOptions o_;
-  std::vector<HalfEdge> hs_, flips_, stack_;
+  std::vector<HalfEdge> hs_, stack_;
+  std::vector<std::pair<Index, Index>> flips_;  // new diagonals (org, dst) in flip order
   mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
   std::vector<std::uint32_t> seen_;
