@@ -205,6 +205,21 @@ GeomPtr offset(const OGRGeometry& g, double r) {
   return GeomPtr(multi(out).release());
 }
 
+// True when two rings of g (or one ring with itself) share a vertex: a pinch point, where the
+// water is zero wide. Ring closures do not count.
+bool has_pinch(const OGRGeometry* g) {
+  std::vector<std::unique_ptr<OGRPolygon>> ps;
+  polygons_of(g, ps);
+  std::vector<std::pair<double, double>> v;
+  for (const auto& p : ps)
+    for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+      const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
+      for (int i = 0; i + 1 < r->getNumPoints(); ++i) v.emplace_back(r->getX(i), r->getY(i));
+    }
+  std::sort(v.begin(), v.end());
+  return std::adjacent_find(v.begin(), v.end()) != v.end();
+}
+
 // open(g, r) = (g - r) + r. Empty when nothing of g is wider than 2r.
 GeomPtr opening(const OGRGeometry& g, double r) {
   GeomPtr eroded = offset(g, -r);
@@ -244,6 +259,64 @@ std::vector<Point2> ring_points(const OGRLinearRing* r, bool ccw) {
   if ((signed_area(pts) > 0) != ccw) std::reverse(pts.begin(), pts.end());
   return pts;
 }
+
+// Moves every vertex within `hair` of an input vertex onto the nearest one (ties: the smaller
+// x, then y), so boundaries the buffers left unchanged up to rounding are bitwise the input's.
+class Snapper {
+ public:
+  Snapper(const OGRGeometry* input, double hair) : hair_(hair) {
+    std::vector<std::unique_ptr<OGRPolygon>> ps;
+    polygons_of(input, ps);
+    for (const auto& w : ps)
+      for (int k = -1; k < w->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? w->getExteriorRing() : w->getInteriorRing(k);
+        for (int i = 0; i < r->getNumPoints(); ++i)
+          cells_[key(cell(r->getX(i)), cell(r->getY(i)))].push_back({r->getX(i), r->getY(i)});
+      }
+  }
+  void snap(OGRPolygon* p) const {
+    snap_ring(p->getExteriorRing());
+    for (int k = 0; k < p->getNumInteriorRings(); ++k) snap_ring(p->getInteriorRing(k));
+  }
+  // Every polygon of g, snapped (a new geometry).
+  GeomPtr snapped(const OGRGeometry* g) const {
+    std::vector<std::unique_ptr<OGRPolygon>> ps;
+    polygons_of(g, ps);
+    for (auto& p : ps) snap(p.get());
+    return GeomPtr(multi(ps).release());
+  }
+
+ private:
+  std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / hair_)); }
+  static std::uint64_t key(std::int64_t i, std::int64_t j) {
+    return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
+  }
+  void snap_ring(OGRLinearRing* r) const {
+    for (int i = 0; i < r->getNumPoints(); ++i) {
+      const double x = r->getX(i), y = r->getY(i);
+      double best = hair_;
+      Point2 to{x, y};
+      bool found = false;
+      const std::int64_t ci = cell(x), cj = cell(y);
+      for (std::int64_t di = -1; di <= 1; ++di)
+        for (std::int64_t dj = -1; dj <= 1; ++dj) {
+          const auto it = cells_.find(key(ci + di, cj + dj));
+          if (it == cells_.end()) continue;
+          for (const Point2 q : it->second) {
+            const double d = std::hypot(q.x - x, q.y - y);
+            if (d < best || (d == best && found && (q.x < to.x || (q.x == to.x && q.y < to.y)))) {
+              best = d;
+              to = q;
+              found = true;
+            }
+          }
+        }
+      if (found) r->setPoint(i, to.x, to.y);
+    }
+  }
+  double hair_;
+  std::unordered_map<std::uint64_t, std::vector<Point2>> cells_;
+};
 
 }  // namespace
 
@@ -322,6 +395,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   lap("union");
   res.input_area = area_of(W.get());
   GeomPtr W0(W->clone());  // the input water bodies (ownership of the result's pieces)
+  std::unique_ptr<Snapper> snap_to_input;
+  if (o.close_width > 0) snap_to_input = std::make_unique<Snapper>(W0.get(), 0.05 * o.close_width);
   {
     std::vector<std::unique_ptr<OGRPolygon>> ps;
     polygons_of(W.get(), ps);
@@ -413,6 +488,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     });
     GeomPtr O1 = opening(*W, r1);
     GeomPtr O2 = o2_job.get();
+    // Both openings snapped onto the input's vertices: where they keep the coast they then share
+    // it bitwise, and their difference needs no snapping noder.
+    O1 = snap_to_input->snapped(O1.get());
+    O2 = snap_to_input->snapped(O2.get());
     lap("O1+O2");
     std::vector<std::unique_ptr<OGRPolygon>> comps;
     polygons_of(O1.get(), comps);
@@ -454,7 +533,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     // Dropping a dead end next to a kept channel can leave two kept parts touching at a point
     // (GEOS calls that valid, the mesher would need zero-size elements there): open once more at
     // the connection scale.
-    if (r2 > 0) R = opening(*R, r2);
+    // Only where such a point exists: GEOS writes every point where rings meet as a vertex of
+    // each, so a vertex that occurs twice (or a ring that repeats one) finds them all.
+    if (r2 > 0 && has_pinch(R.get())) R = opening(*R, r2);
     lap("final opening");
   } else {
     R.reset(W->clone());
@@ -544,39 +625,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     const double hair = 0.05 * o.close_width;
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W0.get(), wps);
-    std::unordered_map<std::uint64_t, std::vector<Point2>> cells;
-    auto key = [hair](double x, double y) {
-      const auto i = static_cast<std::int64_t>(std::floor(x / hair)), j = static_cast<std::int64_t>(std::floor(y / hair));
-      return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(j & 0xffffffff);
-    };
-    for (const auto& w : wps)
-      for (int k = -1; k < w->getNumInteriorRings(); ++k) {
-        const OGRLinearRing* r = k < 0 ? w->getExteriorRing() : w->getInteriorRing(k);
-        for (int i = 0; i < r->getNumPoints(); ++i) cells[key(r->getX(i), r->getY(i))].push_back({r->getX(i), r->getY(i)});
-      }
-    auto snap = [&](OGRLinearRing* r) {
-      for (int i = 0; i < r->getNumPoints(); ++i) {
-        const double x = r->getX(i), y = r->getY(i);
-        double best = hair;
-        Point2 to{x, y};
-        bool found = false;
-        const auto ci = static_cast<std::int64_t>(std::floor(x / hair)), cj = static_cast<std::int64_t>(std::floor(y / hair));
-        for (std::int64_t di = -1; di <= 1; ++di)
-          for (std::int64_t dj = -1; dj <= 1; ++dj) {
-            const auto it = cells.find((static_cast<std::uint64_t>(ci + di) << 32) ^ static_cast<std::uint64_t>((cj + dj) & 0xffffffff));
-            if (it == cells.end()) continue;
-            for (const Point2 q : it->second) {
-              const double d = std::hypot(q.x - x, q.y - y);
-              if (d < best || (d == best && found && (q.x < to.x || (q.x == to.x && q.y < to.y)))) { best = d; to = q; found = true; }
-            }
-          }
-        if (found) r->setPoint(i, to.x, to.y);
-      }
-    };
-    for (auto& p : outp) {
-      snap(p->getExteriorRing());
-      for (int k = 0; k < p->getNumInteriorRings(); ++k) snap(p->getInteriorRing(k));
-    }
+    for (auto& p : outp) snap_to_input->snap(p.get());
     // Whole input water bodies nowhere --min-feature wide.
     std::vector<std::unique_ptr<OGRPolygon>> rps;
     polygons_of(R.get(), rps);
