@@ -278,13 +278,6 @@ class Snapper {
     snap_ring(p->getExteriorRing());
     for (int k = 0; k < p->getNumInteriorRings(); ++k) snap_ring(p->getInteriorRing(k));
   }
-  // Every polygon of g, snapped (a new geometry).
-  GeomPtr snapped(const OGRGeometry* g) const {
-    std::vector<std::unique_ptr<OGRPolygon>> ps;
-    polygons_of(g, ps);
-    for (auto& p : ps) snap(p.get());
-    return GeomPtr(multi(ps).release());
-  }
 
  private:
   std::int64_t cell(double v) const { return static_cast<std::int64_t>(std::floor(v / hair_)); }
@@ -488,10 +481,6 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     });
     GeomPtr O1 = opening(*W, r1);
     GeomPtr O2 = o2_job.get();
-    // Both openings snapped onto the input's vertices: where they keep the coast they then share
-    // it bitwise, and their difference needs no snapping noder.
-    O1 = snap_to_input->snapped(O1.get());
-    O2 = snap_to_input->snapped(O2.get());
     lap("O1+O2");
     std::vector<std::unique_ptr<OGRPolygon>> comps;
     polygons_of(O1.get(), comps);
@@ -625,7 +614,13 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     const double hair = 0.05 * o.close_width;
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W0.get(), wps);
-    for (auto& p : outp) snap_to_input->snap(p.get());
+    // A snap that makes a polygon invalid (a vertex moved across a nearby edge) is not taken:
+    // that polygon keeps the buffers' coordinates.
+    for (auto& p : outp) {
+      std::unique_ptr<OGRPolygon> q(p->clone());
+      snap_to_input->snap(q.get());
+      if (q->IsValid()) p = std::move(q);
+    }
     // Whole input water bodies nowhere --min-feature wide.
     std::vector<std::unique_ptr<OGRPolygon>> rps;
     polygons_of(R.get(), rps);
