@@ -24,18 +24,26 @@ double tri_quality(Point2 a, Point2 b, Point2 c) {
   return s > 0 ? kSqrt3x4 * ar / s : 0.0;
 }
 
-double min_angle_deg(Point2 a, Point2 b, Point2 c) {
-  auto ang = [](Point2 p, Point2 q, Point2 r) {  // angle at p
-    const Point2 u = q - p, v = r - p;
-    return std::atan2(std::fabs(u.x * v.y - u.y * v.x), dot(u, v));
-  };
-  return std::min({ang(a, b, c), ang(b, c, a), ang(c, a, b)}) * 57.29577951308232;
+// sin^2 of the smallest angle of a triangle: monotone in that angle (always <= 60 degrees), so
+// it compares angles without trigonometry. The smallest angle is opposite the shortest side:
+// sin^2 = (2 area)^2 / (product of the squares of the two other sides).
+double min_angle_key(Point2 a, Point2 b, Point2 c) {
+  const double cr = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  const double la = norm2(c - b), lb = norm2(a - c), lc = norm2(b - a);
+  double p;
+  if (la <= lb && la <= lc) p = lb * lc;
+  else if (lb <= lc) p = la * lc;
+  else p = la * lb;
+  return p > 0 ? cr * cr / p : 0.0;
 }
 
 class Smoother {
  public:
   Smoother(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& o)
-      : t_(tri), f_(f), o_(o) {}
+      : t_(tri), f_(f), o_(o) {
+    const double sn = std::sin(std::clamp(o.min_angle_deg, 0.0, 60.0) * 0.017453292519943295);
+    floor_key_ = sn * sn;
+  }
 
   SmoothStats run() {
     SmoothStats st;
@@ -266,7 +274,7 @@ class Smoother {
     const double q = tri_quality(a, b, c);
     before_min_ = std::min(before_min_, q);
     before_sum_ += q;
-    before_angle_ = std::min(before_angle_, min_angle_deg(a, b, c));
+    before_angle_ = std::min(before_angle_, min_angle_key(a, b, c));
     before_len2_ = std::min({before_len2_, norm2(b - a), norm2(c - b), norm2(a - c)});
   }
 
@@ -274,7 +282,7 @@ class Smoother {
   // quality not lower, summed quality higher, min angle not below min(before, --min-angle).
   bool improved() const {
     double nmin = 1e300, nsum = 0, nlen2 = 1e300;
-    const double floor_angle = std::min(before_angle_, o_.min_angle_deg);
+    const double floor_angle = std::min(before_angle_, floor_key_);
     for (TriangleId t : touched_) {
       const Index ia = t_.tv[3 * t], ib = t_.tv[3 * t + 1], ic = t_.tv[3 * t + 2];
       const Point2 a = t_.pts[ia], b = t_.pts[ib], c = t_.pts[ic];
@@ -283,7 +291,7 @@ class Smoother {
       nmin = std::min(nmin, q);
       nsum += q;
       nlen2 = std::min({nlen2, norm2(b - a), norm2(c - b), norm2(a - c)});
-      if (min_angle_deg(a, b, c) < floor_angle) return false;
+      if (min_angle_key(a, b, c) < floor_angle) return false;
       for (int k = 0; k < 3; ++k) {
         const HalfEdge h = 3 * t + static_cast<HalfEdge>(k);
         if (t_.constrained(h) && predicates::encroaches(t_.pts[t_.org(h)], t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]))
@@ -370,7 +378,8 @@ class Smoother {
   std::vector<TriangleId> touched_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t stamp_ = 0;
-  double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;
+  double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
+  double floor_key_ = 0;  // min_angle_key of --min-angle
   Index moved_ = 0;  // the vertex of the current attempt
 };
 
