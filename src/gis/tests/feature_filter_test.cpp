@@ -171,5 +171,31 @@ TEST(FeatureFilter, OffKeepsEverything) {
   EXPECT_TRUE(r.repairs.empty());
 }
 
+// Validity: a valid polygon with many islands is taken as it is (the fast exact test), invalid
+// ones (an island inside an island, a self-crossing bow tie) are repaired by GEOS as before.
+TEST(FeatureFilter, ValidAndInvalidInputsWithoutFilter) {
+  Rings many = rect(0, 0, 1000, 1000);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double x = 50 + 115 * i, y = 50 + 115 * j;
+      many.push_back({{x, y}, {x, y + 40}, {x + 40, y + 40}, {x + 40, y}});
+    }
+  const FeatureFilterResult a = filter_features({many}, FeatureFilterOptions{});
+  EXPECT_EQ(a.output_pieces, 1u);
+  EXPECT_NEAR(area(a.polygons), 1e6 - 64 * 1600, 1e-6);
+  // An island drawn inside another island: GEOS makes the inner ring a separate water body.
+  Rings nested = rect(0, 0, 1000, 1000);
+  nested.push_back({{100, 100}, {100, 900}, {900, 900}, {900, 100}});
+  nested.push_back({{300, 300}, {300, 700}, {700, 700}, {700, 300}});
+  const FeatureFilterResult b = filter_features({nested}, FeatureFilterOptions{});
+  EXPECT_EQ(b.output_pieces, 2u);
+  EXPECT_NEAR(area(b.polygons), 1e6 - 640000 + 160000, 1e-6);
+  // A bow tie (the outer ring crosses itself) becomes two triangles.
+  const Rings bow{{{0, 0}, {1000, 1000}, {1000, 0}, {0, 1000}}};
+  const FeatureFilterResult c = filter_features({bow}, FeatureFilterOptions{});
+  EXPECT_EQ(c.output_pieces, 2u);
+  EXPECT_NEAR(area(c.polygons), 5e5, 1e-6);
+}
+
 }  // namespace
 }  // namespace fdr::gis
