@@ -632,6 +632,32 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (pw.intersects(&pt)) owner[j] = static_cast<int>(i);
       }
     }
+    // A piece whose inner point lies outside every input body (water the closing added between
+    // land that was thinner than --close-width): its owner is the input body it overlaps most.
+    for (std::size_t j = 0; j < rps.size() && rps.size() > 1; ++j) {
+      if (owner[j] >= 0) continue;
+      OGREnvelope re;
+      rps[j]->getEnvelope(&re);
+      // (by its vertices, most of which are input coast: an overlay with a basin polygon costs seconds)
+      int best = 0;
+      const OGRLinearRing* ring = rps[j]->getExteriorRing();
+      const int nv = ring->getNumPoints();
+      for (std::size_t i = 0; i < wps.size(); ++i) {
+        OGREnvelope we;
+        wps[i]->getEnvelope(&we);
+        if (!we.Intersects(re)) continue;
+        Prepared pw(wps[i].get());
+        int hits = 0;
+        for (int k = 0; k < nv; k += std::max(1, nv / 16)) {
+          OGRPoint pt(ring->getX(k), ring->getY(k));
+          hits += pw.intersects(&pt);
+        }
+        if (hits > best) {
+          best = hits;
+          owner[j] = static_cast<int>(i);
+        }
+      }
+    }
     std::vector<int> best(wps.size(), -1);
     for (std::size_t j = 0; j < rps.size(); ++j) {
       if (owner[j] < 0) continue;
