@@ -56,14 +56,31 @@ MeshView take_view(Triangulation& t) {
       if (m.vertex_marker[e.b] == 0) m.vertex_marker[e.b] = e.marker;
     }
   }
-  release(t.twin);
   release(t.seg_of);
   release(t.input_segments);
-  m.triangles.reserve(t.num_live_triangles());
+  release(t.region);
+  // Compaction once, in place: live triangles keep their slot order (as to_view); their twins,
+  // renumbered to the compact triangle ids, become the view's neighbours (moved, not copied).
+  // Writing slot s's entries to position i <= s only overwrites slots already read.
+  std::vector<Index> slot(t.num_slots(), kNoId);
+  Index nt = 0;
+  for (TriangleId s = 0; s < t.num_slots(); ++s)
+    if (!t.dead(s)) slot[s] = nt++;
+  m.triangles.reserve(nt);
   for (TriangleId s = 0; s < t.num_slots(); ++s) {
     if (t.dead(s)) continue;
+    const Index i = slot[s];
     m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge tw = t.twin[3 * s + k];
+      t.twin[3 * i + k] = tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3;
+    }
   }
+  release(slot);
+  release(t.tv);
+  release(t.flags);
+  t.twin.resize(3 * static_cast<std::size_t>(nt));
+  m.neighbours = std::move(t.twin);
   t = Triangulation{};
   return m;
 }

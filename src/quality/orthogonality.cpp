@@ -3,17 +3,39 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
 #include "predicates/predicates.hpp"
+#include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
 
 namespace {
-double nearest_rank(std::vector<double>& v, double q) {
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  const std::size_t k = rank == 0 ? 0 : std::min(rank - 1, v.size() - 1);
+// Top 16 bits of a non-negative double (sign, exponent, 4 mantissa bits): monotone in the value.
+std::uint16_t top_bits(double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return static_cast<std::uint16_t>(u >> 48);
+}
+// The nearest-rank q-quantile of n values lies in `bucket`, as the `within`-th smallest there.
+struct Rank {
+  std::uint16_t bucket = 0;
+  std::size_t within = 0;
+};
+Rank rank_bucket(const std::vector<std::uint32_t>& count, std::size_t n, double q) {
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(n)));
+  const std::size_t k = rank == 0 ? 0 : std::min(rank - 1, n - 1);  // 0-based
+  std::size_t below = 0;
+  for (std::size_t b = 0; b < count.size(); ++b) {
+    if (below + count[b] > k) return {static_cast<std::uint16_t>(b), k - below};
+    below += count[b];
+  }
+  return {};
+}
+double kth(std::vector<double>& v, std::size_t k) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
 }
@@ -39,67 +61,68 @@ Point2 cell_centre(Point2 a, Point2 b, Point2 c, Point2 cc) {
 OrthogonalityStats compute_orthogonality(const mesh::MeshView& m) {
   OrthogonalityStats s;
   const std::size_t nt = m.triangles.size();
-  std::vector<Point2> cc(nt);
-  std::vector<double> area(nt);
   for (const auto& tr : m.triangles)
     for (Index v : tr)
       if (v >= m.vertices.size()) return s;  // invalid mesh: compute_quality reports it
-  for (std::size_t t = 0; t < nt; ++t) {
+  std::vector<Index> built;
+  if (m.neighbours.size() != 3 * nt) built = half_edge_neighbours(m);
+  const std::vector<Index>& nb = built.empty() ? m.neighbours : built;
+  auto centre_area = [&](std::size_t t, Point2& cc, double& area) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
-    cc[t] = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
-    area[t] = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-  }
-  // Half-edges grouped by tail vertex, each stored with its head and triangle and sorted by head
-  // (compressed rows): the twin of a -> b is a binary search among the half-edges leaving b; no
-  // hashing, and no lookups back into the triangles while sorting and searching.
-  const std::size_t nv = m.vertices.size();
-  auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
-  auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
-  struct Out {
-    Index head;
-    TriangleId t;
+    cc = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
+    area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
   };
-  std::vector<std::size_t> start(nv + 1, 0);
-  std::vector<Out> out(3 * nt);
-  for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k)
-        out[fill[m.triangles[t][k]]++] = {m.triangles[t][(k + 1) % 3], static_cast<TriangleId>(t)};
-  }
-  auto before = [](const Out& x, const Out& y) { return x.head < y.head || (x.head == y.head && x.t < y.t); };
-  for (std::size_t v = 0; v < nv; ++v) {
-    Out* b = out.data() + start[v];
-    Out* e = out.data() + start[v + 1];
-    for (Out* i = b + 1; i < e; ++i)  // insertion sort: a vertex has a handful of half-edges
-      for (Out* j = i; j > b && before(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
-  }
-  std::vector<double> ortho, smooth;
-  ortho.reserve(3 * nt / 2);
-  smooth.reserve(3 * nt / 2);
-  for (std::size_t h = 0; h < 3 * nt; ++h) {
-    const Index a = tail(h), b = head(h);
-    if (a > b) continue;  // each interior edge once, from its lower-numbered end
-    const Out* b0 = out.data() + start[b];
-    const Out* b1 = out.data() + start[b + 1];
-    const Out* it = std::lower_bound(b0, b1, a, [](const Out& x, Index key) { return x.head < key; });
-    if (it == b1 || it->head != a) continue;  // boundary edge
-    const std::size_t t = h / 3, u = it->t;
-    const Point2 e = m.vertices[b] - m.vertices[a], l = cc[t] - cc[u];
-    const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
-    ortho.push_back(el > 0 ? std::fabs(dot(e, l)) / el : 0.0);
-    const double lo = std::min(area[t], area[u]), hi = std::max(area[t], area[u]);
-    smooth.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
-  }
-  s.interior_edges = ortho.size();
-  if (!ortho.empty()) {
-    s.orthogonality_max = *std::max_element(ortho.begin(), ortho.end());
-    s.smoothness_max = *std::max_element(smooth.begin(), smooth.end());
-    s.orthogonality_p99 = nearest_rank(ortho, 0.99);
-    s.smoothness_p99 = nearest_rank(smooth, 0.99);
-  }
+  // Each interior edge once, from its half-edge a -> b with a <= b, in triangle order. Its two
+  // values, |cos| and the area ratio; `visit(j, ortho, smooth)` gets the edge's running number j.
+  auto for_each_edge = [&](auto&& visit) {
+    std::size_t j = 0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      Point2 cct{};
+      double at = -1;
+      for (int k = 0; k < 3; ++k) {
+        const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+        const Index g = nb[3 * t + k];
+        if (a > b || g == kNoId) continue;
+        if (at < 0) centre_area(t, cct, at);
+        Point2 ccu;
+        double au;
+        centre_area(g / 3, ccu, au);
+        const Point2 e = m.vertices[b] - m.vertices[a], l = cct - ccu;
+        const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
+        const double lo = std::min(at, au), hi = std::max(at, au);
+        visit(j++, el > 0 ? std::fabs(dot(e, l)) / el : 0.0, lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+      }
+    }
+  };
+  // p99 without keeping the values: pass 1 keeps each value's top 16 bits (sign, exponent and 4
+  // mantissa bits order non-negative doubles like the values) and counts them; the rank falls in
+  // one such bucket, and pass 2 recomputes only the edges in it (the same value as a sort).
+  std::vector<std::uint16_t> ortho_key, smooth_key;
+  ortho_key.reserve(3 * nt / 2 + 1);
+  smooth_key.reserve(3 * nt / 2 + 1);
+  std::vector<std::uint32_t> ortho_count(1 << 16, 0), smooth_count(1 << 16, 0);
+  double omax = -1, smax = -1;
+  for_each_edge([&](std::size_t, double o, double sm) {
+    const std::uint16_t ko = top_bits(o), ks = top_bits(sm);
+    ortho_key.push_back(ko);
+    smooth_key.push_back(ks);
+    ++ortho_count[ko];
+    ++smooth_count[ks];
+    omax = std::max(omax, o);
+    smax = std::max(smax, sm);
+  });
+  s.interior_edges = ortho_key.size();
+  if (s.interior_edges == 0) return s;
+  s.orthogonality_max = omax;
+  s.smoothness_max = smax;
+  const Rank ro = rank_bucket(ortho_count, s.interior_edges, 0.99), rs = rank_bucket(smooth_count, s.interior_edges, 0.99);
+  std::vector<double> in_o, in_s;
+  for_each_edge([&](std::size_t j, double o, double sm) {
+    if (ortho_key[j] == ro.bucket) in_o.push_back(o);
+    if (smooth_key[j] == rs.bucket) in_s.push_back(sm);
+  });
+  s.orthogonality_p99 = kth(in_o, ro.within);
+  s.smoothness_p99 = kth(in_s, rs.within);
   return s;
 }
 

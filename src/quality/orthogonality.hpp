@@ -25,7 +25,8 @@ struct OrthogonalityStats {
   std::optional<double> smoothness_max, smoothness_p99;
 };
 
-// One pass over the half-edges (rows by tail vertex, no hashing), circumcentres by predicates::circumcenter in
+// Over the interior edges through the mesh adjacency (MeshView::neighbours, else built from the
+// triangles), cell centres from predicates::circumcenter in
 // the local frame. p99 is the nearest-rank 99th percentile over the interior edges.
 OrthogonalityStats compute_orthogonality(const mesh::MeshView& m);
 

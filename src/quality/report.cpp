@@ -18,6 +18,7 @@
 #include "base/error.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
+#include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
 namespace {
@@ -174,12 +175,20 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
 }
 
 namespace {
-// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh: every mesh edge gives
-// an upper bound (the squared length of the nearest edge, computed exactly as the tree computes
-// distances), so each query only visits the few tree nodes closer than the nearest mesh
-// neighbour; in a Delaunay mesh that neighbour is the answer and the query just confirms it.
+// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh. With the mesher's
+// adjacency (m.neighbours) a walk over the mesh from each vertex (mesh_adjacency.hpp); else every
+// mesh edge gives an upper bound (the squared length of the nearest edge, computed exactly as the
+// tree computes distances), so each tree query only visits the few nodes closer than that.
 std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
   const std::vector<Point2>& p = m.vertices;
+  if (m.neighbours.size() == 3 * m.triangles.size() && p.size() >= 2) {
+    // The mesher's own triangulation: walk it (exact, see mesh_adjacency.hpp).
+    std::vector<double> nn = mesh_nearest_neighbour_sq(m, m.neighbours);
+    if (!nn.empty()) {
+      for (double& d : nn) d = std::sqrt(d);
+      return nn;
+    }
+  }
   std::vector<double> nn(p.size(), kInf);
   if (p.size() < 2) return nn;
   for (const auto& tri : m.triangles)

@@ -1,0 +1,234 @@
+// Triangle adjacency of a MeshView and the exact nearest-neighbour walk over it.
+#include "quality/mesh_adjacency.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <thread>
+#include <unordered_set>
+
+#include "base/threads.hpp"
+
+namespace fdr::quality {
+
+std::vector<Index> half_edge_neighbours(const mesh::MeshView& m) {
+  const std::size_t nt = m.triangles.size(), nv = m.vertices.size();
+  if (m.neighbours.size() == 3 * nt) return m.neighbours;
+  // Half-edges grouped by tail vertex (compressed rows), each with its head, sorted by head: the
+  // twin of a -> b is a binary search among the half-edges leaving b. No hashing.
+  struct Out {
+    Index head;
+    Index he;
+  };
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (const auto& tr : m.triangles)
+    for (Index v : tr) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Out> out(3 * nt);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        out[fill[m.triangles[t][k]]++] = {m.triangles[t][(k + 1) % 3], static_cast<Index>(3 * t + k)};
+  }
+  auto before = [](const Out& x, const Out& y) { return x.head < y.head || (x.head == y.head && x.he < y.he); };
+  for (std::size_t v = 0; v < nv; ++v) {
+    Out* b = out.data() + start[v];
+    Out* e = out.data() + start[v + 1];
+    for (Out* i = b + 1; i < e; ++i)  // insertion sort: a vertex has a handful of half-edges
+      for (Out* j = i; j > b && before(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+  }
+  std::vector<Index> nb(3 * nt, kNoId);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      const Out* b0 = out.data() + start[b];
+      const Out* b1 = out.data() + start[b + 1];
+      const Out* it = std::lower_bound(b0, b1, a, [](const Out& x, Index key) { return x.head < key; });
+      if (it != b1 && it->head == a) nb[3 * t + k] = it->he;
+    }
+  return nb;
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// True when segment uv may come closer to p than sqrt(r2). Conservative: the slack (relative to
+// r2 and to the operands' own size) only makes the walk visit a little more, so rounding in this
+// test can never hide a vertex; the distances that decide the result are computed exactly as
+// the brute force computes them.
+inline bool segment_near(Point2 p, Point2 u, Point2 v, double r2) {
+  const Point2 d = p - u, e = v - u;
+  const double l2 = norm2(e);
+  const double t = l2 > 0 ? std::clamp(dot(d, e) / l2, 0.0, 1.0) : 0.0;
+  const Point2 c{d.x - t * e.x, d.y - t * e.y};
+  return norm2(c) <= r2 * (1 + 1e-9) + 1e-12 * (norm2(d) + l2);
+}
+
+// Boundary half-edges (no neighbour) in a static bounding-box tree: ranges of the array sorted
+// by midpoint (median splits, alternating axis), node boxes in heap order.
+class BoundaryIndex {
+ public:
+  BoundaryIndex(const mesh::MeshView& m, const std::vector<Index>& nb) : m_(m) {
+    for (std::size_t h = 0; h < nb.size(); ++h)
+      if (nb[h] == kNoId) he_.push_back(static_cast<Index>(h));
+    if (!he_.empty()) build(0, 0, he_.size(), 0);
+  }
+  // Calls f(h) for every boundary half-edge h whose segment may come closer to p than sqrt(r2).
+  template <class F>
+  void for_each_near(Point2 p, double r2, F&& f) const {
+    if (!he_.empty()) query(0, 0, he_.size(), p, r2, f);
+  }
+
+ private:
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  static constexpr std::size_t kLeaf = 8;
+  Point2 tail(Index h) const { return m_.vertices[m_.triangles[h / 3][h % 3]]; }
+  Point2 head(Index h) const { return m_.vertices[m_.triangles[h / 3][(h % 3 + 1) % 3]]; }
+  Box build(std::size_t node, std::size_t lo, std::size_t hi, int axis) {
+    if (box_.size() <= node) box_.resize(node + 1);
+    Box b{kInf, kInf, -kInf, -kInf};
+    if (hi - lo <= kLeaf) {
+      for (std::size_t i = lo; i < hi; ++i)
+        for (const Point2 q : {tail(he_[i]), head(he_[i])})
+          b = {std::min(b.x0, q.x), std::min(b.y0, q.y), std::max(b.x1, q.x), std::max(b.y1, q.y)};
+    } else {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      auto key = [&](Index h) {
+        const Point2 a = tail(h), c = head(h);
+        return axis == 0 ? a.x + c.x : a.y + c.y;
+      };
+      std::nth_element(he_.begin() + static_cast<std::ptrdiff_t>(lo), he_.begin() + static_cast<std::ptrdiff_t>(mid),
+                       he_.begin() + static_cast<std::ptrdiff_t>(hi),
+                       [&](Index x, Index y) { return key(x) < key(y) || (key(x) == key(y) && x < y); });
+      const Box l = build(2 * node + 1, lo, mid, 1 - axis), r = build(2 * node + 2, mid, hi, 1 - axis);
+      b = {std::min(l.x0, r.x0), std::min(l.y0, r.y0), std::max(l.x1, r.x1), std::max(l.y1, r.y1)};
+    }
+    box_[node] = b;
+    return b;
+  }
+  template <class F>
+  void query(std::size_t node, std::size_t lo, std::size_t hi, Point2 p, double r2, F& f) const {
+    const Box& b = box_[node];
+    const double dx = std::max({b.x0 - p.x, 0.0, p.x - b.x1}), dy = std::max({b.y0 - p.y, 0.0, p.y - b.y1});
+    if (dx * dx + dy * dy > r2 * (1 + 1e-9)) return;  // the whole box is farther (slack as segment_near)
+    if (hi - lo <= kLeaf) {
+      for (std::size_t i = lo; i < hi; ++i)
+        if (segment_near(p, tail(he_[i]), head(he_[i]), r2)) f(he_[i]);
+      return;
+    }
+    const std::size_t mid = lo + (hi - lo) / 2;
+    query(2 * node + 1, lo, mid, p, r2, f);
+    query(2 * node + 2, mid, hi, p, r2, f);
+  }
+  const mesh::MeshView& m_;
+  std::vector<Index> he_;
+  std::vector<Box> box_;
+};
+
+// The walk for one vertex, with its scratch lists (one Walker per thread).
+//
+// Why it is exact: let q be the vertex nearest to p and r = |pq| (the final best). The open
+// segment pq holds no vertex (it would be nearer). Follow pq backwards from q: it runs through
+// a chain of triangles, consecutive ones sharing an edge that pq crosses at a point nearer to p
+// than r, until it reaches p's own triangles or leaves the mesh through a boundary edge at such
+// a point. The walk crosses every edge that comes nearer than the best so far (never below r),
+// so it follows the chain from p's triangles; when the chain starts at a boundary edge instead,
+// that edge is near p, the walk therefore met the boundary near p (p's own triangles are bounded
+// by it or by edges the walk crossed), and every boundary edge that near is a starting point.
+class Walker {
+ public:
+  Walker(const mesh::MeshView& m, const std::vector<Index>& nb, const BoundaryIndex& bi) : m_(m), nb_(nb), bi_(bi) {}
+  double nearest_sq(Index p, Index t0, double best) {
+    if (!(best > 0)) return best;  // a duplicate point: nothing is nearer than 0
+    const Point2 P = m_.vertices[p];
+    seen_.clear();
+    todo_.clear();
+    visit(t0);
+    bool boundary = false, seeded = false;
+    while (true) {
+      while (!todo_.empty()) {
+        const Index t = todo_.back();
+        todo_.pop_back();
+        const auto& tr = m_.triangles[t];
+        for (int k = 0; k < 3; ++k)
+          if (tr[k] != p) best = std::min(best, norm2(m_.vertices[tr[k]] - P));
+        for (int k = 0; k < 3; ++k) {
+          const Index a = tr[k], b = tr[k == 2 ? 0 : k + 1];
+          const Index n = nb_[3 * t + k];
+          if (n != kNoId && seen(n / 3)) continue;
+          if (a != p && b != p && !segment_near(P, m_.vertices[a], m_.vertices[b], best)) continue;
+          if (n == kNoId) boundary = true;
+          else visit(n / 3);
+        }
+      }
+      if (!boundary || seeded) break;
+      seeded = true;  // the region near p may continue beyond the boundary: start from every near boundary edge
+      bi_.for_each_near(P, best, [&](Index h) {
+        if (!seen(h / 3)) visit(h / 3);
+      });
+    }
+    return best;
+  }
+
+ private:
+  // A short list while the walk is small (the usual dozen triangles), a hash set beyond.
+  bool seen(Index t) const {
+    if (seen_.size() <= kShort) return std::find(seen_.begin(), seen_.end(), t) != seen_.end();
+    return many_.count(t) != 0;
+  }
+  void visit(Index t) {
+    seen_.push_back(t);
+    if (seen_.size() == kShort + 1) many_ = std::unordered_set<Index>(seen_.begin(), seen_.end());
+    else if (seen_.size() > kShort + 1) many_.insert(t);
+    todo_.push_back(t);
+  }
+  static constexpr std::size_t kShort = 48;
+  std::unordered_set<Index> many_;
+  const mesh::MeshView& m_;
+  const std::vector<Index>& nb_;
+  const BoundaryIndex& bi_;
+  std::vector<Index> seen_, todo_;
+};
+
+}  // namespace
+
+std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb) {
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
+  std::vector<double> nn(nv, kInf);
+  if (nv < 2) return nn;
+  // Upper bounds from the mesh edges, and one triangle of every vertex.
+  std::vector<Index> tri_of_vertex(nv, kNoId);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& tr = m.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const Index a = tr[k], b = tr[k == 2 ? 0 : k + 1];
+      tri_of_vertex[a] = static_cast<Index>(t);
+      if (a == b) continue;
+      const double d = norm2(m.vertices[b] - m.vertices[a]);
+      nn[a] = std::min(nn[a], d);
+      nn[b] = std::min(nn[b], d);
+    }
+  }
+  if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
+  const BoundaryIndex bi(m, nb);
+  // Vertices in two fixed halves (results per vertex do not depend on the split).
+  auto run = [&](std::size_t lo, std::size_t hi) {
+    Walker w(m, nb, bi);
+    for (std::size_t v = lo; v < hi; ++v) nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
+  };
+  if (max_threads() > 1 && nv >= 4096) {
+    std::thread other(run, nv / 2, nv);
+    run(0, nv / 2);
+    other.join();
+  } else {
+    run(0, nv);
+  }
+  return nn;
+}
+
+}  // namespace fdr::quality
