@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <thread>
 #include <unordered_set>
 
 #include "base/threads.hpp"
+#include "predicates/predicates.hpp"
 
 namespace fdr::quality {
 
@@ -67,19 +69,18 @@ inline bool segment_near(Point2 p, Point2 u, Point2 v, double r2) {
   return norm2(c) <= r2 * (1 + 1e-9) + 1e-12 * (norm2(d) + l2);
 }
 
-// Boundary half-edges (no neighbour) in a static bounding-box tree: ranges of the array sorted
-// by midpoint (median splits, alternating axis), node boxes in heap order.
-class BoundaryIndex {
+// Half-edges (the boundary and the constrained edges) in a static bounding-box tree: ranges of
+// the array sorted by midpoint (median splits, alternating axis), node boxes in heap order.
+class EdgeIndex {
  public:
-  BoundaryIndex(const mesh::MeshView& m, const std::vector<Index>& nb) : m_(m) {
-    for (std::size_t h = 0; h < nb.size(); ++h)
-      if (nb[h] == kNoId) he_.push_back(static_cast<Index>(h));
+  EdgeIndex(const mesh::MeshView& m, std::vector<Index> he) : m_(m), he_(std::move(he)) {
     if (!he_.empty()) build(0, 0, he_.size(), 0);
   }
-  // Calls f(h) for every boundary half-edge h whose segment may come closer to p than sqrt(r2).
+  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2);
+  // stops when f returns true, and returns whether it did.
   template <class F>
-  void for_each_near(Point2 p, double r2, F&& f) const {
-    if (!he_.empty()) query(0, 0, he_.size(), p, r2, f);
+  bool for_each_near(Point2 p, double r2, F&& f) const {
+    return !he_.empty() && query(0, 0, he_.size(), p, r2, f);
   }
 
  private:
@@ -112,18 +113,17 @@ class BoundaryIndex {
     return b;
   }
   template <class F>
-  void query(std::size_t node, std::size_t lo, std::size_t hi, Point2 p, double r2, F& f) const {
+  bool query(std::size_t node, std::size_t lo, std::size_t hi, Point2 p, double r2, F& f) const {
     const Box& b = box_[node];
     const double dx = std::max({b.x0 - p.x, 0.0, p.x - b.x1}), dy = std::max({b.y0 - p.y, 0.0, p.y - b.y1});
-    if (dx * dx + dy * dy > r2 * (1 + 1e-9)) return;  // the whole box is farther (slack as segment_near)
+    if (dx * dx + dy * dy > r2 * (1 + 1e-9)) return false;  // the whole box is farther (slack as segment_near)
     if (hi - lo <= kLeaf) {
       for (std::size_t i = lo; i < hi; ++i)
-        if (segment_near(p, tail(he_[i]), head(he_[i]), r2)) f(he_[i]);
-      return;
+        if (segment_near(p, tail(he_[i]), head(he_[i]), r2) && f(he_[i])) return true;
+      return false;
     }
     const std::size_t mid = lo + (hi - lo) / 2;
-    query(2 * node + 1, lo, mid, p, r2, f);
-    query(2 * node + 2, mid, hi, p, r2, f);
+    return query(2 * node + 1, lo, mid, p, r2, f) || query(2 * node + 2, mid, hi, p, r2, f);
   }
   const mesh::MeshView& m_;
   std::vector<Index> he_;
@@ -142,7 +142,7 @@ class BoundaryIndex {
 // by it or by edges the walk crossed), and every boundary edge that near is a starting point.
 class Walker {
  public:
-  Walker(const mesh::MeshView& m, const std::vector<Index>& nb, const BoundaryIndex& bi) : m_(m), nb_(nb), bi_(bi) {}
+  Walker(const mesh::MeshView& m, const std::vector<Index>& nb, const EdgeIndex& bi) : m_(m), nb_(nb), bi_(bi) {}
   double nearest_sq(Index p, Index t0, double best) {
     if (!(best > 0)) return best;  // a duplicate point: nothing is nearer than 0
     const Point2 P = m_.vertices[p];
@@ -170,6 +170,7 @@ class Walker {
       seeded = true;  // the region near p may continue beyond the boundary: start from every near boundary edge
       bi_.for_each_near(P, best, [&](Index h) {
         if (!seen(h / 3)) visit(h / 3);
+        return false;
       });
     }
     return best;
@@ -191,9 +192,36 @@ class Walker {
   std::unordered_set<Index> many_;
   const mesh::MeshView& m_;
   const std::vector<Index>& nb_;
-  const BoundaryIndex& bi_;
+  const EdgeIndex& bi_;
   std::vector<Index> seen_, todo_;
 };
+
+}  // namespace
+
+namespace {
+
+// The half-edge a -> b, else b -> a, found by rotating around a (kNoId when a's triangles
+// reachable by rotation do not have it, e.g. at a vertex where two fans touch).
+Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Index t0, Index a, Index b) {
+  const auto& tr0 = m.triangles[t0];
+  const Index start = 3 * t0 + (tr0[0] == a ? 0 : tr0[1] == a ? 1 : 2);
+  auto prev = [](Index h) { return h % 3 == 0 ? h + 2 : h - 1; };
+  auto next = [](Index h) { return h % 3 == 2 ? h - 2 : h + 1; };
+  auto head = [&](Index h) { return m.triangles[h / 3][next(h) % 3]; };
+  auto tail = [&](Index h) { return m.triangles[h / 3][h % 3]; };
+  for (int dir = 0; dir < 2; ++dir) {
+    Index h = start;
+    for (std::size_t guard = 0; guard < nb.size() + 1; ++guard) {  // at most every half-edge once
+      if (head(h) == b) return h;
+      if (tail(prev(h)) == b) return prev(h);
+      const Index g = dir == 0 ? nb[prev(h)] : nb[h];
+      if (g == kNoId) break;
+      h = dir == 0 ? g : next(g);
+      if (h == start) return kNoId;  // full turn
+    }
+  }
+  return kNoId;
+}
 
 }  // namespace
 
@@ -215,13 +243,68 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
     }
   }
   if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
-  const BoundaryIndex bi(m, nb);
+
+  // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
+  std::vector<std::uint8_t> sflag(3 * nt, 0);
+  bool certify = true;  // every edge of m.edges found (else the shortcut below is off)
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (nb[h] == kNoId) sflag[h] = 1;
+  for (const auto& e : m.edges) {
+    if (e.a >= nv || e.b >= nv) { certify = false; continue; }
+    const Index h = find_half_edge(m, nb, tri_of_vertex[e.a], e.a, e.b);
+    if (h == kNoId) { certify = false; continue; }
+    sflag[h] = 1;
+    if (nb[h] != kNoId) sflag[nb[h]] = 1;
+  }
+  std::vector<Index> s_edges;
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
+  const EdgeIndex si(m, std::move(s_edges));
+
+  // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
+  // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
+  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
+  // triangles surround it, and a vertex v nearer than d lies beyond some edge uw of them, in the
+  // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
+  // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
+  // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
+  auto check_range = [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = lo; t < hi; ++t) {
+      const auto& tr = m.triangles[t];
+      const Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];
+      if (predicates::orient2d(a, b, c) <= 0) return false;
+      for (int k = 0; k < 3; ++k) {
+        const Index h = 3 * static_cast<Index>(t) + k, g = nb[h];
+        if (g == kNoId || g < h || sflag[h]) continue;
+        const Point2 d = m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]];
+        if (predicates::incircle(a, b, c, d) > 0) return false;
+      }
+    }
+    return true;
+  };
+  const bool threads = max_threads() > 1 && nv >= 4096;
+  if (certify) {
+    if (threads) {
+      bool other_ok = true;
+      std::thread other([&] { other_ok = check_range(nt / 2, nt); });
+      const bool ok = check_range(0, nt / 2);
+      other.join();
+      certify = ok && other_ok;
+    } else {
+      certify = check_range(0, nt);
+    }
+  }
+
   // Vertices in two fixed halves (results per vertex do not depend on the split).
   auto run = [&](std::size_t lo, std::size_t hi) {
-    Walker w(m, nb, bi);
-    for (std::size_t v = lo; v < hi; ++v) nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
+    Walker w(m, nb, si);
+    for (std::size_t v = lo; v < hi; ++v) {
+      const Point2 p = m.vertices[v];
+      if (certify && !si.for_each_near(p, nn[v], [](Index) { return true; })) continue;  // nn[v] is exact
+      nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
+    }
   };
-  if (max_threads() > 1 && nv >= 4096) {
+  if (threads) {
     std::thread other(run, nv / 2, nv);
     run(0, nv / 2);
     other.join();
