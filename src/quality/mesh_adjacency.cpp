@@ -9,8 +9,7 @@
 #include <thread>
 #include <unordered_set>
 
-#include "base/threads.hpp"
-#include "predicates/predicates.hpp"
+#include "quality/orthogonality.hpp"
 
 namespace fdr::quality {
 
@@ -200,6 +199,11 @@ class Walker {
 
 namespace {
 
+template <class V>
+void release(V& v) {
+  V().swap(v);
+}
+
 // The half-edge a -> b, else b -> a, found by rotating around a (kNoId when a's triangles
 // reachable by rotation do not have it, e.g. at a vertex where two fans touch).
 Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Index t0, Index a, Index b) {
@@ -225,28 +229,26 @@ Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Inde
 
 }  // namespace
 
-std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb) {
+std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb, unsigned threads,
+                                              MeshWalkPrep* prep) {
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
-  std::vector<double> nn(nv, kInf);
-  if (nv < 2) return nn;
-  // Upper bounds from the mesh edges, and one triangle of every vertex.
-  std::vector<Index> tri_of_vertex(nv, kNoId);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const auto& tr = m.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const Index a = tr[k], b = tr[k == 2 ? 0 : k + 1];
-      tri_of_vertex[a] = static_cast<Index>(t);
-      if (a == b) continue;
-      const double d = norm2(m.vertices[b] - m.vertices[a]);
-      nn[a] = std::min(nn[a], d);
-      nn[b] = std::min(nn[b], d);
-    }
+  if (nv < 2) return std::vector<double>(nv, kInf);
+  if (nb.size() != 3 * nt) return {};
+  for (const auto& tr : m.triangles)
+    if (tr[0] >= nv || tr[1] >= nv || tr[2] >= nv) return {};
+  MeshWalkPrep own;
+  if (!prep) {
+    prep = &own;
+    compute_orthogonality(m, nb, prep);
   }
+  // Upper bounds from the mesh edges, and one triangle of every vertex.
+  std::vector<double> nn = std::move(prep->nn2);
+  const std::vector<Index>& tri_of_vertex = prep->tri_of_vertex;
   if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
 
   // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
   std::vector<std::uint8_t> sflag(3 * nt, 0);
-  bool certify = true;  // every edge of m.edges found (else the shortcut below is off)
+  bool certify = prep->ccw;  // and every edge of m.edges found (else the shortcut below is off)
   for (std::size_t h = 0; h < 3 * nt; ++h)
     if (nb[h] == kNoId) sflag[h] = 1;
   for (const auto& e : m.edges) {
@@ -256,11 +258,6 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
     sflag[h] = 1;
     if (nb[h] != kNoId) sflag[nb[h]] = 1;
   }
-  std::vector<Index> s_edges;
-  for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
-  const EdgeIndex si(m, std::move(s_edges));
-
   // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
   // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
   // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
@@ -268,43 +265,23 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
   // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
   // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
   // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
-  auto check_range = [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t t = lo; t < hi; ++t) {
-      const auto& tr = m.triangles[t];
-      const Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];
-      if (predicates::orient2d(a, b, c) <= 0) return false;
-      for (int k = 0; k < 3; ++k) {
-        const Index h = 3 * static_cast<Index>(t) + k, g = nb[h];
-        if (g == kNoId || g < h || sflag[h]) continue;
-        const Point2 d = m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]];
-        if (predicates::incircle(a, b, c, d) > 0) return false;
-      }
-    }
-    return true;
-  };
-  const bool threads = max_threads() > 1 && nv >= 4096;
-  if (certify) {
-    if (threads) {
-      bool other_ok = true;
-      std::thread other([&] { other_ok = check_range(nt / 2, nt); });
-      const bool ok = check_range(0, nt / 2);
-      other.join();
-      certify = ok && other_ok;
-    } else {
-      certify = check_range(0, nt);
-    }
-  }
+  for (Index h : prep->not_delaunay)
+    if (!sflag[h]) certify = false;
+  std::vector<Index> s_edges;
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
+  release(sflag);
+  const EdgeIndex si(m, std::move(s_edges));
 
   // Vertices in two fixed halves (results per vertex do not depend on the split).
   auto run = [&](std::size_t lo, std::size_t hi) {
     Walker w(m, nb, si);
     for (std::size_t v = lo; v < hi; ++v) {
-      const Point2 p = m.vertices[v];
-      if (certify && !si.for_each_near(p, nn[v], [](Index) { return true; })) continue;  // nn[v] is exact
+      if (certify && !si.for_each_near(m.vertices[v], nn[v], [](Index) { return true; })) continue;  // exact
       nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
     }
   };
-  if (threads) {
+  if (threads > 1 && nv >= 4096) {
     std::thread other(run, nv / 2, nv);
     run(0, nv / 2);
     other.join();

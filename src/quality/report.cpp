@@ -179,15 +179,24 @@ namespace {
 // adjacency (m.neighbours) a walk over the mesh from each vertex (mesh_adjacency.hpp); else every
 // mesh edge gives an upper bound (the squared length of the nearest edge, computed exactly as the
 // tree computes distances), so each tree query only visits the few nodes closer than that.
-std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
+std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m, unsigned threads,
+                                                     OrthogonalityStats* ortho) {
   const std::vector<Point2>& p = m.vertices;
-  if (m.neighbours.size() == 3 * m.triangles.size() && p.size() >= 2) {
-    // The mesher's own triangulation: walk it (exact, see mesh_adjacency.hpp).
-    std::vector<double> nn = mesh_nearest_neighbour_sq(m, m.neighbours);
+  bool ids_ok = true;
+  for (const auto& tr : m.triangles)
+    if (tr[0] >= p.size() || tr[1] >= p.size() || tr[2] >= p.size()) ids_ok = false;
+  if (ids_ok && m.neighbours.size() == 3 * m.triangles.size() && p.size() >= 2) {
+    // The mesher's own triangulation: one pass for the orthogonality and the walk's bounds, then
+    // the walk (exact, see mesh_adjacency.hpp).
+    MeshWalkPrep prep;
+    *ortho = compute_orthogonality(m, m.neighbours, &prep);
+    std::vector<double> nn = mesh_nearest_neighbour_sq(m, m.neighbours, threads, &prep);
     if (!nn.empty()) {
       for (double& d : nn) d = std::sqrt(d);
       return nn;
     }
+  } else {
+    *ortho = compute_orthogonality(m, threads);
   }
   std::vector<double> nn(p.size(), kInf);
   if (p.size() < 2) return nn;
@@ -220,26 +229,26 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
   r.guarantees = compute_guarantees(alpha, bound_B);
   r.run = run;
-  r.orthogonality = compute_orthogonality(m);
 
   const std::size_t nv = m.num_vertices();
-  // Nearest neighbours do not need f: with a second thread they are found while the triangles
-  // are measured (same values either way).
+  // Orthogonality and nearest neighbours do not need f: with a second thread they are measured
+  // while the triangles are (same values either way).
   std::vector<double> nn;
-  std::exception_ptr nn_error;
-  auto find_nn = [&] {
+  std::exception_ptr side_error;
+  const bool two = max_threads() > 1 && nv >= 4096;
+  auto side = [&](unsigned threads) {
     try {
-      nn = mesh_nearest_neighbour_distances(m);
+      nn = mesh_nearest_neighbour_distances(m, threads, &r.orthogonality);
     } catch (...) {
-      nn_error = std::current_exception();
+      side_error = std::current_exception();
     }
   };
-  std::thread nn_thread;
-  if (max_threads() > 1 && nv >= 4096) nn_thread = std::thread(find_nn);
+  std::thread side_thread;
+  if (two) side_thread = std::thread(side, 1u);
   struct Join {
     std::thread& t;
     ~Join() { if (t.joinable()) t.join(); }
-  } join_nn{nn_thread};
+  } join_side{side_thread};
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
@@ -252,6 +261,12 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   }
 
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    if (t + 8 < m.triangles.size())  // corners are scattered in memory: fetch them ahead
+      for (Index v : m.triangles[t + 8])
+        if (v < nv) {
+          __builtin_prefetch(&m.vertices[v]);
+          __builtin_prefetch(&el[v], 1);
+        }
     const auto& tri = m.triangles[t];
     for (int k = 0; k < 3; ++k) {
       if (tri[k] >= nv) {
@@ -315,9 +330,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  if (nn_thread.joinable()) nn_thread.join();
-  else find_nn();
-  if (nn_error) std::rethrow_exception(nn_error);
+  if (side_thread.joinable()) side_thread.join();
+  else side(1);
+  if (side_error) std::rethrow_exception(side_error);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
