@@ -244,7 +244,9 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   ri.input_file = opt.source;
   ri.spacing = f ? f->describe() : "none";
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
-  return quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, f_filled ? &m.f : nullptr);
+  QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, f_filled ? &m.f : nullptr);
+  std::vector<Index>().swap(m.neighbours);  // the report was the adjacency's last reader: the writers need less memory
+  return r;
 }
 
 Mesh Triangulator::mesh() const {
