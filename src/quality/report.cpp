@@ -218,7 +218,7 @@ std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m, un
 
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
-                              const std::vector<double>* f_at_vertices) {
+                              const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -249,6 +249,11 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     std::thread& t;
     ~Join() { if (t.joinable()) t.join(); }
   } join_side{side_thread};
+  if (f && fill_f_at_vertices) {
+    fill_f_at_vertices->resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    f_at_vertices = fill_f_at_vertices;
+  }
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
