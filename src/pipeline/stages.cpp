@@ -144,7 +144,7 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
   wo.title = plan.source;
   wo.slf_double = opt.slf_double;
   wo.telemac_open_codes = plan.telemac_codes;
-  {
+  if (!opt.outputs.empty()) {  // the writers' metadata (the report as JSON: large with many repairs)
     std::ostringstream js;
     quality::write_json(result.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},

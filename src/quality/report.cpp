@@ -377,6 +377,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 namespace {
 
 using Json = nlohmann::ordered_json;
+constexpr const char* kRepairsPlaceholder = "\x01" "fdrmesh repairs" "\x01";
 
 Json num(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
@@ -442,12 +443,9 @@ void write_json(const QualityReport& r, std::ostream& out) {
   j["spacing"] = r.spacing;
   j["input_file"] = r.run.input_file;
   j["min_angle_option_deg"] = num(r.run.min_angle_option_deg);
-  {
-    Json reps = Json::array();
-    for (const auto& rp : r.repairs)
-      reps.push_back({{"kind", rp.kind}, {"x", num(rp.x)}, {"y", num(rp.y)}, {"ids", rp.ids}, {"reason", rp.reason}});
-    j["repairs"] = reps;
-  }
+  // The repairs (up to hundreds of thousands on real coasts) are streamed below instead of held as
+  // one document: a placeholder marks their place.
+  j["repairs"] = kRepairsPlaceholder;
   const Guarantees& g = r.guarantees;
   auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
   j["guarantees"] = {{"beta", gv(g.beta)},
@@ -469,7 +467,35 @@ void write_json(const QualityReport& r, std::ostream& out) {
                    {"nn_over_f_min", num(r.nn_over_f_min)},
                    {"el_over_f_max", num(r.el_over_f_max)}};
   if (r.model_ready) j["model_ready"] = model_ready_json(*r.model_ready);
-  out << j.dump(2) << '\n';
+  const std::string text = j.dump(2);
+  const std::string mark = Json(kRepairsPlaceholder).dump();
+  const std::size_t at = text.find(mark);
+  if (at == std::string::npos) throw Error(ExitCode::kInternal, "quality: report JSON without its repairs");
+  out.write(text.data(), static_cast<std::streamsize>(at));
+  // Pretty printing nests: a repair object printed on its own with indent 2, its lines after
+  // the first shifted by its depth (4 spaces), is the text the whole document would hold.
+  if (r.repairs.empty()) {
+    out << "[]";
+  } else {
+    out << "[\n";
+    std::string obj;
+    for (std::size_t i = 0; i < r.repairs.size(); ++i) {
+      const auto& rp = r.repairs[i];
+      obj = Json({{"kind", rp.kind}, {"x", num(rp.x)}, {"y", num(rp.y)}, {"ids", rp.ids}, {"reason", rp.reason}}).dump(2);
+      out << "    ";
+      std::size_t from = 0;
+      for (std::size_t nl = obj.find('\n'); nl != std::string::npos; nl = obj.find('\n', from)) {
+        out.write(obj.data() + from, static_cast<std::streamsize>(nl + 1 - from));
+        out << "    ";
+        from = nl + 1;
+      }
+      out.write(obj.data() + from, static_cast<std::streamsize>(obj.size() - from));
+      out << (i + 1 < r.repairs.size() ? ",\n" : "\n");
+    }
+    out << "  ]";
+  }
+  out.write(text.data() + at + mark.size(), static_cast<std::streamsize>(text.size() - at - mark.size()));
+  out << '\n';
 }
 
 namespace {
