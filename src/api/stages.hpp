@@ -69,7 +69,8 @@ struct RunFigures {
 
 // Measure stage (core): f at the vertices when the mesh does not carry it, then the quality
 // report (quality::compute_quality) against f (may be null), options.bound and the run's figures;
-// `per_triangle`, when not null, gets the per-triangle values the writers store.
+// `per_triangle`, when not null, gets the per-triangle values the writers store. Releases
+// m.neighbours (the adjacency the report walks) afterwards.
 QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& options,
                            const RunFigures& figures, quality::TriangleValues* per_triangle = nullptr);
 

@@ -228,11 +228,7 @@ MeshView Triangulator::view() const { return tri_.to_view(); }
 
 QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig,
                            quality::TriangleValues* per_triangle) {
-  const bool f_filled = f && m.f.empty();  // then m.f holds f at the vertices, which the report reuses
-  if (f_filled) {
-    m.f.resize(m.vertices.size());
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) m.f[i] = (*f)(m.vertices[i]);
-  }
+  const bool f_filled = f && m.f.empty();  // then m.f gets f at the vertices (by the report, which uses them)
   quality::RunInfo ri;
   ri.cdt_s = fig.cdt_s;
   ri.refine_s = fig.refine_s;
@@ -244,7 +240,10 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   ri.input_file = opt.source;
   ri.spacing = f ? f->describe() : "none";
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
-  return quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, f_filled ? &m.f : nullptr);
+  QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, nullptr,
+                                             f_filled ? &m.f : nullptr);
+  std::vector<Index>().swap(m.neighbours);  // the report was the adjacency's last reader: the writers need less memory
+  return r;
 }
 
 Mesh Triangulator::mesh() const {

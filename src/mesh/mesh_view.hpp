@@ -29,6 +29,11 @@ struct MeshView {
   std::vector<double> z;                   // optional: elevation/depth per vertex (positive up)
   std::vector<double> f;                   // optional: spacing value per vertex
   std::string crs_wkt;                     // optional: CRS of world coordinates
+  // Optional adjacency: per half-edge 3t+k (from triangles[t][k] to triangles[t][(k+1)%3]) the
+  // half-edge 3u+j of the neighbouring triangle u that runs the other way, or kNoId on the
+  // boundary. Filled by Triangulation::to_view / take_view (the triangulation's own twins);
+  // empty when unknown (e.g. a mesh read from a file). Cleared by any code that edits triangles.
+  std::vector<Index> neighbours;
 
   std::size_t num_vertices() const { return vertices.size(); }
   std::size_t num_triangles() const { return triangles.size(); }

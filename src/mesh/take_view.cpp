@@ -17,7 +17,13 @@ MeshView take_view(Triangulation& t) {
   m.origin = t.origin;
   // Vertices in order of first use by a live triangle keeps ids stable and dense (as to_view).
   std::vector<Index> remap(t.pts.size(), kNoId);
-  for (TriangleId s = 0; s < t.num_slots(); ++s) {
+  const std::size_t ns = t.num_slots();
+  // Why the prefetches in the loops below: the corners and the neighbours of consecutive slots
+  // are scattered over arrays much larger than the cache.
+  constexpr std::size_t kAhead = 16;
+  for (TriangleId s = 0; s < ns; ++s) {
+    if (s + kAhead < ns)
+      for (int k = 0; k < 3; ++k) __builtin_prefetch(&remap[t.tv[3 * (s + kAhead) + k]], 1);
     if (t.dead(s)) continue;
     for (int k = 0; k < 3; ++k) remap[t.tv[3 * s + k]] = 0;
   }
@@ -56,14 +62,42 @@ MeshView take_view(Triangulation& t) {
       if (m.vertex_marker[e.b] == 0) m.vertex_marker[e.b] = e.marker;
     }
   }
-  release(t.twin);
   release(t.seg_of);
   release(t.input_segments);
-  m.triangles.reserve(t.num_live_triangles());
+  release(t.region);
+  // Compaction once, in place: live triangles keep their slot order (as to_view); their twins,
+  // renumbered to the compact triangle ids, become the view's neighbours (moved, not copied).
+  // Writing slot s's entries to position i <= s only overwrites slots already read. Without dead
+  // slots (the usual end of a refinement: new triangles reuse freed slots first) ids are kept.
+  const bool dense = t.free_list.empty();
+  std::vector<Index> slot(dense ? 0 : t.num_slots(), kNoId);
+  Index nt = 0;
+  if (!dense)
+    for (TriangleId s = 0; s < t.num_slots(); ++s)
+      if (!t.dead(s)) slot[s] = nt++;
+  if (dense) nt = static_cast<Index>(t.num_slots());
+  m.triangles.reserve(nt);
   for (TriangleId s = 0; s < t.num_slots(); ++s) {
+    if (s + kAhead < ns)
+      for (int k = 0; k < 3; ++k) {
+        __builtin_prefetch(&remap[t.tv[3 * (s + kAhead) + k]]);
+        const HalfEdge tw = t.twin[3 * (s + kAhead) + k];
+        if (!dense && tw != kNoId) __builtin_prefetch(&slot[tri_of(tw)]);
+      }
     if (t.dead(s)) continue;
     m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
+    if (dense) continue;
+    const Index i = slot[s];
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge tw = t.twin[3 * s + k];
+      t.twin[3 * i + k] = tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3;
+    }
   }
+  release(slot);
+  release(t.tv);
+  release(t.flags);
+  t.twin.resize(3 * static_cast<std::size_t>(nt));
+  m.neighbours = std::move(t.twin);
   t = Triangulation{};
   return m;
 }

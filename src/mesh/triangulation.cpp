@@ -117,9 +117,19 @@ MeshView Triangulation::to_view() const {
     m.vertex_marker[remap[v]] = point_marker[v];
   }
   m.triangles.reserve(num_live_triangles());
+  // Compact triangle ids (slot order) for the neighbours (see take_view.cpp).
+  std::vector<Index> slot(num_slots(), kNoId);
+  Index nt = 0;
+  for (TriangleId t = 0; t < num_slots(); ++t)
+    if (!dead(t)) slot[t] = nt++;
+  m.neighbours.reserve(3 * static_cast<std::size_t>(nt));
   for (TriangleId t = 0; t < num_slots(); ++t) {
     if (dead(t)) continue;
     m.triangles.push_back({remap[tv[3 * t]], remap[tv[3 * t + 1]], remap[tv[3 * t + 2]]});
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge tw = twin[3 * t + k];
+      m.neighbours.push_back(tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3);
+    }
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + k;
       if (!constrained(h)) continue;

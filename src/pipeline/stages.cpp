@@ -144,7 +144,12 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
   wo.title = plan.source;
   wo.slf_double = opt.slf_double;
   wo.telemac_open_codes = plan.telemac_codes;
-  {
+  // The writers' metadata, for the formats that store it (GPKG, UGRID, D-Flow FM net file); the
+  // report as JSON is large with many repairs (30 MB on the Gulf of Maine).
+  const bool stores_metadata = std::any_of(plan.formats.begin(), plan.formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+  });
+  if (stores_metadata) {
     std::ostringstream js;
     quality::write_json(result.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
@@ -154,8 +159,8 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
                    {"bound_B", std::to_string(opt.bound)},
                    {"min_angle_deg", std::to_string(plan.triangulate.min_angle_deg)},
                    {"alpha", std::to_string(result.alpha)},
-                   {"crs", result.crs_name},
-                   {"quality", js.str()}};
+                   {"crs", result.crs_name}};
+    wo.metadata.emplace_back("quality", std::move(js).str());  // moved, not copied
     for (const auto& kv : in.metadata) wo.metadata.push_back(kv);
   }
   wo.repairs = in.repairs;

@@ -3,17 +3,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "predicates/predicates.hpp"
+#include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
 
 namespace {
-double nearest_rank(std::vector<double>& v, double q) {
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-  const std::size_t k = rank == 0 ? 0 : std::min(rank - 1, v.size() - 1);
+// Top 16 bits of a non-negative double (sign, exponent, 4 mantissa bits): monotone in the value.
+std::uint16_t top_bits(double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return static_cast<std::uint16_t>(u >> 48);
+}
+// The nearest-rank q-quantile of n values lies in `bucket`, as the `within`-th smallest there.
+struct Rank {
+  std::uint16_t bucket = 0;
+  std::size_t within = 0;
+};
+Rank rank_bucket(const std::vector<std::uint32_t>& count, std::size_t n, double q) {
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(n)));
+  const std::size_t k = rank == 0 ? 0 : std::min(rank - 1, n - 1);  // 0-based
+  std::size_t below = 0;
+  for (std::size_t b = 0; b < count.size(); ++b) {
+    if (below + count[b] > k) return {static_cast<std::uint16_t>(b), k - below};
+    below += count[b];
+  }
+  return {};
+}
+double kth(std::vector<double>& v, std::size_t k) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
 }
@@ -36,70 +59,153 @@ Point2 cell_centre(Point2 a, Point2 b, Point2 c, Point2 cc) {
 
 }  // namespace
 
-OrthogonalityStats compute_orthogonality(const mesh::MeshView& m) {
-  OrthogonalityStats s;
+OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, unsigned threads) {
   const std::size_t nt = m.triangles.size();
-  std::vector<Point2> cc(nt);
-  std::vector<double> area(nt);
   for (const auto& tr : m.triangles)
     for (Index v : tr)
-      if (v >= m.vertices.size()) return s;  // invalid mesh: compute_quality reports it
-  for (std::size_t t = 0; t < nt; ++t) {
+      if (v >= m.vertices.size()) return {};  // invalid mesh: compute_quality reports it
+  if (m.neighbours.size() == 3 * nt) return compute_orthogonality(m, m.neighbours, nullptr, threads);
+  return compute_orthogonality(m, half_edge_neighbours(m), nullptr, threads);
+}
+
+OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, const std::vector<Index>& nb, MeshWalkPrep* prep,
+                                         unsigned threads) {
+  OrthogonalityStats s;
+  const std::size_t nt = m.triangles.size(), nv = m.vertices.size();
+  if (prep) {
+    prep->nn2.assign(nv, std::numeric_limits<double>::infinity());
+    prep->tri_of_vertex.assign(nv, kNoId);
+    prep->not_delaunay.clear();
+    prep->ccw = true;
+  }
+  auto centre_area = [&](std::size_t t, Point2& cc, double& area) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
-    cc[t] = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
-    area[t] = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-  }
-  // Half-edges grouped by tail vertex, each stored with its head and triangle and sorted by head
-  // (compressed rows): the twin of a -> b is a binary search among the half-edges leaving b; no
-  // hashing, and no lookups back into the triangles while sorting and searching.
-  const std::size_t nv = m.vertices.size();
-  auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
-  auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
-  struct Out {
-    Index head;
-    TriangleId t;
+    cc = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
+    area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
   };
-  std::vector<std::size_t> start(nv + 1, 0);
-  std::vector<Out> out(3 * nt);
-  for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k)
-        out[fill[m.triangles[t][k]]++] = {m.triangles[t][(k + 1) % 3], static_cast<TriangleId>(t)};
+  auto is_edge = [&](std::size_t t, int k) {
+    return m.triangles[t][k] <= m.triangles[t][(k + 1) % 3] && nb[3 * t + k] != kNoId;
+  };
+  // Each interior edge once, from its half-edge a -> b with a <= b, in triangle order; the edges
+  // of the triangles [lo, hi) are numbered from 0. want(j) says whether edge j is measured, then
+  // visit(j, |cos|, area ratio). With `prep` (one thread only), also what the nearest-neighbour
+  // search needs, gathered while the same triangles are in cache.
+  auto for_each_edge = [&](std::size_t lo, std::size_t hi, auto&& want, auto&& visit, MeshWalkPrep* pr, bool prefetch) {
+    std::size_t j = 0;
+    for (std::size_t t = lo; t < hi; ++t) {
+      // The neighbours are scattered in memory: fetch their triangles 16 ahead and the corners 8
+      // ahead (by then their triangles are in cache), so the loads below wait less.
+      if (prefetch && t + 16 < hi)
+        for (int k = 0; k < 3; ++k)
+          if (nb[3 * (t + 16) + k] != kNoId) __builtin_prefetch(&m.triangles[nb[3 * (t + 16) + k] / 3]);
+      if (prefetch && t + 8 < hi) {
+        const auto& ahead = m.triangles[t + 8];
+        for (int k = 0; k < 3; ++k) {
+          __builtin_prefetch(&m.vertices[ahead[k]]);
+          if (pr) __builtin_prefetch(&pr->nn2[ahead[k]], 1);
+          const Index g = nb[3 * (t + 8) + k];
+          if (g != kNoId) __builtin_prefetch(&m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]]);
+        }
+      }
+      const auto& tr = m.triangles[t];
+      Point2 cct{};
+      double at = -1;
+      if (pr) {
+        const Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];
+        if (predicates::orient2d(a, b, c) <= 0) pr->ccw = false;
+        for (int k = 0; k < 3; ++k) {
+          const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
+          pr->tri_of_vertex[u] = static_cast<Index>(t);
+          if (u == w) continue;
+          const double d = norm2(m.vertices[w] - m.vertices[u]);
+          pr->nn2[u] = std::min(pr->nn2[u], d);
+          pr->nn2[w] = std::min(pr->nn2[w], d);
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (!is_edge(t, k)) continue;
+        if (!want(j)) { ++j; continue; }
+        const Index a = tr[k], b = tr[(k + 1) % 3];
+        const Index g = nb[3 * t + k];
+        if (at < 0) centre_area(t, cct, at);
+        Point2 ccu;
+        double au;
+        centre_area(g / 3, ccu, au);
+        if (pr && predicates::incircle(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]],
+                                       m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]]) > 0)
+          pr->not_delaunay.push_back(static_cast<Index>(3 * t + k));
+        const Point2 e = m.vertices[b] - m.vertices[a], l = cct - ccu;
+        const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
+        const double alo = std::min(at, au), ahi = std::max(at, au);
+        visit(j++, el > 0 ? std::fabs(dot(e, l)) / el : 0.0,
+              alo > 0 ? ahi / alo : std::numeric_limits<double>::infinity());
+      }
+    }
+  };
+  // p99 without keeping the values: pass 1 keeps each value's top 16 bits (sign, exponent and 4
+  // mantissa bits order non-negative doubles like the values) and counts them; the rank falls in
+  // one such bucket, and pass 2 measures again only the edges in it (the same value as a sort).
+  struct Part {
+    std::size_t lo = 0, hi = 0;
+    std::vector<std::uint16_t> ortho_key, smooth_key;
+    std::vector<std::uint32_t> ortho_count, smooth_count;
+    double omax = -1, smax = -1;
+  };
+  auto pass1 = [&](Part& part, MeshWalkPrep* pr) {
+    part.ortho_count.assign(1 << 16, 0);
+    part.smooth_count.assign(1 << 16, 0);
+    part.ortho_key.reserve(3 * (part.hi - part.lo) / 2 + 1);
+    part.smooth_key.reserve(3 * (part.hi - part.lo) / 2 + 1);
+    for_each_edge(part.lo, part.hi, [](std::size_t) { return true; }, [&](std::size_t, double o, double sm) {
+      const std::uint16_t ko = top_bits(o), ks = top_bits(sm);
+      part.ortho_key.push_back(ko);
+      part.smooth_key.push_back(ks);
+      ++part.ortho_count[ko];
+      ++part.smooth_count[ks];
+      part.omax = std::max(part.omax, o);
+      part.smax = std::max(part.smax, sm);
+    }, pr, true);
+  };
+  // Two fixed halves of the triangles when threads > 1 and no `prep` (same figures either way).
+  std::vector<Part> parts(threads > 1 && !prep && nt >= 8192 ? 2 : 1);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    parts[i].lo = nt * i / parts.size();
+    parts[i].hi = nt * (i + 1) / parts.size();
   }
-  auto before = [](const Out& x, const Out& y) { return x.head < y.head || (x.head == y.head && x.t < y.t); };
-  for (std::size_t v = 0; v < nv; ++v) {
-    Out* b = out.data() + start[v];
-    Out* e = out.data() + start[v + 1];
-    for (Out* i = b + 1; i < e; ++i)  // insertion sort: a vertex has a handful of half-edges
-      for (Out* j = i; j > b && before(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+  if (parts.size() == 2) {
+    std::thread other([&] { pass1(parts[1], nullptr); });
+    pass1(parts[0], nullptr);
+    other.join();
+  } else {
+    pass1(parts[0], prep);
   }
-  std::vector<double> ortho, smooth;
-  ortho.reserve(3 * nt / 2);
-  smooth.reserve(3 * nt / 2);
-  for (std::size_t h = 0; h < 3 * nt; ++h) {
-    const Index a = tail(h), b = head(h);
-    if (a > b) continue;  // each interior edge once, from its lower-numbered end
-    const Out* b0 = out.data() + start[b];
-    const Out* b1 = out.data() + start[b + 1];
-    const Out* it = std::lower_bound(b0, b1, a, [](const Out& x, Index key) { return x.head < key; });
-    if (it == b1 || it->head != a) continue;  // boundary edge
-    const std::size_t t = h / 3, u = it->t;
-    const Point2 e = m.vertices[b] - m.vertices[a], l = cc[t] - cc[u];
-    const double el = std::sqrt(norm2(e)) * std::sqrt(norm2(l));
-    ortho.push_back(el > 0 ? std::fabs(dot(e, l)) / el : 0.0);
-    const double lo = std::min(area[t], area[u]), hi = std::max(area[t], area[u]);
-    smooth.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+  Part& all = parts[0];
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    for (std::size_t b = 0; b < all.ortho_count.size(); ++b) {
+      all.ortho_count[b] += parts[i].ortho_count[b];
+      all.smooth_count[b] += parts[i].smooth_count[b];
+    }
+    all.omax = std::max(all.omax, parts[i].omax);
+    all.smax = std::max(all.smax, parts[i].smax);
   }
-  s.interior_edges = ortho.size();
-  if (!ortho.empty()) {
-    s.orthogonality_max = *std::max_element(ortho.begin(), ortho.end());
-    s.smoothness_max = *std::max_element(smooth.begin(), smooth.end());
-    s.orthogonality_p99 = nearest_rank(ortho, 0.99);
-    s.smoothness_p99 = nearest_rank(smooth, 0.99);
-  }
+  std::size_t n = 0;
+  for (const Part& part : parts) n += part.ortho_key.size();
+  s.interior_edges = n;
+  if (n == 0) return s;
+  s.orthogonality_max = all.omax;
+  s.smoothness_max = all.smax;
+  const Rank ro = rank_bucket(all.ortho_count, n, 0.99), rs = rank_bucket(all.smooth_count, n, 0.99);
+  std::vector<double> in_o, in_s;
+  for (const Part& part : parts)
+    for_each_edge(part.lo, part.hi,
+                  [&](std::size_t j) { return part.ortho_key[j] == ro.bucket || part.smooth_key[j] == rs.bucket; },
+                  [&](std::size_t j, double o, double sm) {
+                    if (part.ortho_key[j] == ro.bucket) in_o.push_back(o);
+                    if (part.smooth_key[j] == rs.bucket) in_s.push_back(sm);
+                  },
+                  nullptr, false);
+  s.orthogonality_p99 = kth(in_o, ro.within);
+  s.smoothness_p99 = kth(in_s, rs.within);
   return s;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 #include <cstddef>
 #include <optional>
+#include <vector>
 #include "mesh/mesh_view.hpp"
 
 namespace fdr::quality {
@@ -25,8 +26,17 @@ struct OrthogonalityStats {
   std::optional<double> smoothness_max, smoothness_p99;
 };
 
-// One pass over the half-edges (rows by tail vertex, no hashing), circumcentres by predicates::circumcenter in
+// Over the interior edges through the mesh adjacency (MeshView::neighbours, else built from the
+// triangles), cell centres from predicates::circumcenter in
 // the local frame. p99 is the nearest-rank 99th percentile over the interior edges.
-OrthogonalityStats compute_orthogonality(const mesh::MeshView& m);
+// `threads` > 1 measures two halves of the triangles at once (same figures).
+OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, unsigned threads = 1);
+
+struct MeshWalkPrep;  // quality/mesh_adjacency.hpp
+// The same with the adjacency `nb` (MeshView::neighbours' convention, vertex ids valid); when
+// `prep` is not null it also gets, from the same pass, what mesh_nearest_neighbour_sq needs
+// (then one thread).
+OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, const std::vector<Index>& nb, MeshWalkPrep* prep,
+                                         unsigned threads = 1);
 
 }  // namespace fdr::quality

@@ -18,6 +18,7 @@
 #include "base/error.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
+#include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
 namespace {
@@ -174,12 +175,29 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
 }
 
 namespace {
-// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh: every mesh edge gives
-// an upper bound (the squared length of the nearest edge, computed exactly as the tree computes
-// distances), so each query only visits the few tree nodes closer than the nearest mesh
-// neighbour; in a Delaunay mesh that neighbour is the answer and the query just confirms it.
-std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
+// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh. With the mesher's
+// adjacency (m.neighbours) a walk over the mesh from each vertex (mesh_adjacency.hpp); else every
+// mesh edge gives an upper bound (the squared length of the nearest edge, computed exactly as the
+// tree computes distances), so each tree query only visits the few nodes closer than that.
+std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m, unsigned threads,
+                                                     OrthogonalityStats* ortho) {
   const std::vector<Point2>& p = m.vertices;
+  bool ids_ok = true;
+  for (const auto& tr : m.triangles)
+    if (tr[0] >= p.size() || tr[1] >= p.size() || tr[2] >= p.size()) ids_ok = false;
+  if (ids_ok && m.neighbours.size() == 3 * m.triangles.size() && p.size() >= 2) {
+    // The mesher's own triangulation: one pass for the orthogonality and the walk's bounds, then
+    // the walk (exact, see mesh_adjacency.hpp).
+    MeshWalkPrep prep;
+    *ortho = compute_orthogonality(m, m.neighbours, &prep);
+    std::vector<double> nn = mesh_nearest_neighbour_sq(m, m.neighbours, threads, &prep);
+    if (!nn.empty()) {
+      for (double& d : nn) d = std::sqrt(d);
+      return nn;
+    }
+  } else {
+    *ortho = compute_orthogonality(m, threads);
+  }
   std::vector<double> nn(p.size(), kInf);
   if (p.size() < 2) return nn;
   for (const auto& tri : m.triangles)
@@ -200,7 +218,7 @@ std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m) {
 
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
-                              const std::vector<double>* f_at_vertices) {
+                              const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -211,26 +229,31 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
   r.guarantees = compute_guarantees(alpha, bound_B);
   r.run = run;
-  r.orthogonality = compute_orthogonality(m);
 
   const std::size_t nv = m.num_vertices();
-  // Nearest neighbours do not need f: with a second thread they are found while the triangles
-  // are measured (same values either way).
+  // Orthogonality and nearest neighbours do not need f: with a second thread they are measured
+  // while the triangles are (same values either way).
   std::vector<double> nn;
-  std::exception_ptr nn_error;
-  auto find_nn = [&] {
+  std::exception_ptr side_error;
+  const bool two = max_threads() > 1 && nv >= 4096;
+  auto side = [&](unsigned threads) {
     try {
-      nn = mesh_nearest_neighbour_distances(m);
+      nn = mesh_nearest_neighbour_distances(m, threads, &r.orthogonality);
     } catch (...) {
-      nn_error = std::current_exception();
+      side_error = std::current_exception();
     }
   };
-  std::thread nn_thread;
-  if (max_threads() > 1 && nv >= 4096) nn_thread = std::thread(find_nn);
+  std::thread side_thread;
+  if (two) side_thread = std::thread(side, 1u);
   struct Join {
     std::thread& t;
     ~Join() { if (t.joinable()) t.join(); }
-  } join_nn{nn_thread};
+  } join_side{side_thread};
+  if (f && fill_f_at_vertices) {
+    fill_f_at_vertices->resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    f_at_vertices = fill_f_at_vertices;
+  }
   std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
@@ -243,6 +266,12 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   }
 
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    if (t + 8 < m.triangles.size())  // corners are scattered in memory: fetch them ahead
+      for (Index v : m.triangles[t + 8])
+        if (v < nv) {
+          __builtin_prefetch(&m.vertices[v]);
+          __builtin_prefetch(&el[v], 1);
+        }
     const auto& tri = m.triangles[t];
     for (int k = 0; k < 3; ++k) {
       if (tri[k] >= nv) {
@@ -306,9 +335,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  if (nn_thread.joinable()) nn_thread.join();
-  else find_nn();
-  if (nn_error) std::rethrow_exception(nn_error);
+  if (side_thread.joinable()) side_thread.join();
+  else side(1);
+  if (side_error) std::rethrow_exception(side_error);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
@@ -348,6 +377,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 namespace {
 
 using Json = nlohmann::ordered_json;
+constexpr const char* kRepairsPlaceholder = "\x01" "fdrmesh repairs" "\x01";
 
 Json num(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
@@ -413,12 +443,9 @@ void write_json(const QualityReport& r, std::ostream& out) {
   j["spacing"] = r.spacing;
   j["input_file"] = r.run.input_file;
   j["min_angle_option_deg"] = num(r.run.min_angle_option_deg);
-  {
-    Json reps = Json::array();
-    for (const auto& rp : r.repairs)
-      reps.push_back({{"kind", rp.kind}, {"x", num(rp.x)}, {"y", num(rp.y)}, {"ids", rp.ids}, {"reason", rp.reason}});
-    j["repairs"] = reps;
-  }
+  // The repairs (up to hundreds of thousands on real coasts) are streamed below instead of held as
+  // one document: a placeholder marks their place.
+  j["repairs"] = kRepairsPlaceholder;
   const Guarantees& g = r.guarantees;
   auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
   j["guarantees"] = {{"beta", gv(g.beta)},
@@ -440,7 +467,35 @@ void write_json(const QualityReport& r, std::ostream& out) {
                    {"nn_over_f_min", num(r.nn_over_f_min)},
                    {"el_over_f_max", num(r.el_over_f_max)}};
   if (r.model_ready) j["model_ready"] = model_ready_json(*r.model_ready);
-  out << j.dump(2) << '\n';
+  const std::string text = j.dump(2);
+  const std::string mark = Json(kRepairsPlaceholder).dump();
+  const std::size_t at = text.find(mark);
+  if (at == std::string::npos) throw Error(ExitCode::kInternal, "quality: report JSON without its repairs");
+  out.write(text.data(), static_cast<std::streamsize>(at));
+  // Pretty printing nests: a repair object printed on its own with indent 2, its lines after
+  // the first shifted by its depth (4 spaces), is the text the whole document would hold.
+  if (r.repairs.empty()) {
+    out << "[]";
+  } else {
+    out << "[\n";
+    std::string obj;
+    for (std::size_t i = 0; i < r.repairs.size(); ++i) {
+      const auto& rp = r.repairs[i];
+      obj = Json({{"kind", rp.kind}, {"x", num(rp.x)}, {"y", num(rp.y)}, {"ids", rp.ids}, {"reason", rp.reason}}).dump(2);
+      out << "    ";
+      std::size_t from = 0;
+      for (std::size_t nl = obj.find('\n'); nl != std::string::npos; nl = obj.find('\n', from)) {
+        out.write(obj.data() + from, static_cast<std::streamsize>(nl + 1 - from));
+        out << "    ";
+        from = nl + 1;
+      }
+      out.write(obj.data() + from, static_cast<std::streamsize>(obj.size() - from));
+      out << (i + 1 < r.repairs.size() ? ",\n" : "\n");
+    }
+    out << "  ]";
+  }
+  out.write(text.data() + at + mark.size(), static_cast<std::streamsize>(text.size() - at - mark.size()));
+  out << '\n';
 }
 
 namespace {

@@ -125,10 +125,13 @@ struct TriangleValues {
 // then f->lipschitz() is used when f knows it (else no guarantee is claimed).
 // Throws fdr::Error(kInternal) if a triangle references a vertex that does not exist.
 // `f_at_vertices`, when given, holds (*f)(m.vertices[i]) already evaluated (used instead of
-// evaluating f again; must be exactly those values).
+// evaluating f again; must be exactly those values). `fill_f_at_vertices`, when given (and f is
+// not null), gets those values here instead: evaluated on the calling thread while a second
+// thread measures what does not need f (f is only ever evaluated on the calling thread).
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle = nullptr,
-                              const std::vector<double>* f_at_vertices = nullptr);
+                              const std::vector<double>* f_at_vertices = nullptr,
+                              std::vector<double>* fill_f_at_vertices = nullptr);
 
 // Nearest other vertex distance for every vertex (exact, kd-tree); 0 for duplicated points,
 // +inf when the mesh has a single vertex.

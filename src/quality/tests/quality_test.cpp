@@ -388,5 +388,34 @@ TEST(Rss, ParsesVmHwm) {
   std::remove(path.c_str());
 }
 
+
+// The repairs are streamed into the JSON text (not held as one document): the file must still be
+// exactly what the document would print, for no repair, one, and many with odd contents.
+TEST(Quality, JsonRepairsStreamedAsTheDocumentWouldPrintThem) {
+  for (int n : {0, 1, 5}) {
+    QualityReport r = compute_quality(equilateral(), nullptr, 1.0, -1, RunInfo{});
+    for (int i = 0; i < n; ++i) {
+      QualityReport::Repair rp;
+      rp.kind = i % 2 ? "snap" : "split \"crossing\"\n\u00e9";
+      rp.x = i == 2 ? std::nan("") : 0.1 * i - 3e-7;
+      rp.y = 1e21 * i;
+      if (i % 2) rp.ids = {i, -i, 123456789012345};
+      rp.reason = std::string("reason ") + std::to_string(i);
+      r.repairs.push_back(rp);
+    }
+    std::ostringstream out;
+    write_json(r, out);
+    const auto j = nlohmann::ordered_json::parse(out.str());
+    EXPECT_EQ(j.dump(2) + "\n", out.str()) << n << " repairs";
+    ASSERT_EQ(j["repairs"].size(), static_cast<std::size_t>(n));
+    if (n == 5) {
+      EXPECT_EQ(j["repairs"][0]["kind"], "split \"crossing\"\n\u00e9");
+      EXPECT_TRUE(j["repairs"][2]["x"].is_null());
+      EXPECT_EQ(j["repairs"][3]["ids"][2], 123456789012345);
+      EXPECT_TRUE(j["repairs"][4]["ids"].empty());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fdr::quality

@@ -1,4 +1,4 @@
-// take_view gives exactly to_view's mesh (order, markers, parts) and empties the triangulation.
+// take_view gives exactly to_view's mesh (order, markers, parts, adjacency) and empties the triangulation.
 #include <gtest/gtest.h>
 
 #include "cdt/cdt.hpp"
@@ -23,6 +23,19 @@ void expect_same(const mesh::MeshView& a, const mesh::MeshView& b) {
     EXPECT_EQ(a.edges[i].part, b.edges[i].part);
   }
   EXPECT_EQ(a.vertex_marker, b.vertex_marker);
+  // The adjacency (the triangulation's twins, renumbered): the same in both, and consistent.
+  EXPECT_EQ(a.neighbours, b.neighbours);
+  ASSERT_EQ(b.neighbours.size(), 3 * b.triangles.size());
+  std::size_t boundary = 0;
+  for (std::size_t h = 0; h < b.neighbours.size(); ++h) {
+    const Index g = b.neighbours[h];
+    if (g == kNoId) { ++boundary; continue; }
+    ASSERT_LT(g, b.neighbours.size());
+    EXPECT_EQ(b.neighbours[g], h);
+    EXPECT_EQ(b.triangles[h / 3][h % 3], b.triangles[g / 3][(g % 3 + 1) % 3]);
+    EXPECT_EQ(b.triangles[h / 3][(h % 3 + 1) % 3], b.triangles[g / 3][g % 3]);
+  }
+  EXPECT_GT(boundary, 0u);
 }
 }  // namespace
 

@@ -1,0 +1,294 @@
+// Triangle adjacency of a MeshView and the exact nearest-neighbour walk over it.
+#include "quality/mesh_adjacency.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <thread>
+#include <unordered_set>
+
+#include "quality/orthogonality.hpp"
+
+namespace fdr::quality {
+
+std::vector<Index> half_edge_neighbours(const mesh::MeshView& m) {
+  const std::size_t nt = m.triangles.size(), nv = m.vertices.size();
+  if (m.neighbours.size() == 3 * nt) return m.neighbours;
+  // Half-edges grouped by tail vertex (compressed rows), each with its head, sorted by head: the
+  // twin of a -> b is a binary search among the half-edges leaving b. No hashing.
+  struct Out {
+    Index head;
+    Index he;
+  };
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (const auto& tr : m.triangles)
+    for (Index v : tr) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Out> out(3 * nt);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        out[fill[m.triangles[t][k]]++] = {m.triangles[t][(k + 1) % 3], static_cast<Index>(3 * t + k)};
+  }
+  auto before = [](const Out& x, const Out& y) { return x.head < y.head || (x.head == y.head && x.he < y.he); };
+  for (std::size_t v = 0; v < nv; ++v) {
+    Out* b = out.data() + start[v];
+    Out* e = out.data() + start[v + 1];
+    for (Out* i = b + 1; i < e; ++i)  // insertion sort: a vertex has a handful of half-edges
+      for (Out* j = i; j > b && before(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+  }
+  std::vector<Index> nb(3 * nt, kNoId);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      const Out* b0 = out.data() + start[b];
+      const Out* b1 = out.data() + start[b + 1];
+      const Out* it = std::lower_bound(b0, b1, a, [](const Out& x, Index key) { return x.head < key; });
+      if (it != b1 && it->head == a) nb[3 * t + k] = it->he;
+    }
+  return nb;
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// True when segment uv may come closer to p than sqrt(r2). Conservative: the slack (relative to
+// r2 and to the operands' own size) only makes the walk visit a little more, so rounding in this
+// test can never hide a vertex; the distances that decide the result are computed exactly as
+// the brute force computes them.
+inline bool segment_near(Point2 p, Point2 u, Point2 v, double r2) {
+  const Point2 d = p - u, e = v - u;
+  const double l2 = norm2(e);
+  const double t = l2 > 0 ? std::clamp(dot(d, e) / l2, 0.0, 1.0) : 0.0;
+  const Point2 c{d.x - t * e.x, d.y - t * e.y};
+  return norm2(c) <= r2 * (1 + 1e-9) + 1e-12 * (norm2(d) + l2);
+}
+
+// Half-edges (the boundary and the constrained edges) in a static bounding-box tree: ranges of
+// the array sorted by midpoint (median splits, alternating axis), node boxes in heap order.
+class EdgeIndex {
+ public:
+  EdgeIndex(const mesh::MeshView& m, std::vector<Index> he) : m_(m), he_(std::move(he)) {
+    if (!he_.empty()) build(0, 0, he_.size(), 0);
+  }
+  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2);
+  // stops when f returns true, and returns whether it did.
+  template <class F>
+  bool for_each_near(Point2 p, double r2, F&& f) const {
+    return !he_.empty() && query(0, 0, he_.size(), p, r2, f);
+  }
+
+ private:
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  static constexpr std::size_t kLeaf = 8;
+  Point2 tail(Index h) const { return m_.vertices[m_.triangles[h / 3][h % 3]]; }
+  Point2 head(Index h) const { return m_.vertices[m_.triangles[h / 3][(h % 3 + 1) % 3]]; }
+  Box build(std::size_t node, std::size_t lo, std::size_t hi, int axis) {
+    if (box_.size() <= node) box_.resize(node + 1);
+    Box b{kInf, kInf, -kInf, -kInf};
+    if (hi - lo <= kLeaf) {
+      for (std::size_t i = lo; i < hi; ++i)
+        for (const Point2 q : {tail(he_[i]), head(he_[i])})
+          b = {std::min(b.x0, q.x), std::min(b.y0, q.y), std::max(b.x1, q.x), std::max(b.y1, q.y)};
+    } else {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      auto key = [&](Index h) {
+        const Point2 a = tail(h), c = head(h);
+        return axis == 0 ? a.x + c.x : a.y + c.y;
+      };
+      std::nth_element(he_.begin() + static_cast<std::ptrdiff_t>(lo), he_.begin() + static_cast<std::ptrdiff_t>(mid),
+                       he_.begin() + static_cast<std::ptrdiff_t>(hi),
+                       [&](Index x, Index y) { return key(x) < key(y) || (key(x) == key(y) && x < y); });
+      const Box l = build(2 * node + 1, lo, mid, 1 - axis), r = build(2 * node + 2, mid, hi, 1 - axis);
+      b = {std::min(l.x0, r.x0), std::min(l.y0, r.y0), std::max(l.x1, r.x1), std::max(l.y1, r.y1)};
+    }
+    box_[node] = b;
+    return b;
+  }
+  template <class F>
+  bool query(std::size_t node, std::size_t lo, std::size_t hi, Point2 p, double r2, F& f) const {
+    const Box& b = box_[node];
+    const double dx = std::max({b.x0 - p.x, 0.0, p.x - b.x1}), dy = std::max({b.y0 - p.y, 0.0, p.y - b.y1});
+    if (dx * dx + dy * dy > r2 * (1 + 1e-9)) return false;  // the whole box is farther (slack as segment_near)
+    if (hi - lo <= kLeaf) {
+      for (std::size_t i = lo; i < hi; ++i)
+        if (segment_near(p, tail(he_[i]), head(he_[i]), r2) && f(he_[i])) return true;
+      return false;
+    }
+    const std::size_t mid = lo + (hi - lo) / 2;
+    return query(2 * node + 1, lo, mid, p, r2, f) || query(2 * node + 2, mid, hi, p, r2, f);
+  }
+  const mesh::MeshView& m_;
+  std::vector<Index> he_;
+  std::vector<Box> box_;
+};
+
+// The walk for one vertex, with its scratch lists (one Walker per thread).
+//
+// Why it is exact: let q be the vertex nearest to p and r = |pq| (the final best). The open
+// segment pq holds no vertex (it would be nearer). Follow pq backwards from q: it runs through
+// a chain of triangles, consecutive ones sharing an edge that pq crosses at a point nearer to p
+// than r, until it reaches p's own triangles or leaves the mesh through a boundary edge at such
+// a point. The walk crosses every edge that comes nearer than the best so far (never below r),
+// so it follows the chain from p's triangles; when the chain starts at a boundary edge instead,
+// that edge is near p, the walk therefore met the boundary near p (p's own triangles are bounded
+// by it or by edges the walk crossed), and every boundary edge that near is a starting point.
+class Walker {
+ public:
+  Walker(const mesh::MeshView& m, const std::vector<Index>& nb, const EdgeIndex& bi) : m_(m), nb_(nb), bi_(bi) {}
+  double nearest_sq(Index p, Index t0, double best) {
+    if (!(best > 0)) return best;  // a duplicate point: nothing is nearer than 0
+    const Point2 P = m_.vertices[p];
+    seen_.clear();
+    todo_.clear();
+    visit(t0);
+    bool boundary = false, seeded = false;
+    while (true) {
+      while (!todo_.empty()) {
+        const Index t = todo_.back();
+        todo_.pop_back();
+        const auto& tr = m_.triangles[t];
+        for (int k = 0; k < 3; ++k)
+          if (tr[k] != p) best = std::min(best, norm2(m_.vertices[tr[k]] - P));
+        for (int k = 0; k < 3; ++k) {
+          const Index a = tr[k], b = tr[k == 2 ? 0 : k + 1];
+          const Index n = nb_[3 * t + k];
+          if (n != kNoId && seen(n / 3)) continue;
+          if (a != p && b != p && !segment_near(P, m_.vertices[a], m_.vertices[b], best)) continue;
+          if (n == kNoId) boundary = true;
+          else visit(n / 3);
+        }
+      }
+      if (!boundary || seeded) break;
+      seeded = true;  // the region near p may continue beyond the boundary: start from every near boundary edge
+      bi_.for_each_near(P, best, [&](Index h) {
+        if (!seen(h / 3)) visit(h / 3);
+        return false;
+      });
+    }
+    return best;
+  }
+
+ private:
+  // A short list while the walk is small (the usual dozen triangles), a hash set beyond.
+  bool seen(Index t) const {
+    if (seen_.size() <= kShort) return std::find(seen_.begin(), seen_.end(), t) != seen_.end();
+    return many_.count(t) != 0;
+  }
+  void visit(Index t) {
+    seen_.push_back(t);
+    if (seen_.size() == kShort + 1) many_ = std::unordered_set<Index>(seen_.begin(), seen_.end());
+    else if (seen_.size() > kShort + 1) many_.insert(t);
+    todo_.push_back(t);
+  }
+  static constexpr std::size_t kShort = 48;
+  std::unordered_set<Index> many_;
+  const mesh::MeshView& m_;
+  const std::vector<Index>& nb_;
+  const EdgeIndex& bi_;
+  std::vector<Index> seen_, todo_;
+};
+
+}  // namespace
+
+namespace {
+
+template <class V>
+void release(V& v) {
+  V().swap(v);
+}
+
+// The half-edge a -> b, else b -> a, found by rotating around a (kNoId when a's triangles
+// reachable by rotation do not have it, e.g. at a vertex where two fans touch).
+Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Index t0, Index a, Index b) {
+  const auto& tr0 = m.triangles[t0];
+  const Index start = 3 * t0 + (tr0[0] == a ? 0 : tr0[1] == a ? 1 : 2);
+  auto prev = [](Index h) { return h % 3 == 0 ? h + 2 : h - 1; };
+  auto next = [](Index h) { return h % 3 == 2 ? h - 2 : h + 1; };
+  auto head = [&](Index h) { return m.triangles[h / 3][next(h) % 3]; };
+  auto tail = [&](Index h) { return m.triangles[h / 3][h % 3]; };
+  for (int dir = 0; dir < 2; ++dir) {
+    Index h = start;
+    for (std::size_t guard = 0; guard < nb.size() + 1; ++guard) {  // at most every half-edge once
+      if (head(h) == b) return h;
+      if (tail(prev(h)) == b) return prev(h);
+      const Index g = dir == 0 ? nb[prev(h)] : nb[h];
+      if (g == kNoId) break;
+      h = dir == 0 ? g : next(g);
+      if (h == start) return kNoId;  // full turn
+    }
+  }
+  return kNoId;
+}
+
+}  // namespace
+
+std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb, unsigned threads,
+                                              MeshWalkPrep* prep) {
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
+  if (nv < 2) return std::vector<double>(nv, kInf);
+  if (nb.size() != 3 * nt) return {};
+  for (const auto& tr : m.triangles)
+    if (tr[0] >= nv || tr[1] >= nv || tr[2] >= nv) return {};
+  MeshWalkPrep own;
+  if (!prep) {
+    prep = &own;
+    compute_orthogonality(m, nb, prep);
+  }
+  // Upper bounds from the mesh edges, and one triangle of every vertex.
+  std::vector<double> nn = std::move(prep->nn2);
+  const std::vector<Index>& tri_of_vertex = prep->tri_of_vertex;
+  if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
+
+  // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
+  std::vector<std::uint8_t> sflag(3 * nt, 0);
+  bool certify = prep->ccw;  // and every edge of m.edges found (else the shortcut below is off)
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (nb[h] == kNoId) sflag[h] = 1;
+  for (const auto& e : m.edges) {
+    if (e.a >= nv || e.b >= nv) { certify = false; continue; }
+    const Index h = find_half_edge(m, nb, tri_of_vertex[e.a], e.a, e.b);
+    if (h == kNoId) { certify = false; continue; }
+    sflag[h] = 1;
+    if (nb[h] != kNoId) sflag[nb[h]] = 1;
+  }
+  // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
+  // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
+  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
+  // triangles surround it, and a vertex v nearer than d lies beyond some edge uw of them, in the
+  // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
+  // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
+  // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
+  for (Index h : prep->not_delaunay)
+    if (!sflag[h]) certify = false;
+  std::vector<Index> s_edges;
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
+  release(sflag);
+  const EdgeIndex si(m, std::move(s_edges));
+
+  // Vertices in two fixed halves (results per vertex do not depend on the split).
+  auto run = [&](std::size_t lo, std::size_t hi) {
+    Walker w(m, nb, si);
+    for (std::size_t v = lo; v < hi; ++v) {
+      if (certify && !si.for_each_near(m.vertices[v], nn[v], [](Index) { return true; })) continue;  // exact
+      nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
+    }
+  };
+  if (threads > 1 && nv >= 4096) {
+    std::thread other(run, nv / 2, nv);
+    run(0, nv / 2);
+    other.join();
+  } else {
+    run(0, nv);
+  }
+  return nn;
+}
+
+}  // namespace fdr::quality
