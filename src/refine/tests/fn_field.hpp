@@ -1,7 +1,11 @@
 // A spacing function from a lambda (refine tests; was in cdt/tests, which may not see sizing).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
+#include "mesh/triangulation.hpp"
+#include "predicates/predicates.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::testing {
@@ -12,5 +16,17 @@ struct FnField : sizing::SizingField {
   double operator()(Point2 p) const override { return fn(p); }
   std::string describe() const override { return "test"; }
 };
+
+// Largest R / f(c) over the live triangles (the FDR bound every refined mesh must keep).
+inline double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingField& f) {
+  double worst = 0;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    double r2;
+    const Point2 c = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
+    worst = std::max(worst, std::sqrt(r2) / f(c));
+  }
+  return worst;
+}
 
 }  // namespace fdr::testing

@@ -14,20 +14,10 @@
 using namespace fdr;
 
 namespace {
+using fdr::testing::max_r_over_f;
 using fdr::testing::FnField;
 const FnField kF1([](Point2 p) { return (std::fabs(p.x - 5) + std::fabs(p.y - 5)) * 0.1 + 0.1; });
 const FnField kF2([](Point2 p) { return (std::fabs(std::sin(p.x + p.y)) + std::fabs(std::cos(p.x + p.y))) * 0.1; });
-
-double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingField& f) {
-  double worst = 0;
-  for (TriangleId t = 0; t < T.num_slots(); ++t) {
-    if (T.dead(t)) continue;
-    double r2;
-    Point2 c = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
-    worst = std::max(worst, std::sqrt(r2) / f(c));
-  }
-  return worst;
-}
 
 double min_angle_deg(const mesh::Triangulation& T) {
   double worst = 180;

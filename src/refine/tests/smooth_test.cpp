@@ -16,17 +16,7 @@ using namespace fdr;
 using fdr::testing::FnField;
 
 namespace {
-
-double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingField& f) {
-  double worst = 0;
-  for (TriangleId t = 0; t < T.num_slots(); ++t) {
-    if (T.dead(t)) continue;
-    double r2;
-    const Point2 c = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
-    worst = std::max(worst, std::sqrt(r2) / f(c));
-  }
-  return worst;
-}
+using fdr::testing::max_r_over_f;
 
 double quality_sum(const mesh::Triangulation& T) {
   double s = 0;
