@@ -2,10 +2,6 @@
 // cell-wise min and clamp.
 #include "sizing/raster_rules.hpp"
 
-#include <thread>
-
-#include "base/threads.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,7 +10,9 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "sizing/distance_transform.hpp"
 #include "sizing/fields.hpp"
+#include "sizing/parallel_rows.hpp"
 
 namespace fdr::sizing {
 
@@ -180,7 +178,61 @@ void check_grid(const Grid& g, const char* what) {
 
 }  // namespace
 
+namespace {
+
+// The BVH path: segments reaching outside the grid (never in the pipeline, whose grid covers the
+// domain). Exact minimum for every cell.
+void distance_bvh(Grid& out, std::vector<Seg> segs) {
+  const SegmentBvh bvh(std::move(segs));
+  // Why serpentine order: consecutive cells are neighbours, so the previous answer is a
+  // tight initial bound and each query prunes almost everything.
+  parallel_rows(out.ny, [&](std::size_t j0, std::size_t j1) {
+    std::uint32_t hint = 0;
+    for (std::size_t j = j0; j < j1; ++j)
+      for (std::size_t k = 0; k < out.nx; ++k) {
+        const std::size_t i = (j % 2 == 0) ? k : out.nx - 1 - k;
+        out.at(i, j) = std::sqrt(bvh.nearest(out.center(i, j), hint));
+      }
+  }, 8);
+}
+
+// Cells whose closed square meets segment s (a superset: the segment's range in each column
+// slab, widened by a millionth of a cell against rounding), as calls visit(cell index).
+template <class Visit>
+void cells_of_segment(const Grid& g, const Seg& s, Visit&& visit) {
+  const double ex = 1e-6 * g.dx, ey = 1e-6 * g.dy;
+  const auto nx = static_cast<std::int64_t>(g.nx), ny = static_cast<std::int64_t>(g.ny);
+  auto col_of = [&](double x) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x - g.x0) / g.dx)), 0, nx - 1); };
+  auto row_of = [&](double y) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((y - g.y0) / g.dy)), 0, ny - 1); };
+  const double xlo = std::min(s.a.x, s.b.x), xhi = std::max(s.a.x, s.b.x);
+  const std::int64_t i0 = col_of(xlo - ex), i1 = col_of(xhi + ex);
+  const double sx = s.b.x - s.a.x, sy = s.b.y - s.a.y;
+  for (std::int64_t i = i0; i <= i1; ++i) {
+    // The segment's part inside the slab [xl, xr] of column i (the whole segment when vertical).
+    double ylo = std::min(s.a.y, s.b.y), yhi = std::max(s.a.y, s.b.y);
+    if (i0 != i1 && sx != 0) {
+      const double xl = std::max(xlo, g.x0 + static_cast<double>(i) * g.dx - ex);
+      const double xr = std::min(xhi, g.x0 + static_cast<double>(i + 1) * g.dx + ex);
+      const double ya = s.a.y + (xl - s.a.x) / sx * sy, yb = s.a.y + (xr - s.a.x) / sx * sy;
+      ylo = std::max(ylo, std::min(ya, yb));
+      yhi = std::min(yhi, std::max(ya, yb));
+      if (ylo > yhi) std::swap(ylo, yhi);
+    }
+    const std::int64_t j0 = row_of(ylo - ey), j1 = row_of(yhi + ey);
+    for (std::int64_t j = j0; j <= j1; ++j) visit(static_cast<std::size_t>(j * nx + i));
+  }
+}
+
+// Largest distance, in cells of the larger side, within which distance_to_shore is exact.
+constexpr double kExactCells = 2.5;
+
+}  // namespace
+
 Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Point2>>& shore_segments) {
+  return distance_to_shore(like, shore_segments, false);
+}
+
+Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Point2>>& shore_segments, bool exact) {
   check_grid(like, "distance_to_shore");
   Grid out = like_grid(like);
   if (shore_segments.empty()) {
@@ -189,6 +241,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   }
   std::vector<Seg> segs;
   segs.reserve(shore_segments.size());
+  Box2 sbox;
   for (std::size_t k = 0; k < shore_segments.size(); ++k) {
     const auto& [a, b] = shore_segments[k];
     if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
@@ -196,30 +249,82 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
                                                   format_number(a.y) + ") - (" + format_number(b.x) + ", " +
                                                   format_number(b.y) + ") has a non-finite coordinate");
     segs.push_back({a, b});
+    sbox.add(a);
+    sbox.add(b);
   }
-  const SegmentBvh bvh(std::move(segs));
-  // Why serpentine order: consecutive cells are neighbours, so the previous answer is a
-  // tight initial bound and each query prunes almost everything. Every cell's value is the exact
-  // minimum whatever the hint, so row bands can run on separate threads (same grid either way).
-  auto rows = [&](std::size_t j0, std::size_t j1) {
-    std::uint32_t hint = 0;
-    for (std::size_t j = j0; j < j1; ++j)
-      for (std::size_t k = 0; k < out.nx; ++k) {
-        const std::size_t i = (j % 2 == 0) ? k : out.nx - 1 - k;
-        out.at(i, j) = std::sqrt(bvh.nearest(out.center(i, j), hint));
-      }
-  };
-  const std::size_t threads = std::min<std::size_t>(max_threads(), out.v.size() >= (1u << 16) ? out.ny : 1);
-  if (threads <= 1) {
-    rows(0, out.ny);
+  if (out.v.empty()) return out;
+  const Box2 gbox = like.extent();
+  if (sbox.lo.x < gbox.lo.x || sbox.lo.y < gbox.lo.y || sbox.hi.x > gbox.hi.x || sbox.hi.y > gbox.hi.y ||
+      like.v.size() >= kNoFeature || exact) {
+    distance_bvh(out, std::move(segs));
     return out;
   }
-  std::vector<std::thread> pool;
-  const std::size_t band = (out.ny + threads - 1) / threads;
-  for (std::size_t t = 1; t < threads; ++t)
-    pool.emplace_back(rows, std::min(out.ny, t * band), std::min(out.ny, (t + 1) * band));
-  rows(0, std::min(out.ny, band));
-  for (auto& th : pool) th.join();
+  // Segments by cell (compressed rows): every point of a segment lies in a cell that lists it.
+  const std::size_t n = out.v.size();
+  std::vector<std::uint32_t> first(n + 1, 0);
+  for (const Seg& s : segs) cells_of_segment(like, s, [&](std::size_t c) { ++first[c + 1]; });
+  for (std::size_t c = 0; c < n; ++c) first[c + 1] += first[c];
+  std::vector<Seg> by_cell(first[n]);
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (const Seg& s : segs) cells_of_segment(like, s, [&](std::size_t c) { by_cell[fill[c]++] = s; });
+  }
+  std::vector<char> seed(n);
+  for (std::size_t c = 0; c < n; ++c) seed[c] = first[c + 1] > first[c];
+  std::vector<std::uint32_t> feature;
+  nearest_seed(like.nx, like.ny, like.dx, like.dy, seed, feature);
+  // Phase 1, per cell: the nearest segment among those of its nearest shore cell.
+  const auto nx = static_cast<std::int64_t>(like.nx), ny = static_cast<std::int64_t>(like.ny);
+  std::vector<std::uint32_t> near(n);
+  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+    for (std::size_t j = j0; j < j1; ++j)
+      for (std::size_t i = 0; i < like.nx; ++i) {
+        const Point2 p = like.center(i, j);
+        const std::size_t f = feature[j * like.nx + i];
+        double best = kInf;
+        std::uint32_t arg = first[f];
+        // The nearest shore cell and its 8 neighbours.
+        const auto fi = static_cast<std::int64_t>(f % like.nx), fj = static_cast<std::int64_t>(f / like.nx);
+        for (std::int64_t b = std::max<std::int64_t>(fj - 1, 0); b <= std::min(fj + 1, ny - 1); ++b)
+          for (std::int64_t a = std::max<std::int64_t>(fi - 1, 0); a <= std::min(fi + 1, nx - 1); ++a) {
+            const std::size_t c = static_cast<std::size_t>(b * nx + a);
+            for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+              const double d = seg_dist2(p, by_cell[k]);
+              if (d < best) { best = d; arg = k; }
+            }
+          }
+        near[j * like.nx + i] = arg;
+      }
+  }, 8);
+  // Phase 2, per cell: the best of its own and its 8 neighbours' phase-1 segments gives d~ >= d
+  // (one step of vector propagation; reads phase 1 only, so bands do not interact). Every shore
+  // point at distance d lies in a cell whose centre is within d + dx/2 (d + dy/2) of the cell
+  // centre along x (y), so when d~ is at most kExactCells cells the window of cells within
+  // d~ + half a cell holds the nearest segment and the minimum over it is exact.
+  const double wmax = kExactCells * std::max(like.dx, like.dy);
+  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+    for (std::size_t j = j0; j < j1; ++j)
+      for (std::size_t i = 0; i < like.nx; ++i) {
+        const Point2 p = like.center(i, j);
+        const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
+        double best = kInf;
+        for (std::int64_t b = std::max<std::int64_t>(jj - 1, 0); b <= std::min(jj + 1, ny - 1); ++b)
+          for (std::int64_t a = std::max<std::int64_t>(ii - 1, 0); a <= std::min(ii + 1, nx - 1); ++a)
+            best = std::min(best, seg_dist2(p, by_cell[near[static_cast<std::size_t>(b * nx + a)]]));
+        const double reach = std::sqrt(best) * (1 + 1e-9);
+        if (reach <= wmax) {
+          const auto wi = static_cast<std::int64_t>(reach / like.dx + 0.5), wj = static_cast<std::int64_t>(reach / like.dy + 0.5);
+          for (std::int64_t b = std::max<std::int64_t>(jj - wj, 0); b <= std::min(jj + wj, ny - 1); ++b) {
+            const std::size_t row = static_cast<std::size_t>(b * nx);
+            for (std::int64_t a = std::max<std::int64_t>(ii - wi, 0); a <= std::min(ii + wi, nx - 1); ++a) {
+              const std::size_t c = row + static_cast<std::size_t>(a);
+              for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) best = std::min(best, seg_dist2(p, by_cell[k]));
+            }
+          }
+        }
+        out.at(i, j) = std::sqrt(best);
+      }
+  }, 8);
   return out;
 }
 
