@@ -3,11 +3,13 @@
 #include "sizing/gradient_limiter.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
 #include "base/error.hpp"
 #include "sizing/fields.hpp"
+#include "sizing/parallel_rows.hpp"
 
 namespace fdr::sizing {
 
@@ -24,19 +26,31 @@ constexpr double kRelTol = 1e-12;
 struct Limiter {
   Grid& g;
   double alpha;
-  std::vector<Source> src;
+  std::vector<Source>& src;
   std::int64_t nx, ny;
   bool changed = false;
+  double alpha2 = alpha * alpha;
 
-  // Offers neighbour k's source to cell (i, j) at index c.
+  // Offers neighbour k's source to cell (i, j) at index c. Dry: only notes whether it would
+  // change the cell (nothing is written but `changed`).
+  template <bool Dry>
   inline void offer(std::int64_t i, std::int64_t j, std::size_t c, std::size_t k) {
     const Source s = src[k];
     double& h = g.v[c];
     // Cheap rejection first: the candidate is at least the source's base value.
     if (s.si < 0 || !(s.base < h)) return;  // also rejects NaN cells (h NaN)
     const double ex = g.dx * static_cast<double>(i - s.si), ey = g.dy * static_cast<double>(j - s.sj);
+    // Without a square root when the rise alpha |c - s| clearly reaches h - base: then
+    // h - cand is at most a few ulps of h, far below the relative tolerance, so the test below
+    // would reject it too (h = +inf never passes here).
+    const double q = h - s.base, a2 = alpha2 * (ex * ex + ey * ey);
+    if (a2 >= q * q) return;
     const double cand = s.base + alpha * std::sqrt(ex * ex + ey * ey);
     if (cand < h && (std::isinf(h) || h - cand > kRelTol * std::abs(h))) {
+      if constexpr (Dry) {
+        changed = true;
+        return;
+      }
       h = cand;
       src[c] = s;
       changed = true;
@@ -45,71 +59,141 @@ struct Limiter {
 
   // Knight move from k to c: the straight line crosses cells m1 and m2, so both must hold
   // data, otherwise a one-cell NaN wall would be jumped.
+  template <bool Dry>
   inline void offer_knight(std::int64_t i, std::int64_t j, std::size_t c, std::size_t k, std::size_t m1,
                            std::size_t m2) {
     if (!(src[k].base < g.v[c]) || std::isnan(g.v[m1]) || std::isnan(g.v[m2])) return;
-    offer(i, j, c, k);
+    offer<Dry>(i, j, c, k);
   }
 
   // Rows from bottom to top; in each row a left-to-right pass takes W, SW, S, SE, then a
   // right-to-left pass takes E, so values flow upward along any direction.
-  void forward() {
-    for (std::int64_t j = 0; j < ny; ++j) {
+  template <bool Dry = false>
+  void forward(std::int64_t j0, std::int64_t j1) {
+    for (std::int64_t j = j0; j < j1; ++j) {
+      if constexpr (Dry) if (changed) return;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = 0; i < nx; ++i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        if (i > 0) offer(i, j, c, c - 1);
+        if (i > 0) offer<Dry>(i, j, c, c - 1);
         if (j > 0) {
           const std::size_t b = c - static_cast<std::size_t>(nx);
-          if (i > 0) offer(i, j, c, b - 1);
-          offer(i, j, c, b);
-          if (i + 1 < nx) offer(i, j, c, b + 1);
+          if (i > 0) offer<Dry>(i, j, c, b - 1);
+          offer<Dry>(i, j, c, b);
+          if (i + 1 < nx) offer<Dry>(i, j, c, b + 1);
           // Knight moves: relay sources whose line to this cell passes between two
           // 8-neighbours that hold other sources (matters for anisotropic cells).
-          if (i > 1) offer_knight(i, j, c, b - 2, b - 1, c - 1);
-          if (i + 2 < nx) offer_knight(i, j, c, b + 2, b + 1, c + 1);
+          if (i > 1) offer_knight<Dry>(i, j, c, b - 2, b - 1, c - 1);
+          if (i + 2 < nx) offer_knight<Dry>(i, j, c, b + 2, b + 1, c + 1);
           if (j > 1) {
             const std::size_t bb = b - static_cast<std::size_t>(nx);
-            if (i > 0) offer_knight(i, j, c, bb - 1, bb, b - 1);
-            if (i + 1 < nx) offer_knight(i, j, c, bb + 1, bb, b + 1);
+            if (i > 0) offer_knight<Dry>(i, j, c, bb - 1, bb, b - 1);
+            if (i + 1 < nx) offer_knight<Dry>(i, j, c, bb + 1, bb, b + 1);
           }
         }
       }
       for (std::int64_t i = nx - 2; i >= 0; --i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        offer(i, j, c, c + 1);
+        offer<Dry>(i, j, c, c + 1);
       }
     }
   }
 
   // Mirror image: rows from top to bottom, E, NE, N, NW right-to-left, then W left-to-right.
-  void backward() {
-    for (std::int64_t j = ny - 1; j >= 0; --j) {
+  template <bool Dry = false>
+  void backward(std::int64_t j0, std::int64_t j1) {
+    for (std::int64_t j = j1 - 1; j >= j0; --j) {
+      if constexpr (Dry) if (changed) return;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = nx - 1; i >= 0; --i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        if (i + 1 < nx) offer(i, j, c, c + 1);
+        if (i + 1 < nx) offer<Dry>(i, j, c, c + 1);
         if (j + 1 < ny) {
           const std::size_t a = c + static_cast<std::size_t>(nx);
-          if (i + 1 < nx) offer(i, j, c, a + 1);
-          offer(i, j, c, a);
-          if (i > 0) offer(i, j, c, a - 1);
-          if (i + 2 < nx) offer_knight(i, j, c, a + 2, a + 1, c + 1);
-          if (i > 1) offer_knight(i, j, c, a - 2, a - 1, c - 1);
+          if (i + 1 < nx) offer<Dry>(i, j, c, a + 1);
+          offer<Dry>(i, j, c, a);
+          if (i > 0) offer<Dry>(i, j, c, a - 1);
+          if (i + 2 < nx) offer_knight<Dry>(i, j, c, a + 2, a + 1, c + 1);
+          if (i > 1) offer_knight<Dry>(i, j, c, a - 2, a - 1, c - 1);
           if (j + 2 < ny) {
             const std::size_t aa = a + static_cast<std::size_t>(nx);
-            if (i + 1 < nx) offer_knight(i, j, c, aa + 1, aa, a + 1);
-            if (i > 0) offer_knight(i, j, c, aa - 1, aa, a - 1);
+            if (i + 1 < nx) offer_knight<Dry>(i, j, c, aa + 1, aa, a + 1);
+            if (i > 0) offer_knight<Dry>(i, j, c, aa - 1, aa, a - 1);
           }
         }
       }
       for (std::int64_t i = 1; i < nx; ++i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        offer(i, j, c, c - 1);
+        offer<Dry>(i, j, c, c - 1);
       }
     }
   }
 };
+
+// Whether any offer of the first sweep pair (sources = the cells themselves) would change a cell:
+// the same candidates and tests as Limiter::offer / offer_knight, over all 8 neighbours and the 8
+// knight moves (with the two cells the code requires to hold data), without writing anything.
+bool any_offer_changes(const Grid& g, double alpha) {
+  struct Dir {
+    int di, dj;       // the neighbour k relative to c
+    bool knight;
+    int m1i, m1j, m2i, m2j;  // cells that must hold data for a knight move
+  };
+  static constexpr Dir dirs[16] = {
+      {-1, 0, false, 0, 0, 0, 0},  {1, 0, false, 0, 0, 0, 0},   {-1, -1, false, 0, 0, 0, 0}, {0, -1, false, 0, 0, 0, 0},
+      {1, -1, false, 0, 0, 0, 0},  {-1, 1, false, 0, 0, 0, 0},  {0, 1, false, 0, 0, 0, 0},   {1, 1, false, 0, 0, 0, 0},
+      {-2, -1, true, -1, -1, -1, 0}, {2, -1, true, 1, -1, 1, 0}, {-1, -2, true, 0, -2, -1, -1}, {1, -2, true, 0, -2, 1, -1},
+      {2, 1, true, 1, 1, 1, 0},    {-2, 1, true, -1, 1, -1, 0}, {1, 2, true, 0, 2, 1, 1},     {-1, 2, true, 0, 2, -1, 1}};
+  double w[16];
+  for (int d = 0; d < 16; ++d) {
+    // As Limiter::offer computes it: ex = dx * (i - si), ey = dy * (j - sj).
+    const double ex = g.dx * static_cast<double>(-dirs[d].di), ey = g.dy * static_cast<double>(-dirs[d].dj);
+    w[d] = alpha * std::sqrt(ex * ex + ey * ey);
+  }
+  const auto nx = static_cast<std::int64_t>(g.nx), ny = static_cast<std::int64_t>(g.ny);
+  std::vector<char> band_changes(g.ny, 0);
+  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+    // Quick pass: when every pair of cells one offer apart differs by at most 0.999 of the rise
+    // alpha |c - k| (a margin far above rounding), no offer can change anything either way.
+    // NaN fails the comparison and sends the band to the exact pass.
+    bool margin = alpha > 0;
+    for (std::int64_t j = static_cast<std::int64_t>(j0); j < static_cast<std::int64_t>(j1) && margin; ++j)
+      for (int d = 0; d < 16 && margin; ++d) {
+        const Dir& o = dirs[d];
+        if (o.dj < 0 || (o.dj == 0 && o.di < 0) || j + o.dj >= ny) continue;  // each pair once
+        const std::int64_t lo = std::max<std::int64_t>(0, -o.di), hi = std::min<std::int64_t>(nx, nx - o.di);
+        const double* a = &g.v[static_cast<std::size_t>(j * nx)];
+        const double* b = &g.v[static_cast<std::size_t>((j + o.dj) * nx + o.di)];
+        const double lim = 0.999 * w[d];
+        bool ok = true;
+        for (std::int64_t i = lo; i < hi; ++i) ok &= std::abs(a[i] - b[i]) <= lim;
+        margin = ok;
+      }
+    if (margin) return;
+    bool any = false;
+    for (std::int64_t j = static_cast<std::int64_t>(j0); j < static_cast<std::int64_t>(j1) && !any; ++j)
+      for (const Dir& d : dirs) {
+        const std::int64_t jk = j + d.dj;
+        if (jk < 0 || jk >= ny || (d.knight && (j + d.m1j < 0 || j + d.m1j >= ny || j + d.m2j < 0 || j + d.m2j >= ny)))
+          continue;
+        const std::int64_t lo = std::max<std::int64_t>({0, -d.di, d.knight ? -d.m1i : 0, d.knight ? -d.m2i : 0});
+        const std::int64_t hi = std::min<std::int64_t>({nx, nx - d.di, d.knight ? nx - d.m1i : nx, d.knight ? nx - d.m2i : nx});
+        const double* hrow = &g.v[static_cast<std::size_t>(j * nx)];
+        const double* krow = &g.v[static_cast<std::size_t>(jk * nx + d.di)];
+        const double* m1 = d.knight ? &g.v[static_cast<std::size_t>((j + d.m1j) * nx + d.m1i)] : hrow;
+        const double* m2 = d.knight ? &g.v[static_cast<std::size_t>((j + d.m2j) * nx + d.m2i)] : hrow;
+        const double wd = w[&d - dirs];
+        bool hit = false;
+        for (std::int64_t i = lo; i < hi; ++i) {
+          const double h = hrow[i], cand = krow[i] + wd;  // NaN source: cand NaN, never < h
+          hit |= (cand < h) & (std::isinf(h) | (h - cand > kRelTol * std::abs(h))) & !std::isnan(m1[i]) & !std::isnan(m2[i]);
+        }
+        if (hit) { any = true; break; }
+      }
+    band_changes[j0] = any;
+  }, 16);
+  return std::find(band_changes.begin(), band_changes.end(), 1) != band_changes.end();
+}
 
 }  // namespace
 
@@ -122,13 +206,22 @@ void limit_gradient(Grid& g, double alpha) {
   if (g.nx > static_cast<std::size_t>(INT32_MAX) || g.ny > static_cast<std::size_t>(INT32_MAX))
     throw Error(ExitCode::kInternal, "limit_gradient: grid too large");
   if (g.v.empty()) return;
-  Limiter L{g, alpha, std::vector<Source>(g.v.size()), static_cast<std::int64_t>(g.nx), static_cast<std::int64_t>(g.ny)};
-  for (std::size_t j = 0; j < g.ny; ++j)
-    for (std::size_t i = 0; i < g.nx; ++i) {
-      const double v = g.at(i, j);
-      L.src[j * g.nx + i] = std::isnan(v) ? Source{v, -1, -1}
+  // Most spacing grids are already alpha-Lipschitz (the distance rule grows slower than alpha):
+  // when no offer of the first sweep pair would change a cell, the sweeps return the grid
+  // unchanged. In that first pair every source is still the neighbour itself, so each offer is
+  // g(k) + alpha |c - k| with |c - k| one of 16 constants: check that first, read-only, in row
+  // bands on both cores, with the offers' own arithmetic and tests.
+  if (!any_offer_changes(g, alpha)) return;
+  std::vector<Source> src(g.v.size());
+  Limiter L{g, alpha, src, static_cast<std::int64_t>(g.nx), static_cast<std::int64_t>(g.ny)};
+  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+    for (std::size_t j = j0; j < j1; ++j)
+      for (std::size_t i = 0; i < g.nx; ++i) {
+        const double v = g.at(i, j);
+        src[j * g.nx + i] = std::isnan(v) ? Source{v, -1, -1}
                                           : Source{v, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)};
-    }
+      }
+  }, 16);
   // Why repeat: source propagation can need another sweep pair where the nearest source
   // reaches a cell only through neighbours that hold a different source, or around NaN holes.
   // Cap (documented): a shortest path around NaN holes can bend at most once per sweep pair, so
@@ -140,8 +233,8 @@ void limit_gradient(Grid& g, double alpha) {
       throw Error(ExitCode::kWorkLimit, "gradient limiting did not settle after " + std::to_string(max_sweeps) +
                                             " sweeps (nodata pattern too convoluted); fill nodata or coarsen the grid");
     L.changed = false;
-    L.forward();
-    L.backward();
+    L.forward(0, L.ny);
+    L.backward(0, L.ny);
   } while (L.changed);
 }
 

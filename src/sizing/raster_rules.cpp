@@ -224,7 +224,7 @@ void cells_of_segment(const Grid& g, const Seg& s, Visit&& visit) {
 }
 
 // Largest distance, in cells of the larger side, within which distance_to_shore is exact.
-constexpr double kExactCells = 2.5;
+constexpr double kExactCells = 3.0;
 
 }  // namespace
 
@@ -264,44 +264,63 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   std::vector<std::uint32_t> first(n + 1, 0);
   for (const Seg& s : segs) cells_of_segment(like, s, [&](std::size_t c) { ++first[c + 1]; });
   for (std::size_t c = 0; c < n; ++c) first[c + 1] += first[c];
-  std::vector<Seg> by_cell(first[n]);
+  std::vector<std::uint32_t> by_cell(first[n]);
   {
     std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    for (const Seg& s : segs) cells_of_segment(like, s, [&](std::size_t c) { by_cell[fill[c]++] = s; });
+    for (std::size_t k = 0; k < segs.size(); ++k)
+      cells_of_segment(like, segs[k], [&](std::size_t c) { by_cell[fill[c]++] = static_cast<std::uint32_t>(k); });
   }
+  // Chains: segment k continues segment k - 1 when they share that endpoint.
+  std::vector<char> joins_prev(segs.size(), 0);
+  for (std::size_t k = 1; k < segs.size(); ++k)
+    joins_prev[k] = segs[k].a.x == segs[k - 1].b.x && segs[k].a.y == segs[k - 1].b.y;
   std::vector<char> seed(n);
   for (std::size_t c = 0; c < n; ++c) seed[c] = first[c + 1] > first[c];
   std::vector<std::uint32_t> feature;
   nearest_seed(like.nx, like.ny, like.dx, like.dy, seed, feature);
-  // Phase 1, per cell: the nearest segment among those of its nearest shore cell.
+  seed = {};
+  // Per cell: the nearest segment among those of its nearest shore cell, then along its chain
+  // while the distance decreases (the nearest shore cell may sit a few cells along a nearly
+  // straight coast from the nearest point): d~ >= d. Every shore point at distance d lies in a
+  // cell whose centre is within d + dx/2 (d + dy/2) of the cell centre along x (y), so when d~ is
+  // at most kExactCells cells the window of cells within d~ + half a cell holds the nearest
+  // segment and the minimum over it is exact.
+  const double wmax = kExactCells * std::max(like.dx, like.dy);
   const auto nx = static_cast<std::int64_t>(like.nx), ny = static_cast<std::int64_t>(like.ny);
-  std::vector<std::uint32_t> near(n);
+  const std::size_t ns = segs.size();
+  std::vector<std::uint32_t> near(n);  // phase 1: the nearest segment found per cell
   parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
         const std::size_t f = feature[j * like.nx + i];
         double best = kInf;
-        std::uint32_t arg = first[f];
-        // The nearest shore cell and its 8 neighbours.
-        const auto fi = static_cast<std::int64_t>(f % like.nx), fj = static_cast<std::int64_t>(f / like.nx);
-        for (std::int64_t b = std::max<std::int64_t>(fj - 1, 0); b <= std::min(fj + 1, ny - 1); ++b)
-          for (std::int64_t a = std::max<std::int64_t>(fi - 1, 0); a <= std::min(fi + 1, nx - 1); ++a) {
-            const std::size_t c = static_cast<std::size_t>(b * nx + a);
-            for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
-              const double d = seg_dist2(p, by_cell[k]);
-              if (d < best) { best = d; arg = k; }
-            }
-          }
-        near[j * like.nx + i] = arg;
+        std::size_t arg = by_cell[first[f]];
+        for (std::uint32_t k = first[f]; k < first[f + 1]; ++k) {
+          const double d = seg_dist2(p, segs[by_cell[k]]);
+          if (d < best) { best = d; arg = by_cell[k]; }
+        }
+        // Descent along the chain, both ways (capped: a chain is at most all segments).
+        const std::size_t arg0 = arg;
+        for (std::size_t k = arg0, steps = 0; k > 0 && joins_prev[k] && steps < ns; --k, ++steps) {
+          const double d = seg_dist2(p, segs[k - 1]);
+          if (!(d < best)) break;
+          best = d;
+          arg = k - 1;
+        }
+        for (std::size_t k = arg0, steps = 0; k + 1 < ns && joins_prev[k + 1] && steps < ns; ++k, ++steps) {
+          const double d = seg_dist2(p, segs[k + 1]);
+          if (!(d < best)) break;
+          best = d;
+          arg = k + 1;
+        }
+        near[j * like.nx + i] = static_cast<std::uint32_t>(arg);
       }
   }, 8);
-  // Phase 2, per cell: the best of its own and its 8 neighbours' phase-1 segments gives d~ >= d
-  // (one step of vector propagation; reads phase 1 only, so bands do not interact). Every shore
-  // point at distance d lies in a cell whose centre is within d + dx/2 (d + dy/2) of the cell
-  // centre along x (y), so when d~ is at most kExactCells cells the window of cells within
-  // d~ + half a cell holds the nearest segment and the minimum over it is exact.
-  const double wmax = kExactCells * std::max(like.dx, like.dy);
+  feature = {};
+  // Phase 2: the best of the 3 x 3 cells' phase-1 segments (one step of vector propagation: the
+  // neighbour may have found a nearer coast), then the exact window near the shore. Reads phase
+  // 1 only, so row bands do not interact.
   parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < like.nx; ++i) {
@@ -310,7 +329,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         double best = kInf;
         for (std::int64_t b = std::max<std::int64_t>(jj - 1, 0); b <= std::min(jj + 1, ny - 1); ++b)
           for (std::int64_t a = std::max<std::int64_t>(ii - 1, 0); a <= std::min(ii + 1, nx - 1); ++a)
-            best = std::min(best, seg_dist2(p, by_cell[near[static_cast<std::size_t>(b * nx + a)]]));
+            best = std::min(best, seg_dist2(p, segs[near[static_cast<std::size_t>(b * nx + a)]]));
         const double reach = std::sqrt(best) * (1 + 1e-9);
         if (reach <= wmax) {
           const auto wi = static_cast<std::int64_t>(reach / like.dx + 0.5), wj = static_cast<std::int64_t>(reach / like.dy + 0.5);
@@ -318,7 +337,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
             const std::size_t row = static_cast<std::size_t>(b * nx);
             for (std::int64_t a = std::max<std::int64_t>(ii - wi, 0); a <= std::min(ii + wi, nx - 1); ++a) {
               const std::size_t c = row + static_cast<std::size_t>(a);
-              for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) best = std::min(best, seg_dist2(p, by_cell[k]));
+              for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) best = std::min(best, seg_dist2(p, segs[by_cell[k]]));
             }
           }
         }

@@ -128,6 +128,21 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k < exact.v.size(); ++k)
         for (int e = 0; e < 4; ++e)
           if (dist.v[k] - exact.v[k] > std::pow(10.0, -3 + e) * cell) ++over[e];
+      {
+        std::size_t byd[6] = {0, 0, 0, 0, 0, 0};
+        double relmax[6] = {0, 0, 0, 0, 0, 0};
+        const double edges[6] = {3, 10, 30, 100, 300, 1e300};
+        for (std::size_t k = 0; k < exact.v.size(); ++k) {
+          const double e = dist.v[k] - exact.v[k];
+          int b = 0;
+          while (exact.v[k] / cell > edges[b]) ++b;
+          if (e > 0.1 * cell) ++byd[b];
+          relmax[b] = std::max(relmax[b], e / exact.v[k]);
+        }
+        std::printf("    by exact distance (cells) <=3 / 10 / 30 / 100 / 300 / more: errors > 0.1 cell %zu / %zu / %zu / %zu / %zu / %zu;"
+                    " largest relative %.3g / %.3g / %.3g / %.3g / %.3g / %.3g\n",
+                    byd[0], byd[1], byd[2], byd[3], byd[4], byd[5], relmax[0], relmax[1], relmax[2], relmax[3], relmax[4], relmax[5]);
+      }
       std::printf("    cells above exact by more than 0.001 / 0.01 / 0.1 / 1 cell: %zu / %zu / %zu / %zu\n", over[0], over[1],
                   over[2], over[3]);
       std::printf("  %-26s %9.4f %12.1f   (%zu cells differ from it = %.4f %%, largest excess %.3g m = %.3g cells, %.3g relative)\n",
