@@ -124,7 +124,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
   if (want_grid) {
     const double native = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
     double cell = opt.cell_size.value_or(0);
-    if (!(cell > 0)) cell = sizing::spacing_grid_cell(box, hmin, native);
+    if (!(cell > 0)) cell = sizing::spacing_grid_cell(box, hmin);
     sizing::Grid like;
     if (!opt.raster.empty()) {
       // The raster is warped at its own resolution (or the spacing cell when coarser): warping a

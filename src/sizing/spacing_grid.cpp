@@ -13,9 +13,8 @@ Box2 spacing_box(const Box2& domain_bbox) {
   return box;
 }
 
-double spacing_grid_cell(const Box2& box, double hmin, double native) {
-  // Resolve the smallest features asked for, within a 4M-cell budget.
-  return std::max({native > 0 ? std::min(native, hmin) : hmin, std::sqrt(box.width() * box.height() / 4e6)});
+double spacing_grid_cell(const Box2& box, double hmin) {
+  return std::max(hmin, std::sqrt(box.width() * box.height() / 4e6));
 }
 
 Grid spacing_grid(const Box2& box, double cell) {

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     const double diam = std::hypot(g.raw.bbox().width(), g.raw.bbox().height());
     if (hmax <= 0) hmax = diam / 20;
     const double native = gis::grid_cell_size_hint(o.raster, g.frame, box);
-    const double cell = cell_opt > 0 ? cell_opt : sizing::spacing_grid_cell(box, hmin, native);
+    const double cell = cell_opt > 0 ? cell_opt : sizing::spacing_grid_cell(box, hmin);
     const sizing::Grid zgrid = gis::read_raster_to_frame(o.raster, g.frame, box, std::max(native, cell), &g.raw.points);
     const sizing::Grid like = zgrid.dx == cell ? zgrid : sizing::spacing_grid(box, cell);
     std::vector<std::pair<Point2, Point2>> shore, boundary;
