@@ -35,14 +35,21 @@ void require(bool ok, const std::string& what) {
 
 struct Seg {
   Point2 a, b;
+  Point2 d;    // b - a
+  double inv;  // 1 / |b - a|^2, 0 for a point
 };
 
-double seg_dist2(Point2 p, const Seg& s) {
-  const Point2 d = s.b - s.a, w = p - s.a;
+Seg make_seg(Point2 a, Point2 b) {
+  const Point2 d = b - a;
   const double dd = dot(d, d);
-  double t = dd > 0 ? dot(w, d) / dd : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return norm2(p - (s.a + t * d));
+  return {a, b, d, dd > 0 ? 1.0 / dd : 0.0};
+}
+
+// Squared distance from p to the segment: the nearest point a + t d, t = clamp((p - a).d / |d|^2).
+// (The tests' brute force uses this same arithmetic.)
+double seg_dist2(Point2 p, const Seg& s) {
+  const double t = std::clamp(dot(p - s.a, s.d) * s.inv, 0.0, 1.0);
+  return norm2(p - (s.a + t * s.d));
 }
 
 struct BNode {
@@ -170,6 +177,14 @@ double mixed_diff(const Grid& g, std::int64_t i, std::int64_t j) {
          (static_cast<double>(ib - ia) * g.dx * static_cast<double>(jb - ja) * g.dy);
 }
 
+// fn(cell index) for every cell, in row bands on max_threads() threads (cells are independent).
+template <class Fn>
+void for_cells(const Grid& g, Fn&& fn) {
+  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+    for (std::size_t c = j0 * g.nx; c < j1 * g.nx; ++c) fn(c);
+  });
+}
+
 void check_grid(const Grid& g, const char* what) {
   if (g.v.size() != g.nx * g.ny || !(g.dx > 0) || !(g.dy > 0))
     throw Error(ExitCode::kInternal, std::string(what) + ": malformed grid (" + std::to_string(g.nx) + " x " +
@@ -248,7 +263,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
       throw Error(ExitCode::kInvalidGeometry, "shore segment " + std::to_string(k) + " (" + format_number(a.x) + ", " +
                                                   format_number(a.y) + ") - (" + format_number(b.x) + ", " +
                                                   format_number(b.y) + ") has a non-finite coordinate");
-    segs.push_back({a, b});
+    segs.push_back(make_seg(a, b));
     sbox.add(a);
     sbox.add(b);
   }
@@ -327,9 +342,15 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         const Point2 p = like.center(i, j);
         const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
         double best = kInf;
+        std::uint32_t seen[9];  // neighbours mostly share their segment: evaluate each once
+        int nseen = 0;
         for (std::int64_t b = std::max<std::int64_t>(jj - 1, 0); b <= std::min(jj + 1, ny - 1); ++b)
-          for (std::int64_t a = std::max<std::int64_t>(ii - 1, 0); a <= std::min(ii + 1, nx - 1); ++a)
-            best = std::min(best, seg_dist2(p, segs[near[static_cast<std::size_t>(b * nx + a)]]));
+          for (std::int64_t a = std::max<std::int64_t>(ii - 1, 0); a <= std::min(ii + 1, nx - 1); ++a) {
+            const std::uint32_t k = near[static_cast<std::size_t>(b * nx + a)];
+            if (std::find(seen, seen + nseen, k) != seen + nseen) continue;
+            seen[nseen++] = k;
+            best = std::min(best, seg_dist2(p, segs[k]));
+          }
         const double reach = std::sqrt(best) * (1 + 1e-9);
         if (reach <= wmax) {
           const auto wi = static_cast<std::int64_t>(reach / like.dx + 0.5), wj = static_cast<std::int64_t>(reach / like.dy + 0.5);
@@ -352,10 +373,10 @@ Grid rule_distance(const Grid& dist, double hmin, double g) {
   require(hmin > 0 && std::isfinite(hmin), "distance rule: hmin must be a positive number, got " + format_number(hmin));
   require(g >= 0 && std::isfinite(g), "distance rule: growth g must be a finite number >= 0, got " + format_number(g));
   Grid out = like_grid(dist);
-  for (std::size_t k = 0; k < dist.v.size(); ++k) {
+  for_cells(out, [&](std::size_t k) {
     const double d = dist.v[k];
     out.v[k] = std::isnan(d) ? kNaN : std::isinf(d) ? (g > 0 ? kInf : hmin) : hmin + g * std::max(d, 0.0);
-  }
+  });
   return out;
 }
 
@@ -364,7 +385,8 @@ Grid rule_slope(const Grid& depth, double slp) {
   require(slp > 0 && std::isfinite(slp), "slope rule: slp must be a positive number, got " + format_number(slp));
   Grid out = like_grid(depth);
   const double k = 2.0 * std::numbers::pi / slp;
-  for (std::size_t j = 0; j < depth.ny; ++j)
+  parallel_rows(depth.ny, [&](std::size_t j0, std::size_t j1) {
+  for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < depth.nx; ++i) {
       const double d = depth.at(i, j);
       double h = kInf;
@@ -378,6 +400,7 @@ Grid rule_slope(const Grid& depth, double slp) {
       }
       out.at(i, j) = h;
     }
+  });
   return out;
 }
 
@@ -387,10 +410,10 @@ Grid rule_wavelength(const Grid& depth, double period_s, double wl) {
                                                        format_number(period_s));
   require(wl > 0 && std::isfinite(wl), "wavelength rule: wl must be a positive number, got " + format_number(wl));
   Grid out = like_grid(depth);
-  for (std::size_t k = 0; k < depth.v.size(); ++k) {
+  for_cells(out, [&](std::size_t k) {
     const double d = depth.v[k];
     out.v[k] = std::isnan(d) ? kNaN : d > 0 ? period_s * std::sqrt(9.81 * d) / wl : kInf;
-  }
+  });
   return out;
 }
 
@@ -398,7 +421,8 @@ Grid rule_curvature(const Grid& dem, double tol) {
   check_grid(dem, "rule_curvature");
   require(tol > 0 && std::isfinite(tol), "curvature rule: tol must be a positive number, got " + format_number(tol));
   Grid out = like_grid(dem);
-  for (std::size_t j = 0; j < dem.ny; ++j)
+  parallel_rows(dem.ny, [&](std::size_t j0, std::size_t j1) {
+  for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < dem.nx; ++i) {
       if (std::isnan(dem.at(i, j))) {
         out.at(i, j) = kNaN;
@@ -412,6 +436,7 @@ Grid rule_curvature(const Grid& dem, double tol) {
       const double kappa = std::abs(m) + r;
       out.at(i, j) = kappa > 0 ? std::sqrt(8.0 * tol / kappa) : kInf;
     }
+  });
   return out;
 }
 
@@ -428,8 +453,10 @@ Grid combine_min(const std::vector<Grid>& grids) {
                                            std::to_string(g0.nx) + " x " + std::to_string(g0.ny) + ")");
   }
   Grid out = g0;
-  for (std::size_t k = 1; k < grids.size(); ++k)
-    for (std::size_t c = 0; c < out.v.size(); ++c) out.v[c] = std::fmin(out.v[c], grids[k].v[c]);
+  for (std::size_t k = 1; k < grids.size(); ++k) {
+    const double* other = grids[k].v.data();
+    for_cells(out, [&](std::size_t c) { out.v[c] = std::fmin(out.v[c], other[c]); });
+  }
   return out;
 }
 
@@ -438,16 +465,19 @@ Grid clamp(const Grid& g, double hmin, double hmax) {
   require(hmin > 0 && std::isfinite(hmin) && hmin <= hmax,
           "spacing clamp: need 0 < hmin <= hmax, got hmin = " + format_number(hmin) + ", hmax = " + format_number(hmax));
   Grid out = g;
-  for (double& v : out.v)
+  for_cells(out, [&](std::size_t c) {
+    double& v = out.v[c];
     if (!std::isnan(v)) v = std::min(std::max(v, hmin), hmax);
+  });
   return out;
 }
 
 Grid fill_nan(const Grid& g, double value) {
   check_grid(g, "fill_nan");
   Grid out = g;
-  for (double& v : out.v)
-    if (std::isnan(v)) v = value;
+  for_cells(out, [&](std::size_t c) {
+    if (std::isnan(out.v[c])) out.v[c] = value;
+  });
   return out;
 }
 
