@@ -239,7 +239,7 @@ void cells_of_segment(const Grid& g, const Seg& s, Visit&& visit) {
 }
 
 // Largest distance, in cells of the larger side, within which distance_to_shore is exact.
-constexpr double kExactCells = 3.0;
+constexpr double kExactCells = 3.5;
 
 }  // namespace
 
@@ -294,7 +294,20 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   std::vector<std::uint32_t> feature;
   nearest_seed(like.nx, like.ny, like.dx, like.dy, seed, feature);
   seed = {};
-  // Per cell: the nearest segment among those of its nearest shore cell, then along its chain
+  // Per shore cell, the segment nearest to its centre: where the descent below starts.
+  std::vector<std::uint32_t> rep(n, 0);
+  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+    for (std::size_t c = j0 * like.nx; c < j1 * like.nx; ++c) {
+      if (first[c + 1] == first[c]) continue;
+      const Point2 p = like.center(c % like.nx, c / like.nx);
+      double best = kInf;
+      for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
+        const double d = seg_dist2(p, segs[by_cell[k]]);
+        if (d < best) { best = d; rep[c] = by_cell[k]; }
+      }
+    }
+  }, 8);
+  // Per cell: the segment nearest to the centre of its nearest shore cell, then along its chain
   // while the distance decreases (the nearest shore cell may sit a few cells along a nearly
   // straight coast from the nearest point): d~ >= d. Every shore point at distance d lies in a
   // cell whose centre is within d + dx/2 (d + dy/2) of the cell centre along x (y), so when d~ is
@@ -309,12 +322,8 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
         const std::size_t f = feature[j * like.nx + i];
-        double best = kInf;
-        std::size_t arg = by_cell[first[f]];
-        for (std::uint32_t k = first[f]; k < first[f + 1]; ++k) {
-          const double d = seg_dist2(p, segs[by_cell[k]]);
-          if (d < best) { best = d; arg = by_cell[k]; }
-        }
+        std::size_t arg = rep[f];
+        double best = seg_dist2(p, segs[arg]);
         // Descent along the chain, both ways (capped: a chain is at most all segments).
         const std::size_t arg0 = arg;
         for (std::size_t k = arg0, steps = 0; k > 0 && joins_prev[k] && steps < ns; --k, ++steps) {
