@@ -316,7 +316,8 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   const double wmax = kExactCells * std::max(like.dx, like.dy);
   const auto nx = static_cast<std::int64_t>(like.nx), ny = static_cast<std::int64_t>(like.ny);
   const std::size_t ns = segs.size();
-  std::vector<std::uint32_t> near(n);  // phase 1: the nearest segment found per cell
+  // Phase 1 writes each cell's segment over its own feature entry (same cell: in place).
+  std::vector<std::uint32_t>& near = feature;
   parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < like.nx; ++i) {
@@ -341,7 +342,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         near[j * like.nx + i] = static_cast<std::uint32_t>(arg);
       }
   }, 8);
-  feature = {};
+  rep = {};
   // Phase 2: the best of the 3 x 3 cells' phase-1 segments (one step of vector propagation: the
   // neighbour may have found a nearer coast), then the exact window near the shore. Reads phase
   // 1 only, so row bands do not interact.
