@@ -31,9 +31,7 @@ struct Limiter {
   bool changed = false;
   double alpha2 = alpha * alpha;
 
-  // Offers neighbour k's source to cell (i, j) at index c. Dry: only notes whether it would
-  // change the cell (nothing is written but `changed`).
-  template <bool Dry>
+  // Offers neighbour k's source to cell (i, j) at index c.
   inline void offer(std::int64_t i, std::int64_t j, std::size_t c, std::size_t k) {
     const Source s = src[k];
     double& h = g.v[c];
@@ -47,10 +45,6 @@ struct Limiter {
     if (a2 >= q * q) return;
     const double cand = s.base + alpha * std::sqrt(ex * ex + ey * ey);
     if (cand < h && (std::isinf(h) || h - cand > kRelTol * std::abs(h))) {
-      if constexpr (Dry) {
-        changed = true;
-        return;
-      }
       h = cand;
       src[c] = s;
       changed = true;
@@ -59,72 +53,67 @@ struct Limiter {
 
   // Knight move from k to c: the straight line crosses cells m1 and m2, so both must hold
   // data, otherwise a one-cell NaN wall would be jumped.
-  template <bool Dry>
   inline void offer_knight(std::int64_t i, std::int64_t j, std::size_t c, std::size_t k, std::size_t m1,
                            std::size_t m2) {
     if (!(src[k].base < g.v[c]) || std::isnan(g.v[m1]) || std::isnan(g.v[m2])) return;
-    offer<Dry>(i, j, c, k);
+    offer(i, j, c, k);
   }
 
   // Rows from bottom to top; in each row a left-to-right pass takes W, SW, S, SE, then a
   // right-to-left pass takes E, so values flow upward along any direction.
-  template <bool Dry = false>
   void forward(std::int64_t j0, std::int64_t j1) {
     for (std::int64_t j = j0; j < j1; ++j) {
-      if constexpr (Dry) if (changed) return;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = 0; i < nx; ++i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        if (i > 0) offer<Dry>(i, j, c, c - 1);
+        if (i > 0) offer(i, j, c, c - 1);
         if (j > 0) {
           const std::size_t b = c - static_cast<std::size_t>(nx);
-          if (i > 0) offer<Dry>(i, j, c, b - 1);
-          offer<Dry>(i, j, c, b);
-          if (i + 1 < nx) offer<Dry>(i, j, c, b + 1);
+          if (i > 0) offer(i, j, c, b - 1);
+          offer(i, j, c, b);
+          if (i + 1 < nx) offer(i, j, c, b + 1);
           // Knight moves: relay sources whose line to this cell passes between two
           // 8-neighbours that hold other sources (matters for anisotropic cells).
-          if (i > 1) offer_knight<Dry>(i, j, c, b - 2, b - 1, c - 1);
-          if (i + 2 < nx) offer_knight<Dry>(i, j, c, b + 2, b + 1, c + 1);
+          if (i > 1) offer_knight(i, j, c, b - 2, b - 1, c - 1);
+          if (i + 2 < nx) offer_knight(i, j, c, b + 2, b + 1, c + 1);
           if (j > 1) {
             const std::size_t bb = b - static_cast<std::size_t>(nx);
-            if (i > 0) offer_knight<Dry>(i, j, c, bb - 1, bb, b - 1);
-            if (i + 1 < nx) offer_knight<Dry>(i, j, c, bb + 1, bb, b + 1);
+            if (i > 0) offer_knight(i, j, c, bb - 1, bb, b - 1);
+            if (i + 1 < nx) offer_knight(i, j, c, bb + 1, bb, b + 1);
           }
         }
       }
       for (std::int64_t i = nx - 2; i >= 0; --i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        offer<Dry>(i, j, c, c + 1);
+        offer(i, j, c, c + 1);
       }
     }
   }
 
   // Mirror image: rows from top to bottom, E, NE, N, NW right-to-left, then W left-to-right.
-  template <bool Dry = false>
   void backward(std::int64_t j0, std::int64_t j1) {
     for (std::int64_t j = j1 - 1; j >= j0; --j) {
-      if constexpr (Dry) if (changed) return;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = nx - 1; i >= 0; --i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        if (i + 1 < nx) offer<Dry>(i, j, c, c + 1);
+        if (i + 1 < nx) offer(i, j, c, c + 1);
         if (j + 1 < ny) {
           const std::size_t a = c + static_cast<std::size_t>(nx);
-          if (i + 1 < nx) offer<Dry>(i, j, c, a + 1);
-          offer<Dry>(i, j, c, a);
-          if (i > 0) offer<Dry>(i, j, c, a - 1);
-          if (i + 2 < nx) offer_knight<Dry>(i, j, c, a + 2, a + 1, c + 1);
-          if (i > 1) offer_knight<Dry>(i, j, c, a - 2, a - 1, c - 1);
+          if (i + 1 < nx) offer(i, j, c, a + 1);
+          offer(i, j, c, a);
+          if (i > 0) offer(i, j, c, a - 1);
+          if (i + 2 < nx) offer_knight(i, j, c, a + 2, a + 1, c + 1);
+          if (i > 1) offer_knight(i, j, c, a - 2, a - 1, c - 1);
           if (j + 2 < ny) {
             const std::size_t aa = a + static_cast<std::size_t>(nx);
-            if (i + 1 < nx) offer_knight<Dry>(i, j, c, aa + 1, aa, a + 1);
-            if (i > 0) offer_knight<Dry>(i, j, c, aa - 1, aa, a - 1);
+            if (i + 1 < nx) offer_knight(i, j, c, aa + 1, aa, a + 1);
+            if (i > 0) offer_knight(i, j, c, aa - 1, aa, a - 1);
           }
         }
       }
       for (std::int64_t i = 1; i < nx; ++i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
-        offer<Dry>(i, j, c, c - 1);
+        offer(i, j, c, c - 1);
       }
     }
   }
