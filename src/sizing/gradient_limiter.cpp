@@ -30,6 +30,36 @@ struct Limiter {
   std::int64_t nx, ny;
   bool changed = false;
   double alpha2 = alpha * alpha;
+  // Row skipping: a row's offers read only its own row and the two rows before it in the sweep's
+  // direction, so when none of those changed since the row was last swept in that direction,
+  // sweeping it again cannot change it (skipping it gives the same bits as sweeping it).
+  // Ticks count processed rows (0 = never).
+  std::vector<std::uint64_t> last_change = std::vector<std::uint64_t>(static_cast<std::size_t>(ny), 0);
+  std::vector<std::uint64_t> last_fwd = std::vector<std::uint64_t>(static_cast<std::size_t>(ny), 0);
+  std::vector<std::uint64_t> last_bwd = std::vector<std::uint64_t>(static_cast<std::size_t>(ny), 0);
+  std::uint64_t tick = 0;
+  bool row_dirty = false;
+
+  // Whether row j must be swept (rows j, j - step, j - 2 step are its inputs); if so starts it.
+  bool begin_row(std::int64_t j, int step, std::vector<std::uint64_t>& last) {
+    const auto r = static_cast<std::size_t>(j);
+    const std::uint64_t since = last[r];
+    bool need = since == 0 || last_change[r] >= since;
+    for (int k = 1; k <= 2 && !need; ++k) {
+      const std::int64_t jj = j - k * step;
+      if (jj >= 0 && jj < ny) need = last_change[static_cast<std::size_t>(jj)] >= since;
+    }
+    if (!need) return false;
+    last[r] = ++tick;
+    row_dirty = false;
+    return true;
+  }
+  void end_row(std::int64_t j) {
+    if (row_dirty) {
+      last_change[static_cast<std::size_t>(j)] = tick;
+      changed = true;
+    }
+  }
 
   // Offers neighbour k's source to cell (i, j) at index c.
   inline void offer(std::int64_t i, std::int64_t j, std::size_t c, std::size_t k) {
@@ -47,7 +77,7 @@ struct Limiter {
     if (cand < h && (std::isinf(h) || h - cand > kRelTol * std::abs(h))) {
       h = cand;
       src[c] = s;
-      changed = true;
+      row_dirty = true;
     }
   }
 
@@ -63,6 +93,7 @@ struct Limiter {
   // right-to-left pass takes E, so values flow upward along any direction.
   void forward(std::int64_t j0, std::int64_t j1) {
     for (std::int64_t j = j0; j < j1; ++j) {
+      if (!begin_row(j, 1, last_fwd)) continue;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = 0; i < nx; ++i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
@@ -87,12 +118,14 @@ struct Limiter {
         const std::size_t c = row + static_cast<std::size_t>(i);
         offer(i, j, c, c + 1);
       }
+      end_row(j);
     }
   }
 
   // Mirror image: rows from top to bottom, E, NE, N, NW right-to-left, then W left-to-right.
   void backward(std::int64_t j0, std::int64_t j1) {
     for (std::int64_t j = j1 - 1; j >= j0; --j) {
+      if (!begin_row(j, -1, last_bwd)) continue;
       const std::size_t row = static_cast<std::size_t>(j * nx);
       for (std::int64_t i = nx - 1; i >= 0; --i) {
         const std::size_t c = row + static_cast<std::size_t>(i);
@@ -115,6 +148,7 @@ struct Limiter {
         const std::size_t c = row + static_cast<std::size_t>(i);
         offer(i, j, c, c - 1);
       }
+      end_row(j);
     }
   }
 };
