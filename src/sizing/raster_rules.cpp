@@ -48,7 +48,7 @@ Seg make_seg(Point2 a, Point2 b) {
 // Squared distance from p to the segment: the nearest point a + t d, t = clamp((p - a).d / |d|^2).
 // (The tests' brute force uses this same arithmetic.)
 double seg_dist2(Point2 p, const Seg& s) {
-  const double t = std::clamp(dot(p - s.a, s.d) * s.inv, 0.0, 1.0);
+  const double t = std::min(std::max(dot(p - s.a, s.d) * s.inv, 0.0), 1.0);  // = std::clamp, without branches
   return norm2(p - (s.a + t * s.d));
 }
 
