@@ -351,16 +351,20 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
         const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
-        double best = kInf;
-        std::uint32_t seen[9];  // neighbours mostly share their segment: evaluate each once
-        int nseen = 0;
-        for (std::int64_t b = std::max<std::int64_t>(jj - 1, 0); b <= std::min(jj + 1, ny - 1); ++b)
-          for (std::int64_t a = std::max<std::int64_t>(ii - 1, 0); a <= std::min(ii + 1, nx - 1); ++a) {
-            const std::uint32_t k = near[static_cast<std::size_t>(b * nx + a)];
-            if (std::find(seen, seen + nseen, k) != seen + nseen) continue;
-            seen[nseen++] = k;
+        // Neighbours mostly share their segment: skip repeats of the cell's own and the last one.
+        const std::uint32_t own = near[j * like.nx + i];
+        double best = seg_dist2(p, segs[own]);
+        std::uint32_t last = own;
+        const std::size_t ilo = i > 0 ? i - 1 : 0, ihi = i + 1 < like.nx ? i + 1 : i;
+        for (std::int64_t b = std::max<std::int64_t>(jj - 1, 0); b <= std::min(jj + 1, ny - 1); ++b) {
+          const std::uint32_t* row = &near[static_cast<std::size_t>(b) * like.nx];
+          for (std::size_t a = ilo; a <= ihi; ++a) {
+            const std::uint32_t k = row[a];
+            if (k == own || k == last) continue;
+            last = k;
             best = std::min(best, seg_dist2(p, segs[k]));
           }
+        }
         const double reach = std::sqrt(best) * (1 + 1e-9);
         if (reach <= wmax) {
           const auto wi = static_cast<std::int64_t>(reach / like.dx + 0.5), wj = static_cast<std::int64_t>(reach / like.dy + 0.5);
