@@ -21,9 +21,11 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// g's geometry with zero values (without copying g's values first).
 Grid like_grid(const Grid& g) {
-  Grid out = g;
-  std::fill(out.v.begin(), out.v.end(), 0.0);
+  Grid out;
+  out.nx = g.nx; out.ny = g.ny; out.x0 = g.x0; out.y0 = g.y0; out.dx = g.dx; out.dy = g.dy;
+  out.v.assign(g.v.size(), 0.0);
   return out;
 }
 
@@ -294,17 +296,19 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   std::vector<std::uint32_t> feature;
   nearest_seed(like.nx, like.ny, like.dx, like.dy, seed, feature);
   seed = {};
-  // Per shore cell, the segment nearest to its centre: where the descent below starts.
-  std::vector<std::uint32_t> rep(n, 0);
+  // Per shore cell, the segment nearest to its centre goes first in its list: where the descent
+  // below starts (first of the nearest in list order, so the choice is deterministic).
   parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t c = j0 * like.nx; c < j1 * like.nx; ++c) {
-      if (first[c + 1] == first[c]) continue;
+      if (first[c + 1] - first[c] < 2) continue;
       const Point2 p = like.center(c % like.nx, c / like.nx);
       double best = kInf;
+      std::uint32_t at = first[c];
       for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) {
         const double d = seg_dist2(p, segs[by_cell[k]]);
-        if (d < best) { best = d; rep[c] = by_cell[k]; }
+        if (d < best) { best = d; at = k; }
       }
+      std::swap(by_cell[first[c]], by_cell[at]);
     }
   }, 8);
   // Per cell: the segment nearest to the centre of its nearest shore cell, then along its chain
@@ -323,7 +327,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
         const std::size_t f = feature[j * like.nx + i];
-        std::size_t arg = rep[f];
+        std::size_t arg = by_cell[first[f]];
         double best = seg_dist2(p, segs[arg]);
         // Descent along the chain, both ways (capped: a chain is at most all segments).
         const std::size_t arg0 = arg;
@@ -342,7 +346,6 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         near[j * like.nx + i] = static_cast<std::uint32_t>(arg);
       }
   }, 8);
-  rep = {};
   // Phase 2: the best of the 3 x 3 cells' phase-1 segments (one step of vector propagation: the
   // neighbour may have found a nearer coast), then the exact window near the shore. Reads phase
   // 1 only, so row bands do not interact.
