@@ -153,10 +153,11 @@ struct Limiter {
   }
 };
 
-// Whether any offer of the first sweep pair (sources = the cells themselves) would change a cell:
-// the same candidates and tests as Limiter::offer / offer_knight, over all 8 neighbours and the 8
-// knight moves (with the two cells the code requires to hold data), without writing anything.
-bool any_offer_changes(const Grid& g, double alpha) {
+// Per row: whether any offer of the first sweep pair (sources = the cells themselves) would change
+// a cell of the row: the same candidates and tests as Limiter::offer / offer_knight, over all 8
+// neighbours and the 8 knight moves (with the two cells the code requires to hold data), without
+// writing anything. Returns whether any row has one.
+bool rows_with_changes(const Grid& g, double alpha, std::vector<char>& row_flag) {
   struct Dir {
     int di, dj;       // the neighbour k relative to c
     bool knight;
@@ -174,7 +175,7 @@ bool any_offer_changes(const Grid& g, double alpha) {
     w[d] = alpha * std::sqrt(ex * ex + ey * ey);
   }
   const auto nx = static_cast<std::int64_t>(g.nx), ny = static_cast<std::int64_t>(g.ny);
-  std::vector<char> band_changes(g.ny, 0);
+  row_flag.assign(g.ny, 0);
   parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
     // Quick pass: when every pair of cells one offer apart differs by at most 0.999 of the rise
     // alpha |c - k| (a margin far above rounding), no offer can change anything either way.
@@ -193,8 +194,7 @@ bool any_offer_changes(const Grid& g, double alpha) {
         margin = ok;
       }
     if (margin) return;
-    bool any = false;
-    for (std::int64_t j = static_cast<std::int64_t>(j0); j < static_cast<std::int64_t>(j1) && !any; ++j)
+    for (std::int64_t j = static_cast<std::int64_t>(j0); j < static_cast<std::int64_t>(j1); ++j)
       for (const Dir& d : dirs) {
         const std::int64_t jk = j + d.dj;
         if (jk < 0 || jk >= ny || (d.knight && (j + d.m1j < 0 || j + d.m1j >= ny || j + d.m2j < 0 || j + d.m2j >= ny)))
@@ -211,11 +211,13 @@ bool any_offer_changes(const Grid& g, double alpha) {
           const double h = hrow[i], cand = krow[i] + wd;  // NaN source: cand NaN, never < h
           hit |= (cand < h) & (std::isinf(h) | (h - cand > kRelTol * std::abs(h))) & !std::isnan(m1[i]) & !std::isnan(m2[i]);
         }
-        if (hit) { any = true; break; }
+        if (hit) {
+          row_flag[static_cast<std::size_t>(j)] = 1;
+          break;
+        }
       }
-    band_changes[j0] = any;
   }, 16);
-  return std::find(band_changes.begin(), band_changes.end(), 1) != band_changes.end();
+  return std::find(row_flag.begin(), row_flag.end(), 1) != row_flag.end();
 }
 
 }  // namespace
@@ -233,10 +235,15 @@ void limit_gradient(Grid& g, double alpha) {
   // when no offer of the first sweep pair would change a cell, the sweeps return the grid
   // unchanged. In that first pair every source is still the neighbour itself, so each offer is
   // g(k) + alpha |c - k| with |c - k| one of 16 constants: check that first, read-only, in row
-  // bands on both cores, with the offers' own arithmetic and tests.
-  if (!any_offer_changes(g, alpha)) return;
+  // bands on both cores, with the offers' own arithmetic and tests. Rows without such an offer
+  // count as already swept both ways (row skipping below), so the first pair sweeps only the
+  // rows that change and those downstream of a change.
+  std::vector<char> row_flag;
+  if (!rows_with_changes(g, alpha, row_flag)) return;
   std::vector<Source> src(g.v.size());
   Limiter L{g, alpha, src, static_cast<std::int64_t>(g.nx), static_cast<std::int64_t>(g.ny)};
+  L.tick = 1;
+  for (std::size_t j = 0; j < g.ny; ++j) L.last_fwd[j] = L.last_bwd[j] = row_flag[j] ? 0 : 1;
   parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < g.nx; ++i) {
