@@ -29,7 +29,6 @@ struct Limiter {
   std::vector<Source>& src;
   std::int64_t nx, ny;
   bool changed = false;
-  double alpha2 = alpha * alpha;
   // Row skipping: a row's offers read only its own row and the two rows before it in the sweep's
   // direction, so when none of those changed since the row was last swept in that direction,
   // sweeping it again cannot change it (skipping it gives the same bits as sweeping it).
@@ -68,11 +67,6 @@ struct Limiter {
     // Cheap rejection first: the candidate is at least the source's base value.
     if (s.si < 0 || !(s.base < h)) return;  // also rejects NaN cells (h NaN)
     const double ex = g.dx * static_cast<double>(i - s.si), ey = g.dy * static_cast<double>(j - s.sj);
-    // Without a square root when the rise alpha |c - s| clearly reaches h - base: then
-    // h - cand is at most a few ulps of h, far below the relative tolerance, so the test below
-    // would reject it too (h = +inf never passes here).
-    const double q = h - s.base, a2 = alpha2 * (ex * ex + ey * ey);
-    if (a2 >= q * q) return;
     const double cand = s.base + alpha * std::sqrt(ex * ex + ey * ey);
     if (cand < h && (std::isinf(h) || h - cand > kRelTol * std::abs(h))) {
       h = cand;
