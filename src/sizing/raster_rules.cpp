@@ -373,8 +373,14 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
           const auto wi = static_cast<std::int64_t>(reach / like.dx + 0.5), wj = static_cast<std::int64_t>(reach / like.dy + 0.5);
           for (std::int64_t b = std::max<std::int64_t>(jj - wj, 0); b <= std::min(jj + wj, ny - 1); ++b) {
             const std::size_t row = static_cast<std::size_t>(b * nx);
+            const double ey = std::max(0.0, (static_cast<double>(std::abs(b - jj)) - 0.5) * like.dy);
             for (std::int64_t a = std::max<std::int64_t>(ii - wi, 0); a <= std::min(ii + wi, nx - 1); ++a) {
               const std::size_t c = row + static_cast<std::size_t>(a);
+              if (first[c] == first[c + 1]) continue;
+              // Skip a cell whose square is already farther than the best (with the BVH's slack:
+              // a rounded segment distance may undercut its box bound by an ulp).
+              const double ex = std::max(0.0, (static_cast<double>(std::abs(a - ii)) - 0.5) * like.dx);
+              if (ex * ex + ey * ey > best * (1.0 + 1e-9)) continue;
               for (std::uint32_t k = first[c]; k < first[c + 1]; ++k) best = std::min(best, seg_dist2(p, segs[by_cell[k]]));
             }
           }
