@@ -142,7 +142,7 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--wave-period", "wave-period", field<&MeshOptions::wave_period_s>, "float", "S", "44712 (M2)", "Spacing", "Wave period T for --wavelength-rule (seconds)"},
       {"mesh", "--vertical-tol", "vertical-tol", field<&MeshOptions::vertical_tol>, "float", "M", "", "Spacing", "Terrain rule h = sqrt(8 tol / |curvature|): TIN within tol metres of the DEM"},
       {"mesh", "--gradation", "gradation", field<&MeshOptions::gradation>, "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},
-      {"mesh", "--cell-size", "cell-size", field<&MeshOptions::cell_size>, "float", "M", "raster resolution", "Spacing", "Cell size of the spacing grid (metres)"},
+      {"mesh", "--cell-size", "cell-size", field<&MeshOptions::cell_size>, "float", "M", "max(hmin, sqrt(box area / 4e6))", "Spacing", "Cell size of the spacing grid (metres)"},
       {"mesh", "--write-spacing", "write-spacing", field<&MeshOptions::write_spacing>, "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},
       // mesh: repair
       {"mesh", "--snap", "snap", field<&MeshOptions::snap>, "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},

@@ -23,6 +23,7 @@
 #include "sizing/gradient_limiter.hpp"
 #include "sizing/grid_field.hpp"
 #include "sizing/make_spacing.hpp"
+#include "sizing/spacing_grid.hpp"
 #include "sizing/spacing_rules.hpp"
 
 namespace fdr::pipeline {
@@ -108,11 +109,8 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   const gis::Frame& frame = g.frame;
   // Spacing, in ground metres on a grid over the domain box, then to grid units.
-  Box2 box = g.raw.bbox();
-  const double diam = std::hypot(box.width(), box.height());
-  const double margin = 0.02 * diam;
-  box.add({box.lo.x - margin, box.lo.y - margin});
-  box.add({box.hi.x + margin, box.hi.y + margin});
+  const double diam = std::hypot(g.raw.bbox().width(), g.raw.bbox().height());
+  const Box2 box = sizing::spacing_box(g.raw.bbox());
   const bool any_rule = opt.dist_grade || opt.slope_rule || opt.wavelength_rule || opt.vertical_tol ||
                         !opt.size_raster.empty();
   const double hmin = opt.hmin.value_or(diam / 500.0);
@@ -126,10 +124,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
   if (want_grid) {
     const double native = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
     double cell = opt.cell_size.value_or(0);
-    if (!(cell > 0)) {
-      // Resolve the smallest features asked for, within a 4M-cell budget.
-      cell = std::max({native > 0 ? std::min(native, hmin) : hmin, std::sqrt(box.width() * box.height() / 4e6)});
-    }
+    if (!(cell > 0)) cell = sizing::spacing_grid_cell(box, hmin);
     sizing::Grid like;
     if (!opt.raster.empty()) {
       // The raster is warped at its own resolution (or the spacing cell when coarser): warping a
@@ -144,12 +139,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     if (zgrid && zgrid->dx == cell) {
       like = *zgrid;
     } else {
-      like.nx = static_cast<std::size_t>(std::ceil(box.width() / cell)) + 2;
-      like.ny = static_cast<std::size_t>(std::ceil(box.height() / cell)) + 2;
-      like.x0 = box.lo.x - cell;
-      like.y0 = box.lo.y - cell;
-      like.dx = like.dy = cell;
-      like.v.assign(like.nx * like.ny, 0.0);
+      like = sizing::spacing_grid(box, cell);
     }
     sizing::SpacingRules rules;
     rules.hmin = hmin;

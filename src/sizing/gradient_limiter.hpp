@@ -23,6 +23,10 @@ namespace fdr::sizing {
 //   needs both cells it crosses to hold data).
 // - +inf cells ("no constraint") receive finite values where a finite source can reach them.
 // - Anisotropic cells (dx != dy) use the true distances.
+// - Cost: a read-only check on max_threads() threads first (would any offer of the first sweep
+//   pair lower a cell? a margin pass, then the offers' exact tests); an already alpha-Lipschitz
+//   grid returns there, unchanged (the usual case for the GIS rules). Otherwise the sweeps run on
+//   one thread, O(cells) per sweep pair. Same result for every thread count.
 // Throws Error(kUsage) unless alpha is finite and >= 0; Error(kInternal) on a malformed grid.
 void limit_gradient(Grid& g, double alpha);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include "sizing/raster_rules.hpp"
+#include "sizing/parallel_rows.hpp"
 
 namespace fdr::sizing {
 
@@ -14,7 +15,8 @@ Grid resample_like(const Grid& g, const Grid& like) {
   if (g.nx == like.nx && g.ny == like.ny && g.x0 == like.x0 && g.y0 == like.y0 && g.dx == like.dx && g.dy == like.dy)
     return g;
   Grid r = like;
-  for (std::size_t j = 0; j < r.ny; ++j)
+  parallel_rows(r.ny, [&](std::size_t j0, std::size_t j1) {
+  for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < r.nx; ++i) {
       const Point2 p = r.center(i, j);
       const double u = std::clamp((p.x - g.x0) / g.dx - 0.5, 0.0, static_cast<double>(g.nx - 1));
@@ -36,6 +38,7 @@ Grid resample_like(const Grid& g, const Grid& like) {
       }
       r.at(i, j) = nan ? std::numeric_limits<double>::quiet_NaN() : inf ? std::numeric_limits<double>::infinity() : v;
     }
+  });
   return r;
 }
 

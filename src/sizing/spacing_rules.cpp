@@ -5,6 +5,8 @@
 #include <sstream>
 #include "sizing/raster_rules.hpp"
 #include "sizing/resample_grid.hpp"
+#include "sizing/parallel_rows.hpp"
+#include <cmath>
 
 namespace fdr::sizing {
 namespace {
@@ -61,15 +63,28 @@ RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {
     rules.push_back(*in.size);
     names.push_back("size raster " + r.size_raster);
   }
+  (void)clamp(Grid{}, r.hmin, r.hmax);  // checks 0 < hmin <= hmax (an empty grid: no work)
   Grid h;
   if (rules.empty()) {
     h = like;
     std::fill(h.v.begin(), h.v.end(), r.hmax);
   } else {
-    h = combine_min(rules);
+    for (const Grid& g : rules)
+      if (g.nx != rules[0].nx || g.ny != rules[0].ny || g.x0 != rules[0].x0 || g.y0 != rules[0].y0 ||
+          g.dx != rules[0].dx || g.dy != rules[0].dy || g.v.size() != rules[0].v.size())
+        (void)combine_min(rules);  // throws Error(kInternal) naming the grids
+    // combine_min, clamp and fill_nan in one pass, in place over the first rule's grid.
+    h = std::move(rules[0]);
+    const double hmin = r.hmin, hmax = r.hmax;
+    parallel_rows(h.ny, [&](std::size_t j0, std::size_t j1) {
+      for (std::size_t c = j0 * h.nx; c < j1 * h.nx; ++c) {
+        double v = h.v[c];
+        for (std::size_t k = 1; k < rules.size(); ++k) v = std::fmin(v, rules[k].v[c]);
+        h.v[c] = std::isnan(v) ? hmax : std::min(std::max(v, hmin), hmax);
+      }
+    });
   }
-  h = clamp(h, r.hmin, r.hmax);
-  out.h = fill_nan(h, r.hmax);
+  out.h = std::move(h);
   return out;
 }
 

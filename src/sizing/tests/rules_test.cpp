@@ -32,8 +32,8 @@ double brute_dist(Point2 p, const std::vector<std::pair<Point2, Point2>>& segs) 
   double best = kInf;
   for (const auto& [a, b] : segs) {
     const Point2 d = b - a, w = p - a;
-    const double dd = dot(d, d);
-    const double t = std::clamp(dd > 0 ? dot(w, d) / dd : 0.0, 0.0, 1.0);
+    const double dd = dot(d, d), inv = dd > 0 ? 1.0 / dd : 0.0;  // distance_to_shore's arithmetic
+    const double t = std::clamp(dot(w, d) * inv, 0.0, 1.0);
     best = std::min(best, norm2(p - (a + t * d)));
   }
   return std::sqrt(best);
