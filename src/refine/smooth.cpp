@@ -53,12 +53,23 @@ class Smoother {
       if ((t_.vkind[v] == mesh::VertexKind::kFree || t_.vkind[v] == mesh::VertexKind::kSegment) && t_.vhe[v] != kNoId)
         free.push_back(v);
     st.candidates = free.size();
+    // A vertex whose star nothing has touched since it last failed would fail again: it is
+    // retried only after a move changed a triangle around it (the vertices of every triangle a
+    // kept move touched become dirty). Why: after the first sweep most of a converged mesh is
+    // clean, and each try costs up to six attempts with flips and f evaluations.
+    std::vector<char> dirty(t_.pts.size(), 1);
     for (int pass = 0; pass < o_.passes; ++pass) {
       std::size_t moved = 0;
       for (Index v : free) {
+        if (!dirty[v]) continue;
+        dirty[v] = 0;
         const bool ok = try_vertex(v);
         moved += ok;
-        if (ok && t_.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
+        if (ok) {
+          for (TriangleId t : touched_)
+            for (int k = 0; k < 3; ++k) dirty[t_.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
+          if (t_.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
+        }
       }
       st.moves += moved;
       ++st.passes;
@@ -281,26 +292,18 @@ class Smoother {
   // The touched triangles after the move: valid, R/f(c) <= B, no encroached subsegment, worst
   // quality not lower, summed quality higher, min angle not below min(before, --min-angle).
   bool improved() const {
+    // Cheap tests first (orientation, quality sum and worst, angles, shortest edge): most
+    // attempts fail there, before any encroachment test or evaluation of f.
     double nmin = 1e300, nsum = 0, nlen2 = 1e300;
     const double floor_angle = std::min(before_angle_, floor_key_);
     for (TriangleId t : touched_) {
-      const Index ia = t_.tv[3 * t], ib = t_.tv[3 * t + 1], ic = t_.tv[3 * t + 2];
-      const Point2 a = t_.pts[ia], b = t_.pts[ib], c = t_.pts[ic];
+      const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
       if (predicates::orient2d(a, b, c) <= 0) return false;
       const double q = tri_quality(a, b, c);
       nmin = std::min(nmin, q);
       nsum += q;
       nlen2 = std::min({nlen2, norm2(b - a), norm2(c - b), norm2(a - c)});
       if (min_angle_key(a, b, c) < floor_angle) return false;
-      for (int k = 0; k < 3; ++k) {
-        const HalfEdge h = 3 * t + static_cast<HalfEdge>(k);
-        if (t_.constrained(h) && predicates::encroaches(t_.pts[t_.org(h)], t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]))
-          return false;
-      }
-      double r2 = 0;
-      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
-      const double fc = f_(cc);
-      if (!(fc > 0) || !std::isfinite(fc) || r2 > o_.bound * o_.bound * fc * fc) return false;
     }
     // The worst touched triangle may get worse only while it stays above 0.8 (a 40-70-70 triangle):
     // the sum is what the smoothing raises.
@@ -310,6 +313,18 @@ class Smoother {
     if (nlen2 < before_len2_) {
       const double fv = f_(t_.pts[moved_]);
       if (!(nlen2 >= 0.25 * fv * fv)) return false;
+    }
+    for (TriangleId t : touched_) {
+      const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+      for (int k = 0; k < 3; ++k) {
+        const HalfEdge h = 3 * t + static_cast<HalfEdge>(k);
+        if (t_.constrained(h) && predicates::encroaches(t_.pts[t_.org(h)], t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]))
+          return false;
+      }
+      double r2 = 0;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const double fc = f_(cc);
+      if (!(fc > 0) || !std::isfinite(fc) || r2 > o_.bound * o_.bound * fc * fc) return false;
     }
     return true;
   }
