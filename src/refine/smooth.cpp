@@ -159,6 +159,14 @@ class Smoother {
       return false;
     }
     const Point2 p0 = t_.pts[v];
+    // The star's summed quality with v at p, in the present topology: an attempt whose star
+    // does not gain is skipped before any flip (Lawson flips rarely rescue it).
+    auto star_sum = [&](Point2 p) {
+      double sum = 0;
+      for (HalfEdge h : hs_) sum += tri_quality(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]);
+      return sum;
+    };
+    const double sum0 = star_sum(p0);
     Point2 acc{0, 0};
     double wsum = 0;
     for (HalfEdge h : hs_) {
@@ -202,10 +210,10 @@ class Smoother {
             p = la + t * d;
           }
           if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) break;
-          if (!star(v, hs_)) return false;
+          if (!(star_sum(p) > sum0)) continue;
           if (attempt(v, p0, p)) return true;
+          if (!star(v, hs_)) return false;
         }
-        if (!star(v, hs_)) return false;
       }
     }
     for (double step : {1.0, 0.5, 0.25}) {
@@ -215,10 +223,11 @@ class Smoother {
         p = la + (dot(p - la, d) / norm2(d)) * d;
       }
       if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+      if (!(star_sum(p) > sum0)) continue;
+      if (attempt(v, p0, p)) return true;
       // An undone attempt restores the same triangles, but its flips may have renumbered their
       // half-edges: take the star again.
-      if (step != 1.0 && !star(v, hs_)) return false;
-      if (attempt(v, p0, p)) return true;
+      if (!star(v, hs_)) return false;
     }
     return false;
   }
