@@ -18,6 +18,7 @@
 #include "pipeline/gis_stage.hpp"
 #include "pipeline/options.hpp"
 #include "pipeline/stage_time.hpp"
+#include "predicates/predicates.hpp"
 #include "sizing/grid.hpp"
 
 namespace fdr::pipeline {
@@ -40,6 +41,9 @@ struct GisBackend {
   void (*write_spacing_geotiff)(const PreparedInput&, const std::string& path);
   mesh::MeshView (*read_mesh)(const std::string& path);
   sizing::Grid (*read_raster_native)(const std::string& path, Point2 origin);
+  // The predicate counters of this thread in the table's copy of the predicates (a module has
+  // its own), returned and reset: the caller adds them to its own (same figures as built in).
+  predicates::Counters (*take_predicate_counters)();
 };
 
 // What `layout` must hold for this build.

@@ -35,6 +35,12 @@ void write_many(const mesh::MeshView& m, const std::vector<std::string>& paths, 
   io::write_meshes(m, paths, fmts, wo, threads);
 }
 
+predicates::Counters take_counters() {
+  const predicates::Counters c = predicates::counters();
+  predicates::reset_counters();
+  return c;
+}
+
 mesh::MeshView read_mesh(const std::string& path) { return io::read_mesh(path); }
 
 const GisBackend kTable{
@@ -49,6 +55,7 @@ const GisBackend kTable{
     &write_spacing,
     &read_mesh,
     &gis::read_raster_native,
+    &take_counters,
 };
 
 }  // namespace

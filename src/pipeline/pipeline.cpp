@@ -27,6 +27,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   if (plan.gis) {
     // read (gis), spacing (sizing), clean and resample (pslg): the GIS side (gis_backend.hpp)
     in = gis_backend().prepare_gis(opt, clock, progress, log);
+    const predicates::Counters gis_calls = gis_backend().take_predicate_counters();  // a module counts apart
+    predicates::counters().filtered += gis_calls.filtered;
+    predicates::counters().exact += gis_calls.exact;
     result.crs_name = in.crs_name;
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
