@@ -3,6 +3,7 @@
 #include "pipeline/gis_backend.hpp"
 #include <dlfcn.h>
 #include <unistd.h>
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -39,7 +40,11 @@ std::vector<std::string> candidates() {
     return c;
   }
 #ifdef FDR_GIS_MODULE_RELDIR
-  if (const std::string d = exe_dir(); !d.empty()) c.push_back(d + "/" FDR_GIS_MODULE_RELDIR "/" FDR_GIS_MODULE_NAME);
+  if (const std::string d = exe_dir(); !d.empty()) {
+    const std::string p = d + "/" FDR_GIS_MODULE_RELDIR "/" FDR_GIS_MODULE_NAME;
+    char real[PATH_MAX];
+    c.push_back(::realpath(p.c_str(), real) ? std::string(real) : p);  // without "bin/../"
+  }
 #endif
 #ifdef FDR_GIS_MODULE_INSTALL_DIR
   c.emplace_back(FDR_GIS_MODULE_INSTALL_DIR "/" FDR_GIS_MODULE_NAME);
