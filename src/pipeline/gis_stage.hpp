@@ -24,7 +24,10 @@ struct PreparedInput {
   std::vector<io::RepairRow> repairs;     // world coordinates
   std::vector<std::pair<std::string, std::string>> metadata;  // extra provenance
   // GIS runs (plain values, used by the later stages):
-  gis::Frame frame;                       // working CRS + local origin (valid() false for .poly)
+  // Working CRS + local origin (null for .poly). Behind a pointer made by the GIS side, so that
+  // the core pipeline (fdr_pipeline_core) never runs PROJ/GDAL code (gis_backend.hpp).
+  std::shared_ptr<const gis::Frame> frame;
+  std::string crs_wkt;                    // WKT of the working CRS ("" for .poly)
   std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame: depths, TIN error
   std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid in ground metres (--write-spacing)
   // Model-readiness inputs for the report (GIS runs).
@@ -60,7 +63,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
 
 // Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the
-// bounding-box diagonal / 20).
+// bounding-box diagonal / 20). Core code (poly_stage.cpp); everything else here is the GIS side.
 PreparedInput prepare_poly_input(const Options& opt, const LogFn& log);
 
 // Depths stage (GIS runs): the raster sampled at the vertices (positive up; the nearest valid

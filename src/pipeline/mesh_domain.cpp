@@ -3,6 +3,7 @@
 #include "base/error.hpp"
 #include "base/version.hpp"
 #include "io/writer.hpp"
+#include "pipeline/gis_backend.hpp"
 
 namespace fdr {
 namespace {
@@ -41,7 +42,7 @@ GisMesh mesh_domain(const DomainOptions& options, const ProgressFn& progress, co
 }
 
 void write_mesh(const Mesh& m, const std::string& path, const std::string& format) {
-  io::write_mesh(m.view, path, io::format_from_path(path, format), write_options(m));
+  pipeline::gis_backend().write_mesh(m.view, path, io::format_from_path(path, format), write_options(m));
 }
 
 void write_mesh(const GisMesh& m, const std::string& path, const std::string& format) {
@@ -51,7 +52,7 @@ void write_mesh(const GisMesh& m, const std::string& path, const std::string& fo
   io::WriteOptions wo = write_options(m);
   wo.metadata.push_back({"crs", m.crs_name});
   wo.repairs = m.repairs;
-  io::write_mesh(m.view, path, fmt, wo);
+  pipeline::gis_backend().write_mesh(m.view, path, fmt, wo);
 }
 
 }  // namespace fdr

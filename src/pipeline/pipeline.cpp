@@ -5,6 +5,7 @@
 #include "api/stages.hpp"
 #include "base/error.hpp"
 #include "mesh/take_view.hpp"
+#include "pipeline/gis_backend.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "pipeline/stages.hpp"
 #include "predicates/predicates.hpp"
@@ -24,9 +25,11 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
   PreparedInput in;
   if (plan.gis) {
-    gis::GisInput g = read_gis_input(opt, clock, progress, log);       // read (gis)
-    const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);   // spacing (sizing)
-    in = clean_gis_input(opt, std::move(g), sp, clock, log);           // clean, resample (pslg)
+    // read (gis), spacing (sizing), clean and resample (pslg): the GIS side (gis_backend.hpp)
+    in = gis_backend().prepare_gis(opt, clock, progress, log);
+    const predicates::Counters gis_calls = gis_backend().take_predicate_counters();  // a module counts apart
+    predicates::counters().filtered += gis_calls.filtered;
+    predicates::counters().exact += gis_calls.exact;
     result.crs_name = in.crs_name;
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
@@ -59,8 +62,8 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   result.mesh = mesh::take_view(tri);  // the report and writers read a compact copy; frees tri
   mesh::MeshView& m = result.mesh;
   if (plan.gis) {
-    m.crs_wkt = in.frame.wkt();
-    m.z = sample_depths(m, in, log);
+    m.crs_wkt = in.crs_wkt;
+    m.z = gis_backend().sample_depths(m, in, log);
   }
   clock.lap("depths");
 

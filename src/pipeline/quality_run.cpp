@@ -3,8 +3,7 @@
 #include "pipeline/quality_run.hpp"
 #include "api/stages.hpp"
 #include "base/error.hpp"
-#include "gis/raster_input.hpp"
-#include "io/reader.hpp"
+#include "pipeline/gis_backend.hpp"
 #include "quality/rss.hpp"
 #include "sizing/field_checks.hpp"
 #include "sizing/fields.hpp"
@@ -14,14 +13,14 @@
 namespace fdr::pipeline {
 
 quality::QualityReport run_quality(const QualityOptions& a, std::ostream* text) {
-  mesh::MeshView m = io::read_mesh(a.mesh);
+  mesh::MeshView m = gis_backend().read_mesh(a.mesh);  // GIS side (GPKG, UGRID readers)
   if (!a.spacing.empty() && !a.raster.empty())
     throw Error(ExitCode::kUsage, "give either --spacing or --raster, not both");
   sizing::SizingPtr f;
   if (!a.spacing.empty()) {
     f = fdr::spacing_in_frame(a.spacing, m.origin);  // as the .poly path of `mesh`
   } else if (!a.raster.empty()) {
-    sizing::Grid g = gis::read_raster_native(a.raster, m.origin);
+    sizing::Grid g = gis_backend().read_raster_native(a.raster, m.origin);
     f = std::make_shared<sizing::GridField>(std::move(g), "size raster " + a.raster);
   }
   double alpha = -1;

@@ -7,13 +7,12 @@
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
+#include "base/threads.hpp"
 #include "base/version.hpp"
-#include "io/write_many.hpp"
-#include "pipeline/reproject_mesh.hpp"
+#include "pipeline/gis_backend.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/rss.hpp"
 #include "quality/tin_error.hpp"
-#include "gis/raster_output.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -111,7 +110,7 @@ Plan plan_run(const Options& opt) {
 quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const Options& opt, const Plan& plan,
                                const TriangulateFigures& fig, quality::TriangleValues* tri_values, const LogFn& log) {
   std::optional<std::pair<double, double>> tin;  // terrain runs: the TIN against the DEM
-  if (in.dem && opt.vertical_tol) tin = tin_error(m, *in.dem, log);
+  if (in.dem && opt.vertical_tol) tin = gis_backend().tin_error(m, *in.dem, log);
   RunFigures rf;
   rf.cdt_s = fig.cdt_s;
   rf.refine_s = fig.refine.refine_s;
@@ -171,7 +170,7 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
   if (plan.gis && !opt.output_crs.empty() && !opt.outputs.empty()) {
     metric_triangle_values(m, f, r_over_f, min_angle, area);
     projected = m;
-    reproject_mesh(projected, in.frame, opt.output_crs);
+    gis_backend().reproject_mesh(projected, in, opt.output_crs);
     wo.f = nullptr;
     wo.triangle_r_over_f = &r_over_f;
     wo.triangle_min_angle = &min_angle;
@@ -191,7 +190,9 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
     }
     // Concurrent writers are safe: only GPKG, VTU and UGRID would evaluate f, and they get the
     // report's values instead (or the --output-crs ones, with wo.f null).
-    io::write_meshes(*to_write, opt.outputs, plan.formats, wo, io::max_threads());
+    // The writers are on the GIS side (GeoPackage: SQLite, UGRID: netCDF): loaded only when there
+    // are outputs.
+    if (!opt.outputs.empty()) gis_backend().write_meshes(*to_write, opt.outputs, plan.formats, wo, fdr::max_threads());
     for (std::size_t i = 0; i < opt.outputs.size(); ++i) {
       written.push_back(opt.outputs[i]);
       if (plan.formats[i] == io::Format::kSelafin) extra_paths.push_back(cli_path_of(opt.outputs[i]));
@@ -201,7 +202,7 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
         extra_paths.push_back((dot == std::string::npos ? o : o.substr(0, dot)) + ".ele");
       }
     }
-    if (plan.gis && !opt.write_spacing.empty()) gis::write_grid_geotiff(*in.spacing_grid, in.frame, opt.write_spacing);
+    if (plan.gis && !opt.write_spacing.empty()) gis_backend().write_spacing_geotiff(in, opt.write_spacing);
     result.report.run.write_s = since(t_write);
     result.report.run.total_s = since(t_start);
     result.report.run.peak_rss_mb = quality::peak_rss_mb_value();

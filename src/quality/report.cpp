@@ -97,6 +97,85 @@ double angle_at(Point2 apex, Point2 p, Point2 q) {
 void update_min(std::optional<double>& m, double v) { if (!m || v < *m) m = v; }
 void update_max(std::optional<double>& m, double v) { if (!m || v > *m) m = v; }
 
+// The angle histograms and extremes without trigonometry for most triangles, with the same
+// figures as atan2 (angle_at) for every triangle. The three angles of a triangle share |cross|
+// (twice its area), so an angle t at a corner with dot product d satisfies cot t = d/|cross|:
+// t >= phi  <=>  d <= |cross| cot(phi) (0 < phi < 180 deg). The smallest angle is at the largest d,
+// the largest at the smallest. fast() decides both bins that way when every comparison is clear
+// by a margin of 1e-9 L^2 (L the longest edge; rounding is ~1e-15 L^2, and atan2's ~1e-15 rad,
+// far inside the margin) on triangles that are not slivers (|cross| >= 1e-3 L^2, i.e. every angle
+// >= 0.057 deg), and calls atan2 only when the triangle may hold the smallest or the largest angle
+// so far; otherwise (false) the caller measures the angles with atan2 as before.
+class AngleBins {
+ public:
+  AngleBins(const Histogram& lo, const Histogram& hi) : lo_(edges(lo)), hi_(edges(hi)) {}
+  bool fast(Point2 a, Point2 b, Point2 c, double cross, QualityReport& r) {
+    const Point2 ab = b - a, bc = c - b, ca = a - c;
+    const double l2 = std::max({norm2(ab), norm2(bc), norm2(ca)});
+    const double acr = std::fabs(cross);
+    if (!(acr >= 1e-3 * l2) || !(l2 < kInf)) return false;  // slivers, degenerate, NaN, inf
+    const double d0 = -dot(ab, ca), d1 = -dot(bc, ab), d2 = -dot(ca, bc);  // at a, b, c
+    const double dmax = std::max({d0, d1, d2}), dmin = std::min({d0, d1, d2});
+    const double tol = 1e-9 * l2;
+    std::size_t bmin, bmax;
+    if (!bin(lo_, dmax, acr, tol, bmin) || !bin(hi_, dmin, acr, tol, bmax)) return false;
+    // Possibly a new extreme: the angles with atan2, as the slow path would.
+    if (!r.min_angle_deg || !r.max_angle_deg || dmax >= acr * cot_min_ - tol || dmin <= acr * cot_max_ + tol) {
+      const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+      update(r, std::min({ang[0], ang[1], ang[2]}), std::max({ang[0], ang[1], ang[2]}));
+    }
+    ++r.min_angle_histogram.counts[bmin];
+    ++r.max_angle_histogram.counts[bmax];
+    return true;
+  }
+  void update(QualityReport& r, double amin, double amax) {
+    if (!r.min_angle_deg || amin < *r.min_angle_deg) {
+      r.min_angle_deg = amin;
+      cot_min_ = cot_deg(amin);
+    }
+    if (!r.max_angle_deg || amax > *r.max_angle_deg) {
+      r.max_angle_deg = amax;
+      cot_max_ = cot_deg(amax);
+    }
+  }
+
+ private:
+  struct Edges {
+    std::vector<double> cot;  // cot of the inner bin edges lo + k*width, k = 1..n-1
+    bool ok = false;          // edges strictly inside (0, 180) deg
+  };
+  static double cot_deg(double deg) {
+    if (!(deg > 0)) return kInf;
+    if (!(deg < 180)) return -kInf;
+    return std::cos(deg / kDeg) / std::sin(deg / kDeg);
+  }
+  static Edges edges(const Histogram& h) {
+    Edges e;
+    e.ok = h.counts.size() >= 1 && h.width > 0;
+    for (std::size_t k = 1; e.ok && k < h.counts.size(); ++k) {
+      const double phi = h.lo + static_cast<double>(k) * h.width;
+      if (!(phi > 1 && phi < 179)) e.ok = false;
+      e.cot.push_back(cot_deg(phi));
+    }
+    return e;
+  }
+  // The bin of the angle with dot product d: the number of inner edges phi_k <= t (the first and
+  // last bins take the values outside, as Histogram::add). False when a comparison is unclear.
+  static bool bin(const Edges& e, double d, double acr, double tol, std::size_t& out) {
+    if (!e.ok) return false;
+    std::size_t k = 0;
+    for (; k < e.cot.size(); ++k) {  // d - acr cot(phi_k) increases with k; <= 0 means t >= phi_k
+      const double g = d - acr * e.cot[k];
+      if (std::fabs(g) <= tol) return false;
+      if (g > 0) break;
+    }
+    out = k;
+    return true;
+  }
+  Edges lo_, hi_;
+  double cot_min_ = kInf, cot_max_ = -kInf;
+};
+
 bool usable_spacing(double v) { return std::isfinite(v) && v > 0; }
 
 }  // namespace
@@ -265,6 +344,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     else per_triangle->r_over_f.clear();
   }
 
+  AngleBins angles(r.min_angle_histogram, r.max_angle_histogram);
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     if (t + 8 < m.triangles.size())  // corners are scattered in memory: fetch them ahead
       for (Index v : m.triangles[t + 8])
@@ -293,17 +373,16 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     const double lmin = std::min({la, lb, lc}), lmax = std::max({la, lb, lc});
     for (Index v : tri) el[v] = std::max(el[v], lmax);
 
-    const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
-    const double amin = std::min({ang[0], ang[1], ang[2]});
-    if (per_triangle) {
-      per_triangle->area[t] = 0.5 * cr;
-      per_triangle->min_angle_deg[t] = amin;
+    if (per_triangle) per_triangle->area[t] = 0.5 * cr;
+    if (per_triangle || !angles.fast(a, b, c, cr, r)) {  // the angles themselves (atan2)
+      const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+      const double amin = std::min({ang[0], ang[1], ang[2]});
+      if (per_triangle) per_triangle->min_angle_deg[t] = amin;
+      const double amax = std::max({ang[0], ang[1], ang[2]});
+      angles.update(r, amin, amax);
+      r.min_angle_histogram.add(amin);
+      r.max_angle_histogram.add(amax);
     }
-    const double amax = std::max({ang[0], ang[1], ang[2]});
-    update_min(r.min_angle_deg, amin);
-    update_max(r.max_angle_deg, amax);
-    r.min_angle_histogram.add(amin);
-    r.max_angle_histogram.add(amax);
 
     // Circumcenter relative to a; a zero determinant means collinear corners (R infinite).
     double radius = kInf;

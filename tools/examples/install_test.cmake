@@ -21,4 +21,7 @@ if(WITH_GIS)
   if(NOT EXISTS ${WORK_DIR}/square.2dm)
     message(FATAL_ERROR "mesh_domain_example wrote no ${WORK_DIR}/square.2dm")
   endif()
+  # The installed fdrmesh command loads its GIS module from the prefix, and only when needed.
+  run(${CMAKE_COMMAND} -DBIN=${prefix}/bin/fdrmesh -DTESTDATA=${SOURCE_DIR}/testdata -DOUT=${WORK_DIR}/gis_module
+      -DEXPECT_DIR=${prefix}/${LIBDIR}/fdrmesh -P ${SOURCE_DIR}/src/cli/tests/gis_module_test.cmake)
 endif()

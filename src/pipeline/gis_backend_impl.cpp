@@ -1,0 +1,64 @@
+// The GIS side of the pipeline as one table (gis_backend.hpp): built into fdr_pipeline, and
+// exported by the module fdrmesh_gis.so that the fdrmesh command loads when a run needs it.
+#include "base/error.hpp"
+#include "gis/raster_input.hpp"
+#include "gis/raster_output.hpp"
+#include "io/reader.hpp"
+#include "io/write_many.hpp"
+#include "pipeline/gis_backend.hpp"
+#include "pipeline/reproject_mesh.hpp"
+
+namespace fdr::pipeline {
+namespace {
+
+PreparedInput prepare_gis(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
+  gis::GisInput g = read_gis_input(opt, clock, progress, log);       // read (gis)
+  const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);   // spacing (sizing)
+  return clean_gis_input(opt, std::move(g), sp, clock, log);         // clean, resample (pslg)
+}
+
+const gis::Frame& frame_of(const PreparedInput& in) {
+  if (!in.frame) throw Error(ExitCode::kInternal, "no working CRS (not a GIS run)");
+  return *in.frame;
+}
+
+void reproject(mesh::MeshView& m, const PreparedInput& in, const std::string& crs) {
+  reproject_mesh(m, frame_of(in), crs);
+}
+
+void write_spacing(const PreparedInput& in, const std::string& path) {
+  gis::write_grid_geotiff(*in.spacing_grid, frame_of(in), path);
+}
+
+void write_many(const mesh::MeshView& m, const std::vector<std::string>& paths, const std::vector<io::Format>& fmts,
+                const io::WriteOptions& wo, unsigned threads) {
+  io::write_meshes(m, paths, fmts, wo, threads);
+}
+
+predicates::Counters take_counters() {
+  const predicates::Counters c = predicates::counters();
+  predicates::reset_counters();
+  return c;
+}
+
+mesh::MeshView read_mesh(const std::string& path) { return io::read_mesh(path); }
+
+const GisBackend kTable{
+    kVersion,
+    FDR_GIS_BACKEND_LAYOUT,
+    &prepare_gis,
+    &pipeline::sample_depths,
+    &pipeline::tin_error,
+    &reproject,
+    &write_many,
+    &io::write_mesh,
+    &write_spacing,
+    &read_mesh,
+    &gis::read_raster_native,
+    &take_counters,
+};
+
+}  // namespace
+}  // namespace fdr::pipeline
+
+extern "C" const fdr::pipeline::GisBackend* fdr_builtin_gis_backend() { return &fdr::pipeline::kTable; }
