@@ -898,9 +898,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     const double hair = 0.05 * o.close_width;
     auto o2_job = std::async(std::launch::async, [&W, r2, hair] {
       GdalQuiet q2;
-      return r2 > 0 ? opening(*W, r2) : GeomPtr(W->clone());
+      return r2 > 0 ? CoastRestorer(W.get(), hair).restore(opening(*W, r2)) : GeomPtr(W->clone());
     });
-    GeomPtr O1 = opening(*W, r1);
+    GeomPtr O1 = CoastRestorer(W.get(), hair).restore(opening(*W, r1));
     GeomPtr O2 = o2_job.get();
     lap("O1+O2");
     std::vector<std::unique_ptr<OGRPolygon>> comps;
