@@ -383,6 +383,341 @@ bool surely_valid(const Rings& rings) {
   return true;
 }
 
+// Gives the input's exact coast back wherever a buffer result runs within `hair` of it. Why:
+// GEOS rounds every corner of an offset with arc points, so after a closing or an opening the
+// unchanged coast comes back as 2-5 points per input vertex (113k input vertices of an ocean
+// basin became 600k), which every later overlay, the cleaning (thousands of snap/zero-length
+// repairs) and the resampling pay for. A run of consecutive result vertices each within hair of
+// the same input ring, advancing along it (each step no longer along the input than the step
+// itself plus 2 hair), is replaced by its two end vertices and the input vertices between them;
+// only places that moved more than hair (the closed inlets, the rounded corners that matter)
+// keep the buffers' vertices. A polygon that the replacement would make invalid (checked with
+// the exact contact finder, GEOS deciding when that is unsure) is left as it was.
+class CoastRestorer {
+ public:
+  CoastRestorer(const OGRGeometry* input, double hair) : hair_(hair), on_tol_(1e-3 * hair) {
+    std::vector<std::unique_ptr<OGRPolygon>> ps;
+    polygons_of(input, ps);
+    Box2 box;
+    std::size_t nseg = 0;
+    double total = 0;
+    for (const auto& w : ps)
+      for (int k = -1; k < w->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? w->getExteriorRing() : w->getInteriorRing(k);
+        InRing ir;
+        for (int i = 0; i + 1 < r->getNumPoints(); ++i) ir.p.push_back({r->getX(i), r->getY(i)});
+        if (ir.p.size() < 3) continue;
+        ir.cum.resize(ir.p.size() + 1, 0.0);
+        for (std::size_t i = 0; i < ir.p.size(); ++i) {
+          box.add(ir.p[i]);
+          ir.cum[i + 1] = ir.cum[i] + dist(ir.p[i], ir.p[(i + 1) % ir.p.size()]);
+        }
+        ir.first_seg = nseg;
+        nseg += ir.p.size();
+        total += ir.cum.back();
+        rings_.push_back(std::move(ir));
+      }
+    if (rings_.empty() || !(hair > 0)) return;
+    box.lo = box.lo - Point2{2 * hair, 2 * hair};
+    box.hi = box.hi + Point2{2 * hair, 2 * hair};
+    box_ = box;
+    grid_ = std::make_unique<pslg::SegmentGrid>(box, nseg, std::max(total / static_cast<double>(nseg), hair));
+    seg_ring_.reserve(nseg);
+    for (std::size_t k = 0; k < rings_.size(); ++k) {
+      const auto& ir = rings_[k];
+      for (std::size_t i = 0; i < ir.p.size(); ++i) {
+        grid_->add_segment(static_cast<Index>(seg_ring_.size()), ir.p[i], ir.p[(i + 1) % ir.p.size()]);
+        seg_ring_.push_back({static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(i)});
+      }
+    }
+  }
+
+  // g with the input's coast given back (a new geometry; g itself when nothing changes).
+  GeomPtr restore(GeomPtr g) const {
+    if (!grid_ || !g || g->IsEmpty()) return g;
+    std::vector<std::unique_ptr<OGRPolygon>> ps;
+    polygons_of(g.get(), ps);
+    bool any = false;
+    for (auto& p : ps) {
+      std::vector<Plan> plans;
+      std::size_t nruns = 0;
+      for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
+        Plan pl;
+        for (int i = 0; i + 1 < r->getNumPoints(); ++i) pl.v.push_back({r->getX(i), r->getY(i)});
+        plan_ring(pl);
+        pl.first_run = nruns;
+        nruns += pl.runs.size();
+        plans.push_back(std::move(pl));
+      }
+      if (nruns == 0) continue;
+      // Runs whose new segments meet anything (other than at a shared end) are given up, round
+      // after round, until the only contacts left are the buffer's own (valid in GEOS).
+      std::vector<char> off(nruns, 0);
+      Rings rings;
+      bool settled = false;
+      for (int round = 0; round < 8 && !settled; ++round) {
+        rings.clear();
+        std::vector<Point2> pts;
+        std::vector<pslg::Segment> segs;
+        std::vector<long> tag;  // per segment: global run id, or -1 (the buffer's own)
+        for (const auto& pl : plans) {
+          std::vector<long> st;
+          std::vector<Point2> w = build_ring(pl, off, st);
+          const auto base = static_cast<Index>(pts.size());
+          for (std::size_t i = 0; i < w.size(); ++i) {
+            pts.push_back(w[i]);
+            segs.push_back({base + static_cast<Index>(i), base + static_cast<Index>((i + 1) % w.size())});
+            tag.push_back(st[i]);
+          }
+          rings.push_back(std::move(w));
+        }
+        std::vector<std::size_t> seg_of_pt_prev(pts.size()), seg_of_pt_next(pts.size());
+        for (std::size_t si = 0; si < segs.size(); ++si) {
+          seg_of_pt_next[static_cast<std::size_t>(segs[si].a)] = si;
+          seg_of_pt_prev[static_cast<std::size_t>(segs[si].b)] = si;
+        }
+        std::vector<std::size_t> bad;  // segments in a contact
+        const pslg::Contacts ct = pslg::find_contacts(pts, segs, nullptr);
+        for (const auto& [x, y] : ct.segment_pairs) { bad.push_back(static_cast<std::size_t>(x)); bad.push_back(static_cast<std::size_t>(y)); }
+        for (const auto& [v, sg] : ct.vertex_on_segment) {
+          bad.push_back(static_cast<std::size_t>(sg));
+          bad.push_back(seg_of_pt_prev[static_cast<std::size_t>(v)]);
+          bad.push_back(seg_of_pt_next[static_cast<std::size_t>(v)]);
+        }
+        {  // a vertex repeated (rings touching there): the runs that brought it
+          std::vector<std::size_t> order(pts.size());
+          for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+          std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+            return pts[x].x != pts[y].x ? pts[x].x < pts[y].x : (pts[x].y != pts[y].y ? pts[x].y < pts[y].y : x < y);
+          });
+          for (std::size_t i = 0; i + 1 < order.size(); ++i)
+            if (pts[order[i]] == pts[order[i + 1]])
+              for (std::size_t q : {order[i], order[i + 1]}) {
+                bad.push_back(seg_of_pt_prev[q]);
+                bad.push_back(seg_of_pt_next[q]);
+              }
+        }
+        settled = true;
+        for (std::size_t si : bad)
+          if (tag[si] >= 0 && !off[static_cast<std::size_t>(tag[si])]) {
+            off[static_cast<std::size_t>(tag[si])] = 1;
+            settled = false;
+          }
+      }
+      if (std::getenv("FDR_DEBUG_FILTER") && plans[0].v.size() > 5000) {
+        std::size_t nin = 0, nout = 0, noff = 0;
+        for (const auto& pl : plans) nin += pl.v.size();
+        for (const auto& r : rings) nout += r.size();
+        for (char c : off) noff += c != 0;
+        std::fprintf(stderr, "restore: %zu -> %zu vertices, %zu runs, %zu given up, settled %d\n", nin, nout, nruns,
+                     noff, settled);
+      }
+      if (!settled) continue;  // (cap reached: the buffer's coordinates stay)
+      bool changed = false;
+      for (std::size_t k = 0; k < rings.size() && !changed; ++k) changed = rings[k] != plans[k].v;
+      if (!changed) continue;
+      for (const auto& r : rings)
+        if (r.size() < 3) changed = false;
+      if (!changed) continue;
+      *p = to_ogr_closed(rings);
+      any = true;
+    }
+    if (!any) return g;
+    return GeomPtr(multi(ps).release());
+  }
+
+ private:
+  struct InRing {
+    std::vector<Point2> p;    // without the closing repeat
+    std::vector<double> cum;  // arc length at each vertex (cum[n] = perimeter)
+    std::size_t first_seg = 0;
+  };
+  struct Where {
+    int ring = -1;
+    double s = 0;  // position: segment index + fraction
+    double d = 0;  // distance to the input
+  };
+
+  static OGRPolygon to_ogr_closed(const Rings& rings) {
+    OGRPolygon p;
+    for (const auto& ring : rings) {
+      OGRLinearRing r;
+      r.setNumPoints(static_cast<int>(ring.size()) + 1, FALSE);
+      for (std::size_t i = 0; i < ring.size(); ++i) r.setPoint(static_cast<int>(i), ring[i].x, ring[i].y);
+      r.setPoint(static_cast<int>(ring.size()), ring[0].x, ring[0].y);
+      p.addRing(&r);
+    }
+    return p;
+  }
+
+  Where locate(Point2 q, std::vector<Index>& cand) const {
+    Where w;
+    if (!box_.contains(q)) return w;
+    Box2 b;
+    b.add(q - Point2{hair_, hair_});
+    b.add(q + Point2{hair_, hair_});
+    grid_->segments_near(b, &cand);
+    double best = hair_;
+    Index best_id = 0;
+    for (Index id : cand) {
+      const auto [k, i] = seg_ring_[static_cast<std::size_t>(id)];
+      const auto& ir = rings_[k];
+      const Point2 a = ir.p[i], c = ir.p[(i + 1) % ir.p.size()];
+      const double d = dist_to_segment(q, a, c);
+      if (d < best || (d == best && w.ring >= 0 && id < best_id)) {
+        best = d;
+        best_id = id;
+        w.d = d;
+        const Point2 ac = c - a;
+        const double l2 = ac.x * ac.x + ac.y * ac.y;
+        double t = l2 > 0 ? ((q.x - a.x) * ac.x + (q.y - a.y) * ac.y) / l2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        w.ring = static_cast<int>(k);
+        // (the end of the last segment is position 0, not n: positions stay in [0, n))
+        w.s = t < 1 ? static_cast<double>(i) + t : static_cast<double>((i + 1) % ir.p.size());
+      }
+    }
+    return w;
+  }
+  double arc_at(const InRing& ir, double s) const {
+    const std::size_t i = static_cast<std::size_t>(s);
+    const double t = s - static_cast<double>(i);
+    return ir.cum[i] + t * (ir.cum[i + 1] - ir.cum[i]);
+  }
+
+  struct Run {
+    std::size_t a = 0, len = 0;  // from vertex a, len links
+    int dir = 0;                 // along the input ring: +1, -1, 0 (no input vertex between)
+  };
+  struct Plan {
+    std::vector<Point2> v;       // the buffer's ring
+    std::vector<Where> at;
+    std::size_t start = 0;       // walk from here
+    std::vector<Run> runs;       // in walking order; vertices not in a run stay
+    std::size_t first_run = 0;   // global id of runs[0]
+  };
+
+  void plan_ring(Plan& pl) const {
+    const auto& v = pl.v;
+    const std::size_t n = v.size();
+    if (n < 3) return;
+    std::vector<Index> cand;
+    pl.at.resize(n);
+    for (std::size_t i = 0; i < n; ++i) pl.at[i] = locate(v[i], cand);
+    // link[i]: v[i] -> v[i+1] follows the input: +1 forwards, -1 backwards, 2 either (same
+    // place), 0 no.
+    std::vector<int> link(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Where a = pl.at[i], b = pl.at[(i + 1) % n];
+      if (a.ring < 0 || a.ring != b.ring) continue;
+      const auto& ir = rings_[static_cast<std::size_t>(a.ring)];
+      const double L = ir.cum.back();
+      double fwd = arc_at(ir, b.s) - arc_at(ir, a.s);
+      if (fwd < 0) fwd += L;
+      const double bwd = fwd > 0 ? L - fwd : 0;
+      const double lim = dist(v[i], v[(i + 1) % n]) + 2 * hair_;
+      if (fwd == 0) link[i] = 2;
+      else if (fwd <= lim && fwd <= bwd) link[i] = 1;
+      else if (bwd <= lim) link[i] = -1;
+    }
+    // Start after a broken link (a ring that follows the input all the way round: anywhere).
+    bool broken = false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (link[i] == 0) { pl.start = (i + 1) % n; broken = true; break; }
+    std::size_t i = 0;
+    while (i < n) {
+      // Longest run from here with one direction (a ring that follows the input all the way
+      // round closes onto its start: n links).
+      Run run;
+      run.a = (pl.start + i) % n;
+      const std::size_t max_len = broken ? n - 1 - i : n - i;
+      while (run.len < max_len) {
+        const int l = link[(pl.start + i + run.len) % n];
+        if (l == 0) break;
+        if (l != 2) {
+          if (run.dir == 0) run.dir = l;
+          else if (l != run.dir) break;
+        }
+        ++run.len;
+      }
+      if (run.len == 0) { ++i; continue; }
+      const std::size_t step = run.len;
+      // Its ends must lie on the input (up to rounding): a run ending at an arc point off the
+      // coast would replace the coast's own points next to it by a chord from there.
+      if (run.len < n) {
+        while (run.len > 0 && pl.at[run.a].d > on_tol_) { run.a = (run.a + 1) % n; --run.len; }
+        while (run.len > 0 && pl.at[(run.a + run.len) % n].d > on_tol_) --run.len;
+      }
+      // A run of one link with no input vertex between changes nothing: not a run.
+      if (run.len >= 2 || (run.len == 1 && run.dir != 0)) pl.runs.push_back(run);
+      i += step;
+    }
+  }
+
+  // The ring with every run not switched off replaced by the input's vertices; seg_tag gets,
+  // per segment (from vertex k to k+1), the global run id it belongs to or -1.
+  std::vector<Point2> build_ring(const Plan& pl, const std::vector<char>& off, std::vector<long>& seg_tag) const {
+    const auto& v = pl.v;
+    const std::size_t n = v.size();
+    std::vector<Point2> out;
+    out.reserve(n);
+    seg_tag.clear();
+    auto push = [&](Point2 p, long tag) {
+      if (!out.empty() && out.back() == p) {
+        if (tag >= 0) seg_tag.back() = tag;
+        return;
+      }
+      out.push_back(p);
+      seg_tag.push_back(tag);
+    };
+    std::size_t r = 0;  // next run
+    for (std::size_t i = 0; i < n;) {
+      const std::size_t a = (pl.start + i) % n;
+      if (r < pl.runs.size() && pl.runs[r].a == a && !off[pl.first_run + r]) {
+        const Run& run = pl.runs[r];
+        const long tag = static_cast<long>(pl.first_run + r);
+        push(v[a], tag);
+        const std::size_t b = (a + run.len) % n;
+        if (run.dir != 0) {
+          const auto& ir = rings_[static_cast<std::size_t>(pl.at[a].ring)];
+          const double m = static_cast<double>(ir.p.size());
+          const double s0 = pl.at[a].s;
+          double s1 = pl.at[b].s;
+          const bool whole = run.len == n;
+          if (run.dir > 0) {
+            if (s1 < s0 || (whole && s1 == s0)) s1 += m;
+            for (double k = std::floor(s0) + 1; k < s1; k += 1)
+              push(ir.p[static_cast<std::size_t>(k) % ir.p.size()], tag);
+          } else {
+            if (s1 > s0 || (whole && s1 == s0)) s1 -= m;
+            for (double k = std::ceil(s0) - 1; k > s1; k -= 1)
+              push(ir.p[static_cast<std::size_t>(k + 2 * m) % ir.p.size()], tag);
+          }
+        }
+        i += run.len;
+        ++r;
+        continue;
+      }
+      if (r < pl.runs.size() && pl.runs[r].a == a) ++r;  // switched off: the buffer's vertices
+      push(v[a], -1);
+      ++i;
+    }
+    while (out.size() > 1 && out.front() == out.back()) {
+      out.pop_back();
+      seg_tag.pop_back();
+    }
+    return out;
+  }
+
+  double hair_;
+  double on_tol_ = 0;  // a vertex this close to the input is on it (rounding of the buffers)
+  Box2 box_;
+  std::vector<InRing> rings_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> seg_ring_;  // segment id -> (ring, index)
+  std::unique_ptr<pslg::SegmentGrid> grid_;
+};
+
 }  // namespace
 
 Polygons offset_polygons(const Polygons& input, double d) {
@@ -558,11 +893,14 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     const double r2 = 0.5 * std::clamp(o.min_feature, 0.0, o.close_width);
     // The two openings are independent: one on each core (OGR gives every GEOS call its own
     // context, so this is thread-safe; the result does not depend on the thread count).
-    auto o2_job = std::async(std::launch::async, [&W, r2] {
+    // Each opening gives the closed water's exact coast back where it runs within the snapping
+    // distance of it (CoastRestorer), so O1 and O2 coincide bitwise there.
+    const double hair = 0.05 * o.close_width;
+    auto o2_job = std::async(std::launch::async, [&W, r2, hair] {
       GdalQuiet q2;
-      return r2 > 0 ? opening(*W, r2) : GeomPtr(W->clone());
+      return r2 > 0 ? CoastRestorer(W.get(), hair).restore(opening(*W, r2)) : GeomPtr(W->clone());
     });
-    GeomPtr O1 = opening(*W, r1);
+    GeomPtr O1 = CoastRestorer(W.get(), hair).restore(opening(*W, r1));
     GeomPtr O2 = o2_job.get();
     lap("O1+O2");
     std::vector<std::unique_ptr<OGRPolygon>> comps;
@@ -599,6 +937,16 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       if (touching >= 2) ++res.channels_kept;  // a connection between water bodies
       keep.push_back(std::move(piece));         // or a water body of its own
     }
+    if (dbg_time) {
+      std::size_t nk = 0, vk = 0;
+      for (const auto& k : keep) {
+        ++nk;
+        vk += k->getExteriorRing()->getNumPoints();
+        for (int q = 0; q < k->getNumInteriorRings(); ++q) vk += k->getInteriorRing(q)->getNumPoints();
+      }
+      std::fprintf(stderr, "filter pieces %zu (O1 comps %zu), kept %zu with %zu vertices, dropped %zu\n", pieces.size(),
+                   comps.size(), nk, vk, dropped.size());
+    }
     lap("classify");
     R = union_pieces(keep, grow, "union of the kept water");
     lap("union kept");
@@ -607,7 +955,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     // the connection scale.
     // Only where such a point exists: GEOS writes every point where rings meet as a vertex of
     // each, so a vertex that occurs twice (or a ring that repeats one) finds them all.
-    if (r2 > 0 && has_pinch(R.get())) R = opening(*R, r2);
+    if (r2 > 0 && has_pinch(R.get())) {
+      GeomPtr opened = opening(*R, r2);
+      R = CoastRestorer(R.get(), hair).restore(std::move(opened));
+    }
     lap("final opening");
   } else {
     R.reset(W->clone());
@@ -717,6 +1068,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //    (and a vertex with a slight turn as two close arc points). Every result vertex within
   //    5 % of --close-width of an input vertex takes that vertex's exact coordinates, so coast,
   //    breaklines, open boundaries and fixed points still meet exactly where nothing was removed.
+  if (o.close_width > 0) R = CoastRestorer(W0.get(), 0.05 * o.close_width).restore(std::move(R));
+  lap("restore");
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
   if (o.close_width > 0) {

@@ -247,6 +247,83 @@ std::vector<Point2> curve_points(const OGRSimpleCurve* c) {
   return v;
 }
 
+// Densification of geographic segments. Why: a lon/lat segment means the straight line in
+// lon/lat (a parallel, a meridian, a rhumb-like curve), but the working frame would join its ends
+// by a chord; on an ocean basin the 46-degree bottom side of a region box as one chord crosses
+// the Antilles. A segment whose longitude or latitude span exceeds kGeoStep degrees gets
+// k - 1 points at j/k of the way, k = ceil(span / kGeoStep). The points are computed from the
+// segment's lexicographically smaller end, so the same source segment gives bitwise the same
+// points in every layer and in either direction (a polygon ring and an open-boundary line drawn
+// along it meet exactly).
+constexpr double kGeoStep = 0.1;
+constexpr double kGeoMaxPieces = 100000;  // cap: a segment never becomes more than this many
+
+// Appends the interior points of segment a -> b (in order from a); returns how many.
+std::size_t densify_segment(Point2 a, Point2 b, std::vector<Point2>& out) {
+  const double span = std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
+  if (!(span > kGeoStep)) return 0;
+  const int k = static_cast<int>(std::min(std::ceil(span / kGeoStep), kGeoMaxPieces));
+  const bool fwd = a.x < b.x || (a.x == b.x && a.y <= b.y);
+  const Point2 lo = fwd ? a : b, hi = fwd ? b : a;
+  for (int i = 1; i < k; ++i) {
+    const double t = static_cast<double>(fwd ? i : k - i) / k;
+    out.push_back({lo.x + (hi.x - lo.x) * t, lo.y + (hi.y - lo.y) * t});
+  }
+  return static_cast<std::size_t>(k - 1);
+}
+
+// pts densified (closed: the ring's closing segment too). src (optional) receives, per output
+// segment, the index of the source segment it lies on.
+std::vector<Point2> densify(const std::vector<Point2>& pts, bool closed, GisCounts& counts,
+                            std::vector<std::uint32_t>* src = nullptr) {
+  std::vector<Point2> out;
+  out.reserve(pts.size());
+  if (src) src->clear();
+  const std::size_t n = pts.size(), nseg = closed ? n : (n == 0 ? 0 : n - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(pts[i]);
+    if (src) src->push_back(static_cast<std::uint32_t>(i));
+    if (i >= nseg) continue;
+    const std::size_t added = densify_segment(pts[i], pts[(i + 1) % n], out);
+    if (added) {
+      ++counts.densified_segments;
+      counts.densify_points += added;
+      if (src) src->insert(src->end(), added, static_cast<std::uint32_t>(i));
+    }
+  }
+  return out;
+}
+
+// A line of layer L (vertices in L's CRS) in the local frame, densified as the domain's rings
+// are: in L's CRS when that is geographic; when L is projected but the domain layer is
+// geographic, in the domain's CRS (the line's vertices taken there first), so that an open
+// boundary in Web Mercator drawn along a lon/lat polygon's side gets the same points as the side.
+void line_to_local(std::vector<Point2>& pts, const OGRSpatialReference& srs, const OGRSpatialReference& dom_srs,
+                   const Frame& frame, const std::string& label, GisCounts& counts) {
+  if (srs.IsGeographic()) {
+    pts = densify(pts, false, counts);
+    frame.to_local_batch(pts, srs, label);
+    return;
+  }
+  if (dom_srs.IsGeographic() && !srs.IsSame(&dom_srs)) {
+    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&srs, &dom_srs));
+    std::vector<double> x(pts.size()), y(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) { x[i] = pts[i].x; y[i] = pts[i].y; }
+    if (ct && ct->Transform(pts.size(), x.data(), y.data())) {
+      std::vector<Point2> g(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i) g[i] = {x[i], y[i]};
+      std::size_t before = counts.densify_points;
+      g = densify(g, false, counts);
+      if (counts.densify_points != before) {
+        frame.to_local_batch(g, dom_srs, label);
+        pts = std::move(g);
+        return;
+      }
+    }
+  }
+  frame.to_local_batch(pts, srs, label);
+}
+
 // A ring as read: vertices (without the closing repeat) and where it came from.
 struct Ring {
   std::vector<Point2> pts;
@@ -329,7 +406,9 @@ bool inside_by_parity(Point2 p, const std::vector<Ring>& rings) {
 // Converts polygons in LayerData (source CRS) to rings in the local frame.
 void add_polygon_rings(const LayerData& L, const Frame& frame, const std::string& role_outer,
                        std::vector<Ring>& rings, std::vector<SourcePart>& parts, GisCounts& counts,
-                       std::vector<std::vector<std::vector<Point2>>>& polys) {
+                       std::vector<std::vector<std::vector<Point2>>>& polys,
+                       std::vector<std::vector<std::uint32_t>>* seg_source = nullptr) {
+  const bool geographic = L.srs.IsGeographic();
   // Gather every ring in one vector so that one batch transformation does the whole layer.
   std::vector<Point2> all;
   struct Pending { std::size_t begin, size; std::int64_t fid; int ring; std::size_t poly; };
@@ -349,6 +428,12 @@ void add_polygon_rings(const LayerData& L, const Frame& frame, const std::string
       for (const OGRLinearRing* r : *p) {
         std::vector<Point2> pts = curve_points(r);
         if (pts.size() >= 2 && pts.front() == pts.back()) pts.pop_back();
+        if (geographic || seg_source) {
+          std::vector<std::uint32_t> src;
+          if (geographic) pts = densify(pts, true, counts, seg_source ? &src : nullptr);
+          else for (std::uint32_t i = 0; i < pts.size(); ++i) src.push_back(i);
+          if (seg_source) seg_source->push_back(std::move(src));
+        }
         pending.push_back({all.size(), pts.size(), f.fid, ring_index++, polys.size() - 1});
         all.insert(all.end(), pts.begin(), pts.end());
       }
@@ -554,8 +639,9 @@ GisInput read_domain(const DomainOptions& o) {
   const Frame& frame = in.frame;
 
   std::vector<Ring> rings;
+  std::vector<std::vector<std::uint32_t>> seg_source;  // per ring: source segment of each segment
   add_polygon_rings(dom, frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
-                    in.domain_polygons);
+                    in.domain_polygons, on_box.empty() ? nullptr : &seg_source);
   if (rings.empty())
     throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
   for (const auto& poly : in.domain_polygons)
@@ -578,8 +664,9 @@ GisInput read_domain(const DomainOptions& o) {
     for (const auto& poly : on_box)
       for (const auto& flags : poly) {
         const auto& pts = rings[k].pts;
-        for (std::size_t i = 0; i < flags.size() && i < pts.size(); ++i)
-          if (flags[i]) open_segs.push_back({pts[i], pts[(i + 1) % pts.size()], 0});
+        const auto& src = seg_source[k];  // densified segment -> source segment (its flag)
+        for (std::size_t i = 0; i < src.size() && i < pts.size(); ++i)
+          if (src[i] < flags.size() && flags[src[i]]) open_segs.push_back({pts[i], pts[(i + 1) % pts.size()], 0});
         ++k;
       }
     open_fid_of_tag.push_back(-1);
@@ -652,7 +739,7 @@ GisInput read_domain(const DomainOptions& o) {
       open_fid_of_tag.push_back(f.fid);
       for (const auto* c : ls) {
         std::vector<Point2> pts = curve_points(c);
-        frame.to_local_batch(pts, ob.srs, ob.label());
+        line_to_local(pts, ob.srs, dom.srs, frame, ob.label(), in.counts);
         for (std::size_t i = 0; i + 1 < pts.size(); ++i) open_segs.push_back({pts[i], pts[i + 1], tag});
       }
     }
@@ -739,7 +826,7 @@ GisInput read_domain(const DomainOptions& o) {
       OGRMultiLineString local;
       for (const auto* c : ls) {
         std::vector<Point2> pts = curve_points(c);
-        frame.to_local_batch(pts, bl.srs, bl.label());
+        line_to_local(pts, bl.srs, dom.srs, frame, bl.label(), in.counts);
         OGRLineString l;
         for (const auto& p : pts) l.addPoint(p.x, p.y);
         local.addGeometry(&l);

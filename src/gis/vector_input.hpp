@@ -67,7 +67,11 @@ struct GisCounts {
   std::size_t polygons = 0;          // polygons (a MultiPolygon counts its members)
   std::size_t outer_rings = 0;
   std::size_t holes = 0;
-  std::size_t boundary_segments = 0;  // before cleaning
+  std::size_t boundary_segments = 0;  // before cleaning (after densification)
+  // Long segments of geographic (lon/lat) layers split on reading: a straight lon/lat segment is
+  // a curve in the working frame (a 46-degree box side as one chord crosses whole islands).
+  std::size_t densified_segments = 0; // source segments (rings, open lines, breaklines) split
+  std::size_t densify_points = 0;     // points inserted into them
   std::size_t open_segments = 0;      // boundary segments marked kOpen (before cleaning)
   std::size_t open_parts = 0;         // maximal runs of open segments along the rings
   std::size_t open_features = 0;      // features read from the open-boundary layer

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "base/error.hpp"
@@ -195,6 +196,68 @@ TEST(FeatureFilter, ValidAndInvalidInputsWithoutFilter) {
   const FeatureFilterResult c = filter_features({bow}, FeatureFilterOptions{});
   EXPECT_EQ(c.output_pieces, 2u);
   EXPECT_NEAR(area(c.polygons), 5e5, 1e-6);
+}
+
+}  // namespace
+}  // namespace fdr::gis
+
+namespace fdr::gis {
+namespace {
+
+// A 10 km basin whose south coast is a zigzag of 400 vertices 25 m apart turning by 25 degrees
+// (the buffers' arcs there start 2.8 m from each vertex, farther than the 1.25 m vertex snap,
+// but stay within 0.3 m of the coast), with a 5 m wide dead-end inlet in its north side.
+Polygons wavy_basin_with_inlet() {
+  Rings r(1);
+  for (int i = 0; i <= 400; ++i) r[0].push_back({25.0 * i, (i % 2) * 5.5});
+  r[0].push_back({10000, 10000});
+  r[0].push_back({5002.5, 10000});
+  r[0].push_back({5002.5, 11000});
+  r[0].push_back({4997.5, 11000});
+  r[0].push_back({4997.5, 10000});
+  r[0].push_back({0, 10000});
+  return {r};
+}
+
+TEST(FeatureFilter, UnchangedCoastComesBackAsTheInputsVertices) {
+  // The buffers return an unchanged coast as arc points around every input vertex; the filter
+  // gives the input's own vertices back there (CoastRestorer), so only the closed inlet and the
+  // rounded corners carry new vertices.
+  const Polygons in = wavy_basin_with_inlet();
+  const FeatureFilterResult r = filter_features(in, opts(100));  // close_width 25 m
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_GE(count(r, "narrow_water_closed"), 1u);
+  std::set<std::pair<double, double>> input;
+  for (const Point2 p : in[0][0]) input.insert({p.x, p.y});
+  auto near_change = [](Point2 p) {  // the inlet and the four corners (rounded by the opening)
+    const double d = 2 * 25.0;
+    if (p.x > 4997.5 - d && p.x < 5002.5 + d && p.y > 10000 - d) return true;
+    for (const Point2 c : {Point2{0, 0}, Point2{10000, 0}, Point2{10000, 10000},
+                           Point2{0, 10000}})
+      if (std::hypot(p.x - c.x, p.y - c.y) < d) return true;
+    return false;
+  };
+  std::size_t kept_input = 0, input_away = 0, new_away = 0;
+  std::set<std::pair<double, double>> out;
+  for (const Point2 p : r.polygons[0][0]) {
+    out.insert({p.x, p.y});
+    if (!near_change(p) && !input.count({p.x, p.y})) ++new_away;
+  }
+  for (const Point2 p : in[0][0]) {
+    if (near_change(p)) continue;
+    ++input_away;
+    kept_input += out.count({p.x, p.y});
+  }
+  EXPECT_EQ(new_away, 0u);               // no vertex of the buffers' own along unchanged coast
+  EXPECT_EQ(kept_input, input_away);     // and every input vertex there, bitwise
+  EXPECT_LT(r.polygons[0][0].size(), in[0][0].size() + 40);  // a few arcs at the corners only
+}
+
+TEST(FeatureFilter, CoastRestoreIsDeterministic) {
+  const FeatureFilterResult a = filter_features(wavy_basin_with_inlet(), opts(100));
+  const FeatureFilterResult b = filter_features(wavy_basin_with_inlet(), opts(100));
+  ASSERT_EQ(a.polygons.size(), b.polygons.size());
+  for (std::size_t i = 0; i < a.polygons.size(); ++i) EXPECT_EQ(a.polygons[i], b.polygons[i]);
 }
 
 }  // namespace
