@@ -126,6 +126,7 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--points-layer", "points-layer", field<&MeshOptions::points_layer>, "string", "NAME", "", "Input", "Layer of --points to read (default: the first)"},
       {"mesh", "--open-boundary-layer", "open-boundary-layer", field<&MeshOptions::open_boundary_layer>, "string", "NAME", "", "Input", "Layer of --open-boundary to read (default: the first)"},
       {"mesh", "--s_srs", "s_srs", field<&MeshOptions::s_srs>, "crs", "SRS", "", "Input", "CRS of input layers that carry none"},
+      {"mesh", "--densify", "densify", field<&MeshOptions::densify_deg>, "float", "DEG", "0 (chords, as GDAL)", "Input", "Lon/lat layers: segments longer than DEG degrees follow their lon/lat line (a box side its parallel) instead of the chord"},
       // mesh: CRS
       {"mesh", "--t_srs", "t_srs", field<&MeshOptions::t_srs>, "crs", "SRS", "auto: UTM zone, or a centred transverse Mercator for wide domains", "CRS", "Projected CRS to mesh in (EPSG:n, PROJ string or WKT)"},
       {"mesh", "--output-crs", "output-crs", field<&MeshOptions::output_crs>, "crs", "SRS", "", "CRS", "Write node coordinates in this CRS (same topology), e.g. EPSG:4326"},

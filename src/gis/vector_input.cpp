@@ -247,22 +247,22 @@ std::vector<Point2> curve_points(const OGRSimpleCurve* c) {
   return v;
 }
 
-// Densification of geographic segments. Why: a lon/lat segment means the straight line in
-// lon/lat (a parallel, a meridian, a rhumb-like curve), but the working frame would join its ends
-// by a chord; on an ocean basin the 46-degree bottom side of a region box as one chord crosses
-// the Antilles. A segment whose longitude or latitude span exceeds kGeoStep degrees gets
-// k - 1 points at j/k of the way, k = ceil(span / kGeoStep). The points are computed from the
+// Densification of geographic segments (DomainOptions::densify_deg, `--densify DEG`; off by
+// default, as in GDAL and QGIS, where a reprojected segment is the chord between its projected
+// ends). Why offer it: a lon/lat segment may mean the straight line in lon/lat (a parallel, a
+// meridian), and on an ocean basin the 46-degree bottom side of a region box as one chord crosses
+// the Antilles. A segment whose longitude or latitude span exceeds `step` degrees gets
+// k - 1 points at j/k of the way, k = ceil(span / step). The points are computed from the
 // segment's lexicographically smaller end, so the same source segment gives bitwise the same
 // points in every layer and in either direction (a polygon ring and an open-boundary line drawn
 // along it meet exactly).
-constexpr double kGeoStep = 0.1;
 constexpr double kGeoMaxPieces = 100000;  // cap: a segment never becomes more than this many
 
 // Appends the interior points of segment a -> b (in order from a); returns how many.
-std::size_t densify_segment(Point2 a, Point2 b, std::vector<Point2>& out) {
+std::size_t densify_segment(Point2 a, Point2 b, std::vector<Point2>& out, double step) {
   const double span = std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
-  if (!(span > kGeoStep)) return 0;
-  const int k = static_cast<int>(std::min(std::ceil(span / kGeoStep), kGeoMaxPieces));
+  if (!(step > 0) || !(span > step)) return 0;
+  const int k = static_cast<int>(std::min(std::ceil(span / step), kGeoMaxPieces));
   const bool fwd = a.x < b.x || (a.x == b.x && a.y <= b.y);
   const Point2 lo = fwd ? a : b, hi = fwd ? b : a;
   for (int i = 1; i < k; ++i) {
@@ -274,7 +274,7 @@ std::size_t densify_segment(Point2 a, Point2 b, std::vector<Point2>& out) {
 
 // pts densified (closed: the ring's closing segment too). src (optional) receives, per output
 // segment, the index of the source segment it lies on.
-std::vector<Point2> densify(const std::vector<Point2>& pts, bool closed, GisCounts& counts,
+std::vector<Point2> densify(const std::vector<Point2>& pts, bool closed, double step, GisCounts& counts,
                             std::vector<std::uint32_t>* src = nullptr) {
   std::vector<Point2> out;
   out.reserve(pts.size());
@@ -284,7 +284,7 @@ std::vector<Point2> densify(const std::vector<Point2>& pts, bool closed, GisCoun
     out.push_back(pts[i]);
     if (src) src->push_back(static_cast<std::uint32_t>(i));
     if (i >= nseg) continue;
-    const std::size_t added = densify_segment(pts[i], pts[(i + 1) % n], out);
+    const std::size_t added = densify_segment(pts[i], pts[(i + 1) % n], out, step);
     if (added) {
       ++counts.densified_segments;
       counts.densify_points += added;
@@ -299,9 +299,13 @@ std::vector<Point2> densify(const std::vector<Point2>& pts, bool closed, GisCoun
 // geographic, in the domain's CRS (the line's vertices taken there first), so that an open
 // boundary in Web Mercator drawn along a lon/lat polygon's side gets the same points as the side.
 void line_to_local(std::vector<Point2>& pts, const OGRSpatialReference& srs, const OGRSpatialReference& dom_srs,
-                   const Frame& frame, const std::string& label, GisCounts& counts) {
+                   const Frame& frame, const std::string& label, double step, GisCounts& counts) {
+  if (!(step > 0)) {
+    frame.to_local_batch(pts, srs, label);
+    return;
+  }
   if (srs.IsGeographic()) {
-    pts = densify(pts, false, counts);
+    pts = densify(pts, false, step, counts);
     frame.to_local_batch(pts, srs, label);
     return;
   }
@@ -313,7 +317,7 @@ void line_to_local(std::vector<Point2>& pts, const OGRSpatialReference& srs, con
       std::vector<Point2> g(pts.size());
       for (std::size_t i = 0; i < pts.size(); ++i) g[i] = {x[i], y[i]};
       std::size_t before = counts.densify_points;
-      g = densify(g, false, counts);
+      g = densify(g, false, step, counts);
       if (counts.densify_points != before) {
         frame.to_local_batch(g, dom_srs, label);
         pts = std::move(g);
@@ -407,8 +411,8 @@ bool inside_by_parity(Point2 p, const std::vector<Ring>& rings) {
 void add_polygon_rings(const LayerData& L, const Frame& frame, const std::string& role_outer,
                        std::vector<Ring>& rings, std::vector<SourcePart>& parts, GisCounts& counts,
                        std::vector<std::vector<std::vector<Point2>>>& polys,
-                       std::vector<std::vector<std::uint32_t>>* seg_source = nullptr) {
-  const bool geographic = L.srs.IsGeographic();
+                       double step, std::vector<std::vector<std::uint32_t>>* seg_source = nullptr) {
+  const bool geographic = L.srs.IsGeographic() && step > 0;
   // Gather every ring in one vector so that one batch transformation does the whole layer.
   std::vector<Point2> all;
   struct Pending { std::size_t begin, size; std::int64_t fid; int ring; std::size_t poly; };
@@ -430,7 +434,7 @@ void add_polygon_rings(const LayerData& L, const Frame& frame, const std::string
         if (pts.size() >= 2 && pts.front() == pts.back()) pts.pop_back();
         if (geographic || seg_source) {
           std::vector<std::uint32_t> src;
-          if (geographic) pts = densify(pts, true, counts, seg_source ? &src : nullptr);
+          if (geographic) pts = densify(pts, true, step, counts, seg_source ? &src : nullptr);
           else for (std::uint32_t i = 0; i < pts.size(); ++i) src.push_back(i);
           if (seg_source) seg_source->push_back(std::move(src));
         }
@@ -641,7 +645,7 @@ GisInput read_domain(const DomainOptions& o) {
   std::vector<Ring> rings;
   std::vector<std::vector<std::uint32_t>> seg_source;  // per ring: source segment of each segment
   add_polygon_rings(dom, frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
-                    in.domain_polygons, on_box.empty() ? nullptr : &seg_source);
+                    in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
   if (rings.empty())
     throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
   for (const auto& poly : in.domain_polygons)
@@ -739,7 +743,7 @@ GisInput read_domain(const DomainOptions& o) {
       open_fid_of_tag.push_back(f.fid);
       for (const auto* c : ls) {
         std::vector<Point2> pts = curve_points(c);
-        line_to_local(pts, ob.srs, dom.srs, frame, ob.label(), in.counts);
+        line_to_local(pts, ob.srs, dom.srs, frame, ob.label(), o.densify_deg, in.counts);
         for (std::size_t i = 0; i + 1 < pts.size(); ++i) open_segs.push_back({pts[i], pts[i + 1], tag});
       }
     }
@@ -826,7 +830,7 @@ GisInput read_domain(const DomainOptions& o) {
       OGRMultiLineString local;
       for (const auto* c : ls) {
         std::vector<Point2> pts = curve_points(c);
-        line_to_local(pts, bl.srs, dom.srs, frame, bl.label(), in.counts);
+        line_to_local(pts, bl.srs, dom.srs, frame, bl.label(), o.densify_deg, in.counts);
         OGRLineString l;
         for (const auto& p : pts) l.addPoint(p.x, p.y);
         local.addGeometry(&l);

@@ -34,6 +34,10 @@ struct DomainOptions {
   LayerRef points;          // points inside the domain become fixed vertices
   std::string s_srs;        // CRS for layers that have none (else such layers are kCrsError)
   std::string t_srs;        // working CRS; empty: automatic (choose_frame)
+  // Geographic layers: segments spanning more than this many degrees of longitude or latitude
+  // get points along their lon/lat line before projection (a box side follows its parallel);
+  // 0: a segment is the chord between its projected ends, as GDAL and QGIS draw it.
+  double densify_deg = 0;
 
   bool clean = true;        // run pslg::clean on the result
   double snap_distance_m = -1;  // < 0: default max(1e-6 * domain diameter, 0.01 m)

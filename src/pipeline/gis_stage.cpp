@@ -72,6 +72,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
   d.s_srs = opt.s_srs;
   d.t_srs = opt.t_srs;
+  d.densify_deg = opt.densify_deg;
   d.clean = false;
   // Resolution filter: union of overlapping polygons always; closing of sub-resolution water and
   // removal of small islands unless --keep-coast. hmin as below (default: domain diameter / 500).

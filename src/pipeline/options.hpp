@@ -50,6 +50,7 @@ struct Options {
   double channel_elements = 2.0;         // channel rule: elements across narrow water (0: off)
   std::optional<double> simplify;        // thin boundary vertices closer than factor * f
   std::optional<double> snap;            // snap distance (metres)
+  double densify_deg = 0;                // lon/lat segments longer than this follow their line (0: chords)
   // .poly/.node input: refuse conflicting constraints (exit 5 naming the first) instead of
   // resolving them (pslg::resolve).
   bool strict = false;

@@ -101,6 +101,8 @@ Plan plan_run(const Options& opt) {
                         !opt.size_raster.empty();
   const bool spacing_grid = !opt.raster.empty() || any_rule || opt.spacing.empty();
   if (spacing_grid && !(opt.gradation > 0)) throw Error(ExitCode::kUsage, "--gradation must be positive");
+  if (!(opt.densify_deg >= 0 && opt.densify_deg <= 90))
+    throw Error(ExitCode::kUsage, "--densify must be between 0 (off) and 90 degrees");
   if (!opt.keep_coast && !(opt.coast_tol >= 0)) throw Error(ExitCode::kUsage, "--coast-tol must be >= 0");
   if (!opt.write_spacing.empty() && !spacing_grid)
     throw Error(ExitCode::kUsage, "--write-spacing needs a raster-based spacing (give --raster or a rule)");

@@ -68,20 +68,14 @@ TEST(ReadDomain, ChesapeakeGeoJsonCountsAndMarkers) {
   EXPECT_EQ(in.counts.polygon_features, 5u);
   EXPECT_EQ(in.counts.outer_rings, 5u);
   EXPECT_EQ(in.counts.holes, 152u);
-  // 2141 points - 157 closing points = 1984 source segments; lon/lat segments longer than 0.1
-  // degree are densified on reading: 3 source segments (open sides) get 15 points in all, and
-  // the 3 open-line segments on them the same 15.
-  EXPECT_EQ(in.counts.densified_segments, 2u * 3u);
-  EXPECT_EQ(in.counts.densify_points, 2u * 15u);
-  EXPECT_EQ(in.counts.boundary_segments, 1984u + 15u);
+  EXPECT_EQ(in.counts.densified_segments, 0u);  // --densify is off by default (chords, as GDAL)
+  EXPECT_EQ(in.counts.boundary_segments, 1984u);  // 2141 points - 157 closing points
   EXPECT_EQ(in.counts.open_features, 12u);
   EXPECT_EQ(in.counts.open_parts, 12u);
-  // 26 open-boundary points in 12 lines = 14 source segments, 29 after densification (the open
-  // lines are densified exactly as the ring sides they lie on, so every piece matches).
-  EXPECT_EQ(in.counts.open_segments, 29u);
+  EXPECT_EQ(in.counts.open_segments, 14u);  // 26 open-boundary points in 12 lines
   const auto m = marker_counts(in.raw);
-  EXPECT_EQ(m.at(int(EdgeKind::kOpen)), 29u);
-  EXPECT_EQ(m.at(int(EdgeKind::kLand)) + m.at(int(EdgeKind::kIsland)) + 29u, 1984u + 15u);
+  EXPECT_EQ(m.at(int(EdgeKind::kOpen)), 14u);
+  EXPECT_EQ(m.at(int(EdgeKind::kLand)) + m.at(int(EdgeKind::kIsland)) + 14u, 1984u);
   EXPECT_EQ(distinct_parts(in.raw, EdgeKind::kIsland), 152u);
   EXPECT_EQ(distinct_parts(in.raw, EdgeKind::kOpen), 12u);
   // Every part id resolves to its source.
@@ -99,7 +93,7 @@ TEST(ReadDomain, ChesapeakeGeoJsonCountsAndMarkers) {
   // Cleaned: valid PSLG, markers kept, no segment lost beyond cleaning repairs.
   EXPECT_TRUE(pslg::find_crossings(in.pslg).empty());
   EXPECT_NO_THROW(pslg::validate(in.pslg, "chesapeake"));
-  EXPECT_EQ(marker_counts(in.pslg).at(int(EdgeKind::kOpen)), 29u);  // 14 source segments densified
+  EXPECT_EQ(marker_counts(in.pslg).at(int(EdgeKind::kOpen)), 14u);
   EXPECT_GE(in.snap_distance_m, 0.01);
 }
 
@@ -130,8 +124,7 @@ TEST(ReadDomain, WhereClauseSelectsMainWaterBody) {
   GisInput in = read_domain(o);
   EXPECT_EQ(in.counts.polygon_features, 1u);
   EXPECT_EQ(in.counts.holes, 152u);
-  // README: main body 1962 vertices (excl. closing); + 15 points densifying its long open sides.
-  EXPECT_EQ(in.counts.boundary_segments, 1962u + 15u);
+  EXPECT_EQ(in.counts.boundary_segments, 1962u);  // README: main body 1962 vertices (excl. closing)
   EXPECT_GE(in.counts.open_parts, 1u);
   EXPECT_LT(in.counts.open_parts, 12u);  // the 4 cut-off creeks carry the other open parts
 }
@@ -322,9 +315,17 @@ TEST(ReadDomain, MixedCrsOpenBoundaryIsReprojected) {
   GDALVectorTranslateOptionsFree(opt);
   GisInput in = read_domain(chesapeake(kChes + "chesapeake_mouth_water.geojson", out));
   EXPECT_EQ(in.counts.open_parts, 12u);
-  // 14 source segments, 29 after densification: the Mercator lines are densified in the water
-  // layer's lon/lat, so they get the polygon's points and every densified piece matches.
-  EXPECT_EQ(in.counts.open_segments, 29u);
+  EXPECT_EQ(in.counts.open_segments, 14u);
+  // With --densify 0.1: 14 source segments, 29 after densification (3 sides get 15 points); the
+  // Mercator lines are densified in the water layer's lon/lat, so they get the polygon's points
+  // and every densified piece matches.
+  DomainOptions d = chesapeake(kChes + "chesapeake_mouth_water.geojson", out);
+  d.densify_deg = 0.1;
+  GisInput dn = read_domain(d);
+  EXPECT_EQ(dn.counts.densify_points, 2u * 15u);
+  EXPECT_EQ(dn.counts.boundary_segments, 1984u + 15u);
+  EXPECT_EQ(dn.counts.open_parts, 12u);
+  EXPECT_EQ(dn.counts.open_segments, 29u);
 }
 
 TEST(ReadDomain, CurvesLinearizedAndZDropped) {
@@ -346,7 +347,7 @@ TEST(ReadDomain, CurvesLinearizedAndZDropped) {
 }
 
 TEST(ReadDomain, LongLonLatEdgeDensifiedAlikeInPolygonAndOpenLine) {
-  // A 10 x 4 degree lon/lat box; its bottom side (one 10-degree segment) is the open boundary,
+  // --densify 0.1. A 10 x 4 degree lon/lat box; its bottom side (one 10-degree segment) is the open boundary,
   // drawn in the opposite direction. Both are densified to 0.1 degree: 100 pieces each, and every
   // piece of the ring matches a piece of the line (bitwise the same points: the matching
   // tolerance here is 1e-7 of the domain size, far below a chord's sagitta of ~10 m).
@@ -365,6 +366,7 @@ TEST(ReadDomain, LongLonLatEdgeDensifiedAlikeInPolygonAndOpenLine) {
   DomainOptions o;
   o.domain = {poly, "", ""};
   o.open_boundary = {line, "", ""};
+  o.densify_deg = 0.1;
   GisInput in = read_domain(o);
   EXPECT_EQ(in.counts.densified_segments, 4u + 1u);         // 4 box sides + the open line
   EXPECT_EQ(in.counts.densify_points, 2u * (99u + 39u) + 99u);

@@ -86,10 +86,6 @@ def input_water(path, layer, srs):
     area, pieces, segs = 0.0, 0, []
     for f in lyr:
         g = f.GetGeometryRef().Clone()
-        if src.IsGeographic():
-            # fdrmesh densifies lon/lat segments longer than 0.1 degree on reading (a box side is a
-            # parallel, not the chord between its ends): compare with the same geometry.
-            g.Segmentize(0.1)
         g.Transform(ct)
         polys = [g] if g.GetGeometryType() in (ogr.wkbPolygon, ogr.wkbPolygon25D) else [g.GetGeometryRef(i) for i in range(g.GetGeometryCount())]
         for p in polys:
