@@ -230,14 +230,20 @@ GeomPtr opening(const OGRGeometry& g, double r) {
 }
 
 
+// An OGR ring from vertices without the closing repeat.
+OGRLinearRing closed_ring(const std::vector<Point2>& ring) {
+  OGRLinearRing r;
+  r.setNumPoints(static_cast<int>(ring.size()) + 1, FALSE);
+  for (std::size_t i = 0; i < ring.size(); ++i) r.setPoint(static_cast<int>(i), ring[i].x, ring[i].y);
+  r.setPoint(static_cast<int>(ring.size()), ring[0].x, ring[0].y);
+  return r;
+}
+
 OGRPolygon to_ogr(const Rings& rings) {
   OGRPolygon p;
   for (const auto& ring : rings) {
     if (ring.size() < 3) continue;
-    OGRLinearRing r;
-    r.setNumPoints(static_cast<int>(ring.size()) + 1, FALSE);
-    for (std::size_t i = 0; i < ring.size(); ++i) r.setPoint(static_cast<int>(i), ring[i].x, ring[i].y);
-    r.setPoint(static_cast<int>(ring.size()), ring[0].x, ring[0].y);
+    OGRLinearRing r = closed_ring(ring);
     p.addRing(&r);
   }
   return p;
@@ -542,10 +548,7 @@ class CoastRestorer {
   static OGRPolygon to_ogr_closed(const Rings& rings) {
     OGRPolygon p;
     for (const auto& ring : rings) {
-      OGRLinearRing r;
-      r.setNumPoints(static_cast<int>(ring.size()) + 1, FALSE);
-      for (std::size_t i = 0; i < ring.size(); ++i) r.setPoint(static_cast<int>(i), ring[i].x, ring[i].y);
-      r.setPoint(static_cast<int>(ring.size()), ring[0].x, ring[0].y);
+      OGRLinearRing r = closed_ring(ring);
       p.addRing(&r);
     }
     return p;

@@ -1,6 +1,7 @@
 // Read stage of GIS runs: layers into a projected local frame, the spacing from rasters and rules
 // (sizing::spacing_from_rules, gradient-limited), the PSLG cleaned and resampled; the .poly read
 // stage; the depths stage (raster sampled at the mesh's vertices) and the TIN error.
+#include "base/num_format.hpp"
 #include "pipeline/gis_stage.hpp"
 #include <algorithm>
 #include <cstdlib>
@@ -41,12 +42,7 @@ class ShiftedField : public sizing::SizingField {
   Point2 o_;
 };
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return num6(v); }
 
 }  // namespace
 

@@ -1,5 +1,6 @@
 // Read stage of .poly/.node runs (core: no GDAL/PROJ; moved from gis_stage.cpp): the PSLG in its
 // local frame, repairs reported, f from --spacing.
+#include "base/num_format.hpp"
 #include <map>
 #include <sstream>
 #include "api/stages.hpp"
@@ -8,12 +9,7 @@
 
 namespace fdr::pipeline {
 namespace {
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return num6(v); }
 }  // namespace
 
 PreparedInput prepare_poly_input(const Options& opt, const LogFn& log) {

@@ -1,4 +1,5 @@
 // snap_loose_ends (moved from pipeline/gis_stage.cpp: issue 8).
+#include "base/num_format.hpp"
 #include "pslg/snap_loose_ends.hpp"
 #include <algorithm>
 #include <cmath>
@@ -9,12 +10,7 @@
 
 namespace fdr::pslg {
 namespace {
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return num6(v); }
 }  // namespace
 
 // Breakline ends and free points lying within `tol` of a boundary segment they do not touch are

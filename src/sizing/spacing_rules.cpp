@@ -1,4 +1,5 @@
 // The GIS spacing rules on a grid (moved from pipeline/gis_stage.cpp: issue 8).
+#include "base/num_format.hpp"
 #include "sizing/spacing_rules.hpp"
 #include "sizing/channel_rule.hpp"
 #include <algorithm>
@@ -10,12 +11,7 @@
 
 namespace fdr::sizing {
 namespace {
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return num6(v); }
 }  // namespace
 
 RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {

@@ -2,6 +2,7 @@
 // brute force on random masks, distance_to_shore's fast path against brute force (exact near the
 // shore, bounded beyond), the gradient limiter against the brute-force largest alpha-Lipschitz
 // minorant, and the same bits for every thread count (FDR_THREADS).
+#include "sizing/tests/brute_distance.hpp"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,16 +95,7 @@ TEST(NearestSeed, EqualsBruteForceOnRandomMasks) {
     }
 }
 
-double brute_dist(Point2 p, const std::vector<std::pair<Point2, Point2>>& segs) {
-  double best = kInf;
-  for (const auto& [a, b] : segs) {
-    const Point2 d = b - a, w = p - a;
-    const double dd = dot(d, d), inv = dd > 0 ? 1.0 / dd : 0.0;  // distance_to_shore's arithmetic
-    const double t = std::clamp(dot(w, d) * inv, 0.0, 1.0);
-    best = std::min(best, norm2(p - (a + t * d)));
-  }
-  return std::sqrt(best);
-}
+using fdr::sizing::testing::brute_dist;
 
 // A wiggly closed coast (chained segments), a few islands and loose segments, all inside the grid.
 std::vector<std::pair<Point2, Point2>> random_shore(std::mt19937& rng, Box2 box, int n) {

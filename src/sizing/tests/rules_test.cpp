@@ -1,5 +1,6 @@
 // Tests of the raster rules: distance to shore against brute force, slope/wavelength/
 // curvature on analytic surfaces, combine_min and clamp conventions.
+#include "sizing/tests/brute_distance.hpp"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,16 +29,7 @@ Grid sample(Grid g, F f) {
   return g;
 }
 
-double brute_dist(Point2 p, const std::vector<std::pair<Point2, Point2>>& segs) {
-  double best = kInf;
-  for (const auto& [a, b] : segs) {
-    const Point2 d = b - a, w = p - a;
-    const double dd = dot(d, d), inv = dd > 0 ? 1.0 / dd : 0.0;  // distance_to_shore's arithmetic
-    const double t = std::clamp(dot(w, d) * inv, 0.0, 1.0);
-    best = std::min(best, norm2(p - (a + t * d)));
-  }
-  return std::sqrt(best);
-}
+using fdr::sizing::testing::brute_dist;
 
 TEST(DistanceToShore, EqualsBruteForce) {
   std::mt19937 rng(11);
