@@ -432,6 +432,11 @@ void add_polygon_rings(const LayerData& L, const Frame& frame, const std::string
       for (const OGRLinearRing* r : *p) {
         std::vector<Point2> pts = curve_points(r);
         if (pts.size() >= 2 && pts.front() == pts.back()) pts.pop_back();
+        if (L.srs.IsGeographic() && !geographic)  // long lon/lat segments kept as chords: say so
+          for (std::size_t i = 0, n = pts.size(); i < n; ++i) {
+            const Point2 a = pts[i], b = pts[(i + 1) % n];
+            if (std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y)) > 1.0) ++counts.long_chords;
+          }
         if (geographic || seg_source) {
           std::vector<std::uint32_t> src;
           if (geographic) pts = densify(pts, true, step, counts, seg_source ? &src : nullptr);

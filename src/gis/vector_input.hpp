@@ -76,6 +76,7 @@ struct GisCounts {
   // a curve in the working frame (a 46-degree box side as one chord crosses whole islands).
   std::size_t densified_segments = 0; // source segments (rings, open lines, breaklines) split
   std::size_t densify_points = 0;     // points inserted into them
+  std::size_t long_chords = 0;        // lon/lat ring segments over 1 degree kept as chords (no --densify)
   std::size_t open_segments = 0;      // boundary segments marked kOpen (before cleaning)
   std::size_t open_parts = 0;         // maximal runs of open segments along the rings
   std::size_t open_features = 0;      // features read from the open-boundary layer

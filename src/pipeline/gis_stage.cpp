@@ -98,6 +98,10 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
        " boundary segments, " + std::to_string(g.counts.open_parts) + " open-boundary parts, " +
        std::to_string(g.counts.breakline_segments) + " breakline segments, " + std::to_string(g.counts.fixed_points) +
        " fixed points; area " + num(g.domain_area_m2 / 1e6) + " km^2");
+  if (g.counts.long_chords > 0 && log)
+    log(LogLevel::kWarning, std::to_string(g.counts.long_chords) +
+                                " lon/lat boundary segments span more than 1 degree and are projected as straight "
+                                "chords (as GDAL does); --densify 0.1 makes them follow their lon/lat line");
   return g;
 }
 

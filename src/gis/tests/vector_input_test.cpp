@@ -366,8 +366,13 @@ TEST(ReadDomain, LongLonLatEdgeDensifiedAlikeInPolygonAndOpenLine) {
   DomainOptions o;
   o.domain = {poly, "", ""};
   o.open_boundary = {line, "", ""};
+  GisInput chords = read_domain(o);  // default: no densification, the 4 sides are chords (counted)
+  EXPECT_EQ(chords.counts.densified_segments, 0u);
+  EXPECT_EQ(chords.counts.long_chords, 4u);
+  EXPECT_EQ(chords.counts.open_segments, 1u);
   o.densify_deg = 0.1;
   GisInput in = read_domain(o);
+  EXPECT_EQ(in.counts.long_chords, 0u);
   EXPECT_EQ(in.counts.densified_segments, 4u + 1u);         // 4 box sides + the open line
   EXPECT_EQ(in.counts.densify_points, 2u * (99u + 39u) + 99u);
   EXPECT_EQ(in.counts.boundary_segments, 2u * (100u + 40u));  // 4 source segments
