@@ -222,6 +222,25 @@ bool has_pinch(const OGRGeometry* g) {
   return std::adjacent_find(v.begin(), v.end()) != v.end();
 }
 
+// Rebuilds every polygon of ps with the holes for which keep(hole, |area|) is true (called once
+// per hole, in order); true when some hole was dropped.
+template <class Keep>
+bool filter_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, Keep keep) {
+  bool dropped = false;
+  for (auto& p : ps) {
+    if (p->getNumInteriorRings() == 0) continue;
+    OGRPolygon q;
+    q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
+    for (int k = 0; k < p->getNumInteriorRings(); ++k) {
+      const OGRLinearRing* h = p->getInteriorRing(k);
+      if (keep(h, std::fabs(h->get_Area()))) q.addRing(const_cast<OGRLinearRing*>(h));
+      else dropped = true;
+    }
+    *p = q;
+  }
+  return dropped;
+}
+
 // open(g, r) = (g - r) + r. Empty when nothing of g is wider than 2r.
 GeomPtr opening(const OGRGeometry& g, double r) {
   GeomPtr eroded = offset(g, -r);
@@ -826,42 +845,32 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W.get(), wps);
     auto grown = std::make_unique<OGRMultiPolygon>();
-    bool changed = false;
-    for (auto& p : wps) {
-      if (p->getNumInteriorRings() == 0) continue;
-      OGRPolygon q;
-      q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
-      for (int k = 0; k < p->getNumInteriorRings(); ++k) {
-        const OGRLinearRing* h = p->getInteriorRing(k);
-        const double a = std::fabs(h->get_Area());
-        OGRPolygon hp;
-        hp.addRing(const_cast<OGRLinearRing*>(h));
-        if (a < o.min_island_area) {
-          changed = true;
-          ++res.islands_removed;
-          res.islands_area += a;
-          res.repairs.push_back({"island_removed", inside_point(&hp), a,
-                                 "island of " + num(a) + " m^2 is smaller than " + num(o.min_island_area) +
-                                     " m^2 (--min-island); it became water",
-                                 -1});
-          continue;
-        }
-        q.addRing(const_cast<OGRLinearRing*>(h));
-        if (a < o.grow_island_area && o.grow_island > 0) {
-          GeomPtr g = checked(hp.Buffer(o.grow_island, kQuadSegs), "buffer of a small island");
-          ++res.islands_grown;
-          res.islands_grown_area += area_of(g.get()) - a;
-          res.repairs.push_back({"island_enlarged", inside_point(&hp), area_of(g.get()) - a,
-                                 "island of " + num(a) + " m^2 is below the resolution; grown by " +
-                                     num(o.grow_island) + " m so that elements near hmin fit around it",
-                                 -1});
-          std::vector<std::unique_ptr<OGRPolygon>> gps;
-          polygons_of(g.get(), gps);
-          for (auto& gp : gps) grown->addGeometryDirectly(gp.release());
-        }
+    const bool changed = filter_holes(wps, [&](const OGRLinearRing* h, double a) {
+      OGRPolygon hp;
+      hp.addRing(const_cast<OGRLinearRing*>(h));
+      if (a < o.min_island_area) {
+        ++res.islands_removed;
+        res.islands_area += a;
+        res.repairs.push_back({"island_removed", inside_point(&hp), a,
+                               "island of " + num(a) + " m^2 is smaller than " + num(o.min_island_area) +
+                                   " m^2 (--min-island); it became water",
+                               -1});
+        return false;
       }
-      *p = q;
-    }
+      if (a < o.grow_island_area && o.grow_island > 0) {
+        GeomPtr g = checked(hp.Buffer(o.grow_island, kQuadSegs), "buffer of a small island");
+        ++res.islands_grown;
+        res.islands_grown_area += area_of(g.get()) - a;
+        res.repairs.push_back({"island_enlarged", inside_point(&hp), area_of(g.get()) - a,
+                               "island of " + num(a) + " m^2 is below the resolution; grown by " +
+                                   num(o.grow_island) + " m so that elements near hmin fit around it",
+                               -1});
+        std::vector<std::unique_ptr<OGRPolygon>> gps;
+        polygons_of(g.get(), gps);
+        for (auto& gp : gps) grown->addGeometryDirectly(gp.release());
+      }
+      return true;
+    });
     if (changed || !grown->IsEmpty()) {
       GeomPtr w2 = multi(wps);
       if (!grown->IsEmpty()) {
@@ -1039,31 +1048,19 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   if (o.min_island_area > 0) {
     std::vector<std::unique_ptr<OGRPolygon>> rps;
     polygons_of(R.get(), rps);
-    bool changed = false;
-    for (auto& p : rps) {
-      if (p->getNumInteriorRings() == 0) continue;
-      OGRPolygon q;
-      q.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
-      for (int k = 0; k < p->getNumInteriorRings(); ++k) {
-        const OGRLinearRing* h = p->getInteriorRing(k);
-        const double a = std::fabs(h->get_Area());
-        if (a < o.min_island_area) {
-          OGRPolygon hp;
-          hp.addRing(const_cast<OGRLinearRing*>(h));
-          ++res.islands_removed;
-          res.islands_area += a;
-          res.repairs.push_back({"island_removed", inside_point(&hp), a,
-                                 "island remnant of " + num(a) + " m^2 (land thinner than " + num(o.close_width) +
-                                     " m became water) is smaller than " + num(o.min_island_area) +
-                                     " m^2 (--min-island); it became water",
-                                 -1});
-          changed = true;
-        } else {
-          q.addRing(const_cast<OGRLinearRing*>(h));
-        }
-      }
-      *p = q;
-    }
+    const bool changed = filter_holes(rps, [&](const OGRLinearRing* h, double a) {
+      if (!(a < o.min_island_area)) return true;
+      OGRPolygon hp;
+      hp.addRing(const_cast<OGRLinearRing*>(h));
+      ++res.islands_removed;
+      res.islands_area += a;
+      res.repairs.push_back({"island_removed", inside_point(&hp), a,
+                             "island remnant of " + num(a) + " m^2 (land thinner than " + num(o.close_width) +
+                                 " m became water) is smaller than " + num(o.min_island_area) +
+                                 " m^2 (--min-island); it became water",
+                             -1});
+      return false;
+    });
     if (changed) R = multi(rps);
   }
 
