@@ -83,6 +83,9 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.1) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
+    // Tips of land thinner than --close-width stay unless other land is within 0.8 hmin of their
+    // end (README, "Tips of land").
+    fo.tip_clearance = 0.8 * hmin;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");
     return fo;

@@ -236,6 +236,7 @@ class Resampler {
         else prev = k;
       }
     }
+    merge_short_pieces(c, key);
     // A ring keeps at least three pieces (a non-degenerate polygon): add keys at a third and two
     // thirds of its length.
     if (ch.closed) {
@@ -272,6 +273,55 @@ class Resampler {
       for (const auto& p : pieces) pts += 1 + (p.restored ? p.k1 - p.k0 - 1 : p.inner.size());
       if (pts < 3)
         for (auto& p : pieces) p.restored = true;
+    }
+  }
+
+  // Largest distance of the input vertices strictly between keys i and j from their chord.
+  double chord_deviation(std::size_t c, std::size_t i, std::size_t j) const {
+    const Point2 a = P(c, i), b = P(c, j);
+    double d = 0;
+    for (std::size_t k = i + 1; k < j; ++k) d = std::max(d, dist_to_segment(P(c, k), a, b));
+    return d;
+  }
+
+  // Short pieces: two corners much closer than f (the rounded end of a cut spit, two bends of a
+  // small bay) would make the mesh refine to their distance all around them. Douglas-Peucker
+  // keeps both when each is needed on its own; often one key, or one input vertex between them,
+  // serves both within the same tolerance. A piece shorter than kShortPiece * f loses a key
+  // (or its two keys become one input vertex between them) when every input vertex stays
+  // within the tolerance of the new chords; chain ends never move.
+  void merge_short_pieces(std::size_t c, std::vector<char>& key) {
+    const std::size_t m = key.size() - 1;
+    std::vector<std::size_t> ks;
+    for (std::size_t k = 0; k <= m; ++k)
+      if (key[k]) ks.push_back(k);
+    auto ok = [&](std::size_t i, std::size_t j) {
+      const double sc = tol_scale(c, i, j);
+      return sc > 0 && chord_deviation(c, i, j) <= tol(P(c, i), P(c, j)) * sc;
+    };
+    // Bounded: every change removes at least one key.
+    for (std::size_t i = 0; i + 1 < ks.size();) {
+      const std::size_t a = ks[i], b = ks[i + 1];
+      const double len = dist(P(c, a), P(c, b));
+      if (!(len < kShortPiece * std::min(f(P(c, a)), f(P(c, b))))) { ++i; continue; }
+      const bool a_free = i > 0, b_free = i + 2 < ks.size();
+      const std::size_t pa = a_free ? ks[i - 1] : a, nb = b_free ? ks[i + 2] : b;
+      // Candidates: one input vertex k in [a, b] replaces both keys (k == a: b dropped, k == b:
+      // a dropped); the one with the smallest deviation wins (ties: the first).
+      double best = -1;
+      std::size_t bk = 0;
+      for (std::size_t k = a; k <= b; ++k) {
+        if ((k != a && !a_free) || (k != b && !b_free)) continue;
+        if (!ok(pa, k) || !ok(k, nb)) continue;
+        const double d = std::max(chord_deviation(c, pa, k), chord_deviation(c, k, nb));
+        if (best < 0 || d < best) { best = d; bk = k; }
+      }
+      if (best < 0) { ++i; continue; }
+      key[a] = key[b] = 0;
+      key[bk] = 1;
+      ks.erase(ks.begin() + static_cast<std::ptrdiff_t>(i), ks.begin() + static_cast<std::ptrdiff_t>(i + 2));
+      ks.insert(ks.begin() + static_cast<std::ptrdiff_t>(i), bk);
+      if (i > 0) --i;  // the piece before may be short now
     }
   }
 
@@ -567,6 +617,7 @@ class Resampler {
   static constexpr double kPi = 3.14159265358979323846;
   static constexpr double kSharp = kPi / 6;  // wedges under 30 degrees are checked
   static constexpr double kCornerTurn = kPi / 9;  // a key turning less than 20 degrees is no corner
+  static constexpr double kShortPiece = 0.6;      // pieces shorter than this * f lose a key if they can
   std::vector<double> wedge_;
   const Pslg& in_;
   ResampleOptions o_;

@@ -138,6 +138,65 @@ TEST(FeatureFilter, SmallIslandsRemovedLargeOnesKept) {
   EXPECT_NEAR(area(r.polygons), 4e6 - 9e4, corner_loss(opts(100), 4));
 }
 
+// A 600 m square island with a needle of land 20 m wide at its base (thinner than close_width
+// everywhere) running 400 m east to a tip at (x1 + 400, yc).
+Rings island_with_needle(double x0, double y0) {
+  const double x1 = x0 + 600, yc = y0 + 300;
+  // clockwise (a hole)
+  return {{{x0, y0}, {x0, y0 + 600}, {x1, y0 + 600}, {x1, yc + 10}, {x1 + 400, yc}, {x1, yc - 10}, {x1, y0}}};
+}
+
+bool has_vertex(const FeatureFilterResult& r, Point2 p) {
+  for (const auto& poly : r.polygons)
+    for (const auto& ring : poly)
+      for (const Point2& q : ring)
+        if (q == p) return true;
+  return false;
+}
+
+TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
+  // hmin 100: close_width 25 m, tips kept unless other land is within 80 m of their end.
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings a = island_with_needle(1000, 1000);  // tip (2000, 1300): open water around it
+  const Rings b = island_with_needle(1000, 2400);  // tip (2000, 2700): 40 m from island c
+  const Rings c{{{2040, 2400}, {2040, 3000}, {2600, 3000}, {2600, 2400}}};
+  const Polygons in{{sea[0], a[0], b[0], c[0]}};
+  FeatureFilterOptions o = opts(100);
+  o.tip_clearance = 80;
+  const FeatureFilterResult r = filter_features(in, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 4u);  // sea and three islands
+  EXPECT_TRUE(has_vertex(r, {2000, 1300})) << "the needle in open water keeps its tip";
+  EXPECT_FALSE(has_vertex(r, {2000, 2700})) << "the needle pointing 40 m from island c is cut";
+  EXPECT_GE(r.tips_kept, 1u);
+  EXPECT_GT(r.land_removed_area, 1000.0);  // the cut needle (about 4000 m^2)
+  EXPECT_LT(r.land_removed_area, 4000.0 + 1000.0);
+  // Deterministic.
+  const FeatureFilterResult r2 = filter_features(in, o);
+  EXPECT_EQ(r2.polygons, r.polygons);
+  // Without tip clearance every thin part is cut, as before.
+  const FeatureFilterResult r0 = filter_features(in, opts(100));
+  EXPECT_FALSE(has_vertex(r0, {2000, 1300}));
+  EXPECT_FALSE(has_vertex(r0, {2000, 2700}));
+  EXPECT_EQ(r0.tips_kept, 0u);
+}
+
+TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
+  // Islands 400 m long and 20 m wide (thinner than close_width everywhere): one in open water,
+  // one 50 m from the coast.
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings open{{{1000, 2000}, {1000, 2020}, {1400, 2020}, {1400, 2000}}};
+  const Rings near{{{1000, 50}, {1000, 70}, {1400, 70}, {1400, 50}}};
+  FeatureFilterOptions o = opts(100);
+  o.min_island_area = 1000;  // both (8000 m^2) are above it
+  o.tip_clearance = 80;
+  const FeatureFilterResult r = filter_features({{sea[0], open[0], near[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 2u);
+  EXPECT_TRUE(has_vertex(r, {1400, 2020}));
+  EXPECT_FALSE(has_vertex(r, {1400, 70}));
+}
+
 TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
