@@ -3,6 +3,7 @@
 #include "gis/feature_filter.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <chrono>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include <ogr_geometry.h>
 
 #include "base/error.hpp"
+#include "base/threads.hpp"
 #include "gis/gdal_util.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/segment_grid.hpp"
@@ -795,37 +797,60 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
   std::vector<std::unique_ptr<OGRPolygon>> pieces;  // thin land
   std::vector<std::size_t> piece_ring;
   {
+    // Every ring is closed (outer) or opened (island) on its own: the rings are shared out to
+    // the threads (an atomic counter), the results kept per ring and combined in ring order, so
+    // they do not depend on the thread count.
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W, wps);
+    struct Job {
+      const OGRLinearRing* ring;
+      bool outer;
+      GeomPtr base;
+      std::vector<std::unique_ptr<OGRPolygon>> thin;
+    };
+    std::vector<Job> jobs;
+    for (const auto& wp : wps) {
+      jobs.push_back({wp->getExteriorRing(), true, nullptr, {}});
+      for (int k = 0; k < wp->getNumInteriorRings(); ++k) jobs.push_back({wp->getInteriorRing(k), false, nullptr, {}});
+    }
+    auto run = [&](Job& j) {
+      OGRPolygon rp;
+      rp.addRing(const_cast<OGRLinearRing*>(j.ring));
+      if (j.outer) {
+        GeomPtr grown = checked(rp.Buffer(rc, kQuadSegs), "buffer of an outer ring");
+        j.base = offset(*grown, -rc);
+        GeomPtr t = checked(j.base->Difference(&rp), "thin land outside an outer ring");
+        polygons_of(t.get(), j.thin);
+      } else {
+        j.base = opening(rp, rc);
+        if (j.base->IsEmpty()) {
+          j.thin.emplace_back(rp.clone());
+        } else {
+          GeomPtr d = checked(rp.Difference(j.base.get()), "thin land of an island");
+          polygons_of(d.get(), j.thin);
+        }
+      }
+    };
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      GdalQuiet q;
+      for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) run(jobs[i]);
+    };
+    const unsigned nt = std::min<unsigned>(max_threads(), 2);
+    std::vector<std::future<void>> helpers;
+    for (unsigned t = 1; t < nt; ++t) helpers.push_back(std::async(std::launch::async, worker));
+    worker();
+    for (auto& h : helpers) h.get();
+    std::size_t j = 0;
     for (const auto& wp : wps) {
       PolyRings pr;
-      OGRPolygon outer;
-      outer.addRing(const_cast<OGRLinearRing*>(wp->getExteriorRing()));
-      Ring ro;
-      ro.outer = true;
-      GeomPtr grown = checked(outer.Buffer(rc, kQuadSegs), "buffer of an outer ring");
-      ro.base = offset(*grown, -rc);
-      GeomPtr t = checked(ro.base->Difference(&outer), "thin land outside an outer ring");
-      pr.outer = rings.size();
-      std::vector<std::unique_ptr<OGRPolygon>> tp;
-      polygons_of(t.get(), tp);
-      for (auto& q : tp) { pieces.push_back(std::move(q)); piece_ring.push_back(rings.size()); }
-      rings.push_back(std::move(ro));
-      for (int k = 0; k < wp->getNumInteriorRings(); ++k) {
-        OGRPolygon hp;
-        hp.addRing(const_cast<OGRLinearRing*>(wp->getInteriorRing(k)));
-        Ring rh;
-        rh.base = opening(hp, rc);
-        pr.holes.push_back(rings.size());
-        std::vector<std::unique_ptr<OGRPolygon>> th;
-        if (rh.base->IsEmpty()) {
-          th.emplace_back(hp.clone());
-        } else {
-          GeomPtr d = checked(hp.Difference(rh.base.get()), "thin land of an island");
-          polygons_of(d.get(), th);
-        }
-        for (auto& q : th) { pieces.push_back(std::move(q)); piece_ring.push_back(rings.size()); }
-        rings.push_back(std::move(rh));
+      for (int k = -1; k < wp->getNumInteriorRings(); ++k, ++j) {
+        Ring r;
+        r.outer = jobs[j].outer;
+        r.base = std::move(jobs[j].base);
+        (k < 0 ? pr.outer : (pr.holes.push_back(0), pr.holes.back())) = rings.size();
+        for (auto& q : jobs[j].thin) { pieces.push_back(std::move(q)); piece_ring.push_back(rings.size()); }
+        rings.push_back(std::move(r));
       }
       polys.push_back(std::move(pr));
     }
