@@ -316,6 +316,7 @@ class GroundToGridField final : public sizing::SizingField {
       : f_(std::move(f)), box_(box), n_(n), k_(std::move(k)), max_dev_(max_dev), frame_(std::move(frame)) {}
   double operator()(Point2 p) const override { return (*f_)(p) * k_at(p); }
   double lipschitz() const override { return -1.0; }
+  bool thread_safe() const override { return f_->thread_safe(); }
   std::string describe() const override {
     return f_->describe() + " * k (point scale factor of " + frame_ + ", max |k-1| = " + fmt(max_dev_, 6) + ")";
   }

@@ -1,6 +1,7 @@
 // Analytic spacing fields and min/max/clamp combinators.
 #include "sizing/fields.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -70,6 +71,9 @@ double MinField::operator()(Point2 p) const {
   return m;
 }
 double MinField::lipschitz() const { return max_lipschitz(f_); }
+bool MinField::thread_safe() const {
+  return std::all_of(f_.begin(), f_.end(), [](const SizingPtr& g) { return g->thread_safe(); });
+}
 std::string MinField::describe() const { return join("min", f_); }
 
 MaxField::MaxField(std::vector<SizingPtr> fields) : f_(std::move(fields)) { require_nonempty(f_, "MaxField"); }
@@ -83,6 +87,9 @@ double MaxField::operator()(Point2 p) const {
   return m;
 }
 double MaxField::lipschitz() const { return max_lipschitz(f_); }
+bool MaxField::thread_safe() const {
+  return std::all_of(f_.begin(), f_.end(), [](const SizingPtr& g) { return g->thread_safe(); });
+}
 std::string MaxField::describe() const { return join("max", f_); }
 
 ClampField::ClampField(SizingPtr f, double hmin, double hmax) : f_(std::move(f)), hmin_(hmin), hmax_(hmax) {

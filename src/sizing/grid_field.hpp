@@ -18,6 +18,7 @@ class GridField final : public SizingField {
   // are convex combinations of the two edge differences in that direction, so
   // |grad| <= sqrt(max|dv_x|^2/dx^2 + max|dv_y|^2/dy^2), maximised over cells.
   double lipschitz() const override { return lipschitz_; }
+  bool thread_safe() const override { return true; }
   std::string describe() const override;
   const Grid& grid() const { return g_; }
 

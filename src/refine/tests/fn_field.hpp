@@ -14,6 +14,7 @@ struct FnField : sizing::SizingField {
   std::function<double(Point2)> fn;
   explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
   double operator()(Point2 p) const override { return fn(p); }
+  bool thread_safe() const override { return true; }  // the tests' lambdas are pure
   std::string describe() const override { return "test"; }
 };
 
