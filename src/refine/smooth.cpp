@@ -465,7 +465,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   // mostly neighbours in memory traffic: this order alone made the sweeps 1.4x faster than index
   // order on the Gulf of Maine), cut into blocks of kBlock consecutive live vertices. The blocks
   // depend only on the mesh, never on the thread count.
-  constexpr std::size_t kBlock = 4096;
+  const std::size_t kBlock = std::max<std::size_t>(1, options.block_vertices);
   std::vector<std::pair<std::uint64_t, Index>> order;
   order.reserve(n);
   Box2 box;
