@@ -68,7 +68,9 @@ TEST(Smooth, RandomPslgsKeepEveryInvariant) {
   for (unsigned seed = 0; seed < 60; ++seed) {
     const auto p = fdr::testing::random_pslg(seed, 5 + seed % 40, static_cast<int>(seed % 12));
     const double h = 0.2 + 0.1 * (seed % 5);
-    FnField f([h](Point2 q) { return h * (1 + 0.08 * q.x + 0.03 * std::sin(3 * q.y)); });
+    // Half the seeds tell the smoother f's Lipschitz constant (|grad f| <= h sqrt(0.08^2 + 0.09^2)):
+    // then R/f(c) <= B is mostly decided from f at the moved vertex.
+    FnField f([h](Point2 q) { return h * (1 + 0.08 * q.x + 0.03 * std::sin(3 * q.y)); }, seed % 2 ? 0.121 * h : -1.0);
     const double B = (seed % 3 == 0) ? 0.8 : 1.0;
     auto T = refined(p, f, B, seed % 2 ? 25.0 : 0.0);
     const double area = T.area(), q0 = quality_sum(T);
