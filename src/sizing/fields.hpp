@@ -13,6 +13,7 @@ class ConstantField final : public SizingField {
   double operator()(Point2) const override { return h_; }
   double lipschitz() const override { return 0.0; }
   bool thread_safe() const override { return true; }
+  double upper_bound() const override { return h_; }
   std::string describe() const override;
   double value() const { return h_; }
 
@@ -62,6 +63,7 @@ class ScaledField final : public SizingField {
   double operator()(Point2 p) const override { return k_ * (*f_)(p); }
   double lipschitz() const override;
   bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override { return std::abs(k_) * f_->upper_bound(); }
   std::string describe() const override;
 
  private:
@@ -76,6 +78,7 @@ class MinField final : public SizingField {
   double operator()(Point2 p) const override;
   double lipschitz() const override;
   bool thread_safe() const override;
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -89,6 +92,7 @@ class MaxField final : public SizingField {
   double operator()(Point2 p) const override;
   double lipschitz() const override;
   bool thread_safe() const override;
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -103,6 +107,7 @@ class ClampField final : public SizingField {
   double operator()(Point2 p) const override;
   double lipschitz() const override { return f_->lipschitz(); }
   bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -117,6 +122,7 @@ class ShiftedField final : public SizingField {
   double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
   double lipschitz() const override { return f_->lipschitz(); }
   bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override { return f_->upper_bound(); }
   std::string describe() const override { return f_->describe(); }
 
  private:
