@@ -232,7 +232,7 @@ class Smoother {
           if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) break;
           if (!(star_sum(p) > sum0)) continue;
           if (attempt(v, p0, p)) return true;
-          if (deferred_ || !star(v, hs_)) return false;
+          if (deferred_ || (!flips_.empty() && !star(v, hs_))) return false;
         }
       }
     }
@@ -263,8 +263,8 @@ class Smoother {
       if (attempt(v, p0, p)) return true;
       if (deferred_) return false;
       // An undone attempt restores the same triangles, but its flips may have renumbered their
-      // half-edges: take the star again.
-      if (!star(v, hs_)) return false;
+      // half-edges: take the star again (unless there were none).
+      if (!flips_.empty() && !star(v, hs_)) return false;
     }
     return false;
   }
@@ -272,6 +272,7 @@ class Smoother {
   // Moves v to p, restores the constrained Delaunay property by Lawson flips, and keeps the
   // result only if the touched triangles are better (see smooth.hpp); else undoes everything.
   bool attempt(Index v, Point2 p0, Point2 p) {
+    flips_.clear();
     // The move itself must keep every star triangle counter-clockwise (p in the star's kernel).
     for (HalfEdge h : hs_)
       if (predicates::orient2d(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]) <= 0) return false;
@@ -285,7 +286,6 @@ class Smoother {
     for (HalfEdge h : hs_) touch(mesh::tri_of(h));
     t_.pts[v] = p;
     moved_ = v;
-    flips_.clear();
     stack_.clear();
     for (HalfEdge h : hs_) {
       stack_.push_back(h);
