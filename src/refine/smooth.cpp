@@ -549,17 +549,25 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
     } else {
       std::atomic<std::size_t> next{0};
       std::vector<std::exception_ptr> errors(threads);
+      std::vector<predicates::Counters> calls(threads);  // the helper threads' predicate counts
       auto work = [&](std::size_t k) {
         try {
           for (std::size_t b; (b = next.fetch_add(1)) < nblocks;) sweep_block(workers[k], b);
         } catch (...) {
           errors[k] = std::current_exception();
         }
+        if (k > 0) calls[k] = predicates::counters();
       };
       std::vector<std::thread> pool;
       for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
       work(0);
       for (auto& th : pool) th.join();
+      // Counted on this thread as if it had made every call: the report's predicate counts do
+      // not depend on the thread count either.
+      for (std::size_t k = 1; k < threads; ++k) {
+        predicates::counters().filtered += calls[k].filtered;
+        predicates::counters().exact += calls[k].exact;
+      }
       for (auto& e : errors)
         if (e) std::rethrow_exception(e);
     }

@@ -119,14 +119,16 @@ TEST(Smooth, SameMeshForEveryThreadCount) {
   ASSERT_GT(base.pts.size(), 10000u);
   for (std::size_t block : {std::size_t{512}, std::size_t{4096}}) {
     std::vector<mesh::MeshView> views;
-    std::vector<std::size_t> moves;
+    std::vector<std::size_t> moves, calls;
     for (int threads : {1, 2, 3, 4}) {
       ThreadsEnv env(threads);
       auto T = base;
       refine::SmoothOptions so;
       so.min_angle_deg = 30;
       so.block_vertices = block;
+      predicates::reset_counters();
       const auto st = refine::smooth(T, f, so);
+      calls.push_back(predicates::counters().filtered + predicates::counters().exact);  // all threads'
       EXPECT_GT(st.moves, 1000u);
       EXPECT_GT(st.deferred, 0u);
       const auto r = mesh::check_all(T);
@@ -136,6 +138,7 @@ TEST(Smooth, SameMeshForEveryThreadCount) {
     }
     for (std::size_t i = 1; i < views.size(); ++i) {
       EXPECT_EQ(moves[i], moves[0]) << "block " << block << ", threads " << i + 1;
+      EXPECT_EQ(calls[i], calls[0]) << "block " << block << ", threads " << i + 1;
       ASSERT_EQ(views[i].triangles, views[0].triangles) << "block " << block << ", threads " << i + 1;
       ASSERT_EQ(views[i].vertices.size(), views[0].vertices.size());
       for (std::size_t v = 0; v < views[0].vertices.size(); ++v)
