@@ -281,8 +281,6 @@ class Smoother {
     before_sum_ = 0;
     before_angle_ = 1e300;
     before_len2_ = 1e300;
-    ++stamp_;
-    if (seen_.size() < t_.num_slots()) seen_.resize(t_.num_slots(), 0);
     for (HalfEdge h : hs_) touch(mesh::tri_of(h));
     t_.pts[v] = p;
     moved_ = v;
@@ -329,8 +327,9 @@ class Smoother {
   }
 
   void touch(TriangleId t) {
-    if (seen_[t] == stamp_) return;
-    seen_[t] = stamp_;
+    // A short list (the star's triangles and at most two per flip): a scan beats a per-slot
+    // stamp array, whose random accesses missed the cache.
+    if (std::find(touched_.begin(), touched_.end(), t) != touched_.end()) return;
     touched_.push_back(t);
     const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
     const double q = tri_quality(a, b, c);
@@ -456,8 +455,6 @@ class Smoother {
   std::vector<std::pair<Index, Index>> flips_;  // new diagonals (org, dst) in flip order
   mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
-  std::vector<std::uint32_t> seen_;
-  std::uint32_t stamp_ = 0;
   double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
   double floor_key_ = 0;  // min_angle_key of --min-angle
   double lipschitz_ = -1;  // of f, when known (else negative)
