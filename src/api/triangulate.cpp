@@ -167,7 +167,8 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
     const refine::SmoothStats ss = refine::smooth(tri, f, so);
     info(opt.log, "smoothing: " + std::to_string(ss.moves) + " moves (" + std::to_string(ss.segment_moves) +
                       " along segments) of " + std::to_string(ss.candidates) + " Steiner vertices in " +
-                      std::to_string(ss.passes) + " passes");
+                      std::to_string(ss.passes) + " passes (" + std::to_string(ss.deferred) +
+                      " tries across blocks, on one thread)");
     done("smooth");
   }
 

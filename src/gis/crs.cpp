@@ -1,6 +1,7 @@
 // Frame implementation: CRS choice (UTM / centred TM), OGR transformations, PROJ scale factors.
 #include "gis/crs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -313,9 +314,27 @@ namespace {
 class GroundToGridField final : public sizing::SizingField {
  public:
   GroundToGridField(sizing::SizingPtr f, Box2 box, int n, std::vector<double> k, double max_dev, std::string frame)
-      : f_(std::move(f)), box_(box), n_(n), k_(std::move(k)), max_dev_(max_dev), frame_(std::move(frame)) {}
+      : f_(std::move(f)), box_(box), n_(n), k_(std::move(k)), max_dev_(max_dev), frame_(std::move(frame)) {
+    // k is bilinear on cells of the node grid (constant beyond it): on a cell its gradient is
+    // bounded by the cell's edge differences; |grad(f k)| <= L_f max k + max f L_k.
+    const double dx = box_.width() / (n_ - 1), dy = box_.height() / (n_ - 1);
+    double l2 = 0;
+    for (int j = 0; j + 1 < n_; ++j)
+      for (int i = 0; i + 1 < n_; ++i) {
+        auto K = [&](int a, int b) { return k_[static_cast<std::size_t>(b) * n_ + a]; };
+        const double ax = std::max(std::abs(K(i + 1, j) - K(i, j)), std::abs(K(i + 1, j + 1) - K(i, j + 1))) / dx;
+        const double ay = std::max(std::abs(K(i, j + 1) - K(i, j)), std::abs(K(i + 1, j + 1) - K(i + 1, j))) / dy;
+        l2 = std::max(l2, ax * ax + ay * ay);
+      }
+    const double kmax = *std::max_element(k_.begin(), k_.end());
+    const double lf = f_->lipschitz(), uf = f_->upper_bound();
+    lipschitz_ = lf >= 0 && std::isfinite(uf) ? lf * kmax + uf * std::sqrt(l2) : -1.0;
+    upper_ = uf * kmax;
+  }
   double operator()(Point2 p) const override { return (*f_)(p) * k_at(p); }
-  double lipschitz() const override { return -1.0; }
+  double lipschitz() const override { return lipschitz_; }
+  double upper_bound() const override { return upper_; }
+  bool thread_safe() const override { return f_->thread_safe(); }
   std::string describe() const override {
     return f_->describe() + " * k (point scale factor of " + frame_ + ", max |k-1| = " + fmt(max_dev_, 6) + ")";
   }
@@ -335,6 +354,7 @@ class GroundToGridField final : public sizing::SizingField {
   std::vector<double> k_;
   double max_dev_;
   std::string frame_;
+  double lipschitz_ = -1, upper_ = 0;
 };
 
 }  // namespace

@@ -35,6 +35,8 @@ class ShiftedField : public sizing::SizingField {
   ShiftedField(sizing::SizingPtr f, Point2 o) : f_(std::move(f)), o_(o) {}
   double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
   double lipschitz() const override { return f_->lipschitz(); }
+  bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override { return f_->upper_bound(); }
   std::string describe() const override { return f_->describe() + " (world coordinates)"; }
 
  private:

@@ -2,11 +2,16 @@
 #include "refine/smooth.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
+#include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::refine {
@@ -37,46 +42,54 @@ double min_angle_key(Point2 a, Point2 b, Point2 c) {
   return p > 0 ? cr * cr / p : 0.0;
 }
 
+constexpr std::uint32_t kAnyBlock = 0xffffffffu;  // serial phase: no block restriction
+constexpr std::uint32_t kNoBlock = 0xfffffffeu;   // super or dead vertices: in no block
+
+// What every worker reads (and the dirty flags, which a worker writes only for its own block's
+// vertices in the parallel phase).
+struct Shared {
+  mesh::Triangulation& t;
+  const sizing::SizingField& f;
+  SmoothOptions o;
+  double floor_key = 0;              // min_angle_key of --min-angle
+  std::vector<std::uint32_t> block;  // per vertex
+  std::vector<char> dirty;           // per vertex
+};
+
+// Interleaves the bits of x and y (x in the even bits).
+std::uint64_t morton(std::uint32_t x, std::uint32_t y) {
+  auto spread = [](std::uint64_t v) {
+    v = (v | (v << 16)) & 0x0000ffff0000ffffull;
+    v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
+    v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
+    v = (v | (v << 2)) & 0x3333333333333333ull;
+    v = (v | (v << 1)) & 0x5555555555555555ull;
+    return v;
+  };
+  return spread(x) | (spread(y) << 1);
+}
+
+// One thread's state: tries vertices of one block (or, in the serial phase, any vertex).
 class Smoother {
  public:
-  Smoother(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& o)
-      : t_(tri), f_(f), o_(o) {
-    const double sn = std::sin(std::clamp(o.min_angle_deg, 0.0, 60.0) * 0.017453292519943295);
-    floor_key_ = sn * sn;
-  }
+  enum class Result { kRejected, kKept, kDeferred };
 
-  SmoothStats run() {
-    SmoothStats st;
-    t_.rebuild_vertex_map();
-    std::vector<Index> free;
-    for (Index v = 0; v < t_.pts.size(); ++v)
-      if ((t_.vkind[v] == mesh::VertexKind::kFree || t_.vkind[v] == mesh::VertexKind::kSegment) && t_.vhe[v] != kNoId)
-        free.push_back(v);
-    st.candidates = free.size();
-    // A vertex whose star nothing has touched since it last failed would fail again: it is
-    // retried only after a move changed a triangle around it (the vertices of every triangle a
-    // kept move touched become dirty). Why: after the first sweep most of a converged mesh is
-    // clean, and each try costs up to six attempts with flips and f evaluations.
-    std::vector<char> dirty(t_.pts.size(), 1);
-    for (int pass = 0; pass < o_.passes; ++pass) {
-      std::size_t moved = 0;
-      for (Index v : free) {
-        if (!dirty[v]) continue;
-        dirty[v] = 0;
-        const bool ok = try_vertex(v);
-        moved += ok;
-        if (ok) {
-          for (TriangleId t : touched_)
-            for (int k = 0; k < 3; ++k) dirty[t_.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
-          if (t_.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
-        }
-      }
-      st.moves += moved;
-      ++st.passes;
-      if (moved * 200 < free.size()) break;  // converged: under 0.5 % still moving
-    }
-    return st;
+  explicit Smoother(Shared& s)
+      : sh_(s), t_(s.t), f_(s.f), o_(s.o), floor_key_(s.floor_key), lipschitz_(s.f.lipschitz()) {}
+
+  // Tries to move v. With block != kAnyBlock, v is tried only if every triangle of its star and
+  // of every flip lies inside that block (all three vertices in it); otherwise nothing changes
+  // and the result is kDeferred. Triangles with vertices of two blocks are then never changed,
+  // and a vertex whose star has one never moves, so what a block does depends on nothing another
+  // block does at the same time.
+  Result try_move(Index v, std::uint32_t block) {
+    block_ = block;
+    deferred_ = false;
+    const bool ok = try_vertex(v);
+    if (deferred_) return Result::kDeferred;
+    return ok ? Result::kKept : Result::kRejected;
   }
+  const std::vector<TriangleId>& touched() const { return touched_; }
 
  private:
   // The star of v: half-edges h leaving v (org(h) == v), counter-clockwise. False if the star
@@ -84,24 +97,46 @@ class Smoother {
   bool star(Index v, std::vector<HalfEdge>& hs) const {
     hs.clear();
     open_ = false;
+    // Counter-clockwise from vhe[v]; only a fan that turns out open (v on the boundary of the
+    // mesh) is walked again from its clockwise end.
     HalfEdge h0 = t_.vhe[v];
-    // Rotate clockwise to the start of an open fan (a vertex on the mesh boundary).
-    for (std::size_t guard = 0; guard < 1024; ++guard) {
-      const HalfEdge tw = t_.twin[h0];
-      if (tw == kNoId) { open_ = true; break; }
-      h0 = next_he(tw);
-      if (h0 == t_.vhe[v]) break;
-    }
     HalfEdge h = h0;
     for (std::size_t guard = 0; guard < 1024; ++guard) {
       if (t_.vkind[t_.dst(h)] == mesh::VertexKind::kSuper) return false;
       hs.push_back(h);
       const HalfEdge back = t_.twin[prev_he(h)];
-      if (back == kNoId) return open_;
+      if (back == kNoId) { open_ = true; break; }
       h = back;
-      if (h == h0) return !open_;
+      if (h == h0) return in_block(hs);
+    }
+    if (!open_) return false;
+    hs.clear();
+    for (std::size_t guard = 0; guard < 1024; ++guard) {  // to the clockwise end of the fan
+      const HalfEdge tw = t_.twin[h0];
+      if (tw == kNoId) break;
+      h0 = next_he(tw);
+    }
+    h = h0;
+    for (std::size_t guard = 0; guard < 1024; ++guard) {
+      if (t_.vkind[t_.dst(h)] == mesh::VertexKind::kSuper) return false;
+      hs.push_back(h);
+      const HalfEdge back = t_.twin[prev_he(h)];
+      if (back == kNoId) return in_block(hs);
+      h = back;
     }
     return false;
+  }
+
+  // In the parallel phase: every star triangle has its three vertices in the block (else the
+  // vertex is deferred to the serial phase).
+  bool in_block(const std::vector<HalfEdge>& hs) const {
+    if (block_ == kAnyBlock) return true;
+    for (HalfEdge h : hs)
+      if (sh_.block[t_.dst(h)] != block_ || sh_.block[t_.apex(h)] != block_) {
+        deferred_ = true;
+        return false;
+      }
+    return true;
   }
 
   // A segment vertex slides along its input segment: the line through that segment's input
@@ -167,21 +202,6 @@ class Smoother {
       return sum;
     };
     const double sum0 = star_sum(p0);
-    Point2 acc{0, 0};
-    double wsum = 0;
-    for (HalfEdge h : hs_) {
-      const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
-      const double ar = 0.5 * ((a.x - p0.x) * (b.y - p0.y) - (a.y - p0.y) * (b.x - p0.x));
-      acc = acc + ar * predicates::circumcenter(p0, a, b);
-      wsum += ar;
-    }
-    if (!(wsum > 0)) return false;
-    Point2 target = (1.0 / wsum) * acc;
-    if (on_segment) {  // projected on the segment's line, within the neighbours' span
-      const Point2 d = lb - la;
-      const double t = std::clamp(dot(target - la, d) / norm2(d), t_lo, t_hi);
-      target = la + t * d;
-    }
     {
       // First a step up the gradient of the star's summed quality (what the smoothing raises),
       // at 0.3, 0.1, 0.03 of the mean spoke length; then the ODT target (below). The gradient
@@ -212,9 +232,25 @@ class Smoother {
           if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) break;
           if (!(star_sum(p) > sum0)) continue;
           if (attempt(v, p0, p)) return true;
-          if (!star(v, hs_)) return false;
+          if (deferred_ || (!flips_.empty() && !star(v, hs_))) return false;
         }
       }
+    }
+    // Then the ODT target (computed only now: most vertices took a gradient step).
+    Point2 acc{0, 0};
+    double wsum = 0;
+    for (HalfEdge h : hs_) {
+      const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
+      const double ar = 0.5 * ((a.x - p0.x) * (b.y - p0.y) - (a.y - p0.y) * (b.x - p0.x));
+      acc = acc + ar * predicates::circumcenter(p0, a, b);
+      wsum += ar;
+    }
+    if (!(wsum > 0)) return false;
+    Point2 target = (1.0 / wsum) * acc;
+    if (on_segment) {  // projected on the segment's line, within the neighbours' span
+      const Point2 d = lb - la;
+      const double t = std::clamp(dot(target - la, d) / norm2(d), t_lo, t_hi);
+      target = la + t * d;
     }
     for (double step : {1.0, 0.5, 0.25}) {
       Point2 p = p0 + step * (target - p0);
@@ -225,9 +261,10 @@ class Smoother {
       if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) return false;
       if (!(star_sum(p) > sum0)) continue;
       if (attempt(v, p0, p)) return true;
+      if (deferred_) return false;
       // An undone attempt restores the same triangles, but its flips may have renumbered their
-      // half-edges: take the star again.
-      if (!star(v, hs_)) return false;
+      // half-edges: take the star again (unless there were none).
+      if (!flips_.empty() && !star(v, hs_)) return false;
     }
     return false;
   }
@@ -235,6 +272,7 @@ class Smoother {
   // Moves v to p, restores the constrained Delaunay property by Lawson flips, and keeps the
   // result only if the touched triangles are better (see smooth.hpp); else undoes everything.
   bool attempt(Index v, Point2 p0, Point2 p) {
+    flips_.clear();
     // The move itself must keep every star triangle counter-clockwise (p in the star's kernel).
     for (HalfEdge h : hs_)
       if (predicates::orient2d(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]) <= 0) return false;
@@ -243,12 +281,9 @@ class Smoother {
     before_sum_ = 0;
     before_angle_ = 1e300;
     before_len2_ = 1e300;
-    ++stamp_;
-    if (seen_.size() < t_.num_slots()) seen_.resize(t_.num_slots(), 0);
     for (HalfEdge h : hs_) touch(mesh::tri_of(h));
     t_.pts[v] = p;
     moved_ = v;
-    flips_.clear();
     stack_.clear();
     for (HalfEdge h : hs_) {
       stack_.push_back(h);
@@ -264,6 +299,11 @@ class Smoother {
       const Point2 a = t_.pts[t_.org(e)], b = t_.pts[t_.dst(e)], c = t_.pts[t_.apex(e)], d = t_.pts[t_.apex(g)];
       if (predicates::incircle(a, b, c, d) <= 0) continue;
       if (predicates::orient2d(c, a, d) <= 0 || predicates::orient2d(d, b, c) <= 0) { ok = false; break; }
+      if (block_ != kAnyBlock && sh_.block[t_.apex(g)] != block_) {  // the flip leaves the block
+        ok = false;
+        deferred_ = true;
+        break;
+      }
       if (flips_.size() >= 64) { ok = false; break; }
       touch(mesh::tri_of(e));
       touch(mesh::tri_of(g));
@@ -287,8 +327,9 @@ class Smoother {
   }
 
   void touch(TriangleId t) {
-    if (seen_[t] == stamp_) return;
-    seen_[t] = stamp_;
+    // A short list (the star's triangles and at most two per flip): a scan beats a per-slot
+    // stamp array, whose random accesses missed the cache.
+    if (std::find(touched_.begin(), touched_.end(), t) != touched_.end()) return;
     touched_.push_back(t);
     const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
     const double q = tri_quality(a, b, c);
@@ -307,7 +348,8 @@ class Smoother {
     const double floor_angle = std::min(before_angle_, floor_key_);
     for (TriangleId t : touched_) {
       const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
-      if (predicates::orient2d(a, b, c) <= 0) return false;
+      // Without flips the touched triangles are the star's, whose orientation attempt() tested.
+      if (!flips_.empty() && predicates::orient2d(a, b, c) <= 0) return false;
       const double q = tri_quality(a, b, c);
       nmin = std::min(nmin, q);
       nsum += q;
@@ -323,6 +365,8 @@ class Smoother {
       const double fv = f_(t_.pts[moved_]);
       if (!(nlen2 >= 0.25 * fv * fv)) return false;
     }
+    const Point2 p = t_.pts[moved_];
+    double fp = -1;  // f(p) once needed
     for (TriangleId t : touched_) {
       const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
       for (int k = 0; k < 3; ++k) {
@@ -332,6 +376,16 @@ class Smoother {
       }
       double r2 = 0;
       const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      if (lipschitz_ >= 0) {
+        // f is L-Lipschitz: f(cc) >= f(p) - L |cc - p| at the moved vertex p, so R <= B (f(p) -
+        // L |cc - p|) implies R <= B f(cc) without evaluating f there (one evaluation per move
+        // instead of one per triangle). The factor 1 - 1e-9 covers the rounding of both sides
+        // (relative errors near 1e-15); only this sufficient test uses it, the test below is
+        // the one refinement makes.
+        if (!(fp >= 0)) fp = f_(p);
+        const double d = std::sqrt(norm2(cc - p)), R = std::sqrt(r2);
+        if (R + o_.bound * lipschitz_ * d <= o_.bound * fp * (1 - 1e-9)) continue;
+      }
       const double fc = f_(cc);
       if (!(fc > 0) || !std::isfinite(fc) || r2 > o_.bound * o_.bound * fc * fc) return false;
     }
@@ -393,25 +447,148 @@ class Smoother {
     return 3 * t1 + 2;
   }
 
+  Shared& sh_;
   mesh::Triangulation& t_;
   const sizing::SizingField& f_;
-  SmoothOptions o_;
+  const SmoothOptions& o_;
   std::vector<HalfEdge> hs_, stack_;
   std::vector<std::pair<Index, Index>> flips_;  // new diagonals (org, dst) in flip order
   mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
-  std::vector<std::uint32_t> seen_;
-  std::uint32_t stamp_ = 0;
   double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
   double floor_key_ = 0;  // min_angle_key of --min-angle
+  double lipschitz_ = -1;  // of f, when known (else negative)
   Index moved_ = 0;  // the vertex of the current attempt
+  std::uint32_t block_ = kAnyBlock;  // the block of the current try
+  mutable bool deferred_ = false;  // the current try needs a triangle outside block_
 };
 
 }  // namespace
 
 SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
-  Smoother s(tri, f, options);
-  return s.run();
+  SmoothStats st;
+  tri.rebuild_vertex_map();
+  Shared sh{tri, f, options, 0.0, {}, {}};
+  const double sn = std::sin(std::clamp(options.min_angle_deg, 0.0, 60.0) * 0.017453292519943295);
+  sh.floor_key = sn * sn;
+  const std::size_t n = tri.pts.size();
+
+  // Vertices in Morton order of their positions before smoothing (neighbours in the mesh are
+  // mostly neighbours in memory traffic: this order alone made the sweeps 1.4x faster than index
+  // order on the Gulf of Maine), cut into blocks of kBlock consecutive live vertices. The blocks
+  // depend only on the mesh, never on the thread count.
+  const std::size_t kBlock = std::max<std::size_t>(1, options.block_vertices);
+  std::vector<std::pair<std::uint64_t, Index>> order;
+  order.reserve(n);
+  Box2 box;
+  for (Index v = 0; v < n; ++v)
+    if (tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper) box.add(tri.pts[v]);
+  const double sx = box.width() > 0 ? 4294967295.0 / box.width() : 0.0;
+  const double sy = box.height() > 0 ? 4294967295.0 / box.height() : 0.0;
+  for (Index v = 0; v < n; ++v) {
+    if (tri.vhe[v] == kNoId || tri.vkind[v] == mesh::VertexKind::kSuper) continue;
+    const double x = std::clamp((tri.pts[v].x - box.lo.x) * sx, 0.0, 4294967295.0);
+    const double y = std::clamp((tri.pts[v].y - box.lo.y) * sy, 0.0, 4294967295.0);
+    order.push_back({morton(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)), v});
+  }
+  std::sort(order.begin(), order.end());
+  sh.block.assign(n, kNoBlock);
+  const std::size_t nblocks = (order.size() + kBlock - 1) / kBlock;
+  std::vector<std::vector<Index>> free(nblocks);  // movable vertices of each block, Morton order
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const Index v = order[r].second;
+    sh.block[v] = static_cast<std::uint32_t>(r / kBlock);
+    if (tri.vkind[v] == mesh::VertexKind::kFree || tri.vkind[v] == mesh::VertexKind::kSegment) {
+      free[r / kBlock].push_back(v);
+      ++st.candidates;
+    }
+  }
+  order = {};
+  // Inside a block the vertices go in index order (refinement's insertion order): visiting them
+  // in Morton order too gave 0.0004-0.0005 lower mean quality on all four regions after 4 sweeps.
+  for (auto& fb : free) std::sort(fb.begin(), fb.end());
+  // A vertex whose star nothing has touched since it last failed would fail again: it is
+  // retried only after a move changed a triangle around it (the vertices of every triangle a
+  // kept move touched become dirty). Why: after the first sweep most of a converged mesh is
+  // clean, and each try costs up to six attempts with flips and f evaluations.
+  sh.dirty.assign(n, 1);
+
+  // Each sweep: first every block on its own (concurrently when f may be evaluated from several
+  // threads), each trying its vertices whose star and flips stay inside it; then, on one thread,
+  // the vertices deferred because they did not, in block order. Same result for any thread count.
+  const std::size_t threads =
+      f.thread_safe() ? std::max<std::size_t>(1, std::min<std::size_t>(max_threads(), nblocks)) : 1;
+  std::vector<Smoother> workers;
+  for (std::size_t k = 0; k < threads; ++k) workers.emplace_back(sh);
+  std::vector<std::vector<Index>> deferred(nblocks);
+  std::vector<std::size_t> moved_in(nblocks), seg_moved_in(nblocks);
+  auto sweep_block = [&](Smoother& w, std::size_t b) {
+    deferred[b].clear();
+    moved_in[b] = seg_moved_in[b] = 0;
+    for (Index v : free[b]) {
+      if (!sh.dirty[v]) continue;
+      sh.dirty[v] = 0;
+      const Smoother::Result r = w.try_move(v, static_cast<std::uint32_t>(b));
+      if (r == Smoother::Result::kDeferred) {
+        sh.dirty[v] = 1;
+        deferred[b].push_back(v);
+      } else if (r == Smoother::Result::kKept) {
+        ++moved_in[b];
+        if (tri.vkind[v] == mesh::VertexKind::kSegment) ++seg_moved_in[b];
+        for (TriangleId t : w.touched())
+          for (int k = 0; k < 3; ++k) sh.dirty[tri.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
+      }
+    }
+  };
+  for (int pass = 0; pass < options.passes; ++pass) {
+    if (threads <= 1) {
+      for (std::size_t b = 0; b < nblocks; ++b) sweep_block(workers[0], b);
+    } else {
+      std::atomic<std::size_t> next{0};
+      std::vector<std::exception_ptr> errors(threads);
+      std::vector<predicates::Counters> calls(threads);  // the helper threads' predicate counts
+      auto work = [&](std::size_t k) {
+        try {
+          for (std::size_t b; (b = next.fetch_add(1)) < nblocks;) sweep_block(workers[k], b);
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
+        if (k > 0) calls[k] = predicates::counters();
+      };
+      std::vector<std::thread> pool;
+      for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
+      work(0);
+      for (auto& th : pool) th.join();
+      // Counted on this thread as if it had made every call: the report's predicate counts do
+      // not depend on the thread count either.
+      for (std::size_t k = 1; k < threads; ++k) {
+        predicates::counters().filtered += calls[k].filtered;
+        predicates::counters().exact += calls[k].exact;
+      }
+      for (auto& e : errors)
+        if (e) std::rethrow_exception(e);
+    }
+    std::size_t moved = 0;
+    for (std::size_t b = 0; b < nblocks; ++b) {
+      moved += moved_in[b];
+      st.segment_moves += seg_moved_in[b];
+    }
+    for (std::size_t b = 0; b < nblocks; ++b)
+      for (Index v : deferred[b]) {
+        if (!sh.dirty[v]) continue;
+        sh.dirty[v] = 0;
+        ++st.deferred;
+        if (workers[0].try_move(v, kAnyBlock) != Smoother::Result::kKept) continue;
+        ++moved;
+        if (tri.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
+        for (TriangleId t : workers[0].touched())
+          for (int k = 0; k < 3; ++k) sh.dirty[tri.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
+      }
+    st.moves += moved;
+    ++st.passes;
+    if (moved * 200 < st.candidates) break;  // converged: under 0.5 % still moving
+  }
+  return st;
 }
 
 }  // namespace fdr::refine

@@ -5,9 +5,12 @@
 // Delaunay (no vertex inside the circumcircle of a moved triangle across an unconstrained
 // edge), no subsegment becomes encroached, every moved triangle keeps R/f(c) <= B, the star's
 // worst quality does not drop (and its min angle not below the --min-angle target) and its
-// summed quality rises. Input and segment vertices never move, so the constraints, the domain
-// and the FDR bound stay exactly as refinement left them. Vertices are visited in index order:
-// the result is deterministic.
+// summed quality rises. Input vertices never move (Steiner vertices on segments slide along
+// them), so the constraints, the domain
+// and the FDR bound stay exactly as refinement left them. Vertices are cut into blocks of
+// Morton-consecutive vertices; each sweep moves the blocks independently (concurrently when
+// f.thread_safe()), each only where a move's triangles lie inside the block, then the deferred
+// vertices on one thread: the result is deterministic and the same for every thread count.
 #pragma once
 #include <cstddef>
 #include "mesh/triangulation.hpp"
@@ -19,12 +22,14 @@ struct SmoothOptions {
   int passes = 4;               // sweeps over the free vertices
   double bound = 1.0;           // B: every moved triangle keeps R/f(c) <= B
   double min_angle_deg = 0.0;   // a move may not make a star's min angle drop below this
+  std::size_t block_vertices = 4096;  // vertices per block of the concurrent sweeps (tests use small ones)
 };
 
 struct SmoothStats {
   std::size_t candidates = 0;   // free vertices
   std::size_t moves = 0;        // accepted moves, all passes
   std::size_t segment_moves = 0;  // of which slides of segment vertices along their segment
+  std::size_t deferred = 0;     // tries left to the serial phase of a sweep (star or flips across blocks)
   int passes = 0;
 };
 

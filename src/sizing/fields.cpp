@@ -1,6 +1,7 @@
 // Analytic spacing fields and min/max/clamp combinators.
 #include "sizing/fields.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -70,6 +71,14 @@ double MinField::operator()(Point2 p) const {
   return m;
 }
 double MinField::lipschitz() const { return max_lipschitz(f_); }
+double MinField::upper_bound() const {
+  double u = std::numeric_limits<double>::infinity();
+  for (const auto& g : f_) u = std::min(u, g->upper_bound());
+  return u;
+}
+bool MinField::thread_safe() const {
+  return std::all_of(f_.begin(), f_.end(), [](const SizingPtr& g) { return g->thread_safe(); });
+}
 std::string MinField::describe() const { return join("min", f_); }
 
 MaxField::MaxField(std::vector<SizingPtr> fields) : f_(std::move(fields)) { require_nonempty(f_, "MaxField"); }
@@ -83,6 +92,14 @@ double MaxField::operator()(Point2 p) const {
   return m;
 }
 double MaxField::lipschitz() const { return max_lipschitz(f_); }
+double MaxField::upper_bound() const {
+  double u = 0;
+  for (const auto& g : f_) u = std::max(u, g->upper_bound());
+  return u;
+}
+bool MaxField::thread_safe() const {
+  return std::all_of(f_.begin(), f_.end(), [](const SizingPtr& g) { return g->thread_safe(); });
+}
 std::string MaxField::describe() const { return join("max", f_); }
 
 ClampField::ClampField(SizingPtr f, double hmin, double hmax) : f_(std::move(f)), hmin_(hmin), hmax_(hmax) {
@@ -91,6 +108,7 @@ ClampField::ClampField(SizingPtr f, double hmin, double hmax) : f_(std::move(f))
     throw Error(ExitCode::kUsage, "spacing clamp: need 0 < hmin <= hmax, got hmin = " + format_number(hmin) +
                                       ", hmax = " + format_number(hmax));
 }
+double ClampField::upper_bound() const { return std::min(hmax_, std::max(f_->upper_bound(), hmin_)); }
 double ClampField::operator()(Point2 p) const {
   const double v = (*f_)(p);
   if (std::isnan(v)) return v;

@@ -12,6 +12,8 @@ class ConstantField final : public SizingField {
   explicit ConstantField(double h) : h_(h) {}
   double operator()(Point2) const override { return h_; }
   double lipschitz() const override { return 0.0; }
+  bool thread_safe() const override { return true; }
+  double upper_bound() const override { return h_; }
   std::string describe() const override;
   double value() const { return h_; }
 
@@ -28,6 +30,7 @@ class PaperF1Field final : public SizingField {
     return k_ * ((std::abs(p.x - 5.0) + std::abs(p.y - 5.0)) * 0.1 + 0.1);
   }
   double lipschitz() const override;
+  bool thread_safe() const override { return true; }
   std::string describe() const override;
 
  private:
@@ -46,6 +49,7 @@ class PaperF2Field final : public SizingField {
     return k_ * ((std::abs(std::sin(u)) + std::abs(std::cos(u))) * 0.1);
   }
   double lipschitz() const override;
+  bool thread_safe() const override { return true; }
   std::string describe() const override;
 
  private:
@@ -58,6 +62,8 @@ class ScaledField final : public SizingField {
   ScaledField(double k, SizingPtr f);
   double operator()(Point2 p) const override { return k_ * (*f_)(p); }
   double lipschitz() const override;
+  bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override { return std::abs(k_) * f_->upper_bound(); }
   std::string describe() const override;
 
  private:
@@ -71,6 +77,8 @@ class MinField final : public SizingField {
   explicit MinField(std::vector<SizingPtr> fields);  // throws kInternal when empty
   double operator()(Point2 p) const override;
   double lipschitz() const override;
+  bool thread_safe() const override;
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -83,6 +91,8 @@ class MaxField final : public SizingField {
   explicit MaxField(std::vector<SizingPtr> fields);  // throws kInternal when empty
   double operator()(Point2 p) const override;
   double lipschitz() const override;
+  bool thread_safe() const override;
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -96,6 +106,8 @@ class ClampField final : public SizingField {
   ClampField(SizingPtr f, double hmin, double hmax);
   double operator()(Point2 p) const override;
   double lipschitz() const override { return f_->lipschitz(); }
+  bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override;
   std::string describe() const override;
 
  private:
@@ -109,6 +121,8 @@ class ShiftedField final : public SizingField {
   ShiftedField(SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
   double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
   double lipschitz() const override { return f_->lipschitz(); }
+  bool thread_safe() const override { return f_->thread_safe(); }
+  double upper_bound() const override { return f_->upper_bound(); }
   std::string describe() const override { return f_->describe(); }
 
  private:

@@ -40,6 +40,7 @@ GridField::GridField(Grid g, std::string label) : g_(std::move(g)), label_(std::
       l2 = std::max(l2, ax * ax + ay * ay);
     }
   lipschitz_ = std::sqrt(l2);
+  max_ = *std::max_element(g_.v.begin(), g_.v.end());
 }
 
 double GridField::operator()(Point2 p) const {

@@ -18,6 +18,8 @@ class GridField final : public SizingField {
   // are convex combinations of the two edge differences in that direction, so
   // |grad| <= sqrt(max|dv_x|^2/dx^2 + max|dv_y|^2/dy^2), maximised over cells.
   double lipschitz() const override { return lipschitz_; }
+  bool thread_safe() const override { return true; }
+  double upper_bound() const override { return max_; }  // bilinear: never above the largest cell
   std::string describe() const override;
   const Grid& grid() const { return g_; }
 
@@ -25,6 +27,7 @@ class GridField final : public SizingField {
   Grid g_;
   std::string label_;
   double lipschitz_ = 0;
+  double max_ = 0;
 };
 
 }  // namespace fdr::sizing

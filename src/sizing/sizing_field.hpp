@@ -1,5 +1,6 @@
 // SizingField: the spacing function f(x) that drives Functional Delaunay Refinement.
 #pragma once
+#include <limits>
 #include <memory>
 #include <string>
 #include "base/types.hpp"
@@ -15,6 +16,12 @@ class SizingField {
   virtual double operator()(Point2 p) const = 0;
   // Known Lipschitz constant alpha (|f(x)-f(y)| <= alpha |x-y|), or negative if unknown.
   virtual double lipschitz() const { return -1.0; }
+  // True if operator() may be called from several threads at once (no mutable state); the
+  // smoothing uses both cores only then.
+  virtual bool thread_safe() const { return false; }
+  // An upper bound of f over the plane, or +infinity if unknown (with lipschitz(), bounds
+  // the Lipschitz constant of a product f * k).
+  virtual double upper_bound() const { return std::numeric_limits<double>::infinity(); }
   // Human description for reports, e.g. "constant 0.5" or "expr: 0.1*abs(x-5)+0.1".
   virtual std::string describe() const = 0;
 };

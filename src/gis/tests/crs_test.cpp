@@ -1,6 +1,7 @@
 // Tests of the working frame: CRS choice, round trips, scale factors, ground -> grid spacing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <GeographicLib/TransverseMercator.hpp>
 #include <ogr_spatialref.h>
@@ -8,6 +9,7 @@
 #include "base/error.hpp"
 #include "gis/crs.hpp"
 #include "sizing/fields.hpp"
+#include "sizing/grid_field.hpp"
 
 using namespace fdr;
 using namespace fdr::gis;
@@ -125,6 +127,43 @@ TEST(Frame, GroundToGrid) {
     EXPECT_NEAR((*gw)(p), 100.0 * w.scale_factor(p), 100.0 * 2e-5);
   }
   EXPECT_NE(gw->describe().find("scale factor"), std::string::npos);
+}
+
+// The corrected spacing f * k states a Lipschitz constant and an upper bound when f does (the
+// smoothing decides most R/f(c) <= B tests from them): both hold on random pairs of points.
+TEST(Frame, GroundToGridLipschitzBound) {
+  Frame w = choose_frame(box(-80.0, 30.0, -60.0, 45.0), "");
+  const Box2 b = w.domain_box();
+  sizing::Grid g;
+  g.nx = 40;
+  g.ny = 30;
+  g.dx = b.width() / 40;
+  g.dy = b.height() / 30;
+  g.x0 = b.lo.x;
+  g.y0 = b.lo.y;
+  g.v.resize(g.nx * g.ny);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) g.v[j * g.nx + i] = 5000.0 + 0.1 * g.dx * ((i * 7 + j * 3) % 11);
+  auto f = std::make_shared<sizing::GridField>(g, "test");
+  ASSERT_GT(f->lipschitz(), 0);
+  EXPECT_DOUBLE_EQ(f->upper_bound(), *std::max_element(g.v.begin(), g.v.end()));
+  double dev = 0;
+  sizing::SizingPtr fk = ground_to_grid(f, w, &dev);
+  ASSERT_NE(fk.get(), f.get());
+  const double L = fk->lipschitz();
+  ASSERT_GE(L, f->lipschitz());
+  unsigned s = 12345;
+  auto rnd = [&s] { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0; };
+  for (int k = 0; k < 20000; ++k) {
+    const Point2 p{b.lo.x + rnd() * b.width(), b.lo.y + rnd() * b.height()};
+    const double r = (k % 2 ? 0.3 : 0.003) * g.dx;
+    const Point2 q{p.x + r * (rnd() - 0.5), p.y + r * (rnd() - 0.5)};
+    const double d = std::sqrt(norm2(q - p));
+    ASSERT_LE(std::abs((*fk)(p) - (*fk)(q)), L * d * (1 + 1e-9) + 1e-9) << k;
+    ASSERT_LE((*fk)(p), fk->upper_bound());
+  }
+  // Unknown when f has no upper bound (paper-f1 grows without one).
+  EXPECT_LT(ground_to_grid(std::make_shared<sizing::PaperF1Field>(1000.0), w, &dev)->lipschitz(), 0);
 }
 
 TEST(Frame, ScaleFactorAgreesWithGeographicLib) {

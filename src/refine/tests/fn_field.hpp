@@ -12,8 +12,11 @@ namespace fdr::testing {
 
 struct FnField : sizing::SizingField {
   std::function<double(Point2)> fn;
-  explicit FnField(std::function<double(Point2)> f) : fn(std::move(f)) {}
+  double lip = -1;  // a Lipschitz constant the test knows, or negative
+  explicit FnField(std::function<double(Point2)> f, double lipschitz = -1) : fn(std::move(f)), lip(lipschitz) {}
   double operator()(Point2 p) const override { return fn(p); }
+  double lipschitz() const override { return lip; }
+  bool thread_safe() const override { return true; }  // the tests' lambdas are pure
   std::string describe() const override { return "test"; }
 };
 

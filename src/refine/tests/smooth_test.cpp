@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "cdt/cdt.hpp"
 #include "cdt/tests/test_inputs.hpp"
@@ -40,16 +42,35 @@ mesh::Triangulation refined(const pslg::Pslg& p, const sizing::SizingField& f, d
   return T;
 }
 
+// Sets FDR_THREADS for the scope (restores the previous value).
+class ThreadsEnv {
+ public:
+  explicit ThreadsEnv(int n) {
+    if (const char* v = std::getenv("FDR_THREADS")) old_ = v, had_ = true;
+    setenv("FDR_THREADS", std::to_string(n).c_str(), 1);
+  }
+  ~ThreadsEnv() {
+    if (had_) setenv("FDR_THREADS", old_.c_str(), 1);
+    else unsetenv("FDR_THREADS");
+  }
+
+ private:
+  std::string old_;
+  bool had_ = false;
+};
+
 }  // namespace
 
 // Random PSLGs (holes, interior segments, graded f): many moves are tried, many undone after
 // chains of flips; every one must leave the constrained Delaunay triangulation intact.
 TEST(Smooth, RandomPslgsKeepEveryInvariant) {
-  std::size_t moves = 0;
+  std::size_t moves = 0, deferred = 0;
   for (unsigned seed = 0; seed < 60; ++seed) {
     const auto p = fdr::testing::random_pslg(seed, 5 + seed % 40, static_cast<int>(seed % 12));
     const double h = 0.2 + 0.1 * (seed % 5);
-    FnField f([h](Point2 q) { return h * (1 + 0.08 * q.x + 0.03 * std::sin(3 * q.y)); });
+    // Half the seeds tell the smoother f's Lipschitz constant (|grad f| <= h sqrt(0.08^2 + 0.09^2)):
+    // then R/f(c) <= B is mostly decided from f at the moved vertex.
+    FnField f([h](Point2 q) { return h * (1 + 0.08 * q.x + 0.03 * std::sin(3 * q.y)); }, seed % 2 ? 0.121 * h : -1.0);
     const double B = (seed % 3 == 0) ? 0.8 : 1.0;
     auto T = refined(p, f, B, seed % 2 ? 25.0 : 0.0);
     const double area = T.area(), q0 = quality_sum(T);
@@ -57,7 +78,10 @@ TEST(Smooth, RandomPslgsKeepEveryInvariant) {
     so.passes = 4;
     so.bound = B;
     so.min_angle_deg = 25;
+    so.block_vertices = 16 + 8 * (seed % 7);  // many blocks: the concurrent sweeps and the deferrals run
+    ThreadsEnv threads(2);
     const auto st = refine::smooth(T, f, so);
+    deferred += st.deferred;
     moves += st.moves;
     const auto r = mesh::check_all(T);
     ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.problems.empty() ? "" : r.problems[0]);
@@ -66,6 +90,7 @@ TEST(Smooth, RandomPslgsKeepEveryInvariant) {
     EXPECT_GE(quality_sum(T), q0) << seed;
   }
   EXPECT_GT(moves, 1000u);  // the test exercises the smoother
+  EXPECT_GT(deferred, 100u);  // and vertices whose star or flips cross blocks
 }
 
 TEST(Smooth, Deterministic) {
@@ -82,4 +107,42 @@ TEST(Smooth, Deterministic) {
   ASSERT_EQ(a.triangles, b.triangles);
   ASSERT_EQ(a.vertices.size(), b.vertices.size());
   for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
+}
+
+// The blocks are swept concurrently, the vertices across blocks afterwards on one thread: the
+// mesh is the same bit for bit for every thread count (FDR_THREADS) and block size is what
+// decides it, on a mesh of many blocks (about 20 000 vertices, blocks of 512 and the default).
+TEST(Smooth, SameMeshForEveryThreadCount) {
+  const auto p = fdr::testing::random_pslg(5, 60, 8);
+  FnField f([](Point2 q) { return 0.03 * (1 + 0.15 * q.x + 0.05 * std::sin(2 * q.y)); });
+  const auto base = refined(p, f, 1.0, 30.0);
+  ASSERT_GT(base.pts.size(), 10000u);
+  for (std::size_t block : {std::size_t{512}, std::size_t{4096}}) {
+    std::vector<mesh::MeshView> views;
+    std::vector<std::size_t> moves, calls;
+    for (int threads : {1, 2, 3, 4}) {
+      ThreadsEnv env(threads);
+      auto T = base;
+      refine::SmoothOptions so;
+      so.min_angle_deg = 30;
+      so.block_vertices = block;
+      predicates::reset_counters();
+      const auto st = refine::smooth(T, f, so);
+      calls.push_back(predicates::counters().filtered + predicates::counters().exact);  // all threads'
+      EXPECT_GT(st.moves, 1000u);
+      EXPECT_GT(st.deferred, 0u);
+      const auto r = mesh::check_all(T);
+      ASSERT_TRUE(r.ok()) << (r.problems.empty() ? "" : r.problems[0]);
+      views.push_back(T.to_view());
+      moves.push_back(st.moves);
+    }
+    for (std::size_t i = 1; i < views.size(); ++i) {
+      EXPECT_EQ(moves[i], moves[0]) << "block " << block << ", threads " << i + 1;
+      EXPECT_EQ(calls[i], calls[0]) << "block " << block << ", threads " << i + 1;
+      ASSERT_EQ(views[i].triangles, views[0].triangles) << "block " << block << ", threads " << i + 1;
+      ASSERT_EQ(views[i].vertices.size(), views[0].vertices.size());
+      for (std::size_t v = 0; v < views[0].vertices.size(); ++v)
+        ASSERT_EQ(views[i].vertices[v], views[0].vertices[v]) << "block " << block << ", threads " << i + 1;
+    }
+  }
 }
