@@ -241,10 +241,11 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
     prep = &own;
     compute_orthogonality(m, nb, prep);
   }
-  // Upper bounds from the mesh edges, and one triangle of every vertex.
-  std::vector<double> nn = std::move(prep->nn2);
+  // Upper bounds from the mesh edges, and one triangle of every vertex (prep->nn2 is left intact
+  // when the walk cannot be used).
   const std::vector<Index>& tri_of_vertex = prep->tri_of_vertex;
   if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
+  std::vector<double> nn = std::move(prep->nn2);
 
   // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
   std::vector<std::uint8_t> sflag(3 * nt, 0);

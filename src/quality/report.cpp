@@ -12,12 +12,15 @@
 #include <ostream>
 #include <string>
 #include <exception>
+#include <atomic>
+#include <memory>
 #include <thread>
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
+#include "quality/cell_centre.hpp"
 #include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
@@ -254,45 +257,280 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts) 
 }
 
 namespace {
-// Same values as nearest_neighbour_distances(m.vertices), faster on a mesh. With the mesher's
-// adjacency (m.neighbours) a walk over the mesh from each vertex (mesh_adjacency.hpp); else every
-// mesh edge gives an upper bound (the squared length of the nearest edge, computed exactly as the
-// tree computes distances), so each tree query only visits the few nodes closer than that.
-std::vector<double> mesh_nearest_neighbour_distances(const mesh::MeshView& m, unsigned threads,
-                                                     OrthogonalityStats* ortho) {
-  const std::vector<Point2>& p = m.vertices;
-  bool ids_ok = true;
-  for (const auto& tr : m.triangles)
-    if (tr[0] >= p.size() || tr[1] >= p.size() || tr[2] >= p.size()) ids_ok = false;
-  if (ids_ok && m.neighbours.size() == 3 * m.triangles.size() && p.size() >= 2) {
-    // The mesher's own triangulation: one pass for the orthogonality and the walk's bounds, then
-    // the walk (exact, see mesh_adjacency.hpp).
-    MeshWalkPrep prep;
-    *ortho = compute_orthogonality(m, m.neighbours, &prep);
-    std::vector<double> nn = mesh_nearest_neighbour_sq(m, m.neighbours, threads, &prep);
-    if (!nn.empty()) {
-      for (double& d : nn) d = std::sqrt(d);
-      return nn;
+
+template <class V>
+void release_vector(V& v) {
+  V().swap(v);
+}
+
+// At least the k largest values of a stream (as a multiset), in a buffer of fewer than 2k: a value
+// below thr_ (the k-th largest at the last trim) cannot be among the k largest. NaN counts as the
+// largest value (as the previous 16-bit buckets ordered it).
+class TopK {
+ public:
+  explicit TopK(std::size_t k = 1) : k_(std::max<std::size_t>(k, 1)) {}
+  void add(double x) {
+    if (!(x < thr_)) {
+      v_.push_back(x);
+      if (v_.size() >= 2 * k_) trim();
+    }
+  }
+  static bool less(double a, double b) { return a < b || (!std::isnan(a) && std::isnan(b)); }
+  std::vector<double>& values() { return v_; }
+
+ private:
+  void trim() {
+    const auto cut = v_.begin() + static_cast<std::ptrdiff_t>(v_.size() - k_);
+    std::nth_element(v_.begin(), cut, v_.end(), less);
+    thr_ = *cut;
+    v_.erase(v_.begin(), cut);
+  }
+  std::size_t k_;
+  double thr_ = -kInf;
+  std::vector<double> v_;
+};
+
+// The nearest-rank q-quantile of n values (rank ceil(q n)) given at least the values from that
+// rank up (the largest ones) in `top`; NaN sorts last.
+double quantile_from_top(std::vector<double>& top, std::size_t n, double q) {
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(n)));
+  const std::size_t k = rank == 0 ? 0 : std::min(rank - 1, n - 1);  // 0-based
+  const std::size_t from_top = n - k;                                // k is the from_top-th largest
+  if (from_top > top.size()) throw Error(ExitCode::kInternal, "quality: percentile buffer too small");
+  const auto at = top.end() - static_cast<std::ptrdiff_t>(from_top);
+  std::nth_element(top.begin(), at, top.end(), TopK::less);
+  return *at;
+}
+
+// Per-vertex min/max shared by two threads: the same result as the sequential std::min/std::max
+// chain (a NaN never replaces a value) whatever the interleaving.
+template <bool kShared>
+inline void keep_max(double& x, double v) {
+  if constexpr (kShared) {
+    std::atomic_ref<double> r(x);
+    double cur = r.load(std::memory_order_relaxed);
+    while (cur < v && !r.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
     }
   } else {
-    *ortho = compute_orthogonality(m, threads);
+    x = std::max(x, v);
   }
-  std::vector<double> nn(p.size(), kInf);
-  if (p.size() < 2) return nn;
-  for (const auto& tri : m.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = tri[k], b = tri[(k + 1) % 3];
-      if (a == b || a >= p.size() || b >= p.size()) continue;
-      nn[a] = std::min(nn[a], norm2(p[b] - p[a]));
-      nn[b] = std::min(nn[b], norm2(p[a] - p[b]));
-    }
-  const KdTree tree(p);
-  for (std::size_t k = 0; k < tree.size(); ++k) {
-    const Index i = tree.id_at(k);
-    nn[i] = std::sqrt(tree.nearest_sq_at(k, nn[i]));
-  }
-  return nn;
 }
+template <bool kShared>
+inline void keep_min(double& x, double v) {
+  if constexpr (kShared) {
+    std::atomic_ref<double> r(x);
+    double cur = r.load(std::memory_order_relaxed);
+    while (v < cur && !r.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
+    }
+  } else {
+    x = std::min(x, v);
+  }
+}
+// The last triangle (largest index) with that corner.
+template <bool kShared>
+inline void keep_last(Index& x, Index t) {
+  if constexpr (kShared) {
+    std::atomic_ref<Index> r(x);
+    Index cur = r.load(std::memory_order_relaxed);
+    while ((cur == kNoId || cur < t) && !r.compare_exchange_weak(cur, t, std::memory_order_relaxed)) {
+    }
+  } else {
+    x = t;  // triangles in increasing order
+  }
+}
+
+// What one thread measures on its triangles (merged in a fixed order: figures do not depend on
+// how the triangles were split).
+struct Part {
+  explicit Part(const QualityReport& r, std::size_t top_k)
+      : angles(r.min_angle_histogram, r.max_angle_histogram), otop(top_k), stop(top_k) {
+    q.min_angle_histogram = r.min_angle_histogram;
+    q.max_angle_histogram = r.max_angle_histogram;
+  }
+  QualityReport q;  // degenerate, inverted, angle extremes and histograms, max R/l
+  AngleBins angles;
+  std::size_t interior = 0;
+  double omax = -1, smax = -1;
+  TopK otop, stop;
+  std::vector<Index> not_delaunay;
+  bool ccw = true;
+};
+
+// The report's single pass over the triangles and their interior edges (every metric that does
+// not need f), with the adjacency `nb`; on the calling thread also the area and R/f(c) sums,
+// which must be added in triangle order (evaluate() does them for triangles measured elsewhere).
+struct Pass {
+  const mesh::MeshView& m;
+  const std::vector<Index>& nb;
+  const sizing::SizingField* f;
+  double bound_B;
+  TriangleValues* per_triangle;
+  bool walk;  // gather what the nearest-neighbour walk needs (tri_of_vertex, local Delaunay check)
+  std::vector<double>& el;   // per vertex: longest edge of its triangles
+  std::vector<double>& nn2;  // per vertex: shortest mesh edge, squared
+  std::vector<Index>& tov;   // per vertex: last triangle with that corner
+  // The calling thread's sums (triangle order).
+  CompensatedSum area, r_over_f_sum;
+  std::size_t r_over_f_count = 0;
+  QualityReport* r = nullptr;  // max_R_over_f, bad_triangles, spacing_invalid
+
+  void add_f(std::size_t t, double cr, double radius, Point2 center) {
+    area.add(0.5 * cr);
+    if (per_triangle) per_triangle->area[t] = 0.5 * cr;
+    if (!f) return;
+    double ratio = kInf;
+    if (std::isfinite(radius)) {
+      const double fc = (*f)(center);
+      if (per_triangle) per_triangle->r_over_f[t] = radius / fc;
+      if (!usable_spacing(fc)) {
+        ++r->spacing_invalid;
+        return;
+      }
+      ratio = radius / fc;
+    }
+    update_max(r->max_R_over_f, ratio);
+    r_over_f_sum.add(ratio);
+    ++r_over_f_count;
+    if (ratio > bound_B) ++*r->bad_triangles;
+  }
+
+  // Everything for the triangles [lo, hi); with_f on the calling thread when no triangle before lo
+  // is left for evaluate().
+  template <bool kShared>
+  void measure(std::size_t lo, std::size_t hi, Part& p, bool with_f) {
+    const auto& T = m.triangles;
+    const auto& V = m.vertices;
+    for (std::size_t t = lo; t < hi; ++t) {
+      // Corners and neighbours are scattered in memory: fetch the neighbours' triangles 16 ahead,
+      // the corners, their per-vertex entries and the neighbours' far corners 8 ahead.
+      if (t + 16 < hi)
+        for (int k = 0; k < 3; ++k)
+          if (const Index g = nb[3 * (t + 16) + k]; g != kNoId) __builtin_prefetch(&T[g / 3]);
+      if (t + 8 < hi) {
+        const auto& ahead = T[t + 8];
+        for (int k = 0; k < 3; ++k) {
+          __builtin_prefetch(&V[ahead[k]]);
+          __builtin_prefetch(&el[ahead[k]], 1);
+          __builtin_prefetch(&nn2[ahead[k]], 1);
+          if (walk) __builtin_prefetch(&tov[ahead[k]], 1);
+          const Index g = nb[3 * (t + 8) + k];
+          if (g != kNoId) __builtin_prefetch(&V[T[g / 3][(g % 3 + 2) % 3]]);
+        }
+      }
+      const auto& tr = T[t];
+      const Point2 a = V[tr[0]], b = V[tr[1]], c = V[tr[2]];
+      const int o = predicates::orient2d(a, b, c);
+      if (o == 0) ++p.q.degenerate_triangles;
+      if (o < 0) ++p.q.inverted_triangles;
+      if (o <= 0) p.ccw = false;
+      const Point2 d = b - a, e = c - a;
+      const double cr = d.x * e.y - d.y * e.x;  // twice the signed area
+      // Squared edge lengths ab, bc, ca (norm2(x - y) == norm2(y - x) exactly).
+      const double q0 = norm2(d), q1 = norm2(c - b), q2 = norm2(e);
+      const double lmin = std::sqrt(std::min({q0, q1, q2})), lmax = std::sqrt(std::max({q0, q1, q2}));
+      const double lel = std::max(0.0, lmax);  // >= 0 marks a corner (a NaN length counts as 0)
+      for (int k = 0; k < 3; ++k) {
+        keep_max<kShared>(el[tr[k]], lel);
+        if (walk) keep_last<kShared>(tov[tr[k]], static_cast<Index>(t));
+      }
+      const double qs[3] = {q0, q1, q2};
+      for (int k = 0; k < 3; ++k) {
+        const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
+        if (u == w) continue;
+        keep_min<kShared>(nn2[u], qs[k]);
+        keep_min<kShared>(nn2[w], qs[k]);
+      }
+
+      if (per_triangle || !p.angles.fast(a, b, c, cr, p.q)) {  // the angles themselves (atan2)
+        const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+        const double amin = std::min({ang[0], ang[1], ang[2]});
+        if (per_triangle) per_triangle->min_angle_deg[t] = amin;
+        const double amax = std::max({ang[0], ang[1], ang[2]});
+        p.angles.update(p.q, amin, amax);
+        p.q.min_angle_histogram.add(amin);
+        p.q.max_angle_histogram.add(amax);
+      }
+
+      // Circumcentre; a zero determinant means collinear corners (R infinite).
+      double r2 = 0;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const double radius = o != 0 && cr != 0 ? std::sqrt(r2) : kInf;
+      update_max(p.q.max_radius_edge, lmin > 0 ? radius / lmin : kInf);
+      if (with_f) add_f(t, cr, radius, cc);
+
+      // Interior edges, each once: from its half-edge u -> w with u <= w.
+      Point2 cct{};
+      double at = -1;
+      for (int k = 0; k < 3; ++k) {
+        const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
+        const Index g = nb[3 * t + k];
+        if (!(u <= w && g != kNoId)) continue;
+        ++p.interior;
+        if (at < 0) {
+          cct = cell_centre(a, b, c, cc);
+          at = 0.5 * std::fabs(cr);
+        }
+        const auto& tg = T[g / 3];
+        const Point2 ga = V[tg[0]], gb = V[tg[1]], gc = V[tg[2]];
+        const Point2 ccu = cell_centre(ga, gb, gc, predicates::circumcenter(ga, gb, gc));
+        const double au = 0.5 * std::fabs((gb.x - ga.x) * (gc.y - ga.y) - (gb.y - ga.y) * (gc.x - ga.x));
+        if (walk && predicates::incircle(a, b, c, V[tg[(g % 3 + 2) % 3]]) > 0)
+          p.not_delaunay.push_back(static_cast<Index>(3 * t + k));
+        const Point2 ev = V[w] - V[u], l = cct - ccu;
+        const double len = std::sqrt(norm2(ev)) * std::sqrt(norm2(l));
+        const double alo = std::min(at, au), ahi = std::max(at, au);
+        const double ortho = len > 0 ? std::fabs(dot(ev, l)) / len : 0.0;
+        const double smooth = alo > 0 ? ahi / alo : kInf;
+        p.omax = std::max(p.omax, ortho);
+        p.smax = std::max(p.smax, smooth);
+        p.otop.add(ortho);
+        p.stop.add(smooth);
+      }
+    }
+  }
+
+  // The area and R/f(c) of the triangles [lo, hi) measured on another thread (calling thread).
+  void evaluate(std::size_t lo, std::size_t hi) {
+    const auto& T = m.triangles;
+    const auto& V = m.vertices;
+    for (std::size_t t = lo; t < hi; ++t) {
+      if (t + 8 < hi)
+        for (const Index v : T[t + 8]) __builtin_prefetch(&V[v]);
+      const Point2 a = V[T[t][0]], b = V[T[t][1]], c = V[T[t][2]];
+      const Point2 d = b - a, e = c - a;
+      const double cr = d.x * e.y - d.y * e.x;
+      if (!f) {
+        add_f(t, cr, kInf, {});
+        continue;
+      }
+      double r2 = 0;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const double radius = cr != 0 && predicates::orient2d(a, b, c) != 0 ? std::sqrt(r2) : kInf;
+      add_f(t, cr, radius, cc);
+    }
+  }
+};
+
+void merge(QualityReport& r, Part& all, Part& p) {
+  r.degenerate_triangles += p.q.degenerate_triangles;
+  r.inverted_triangles += p.q.inverted_triangles;
+  if (p.q.min_angle_deg) update_min(r.min_angle_deg, *p.q.min_angle_deg);
+  if (p.q.max_angle_deg) update_max(r.max_angle_deg, *p.q.max_angle_deg);
+  for (std::size_t i = 0; i < r.min_angle_histogram.counts.size(); ++i)
+    r.min_angle_histogram.counts[i] += p.q.min_angle_histogram.counts[i];
+  for (std::size_t i = 0; i < r.max_angle_histogram.counts.size(); ++i)
+    r.max_angle_histogram.counts[i] += p.q.max_angle_histogram.counts[i];
+  if (p.q.max_radius_edge) update_max(r.max_radius_edge, *p.q.max_radius_edge);
+  if (&all == &p) return;
+  all.interior += p.interior;
+  all.omax = std::max(all.omax, p.omax);
+  all.smax = std::max(all.smax, p.smax);
+  all.otop.values().insert(all.otop.values().end(), p.otop.values().begin(), p.otop.values().end());
+  all.stop.values().insert(all.stop.values().end(), p.stop.values().begin(), p.stop.values().end());
+  all.not_delaunay.insert(all.not_delaunay.end(), p.not_delaunay.begin(), p.not_delaunay.end());
+  all.ccw = all.ccw && p.ccw;
+}
+
 }  // namespace
 
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
@@ -309,121 +547,118 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   r.guarantees = compute_guarantees(alpha, bound_B);
   r.run = run;
 
-  const std::size_t nv = m.num_vertices();
-  // Orthogonality and nearest neighbours do not need f: with a second thread they are measured
-  // while the triangles are (same values either way).
-  std::vector<double> nn;
-  std::exception_ptr side_error;
-  const bool two = max_threads() > 1 && nv >= 4096;
-  auto side = [&](unsigned threads) {
-    try {
-      nn = mesh_nearest_neighbour_distances(m, threads, &r.orthogonality);
-    } catch (...) {
-      side_error = std::current_exception();
-    }
-  };
-  std::thread side_thread;
-  if (two) side_thread = std::thread(side, 1u);
-  struct Join {
-    std::thread& t;
-    ~Join() { if (t.joinable()) t.join(); }
-  } join_side{side_thread};
-  if (f && fill_f_at_vertices) {
-    fill_f_at_vertices->resize(nv);
-    for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
-    f_at_vertices = fill_f_at_vertices;
-  }
-  std::vector<double> el(nv, 0.0);  // longest edge of the triangles around each vertex
-  CompensatedSum area, r_over_f_sum;
-  std::size_t r_over_f_count = 0;
+  const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (m.triangles[t][k] >= nv)
+        throw Error(ExitCode::kInternal, "quality: triangle " + std::to_string(t) + " references vertex " +
+                                             std::to_string(m.triangles[t][k]) + " but the mesh has " +
+                                             std::to_string(nv) + " vertices");
+  // The mesher's adjacency, else one built from the triangles (meshes read from files).
+  const bool own_nb = m.neighbours.size() != 3 * nt;
+  const std::vector<Index> built = own_nb ? half_edge_neighbours(m) : std::vector<Index>{};
+  const std::vector<Index>& nb = own_nb ? built : m.neighbours;
+  const bool walk = !own_nb && nv >= 2;  // nearest neighbours by walking the mesher's mesh
+
+  if (f && fill_f_at_vertices) fill_f_at_vertices->resize(nv);
   if (f) r.bad_triangles = 0;
   if (per_triangle) {
-    per_triangle->area.assign(m.triangles.size(), 0.0);
-    per_triangle->min_angle_deg.assign(m.triangles.size(), 0.0);
-    if (f) per_triangle->r_over_f.assign(m.triangles.size(), kInf);
+    per_triangle->area.assign(nt, 0.0);
+    per_triangle->min_angle_deg.assign(nt, 0.0);
+    if (f) per_triangle->r_over_f.assign(nt, kInf);
     else per_triangle->r_over_f.clear();
   }
+  std::vector<double> el(nv, -1.0);  // -1: a vertex on no triangle
+  MeshWalkPrep prep;
+  prep.nn2.assign(nv, kInf);
+  if (walk) prep.tri_of_vertex.assign(nv, kNoId);
+  Pass pass{m, nb, f, bound_B, per_triangle, walk, el, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r};
 
-  AngleBins angles(r.min_angle_histogram, r.max_angle_histogram);
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-    if (t + 8 < m.triangles.size())  // corners are scattered in memory: fetch them ahead
-      for (Index v : m.triangles[t + 8])
-        if (v < nv) {
-          __builtin_prefetch(&m.vertices[v]);
-          __builtin_prefetch(&el[v], 1);
+  // The triangles in chunks: the calling thread takes them from the front (with f), a second
+  // thread from the back; the calling thread then evaluates f on the back chunks (in order). Both
+  // cores stay busy whatever f costs, and the figures do not depend on where the split fell.
+  const std::size_t top_k = 3 * nt / 100 + 4;  // > 1 % of the interior edges (at most 3 per triangle)
+  Part mine(r, top_k);
+  const bool two = max_threads() > 1 && nt >= 16384;
+  constexpr std::size_t kChunk = 4096;
+  const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
+  auto chunk = [&](std::size_t c) { return std::pair{c * kChunk, std::min(nt, (c + 1) * kChunk)}; };
+  std::optional<Part> theirs;
+  if (two) {
+    theirs.emplace(r, top_k);
+    std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
+    for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
+    std::exception_ptr error;
+    std::thread other([&] {
+      try {
+        for (std::size_t c = nchunks; c-- > 0;) {
+          if (claimed[c].exchange(1)) break;  // met the calling thread
+          const auto [lo, hi] = chunk(c);
+          pass.measure<true>(lo, hi, *theirs, false);
         }
-    const auto& tri = m.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      if (tri[k] >= nv) {
-        throw Error(ExitCode::kInternal, "quality: triangle " + std::to_string(t) + " references vertex " +
-                                             std::to_string(tri[k]) + " but the mesh has " +
-                                             std::to_string(nv) + " vertices");
+      } catch (...) {
+        error = std::current_exception();
       }
+    });
+    struct Join {
+      std::thread& t;
+      ~Join() { if (t.joinable()) t.join(); }
+    } join{other};
+    if (f && fill_f_at_vertices)
+      for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    std::size_t c = 0;
+    for (; c < nchunks && !claimed[c].exchange(1); ++c) {
+      const auto [lo, hi] = chunk(c);
+      pass.measure<true>(lo, hi, mine, true);
     }
-    const Point2 a = m.vertices[tri[0]], b = m.vertices[tri[1]], c = m.vertices[tri[2]];
-    const int o = predicates::orient2d(a, b, c);
-    if (o == 0) ++r.degenerate_triangles;
-    if (o < 0) ++r.inverted_triangles;
-
-    const Point2 d = b - a, e = c - a;
-    const double cr = d.x * e.y - d.y * e.x;  // twice the signed area
-    area.add(0.5 * cr);
-
-    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
-    const double lmin = std::min({la, lb, lc}), lmax = std::max({la, lb, lc});
-    for (Index v : tri) el[v] = std::max(el[v], lmax);
-
-    if (per_triangle) per_triangle->area[t] = 0.5 * cr;
-    if (per_triangle || !angles.fast(a, b, c, cr, r)) {  // the angles themselves (atan2)
-      const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
-      const double amin = std::min({ang[0], ang[1], ang[2]});
-      if (per_triangle) per_triangle->min_angle_deg[t] = amin;
-      const double amax = std::max({ang[0], ang[1], ang[2]});
-      angles.update(r, amin, amax);
-      r.min_angle_histogram.add(amin);
-      r.max_angle_histogram.add(amax);
-    }
-
-    // Circumcenter relative to a; a zero determinant means collinear corners (R infinite).
-    double radius = kInf;
-    Point2 center{};
-    const double den = 2.0 * cr;
-    if (o != 0 && den != 0) {
-      const double d2 = norm2(d), e2 = norm2(e);
-      const Point2 u{(e.y * d2 - d.y * e2) / den, (d.x * e2 - e.x * d2) / den};
-      radius = std::sqrt(norm2(u));
-      center = a + u;
-    }
-    update_max(r.max_radius_edge, lmin > 0 ? radius / lmin : kInf);
-
-    if (f) {
-      double ratio = kInf;
-      if (std::isfinite(radius)) {
-        const double fc = (*f)(center);
-        if (per_triangle) per_triangle->r_over_f[t] = radius / fc;
-        if (!usable_spacing(fc)) { ++r.spacing_invalid; continue; }
-        ratio = radius / fc;
-      }
-      update_max(r.max_R_over_f, ratio);
-      r_over_f_sum.add(ratio);
-      ++r_over_f_count;
-      if (ratio > bound_B) ++*r.bad_triangles;
-    }
+    if (c < nchunks) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
+    other.join();
+    if (error) std::rethrow_exception(error);
+  } else {
+    if (f && fill_f_at_vertices)
+      for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    pass.measure<false>(0, nt, mine, true);
   }
-  r.area = area.value();
-  if (r_over_f_count > 0) r.mean_R_over_f = r_over_f_sum.value() / static_cast<double>(r_over_f_count);
+  if (f && fill_f_at_vertices) f_at_vertices = fill_f_at_vertices;
+  merge(r, mine, mine);
+  if (theirs) merge(r, mine, *theirs);
+  r.area = pass.area.value();
+  if (pass.r_over_f_count > 0) r.mean_R_over_f = pass.r_over_f_sum.value() / static_cast<double>(pass.r_over_f_count);
+  OrthogonalityStats& s = r.orthogonality;
+  s.interior_edges = mine.interior;
+  if (mine.interior > 0) {
+    s.orthogonality_max = mine.omax;
+    s.smoothness_max = mine.smax;
+    s.orthogonality_p99 = quantile_from_top(mine.otop.values(), mine.interior, 0.99);
+    s.smoothness_p99 = quantile_from_top(mine.stop.values(), mine.interior, 0.99);
+  }
+  release_vector(mine.otop.values());
+  release_vector(mine.stop.values());
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  if (side_thread.joinable()) side_thread.join();
-  else side(1);
-  if (side_error) std::rethrow_exception(side_error);
+  std::vector<double> nn;
+  if (walk) {
+    prep.not_delaunay = std::move(mine.not_delaunay);
+    prep.ccw = mine.ccw;
+    nn = mesh_nearest_neighbour_sq(m, nb, max_threads(), &prep);
+  }
+  if (!nn.empty()) {
+    for (double& d : nn) d = std::sqrt(d);
+  } else {
+    // A global search (k-d tree) bounded by the mesh edges: exact, only slower.
+    nn = std::move(prep.nn2);
+    if (nv >= 2) {
+      const KdTree tree(m.vertices);
+      for (std::size_t k = 0; k < tree.size(); ++k) {
+        const Index i = tree.id_at(k);
+        nn[i] = std::sqrt(tree.nearest_sq_at(k, nn[i]));
+      }
+    }
+  }
+  release_vector(prep.tri_of_vertex);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
-
-  // Which vertices are corners of some triangle: el(p) is only defined there.
-  std::vector<char> used(nv, 0);
-  for (const auto& tri : m.triangles) for (Index v : tri) used[v] = 1;
 
   std::vector<double> conf;
   conf.reserve(nv);
@@ -437,7 +672,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     conf_sum.add(ci);
     r.conformity_histogram.add(ci);
     update_min(r.nn_over_f_min, q);
-    if (used[i]) update_max(r.el_over_f_max, el[i] / fp);
+    if (el[i] >= 0) update_max(r.el_over_f_max, el[i] / fp);  // el(p) is defined at corners only
   }
   if (!conf.empty()) {
     r.conformity_mean = conf_sum.value() / static_cast<double>(conf.size());
