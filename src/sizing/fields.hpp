@@ -107,7 +107,11 @@ class ClampField final : public SizingField {
 class ShiftedField final : public SizingField {
  public:
   ShiftedField(SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
-  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  // Scalar additions: a vectorized pair spilled through the stack made a store-forwarding stall
+  // on every evaluation (same values).
+  __attribute__((optimize("no-tree-slp-vectorize"))) double operator()(Point2 p) const override {
+    return (*f_)({p.x + o_.x, p.y + o_.y});
+  }
   double lipschitz() const override { return f_->lipschitz(); }
   std::string describe() const override { return f_->describe(); }
 
