@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -15,6 +16,14 @@
 #include <atomic>
 #include <memory>
 #include <thread>
+#include <chrono>
+#include <cstdlib>
+static double trace_now(){return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();}
+static double g_t0;
+#include <ctime>
+static double cpu_now(){timespec ts; clock_gettime(CLOCK_THREAD_CPUTIME_ID,&ts); return ts.tv_sec+1e-9*ts.tv_nsec;}
+static thread_local double g_c0;
+#define TRACE(msg) do{ if(std::getenv("FDR_TRACE")) {long a_=0,b_=0; FILE* fp_=std::fopen("/proc/self/statm","r"); if(fp_){if(std::fscanf(fp_,"%ld %ld",&a_,&b_)!=2)b_=0; std::fclose(fp_);} std::fprintf(stderr,"%-28s %.1f ms cpu %.1f rss %.1f\n",msg,1e3*(trace_now()-g_t0),1e3*(cpu_now()-g_c0), b_*4096.0/1048576);} }while(0)
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
@@ -111,10 +120,12 @@ void update_max(std::optional<double>& m, double v) { if (!m || v > *m) m = v; }
 // so far; otherwise (false) the caller measures the angles with atan2 as before.
 class AngleBins {
  public:
-  AngleBins(const Histogram& lo, const Histogram& hi) : lo_(edges(lo)), hi_(edges(hi)) {}
-  bool fast(Point2 a, Point2 b, Point2 c, double cross, QualityReport& r) {
+  AngleBins(const Histogram& lo, const Histogram& hi) : lo_(edges<12>(lo)), hi_(edges<24>(hi)) {}
+  // `l2`: the largest squared edge length, when the caller has it.
+  __attribute__((always_inline)) bool fast(Point2 a, Point2 b, Point2 c, double cross, QualityReport& r,
+                                           double l2 = -1) {
     const Point2 ab = b - a, bc = c - b, ca = a - c;
-    const double l2 = std::max({norm2(ab), norm2(bc), norm2(ca)});
+    if (l2 < 0) l2 = std::max({norm2(ab), norm2(bc), norm2(ca)});
     const double acr = std::fabs(cross);
     if (!(acr >= 1e-3 * l2) || !(l2 < kInf)) return false;  // slivers, degenerate, NaN, inf
     const double d0 = -dot(ab, ca), d1 = -dot(bc, ab), d2 = -dot(ca, bc);  // at a, b, c
@@ -143,39 +154,50 @@ class AngleBins {
   }
 
  private:
+  // cot of the inner bin edges lo + k*width, k = 1..n-1, then -inf (never counted, always clear)
+  // up to a fixed size, so that bin() compares them all without a branch.
+  template <std::size_t N>
   struct Edges {
-    std::vector<double> cot;  // cot of the inner bin edges lo + k*width, k = 1..n-1
-    bool ok = false;          // edges strictly inside (0, 180) deg
+    std::array<double, N> cot;
+    std::size_t n = 0;  // inner edges
+    bool ok = false;    // edges strictly inside (0, 180) deg, and at most N of them
   };
   static double cot_deg(double deg) {
     if (!(deg > 0)) return kInf;
     if (!(deg < 180)) return -kInf;
     return std::cos(deg / kDeg) / std::sin(deg / kDeg);
   }
-  static Edges edges(const Histogram& h) {
-    Edges e;
-    e.ok = h.counts.size() >= 1 && h.width > 0;
+  template <std::size_t N>
+  static Edges<N> edges(const Histogram& h) {
+    Edges<N> e;
+    e.cot.fill(-kInf);
+    e.n = h.counts.size() >= 1 ? h.counts.size() - 1 : 0;
+    e.ok = h.counts.size() >= 1 && e.n <= N && h.width > 0;
     for (std::size_t k = 1; e.ok && k < h.counts.size(); ++k) {
       const double phi = h.lo + static_cast<double>(k) * h.width;
       if (!(phi > 1 && phi < 179)) e.ok = false;
-      e.cot.push_back(cot_deg(phi));
+      e.cot[k - 1] = cot_deg(phi);
     }
     return e;
   }
   // The bin of the angle with dot product d: the number of inner edges phi_k <= t (the first and
   // last bins take the values outside, as Histogram::add). False when a comparison is unclear.
-  static bool bin(const Edges& e, double d, double acr, double tol, std::size_t& out) {
+  // d - acr cot(phi_k) increases with k; <= 0 means t >= phi_k. Every edge is compared (no
+  // branch on the data): a clear comparison far from the angle's bin cannot be wrong.
+  template <std::size_t N>
+  static bool bin(const Edges<N>& e, double d, double acr, double tol, std::size_t& out) {
     if (!e.ok) return false;
-    std::size_t k = 0;
-    for (; k < e.cot.size(); ++k) {  // d - acr cot(phi_k) increases with k; <= 0 means t >= phi_k
-      const double g = d - acr * e.cot[k];
-      if (std::fabs(g) <= tol) return false;
-      if (g > 0) break;
+    long k = 0, unclear = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+      const double g = d - acr * e.cot[i];
+      k += g <= 0;
+      unclear += !(std::fabs(g) > tol);
     }
-    out = k;
-    return true;
+    out = static_cast<std::size_t>(k);
+    return unclear == 0;
   }
-  Edges lo_, hi_;
+  Edges<12> lo_;  // the report: 11 inner edges (0..60 deg by 5)
+  Edges<24> hi_;  // 23 (60..180 deg by 5)
   double cot_min_ = kInf, cot_max_ = -kInf;
 };
 
@@ -326,17 +348,12 @@ inline void keep_min(double& x, double v) {
     x = std::min(x, v);
   }
 }
-// The last triangle (largest index) with that corner.
+// A triangle with that corner, where the nearest-neighbour walk starts (any one gives the same
+// distances: the walk is exact from each of them). Two threads may store it in either order.
 template <bool kShared>
-inline void keep_last(Index& x, Index t) {
-  if constexpr (kShared) {
-    std::atomic_ref<Index> r(x);
-    Index cur = r.load(std::memory_order_relaxed);
-    while ((cur == kNoId || cur < t) && !r.compare_exchange_weak(cur, t, std::memory_order_relaxed)) {
-    }
-  } else {
-    x = t;  // triangles in increasing order
-  }
+inline void keep_corner(Index& x, Index t) {
+  if constexpr (kShared) std::atomic_ref<Index>(x).store(t, std::memory_order_relaxed);
+  else x = t;
 }
 
 // What one thread measures on its triangles (merged in a fixed order: figures do not depend on
@@ -366,7 +383,7 @@ struct Pass {
   double bound_B;
   TriangleValues* per_triangle;
   bool walk;  // gather what the nearest-neighbour walk needs (tri_of_vertex, local Delaunay check)
-  std::vector<double>& el;   // per vertex: longest edge of its triangles
+  std::vector<double>& el;   // per vertex: longest edge of its triangles (-1: on no triangle)
   std::vector<double>& nn2;  // per vertex: shortest mesh edge, squared
   std::vector<Index>& tov;   // per vertex: last triangle with that corner
   // The calling thread's sums (triangle order).
@@ -395,18 +412,44 @@ struct Pass {
   }
 
   // Everything for the triangles [lo, hi); with_f on the calling thread when no triangle before lo
-  // is left for evaluate().
+  // is left for evaluate(). In batches: the scattered loads first, then each computation in its
+  // own short loop over the batch, so that the divisions and square roots of different triangles
+  // overlap (the same operations on the same values as one triangle at a time).
   template <bool kShared>
   void measure(std::size_t lo, std::size_t hi, Part& p, bool with_f) {
+    for (std::size_t b = lo; b < hi; b += kBatch) measure_batch<kShared>(b, std::min(hi, b + kBatch), p, with_f);
+  }
+
+  static constexpr std::size_t kBatch = 64;
+  // Per triangle of a batch.
+  struct Tri {
+    Point2 a, b, c;
+    double cr, q[3], lmin, lmax, radius;
+    Point2 cc;
+    int o;
+  };
+  // Per interior edge of a batch (measured from its half-edge u -> w with u <= w).
+  struct Edge {
+    std::uint32_t i;  // triangle in the batch
+    int k;
+    Point2 ga, gb, gc, far;
+  };
+  Tri tri_[kBatch];
+  Edge edge_[3 * kBatch];
+
+  template <bool kShared>
+  void measure_batch(std::size_t lo, std::size_t hi, Part& p, bool with_f) {
     const auto& T = m.triangles;
     const auto& V = m.vertices;
-    for (std::size_t t = lo; t < hi; ++t) {
-      // Corners and neighbours are scattered in memory: fetch the neighbours' triangles 16 ahead,
-      // the corners, their per-vertex entries and the neighbours' far corners 8 ahead.
-      if (t + 16 < hi)
+    const std::size_t n = hi - lo;
+    // 1. Loads (corners, neighbours' corners), with the next batch's fetched ahead.
+    std::size_t ne = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t t = lo + i;
+      if (t + 16 < T.size())
         for (int k = 0; k < 3; ++k)
           if (const Index g = nb[3 * (t + 16) + k]; g != kNoId) __builtin_prefetch(&T[g / 3]);
-      if (t + 8 < hi) {
+      if (t + 8 < T.size()) {
         const auto& ahead = T[t + 8];
         for (int k = 0; k < 3; ++k) {
           __builtin_prefetch(&V[ahead[k]]);
@@ -418,31 +461,62 @@ struct Pass {
         }
       }
       const auto& tr = T[t];
-      const Point2 a = V[tr[0]], b = V[tr[1]], c = V[tr[2]];
-      const int o = predicates::orient2d(a, b, c);
-      if (o == 0) ++p.q.degenerate_triangles;
-      if (o < 0) ++p.q.inverted_triangles;
-      if (o <= 0) p.ccw = false;
-      const Point2 d = b - a, e = c - a;
-      const double cr = d.x * e.y - d.y * e.x;  // twice the signed area
+      Tri& x = tri_[i];
+      x.a = V[tr[0]];
+      x.b = V[tr[1]];
+      x.c = V[tr[2]];
+      for (int k = 0; k < 3; ++k) {
+        const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
+        const Index g = nb[3 * t + k];
+        if (!(u <= w && g != kNoId)) continue;
+        const auto& tg = T[g / 3];
+        Edge& e = edge_[ne++];
+        e.i = static_cast<std::uint32_t>(i);
+        e.k = k;
+        e.ga = V[tg[0]];
+        e.gb = V[tg[1]];
+        e.gc = V[tg[2]];
+        const int j = (g % 3 + 2) % 3;
+        e.far = j == 0 ? e.ga : j == 1 ? e.gb : e.gc;
+      }
+    }
+    // 2. Per triangle: orientation, lengths, circumcentre.
+    for (std::size_t i = 0; i < n; ++i) {
+      Tri& x = tri_[i];
+      x.o = predicates::orient2d(x.a, x.b, x.c);
+      const Point2 d = x.b - x.a, e = x.c - x.a;
+      x.cr = d.x * e.y - d.y * e.x;  // twice the signed area
       // Squared edge lengths ab, bc, ca (norm2(x - y) == norm2(y - x) exactly).
-      const double q0 = norm2(d), q1 = norm2(c - b), q2 = norm2(e);
-      const double lmin = std::sqrt(std::min({q0, q1, q2})), lmax = std::sqrt(std::max({q0, q1, q2}));
-      const double lel = std::max(0.0, lmax);  // >= 0 marks a corner (a NaN length counts as 0)
+      x.q[0] = norm2(d);
+      x.q[1] = norm2(x.c - x.b);
+      x.q[2] = norm2(e);
+      x.lmin = std::sqrt(std::min({x.q[0], x.q[1], x.q[2]}));
+      x.lmax = std::sqrt(std::max({x.q[0], x.q[1], x.q[2]}));
+      double r2 = 0;
+      x.cc = predicates::circumcenter(x.a, x.b, x.c, &r2);  // a zero determinant: R infinite
+      x.radius = x.o != 0 && x.cr != 0 ? std::sqrt(r2) : kInf;
+    }
+    // 3. Per triangle: per-vertex bounds, angles, R/l, f.
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t t = lo + i;
+      const auto& tr = T[t];
+      const Tri& x = tri_[i];
+      if (x.o == 0) ++p.q.degenerate_triangles;
+      if (x.o < 0) ++p.q.inverted_triangles;
+      if (x.o <= 0) p.ccw = false;
+      const double lel = std::max(0.0, x.lmax);  // >= 0 marks a corner (a NaN length counts as 0)
       for (int k = 0; k < 3; ++k) {
         keep_max<kShared>(el[tr[k]], lel);
-        if (walk) keep_last<kShared>(tov[tr[k]], static_cast<Index>(t));
+        if (walk) keep_corner<kShared>(tov[tr[k]], static_cast<Index>(t));
       }
-      const double qs[3] = {q0, q1, q2};
       for (int k = 0; k < 3; ++k) {
         const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
         if (u == w) continue;
-        keep_min<kShared>(nn2[u], qs[k]);
-        keep_min<kShared>(nn2[w], qs[k]);
+        keep_min<kShared>(nn2[u], x.q[k]);
+        keep_min<kShared>(nn2[w], x.q[k]);
       }
-
-      if (per_triangle || !p.angles.fast(a, b, c, cr, p.q)) {  // the angles themselves (atan2)
-        const double ang[3] = {angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)};
+      if (per_triangle || !p.angles.fast(x.a, x.b, x.c, x.cr, p.q, std::max({x.q[0], x.q[1], x.q[2]}))) {
+        const double ang[3] = {angle_at(x.a, x.b, x.c), angle_at(x.b, x.c, x.a), angle_at(x.c, x.a, x.b)};
         const double amin = std::min({ang[0], ang[1], ang[2]});
         if (per_triangle) per_triangle->min_angle_deg[t] = amin;
         const double amax = std::max({ang[0], ang[1], ang[2]});
@@ -450,42 +524,40 @@ struct Pass {
         p.q.min_angle_histogram.add(amin);
         p.q.max_angle_histogram.add(amax);
       }
-
-      // Circumcentre; a zero determinant means collinear corners (R infinite).
-      double r2 = 0;
-      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
-      const double radius = o != 0 && cr != 0 ? std::sqrt(r2) : kInf;
-      update_max(p.q.max_radius_edge, lmin > 0 ? radius / lmin : kInf);
-      if (with_f) add_f(t, cr, radius, cc);
-
-      // Interior edges, each once: from its half-edge u -> w with u <= w.
-      Point2 cct{};
-      double at = -1;
-      for (int k = 0; k < 3; ++k) {
-        const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
-        const Index g = nb[3 * t + k];
-        if (!(u <= w && g != kNoId)) continue;
-        ++p.interior;
-        if (at < 0) {
-          cct = cell_centre(a, b, c, cc);
-          at = 0.5 * std::fabs(cr);
-        }
-        const auto& tg = T[g / 3];
-        const Point2 ga = V[tg[0]], gb = V[tg[1]], gc = V[tg[2]];
-        const Point2 ccu = cell_centre(ga, gb, gc, predicates::circumcenter(ga, gb, gc));
-        const double au = 0.5 * std::fabs((gb.x - ga.x) * (gc.y - ga.y) - (gb.y - ga.y) * (gc.x - ga.x));
-        if (walk && predicates::incircle(a, b, c, V[tg[(g % 3 + 2) % 3]]) > 0)
-          p.not_delaunay.push_back(static_cast<Index>(3 * t + k));
-        const Point2 ev = V[w] - V[u], l = cct - ccu;
-        const double len = std::sqrt(norm2(ev)) * std::sqrt(norm2(l));
-        const double alo = std::min(at, au), ahi = std::max(at, au);
-        const double ortho = len > 0 ? std::fabs(dot(ev, l)) / len : 0.0;
-        const double smooth = alo > 0 ? ahi / alo : kInf;
-        p.omax = std::max(p.omax, ortho);
-        p.smax = std::max(p.smax, smooth);
-        p.otop.add(ortho);
-        p.stop.add(smooth);
+      update_max(p.q.max_radius_edge, x.lmin > 0 ? x.radius / x.lmin : kInf);
+      if (with_f) add_f(t, x.cr, x.radius, x.cc);
+    }
+    // 4. Per interior edge: the cell centres' link against the edge, the area ratio, the local
+    // Delaunay check.
+    double ortho[3 * kBatch], smooth[3 * kBatch];
+    for (std::size_t j = 0; j < ne; ++j) {
+      const Edge& e = edge_[j];
+      const Tri& x = tri_[e.i];
+      const Point2 cct = cell_centre(x.a, x.b, x.c, x.cc);
+      const double at = 0.5 * std::fabs(x.cr);
+      const Point2 ccu = cell_centre(e.ga, e.gb, e.gc, predicates::circumcenter(e.ga, e.gb, e.gc));
+      const double au = 0.5 * std::fabs((e.gb.x - e.ga.x) * (e.gc.y - e.ga.y) - (e.gb.y - e.ga.y) * (e.gc.x - e.ga.x));
+      const Point2 u = e.k == 0 ? x.a : e.k == 1 ? x.b : x.c;
+      const Point2 w = e.k == 0 ? x.b : e.k == 1 ? x.c : x.a;
+      const Point2 ev = w - u, l = cct - ccu;
+      const double len = std::sqrt(norm2(ev)) * std::sqrt(norm2(l));
+      const double alo = std::min(at, au), ahi = std::max(at, au);
+      ortho[j] = len > 0 ? std::fabs(dot(ev, l)) / len : 0.0;
+      smooth[j] = alo > 0 ? ahi / alo : kInf;
+    }
+    if (walk)
+      for (std::size_t j = 0; j < ne; ++j) {
+        const Edge& e = edge_[j];
+        const Tri& x = tri_[e.i];
+        if (predicates::incircle(x.a, x.b, x.c, e.far) > 0)
+          p.not_delaunay.push_back(static_cast<Index>(3 * (lo + e.i) + static_cast<std::size_t>(e.k)));
       }
+    p.interior += ne;
+    for (std::size_t j = 0; j < ne; ++j) {
+      p.omax = std::max(p.omax, ortho[j]);
+      p.smax = std::max(p.smax, smooth[j]);
+      p.otop.add(ortho[j]);
+      p.stop.add(smooth[j]);
     }
   }
 
@@ -536,6 +608,7 @@ void merge(QualityReport& r, Part& all, Part& p) {
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
                               const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
+  g_t0=trace_now(); g_c0=cpu_now(); TRACE("start");
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -572,7 +645,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   MeshWalkPrep prep;
   prep.nn2.assign(nv, kInf);
   if (walk) prep.tri_of_vertex.assign(nv, kNoId);
-  Pass pass{m, nb, f, bound_B, per_triangle, walk, el, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r};
+  // Each thread has its own batch buffers.
+  auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, el, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}});
+  Pass& pass = *pass_mine;
 
   // The triangles in chunks: the calling thread takes them from the front (with f), a second
   // thread from the back; the calling thread then evaluates f on the back chunks (in order). Both
@@ -586,16 +661,19 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   std::optional<Part> theirs;
   if (two) {
     theirs.emplace(r, top_k);
+    auto other_pass = std::make_unique<Pass>(pass);
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
     std::exception_ptr error;
     std::thread other([&] {
+      g_c0 = cpu_now();
       try {
         for (std::size_t c = nchunks; c-- > 0;) {
           if (claimed[c].exchange(1)) break;  // met the calling thread
           const auto [lo, hi] = chunk(c);
-          pass.measure<true>(lo, hi, *theirs, false);
+          other_pass->measure<true>(lo, hi, *theirs, false);
         }
+        TRACE("worker: done");
       } catch (...) {
         error = std::current_exception();
       }
@@ -611,7 +689,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       const auto [lo, hi] = chunk(c);
       pass.measure<true>(lo, hi, mine, true);
     }
+    TRACE("main: own chunks"); if(std::getenv("FDR_TRACE")) std::fprintf(stderr, "split %zu of %zu\n", c, nchunks);
     if (c < nchunks) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
+    TRACE("main: evaluated");
     other.join();
     if (error) std::rethrow_exception(error);
   } else {
@@ -620,6 +700,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     pass.measure<false>(0, nt, mine, true);
   }
   if (f && fill_f_at_vertices) f_at_vertices = fill_f_at_vertices;
+  TRACE("joined");
   merge(r, mine, mine);
   if (theirs) merge(r, mine, *theirs);
   r.area = pass.area.value();
@@ -635,6 +716,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   release_vector(mine.otop.values());
   release_vector(mine.stop.values());
 
+  TRACE("merged");
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
   std::vector<double> nn;
   if (walk) {
@@ -655,6 +737,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       }
     }
   }
+  TRACE("nn");
   release_vector(prep.tri_of_vertex);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
@@ -683,6 +766,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     r.conformity_p05 = conf[k];
     r.conformity_min = *std::min_element(conf.begin(), conf.end());
   }
+  TRACE("vertices");
   return r;
 }
 
