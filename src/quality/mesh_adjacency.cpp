@@ -247,18 +247,20 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
   if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
   std::vector<double> nn = std::move(prep->nn2);
 
-  // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
-  std::vector<std::uint8_t> sflag(3 * nt, 0);
+  // S: the boundary and the constrained edges (m.edges), as half-edges, sorted.
+  std::vector<Index> s_edges;
   bool certify = prep->ccw;  // and every edge of m.edges found (else the shortcut below is off)
   for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (nb[h] == kNoId) sflag[h] = 1;
+    if (nb[h] == kNoId) s_edges.push_back(static_cast<Index>(h));
   for (const auto& e : m.edges) {
     if (e.a >= nv || e.b >= nv) { certify = false; continue; }
     const Index h = find_half_edge(m, nb, tri_of_vertex[e.a], e.a, e.b);
     if (h == kNoId) { certify = false; continue; }
-    sflag[h] = 1;
-    if (nb[h] != kNoId) sflag[nb[h]] = 1;
+    s_edges.push_back(h);
+    if (nb[h] != kNoId) s_edges.push_back(nb[h]);
   }
+  std::sort(s_edges.begin(), s_edges.end());
+  s_edges.erase(std::unique(s_edges.begin(), s_edges.end()), s_edges.end());
   // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
   // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
   // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
@@ -267,11 +269,7 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
   // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
   // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
   for (Index h : prep->not_delaunay)
-    if (!sflag[h]) certify = false;
-  std::vector<Index> s_edges;
-  for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
-  release(sflag);
+    if (!std::binary_search(s_edges.begin(), s_edges.end(), h)) certify = false;
   const EdgeIndex si(m, std::move(s_edges));
 
   // Vertices in two fixed halves (results per vertex do not depend on the split).

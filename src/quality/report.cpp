@@ -16,14 +16,6 @@
 #include <atomic>
 #include <memory>
 #include <thread>
-#include <chrono>
-#include <cstdlib>
-static double trace_now(){return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();}
-static double g_t0;
-#include <ctime>
-static double cpu_now(){timespec ts; clock_gettime(CLOCK_THREAD_CPUTIME_ID,&ts); return ts.tv_sec+1e-9*ts.tv_nsec;}
-static thread_local double g_c0;
-#define TRACE(msg) do{ if(std::getenv("FDR_TRACE")) {long a_=0,b_=0; FILE* fp_=std::fopen("/proc/self/statm","r"); if(fp_){if(std::fscanf(fp_,"%ld %ld",&a_,&b_)!=2)b_=0; std::fclose(fp_);} std::fprintf(stderr,"%-28s %.1f ms cpu %.1f rss %.1f\n",msg,1e3*(trace_now()-g_t0),1e3*(cpu_now()-g_c0), b_*4096.0/1048576);} }while(0)
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
@@ -608,7 +600,6 @@ void merge(QualityReport& r, Part& all, Part& p) {
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
                               const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
-  g_t0=trace_now(); g_c0=cpu_now(); TRACE("start");
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -666,14 +657,12 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
     std::exception_ptr error;
     std::thread other([&] {
-      g_c0 = cpu_now();
       try {
         for (std::size_t c = nchunks; c-- > 0;) {
           if (claimed[c].exchange(1)) break;  // met the calling thread
           const auto [lo, hi] = chunk(c);
           other_pass->measure<true>(lo, hi, *theirs, false);
         }
-        TRACE("worker: done");
       } catch (...) {
         error = std::current_exception();
       }
@@ -689,9 +678,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       const auto [lo, hi] = chunk(c);
       pass.measure<true>(lo, hi, mine, true);
     }
-    TRACE("main: own chunks"); if(std::getenv("FDR_TRACE")) std::fprintf(stderr, "split %zu of %zu\n", c, nchunks);
     if (c < nchunks) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
-    TRACE("main: evaluated");
     other.join();
     if (error) std::rethrow_exception(error);
   } else {
@@ -700,7 +687,6 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     pass.measure<false>(0, nt, mine, true);
   }
   if (f && fill_f_at_vertices) f_at_vertices = fill_f_at_vertices;
-  TRACE("joined");
   merge(r, mine, mine);
   if (theirs) merge(r, mine, *theirs);
   r.area = pass.area.value();
@@ -716,7 +702,6 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   release_vector(mine.otop.values());
   release_vector(mine.stop.values());
 
-  TRACE("merged");
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
   std::vector<double> nn;
   if (walk) {
@@ -737,36 +722,42 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       }
     }
   }
-  TRACE("nn");
   release_vector(prep.tri_of_vertex);
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
 
-  std::vector<double> conf;
-  conf.reserve(nv);
+  // p05 from the smallest 5 % (as negated largest values): no copy of every vertex's value.
+  TopK low(nv / 20 + 4);
+  std::size_t nconf = 0;
+  std::optional<double> conf_min;
   CompensatedSum conf_sum;
   for (std::size_t i = 0; i < nv; ++i) {
     const double fp = !f ? m.f[i] : f_at_vertices && f_at_vertices->size() == nv ? (*f_at_vertices)[i] : (*f)(m.vertices[i]);
     if (!usable_spacing(fp)) { ++r.spacing_invalid; continue; }
     const double q = nn[i] / fp;
     const double ci = std::min(q, fp / nn[i]);  // nn = 0 (duplicate point) gives 0
-    conf.push_back(ci);
+    ++nconf;
+    low.add(-ci);
+    update_min(conf_min, ci);
     conf_sum.add(ci);
     r.conformity_histogram.add(ci);
     update_min(r.nn_over_f_min, q);
     if (el[i] >= 0) update_max(r.el_over_f_max, el[i] / fp);  // el(p) is defined at corners only
   }
-  if (!conf.empty()) {
-    r.conformity_mean = conf_sum.value() / static_cast<double>(conf.size());
+  if (nconf > 0) {
+    r.conformity_mean = conf_sum.value() / static_cast<double>(nconf);
     // p05 by nearest rank: the smallest value with at least 5 % of the vertices at or below it.
-    const std::size_t rank = static_cast<std::size_t>(std::ceil(0.05 * static_cast<double>(conf.size())));
-    const std::size_t k = rank == 0 ? 0 : rank - 1;
-    std::nth_element(conf.begin(), conf.begin() + k, conf.end());
-    r.conformity_p05 = conf[k];
-    r.conformity_min = *std::min_element(conf.begin(), conf.end());
+    const std::size_t rank = static_cast<std::size_t>(std::ceil(0.05 * static_cast<double>(nconf)));
+    const std::size_t k = rank == 0 ? 0 : rank - 1;  // the k-th smallest is the (k+1)-th largest of -ci
+    std::vector<double>& v = low.values();
+    if (k + 1 > v.size()) throw Error(ExitCode::kInternal, "quality: percentile buffer too small");
+    const auto at = v.end() - static_cast<std::ptrdiff_t>(k + 1);
+    std::nth_element(v.begin(), at, v.end(), TopK::less);
+    r.conformity_p05 = -*at;
+    r.conformity_min = conf_min;
   }
-  TRACE("vertices");
+
   return r;
 }
 
