@@ -14,6 +14,7 @@
 #include <string>
 #include <exception>
 #include <atomic>
+#include <latch>
 #include <memory>
 #include <thread>
 #include <nlohmann/json.hpp>
@@ -501,9 +502,9 @@ struct Pass {
         keep_max<kShared>(el[tr[k]], lel);
         if (walk) keep_corner<kShared>(tov[tr[k]], static_cast<Index>(t));
       }
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 3; ++k) {  // an interior edge from one side (its twin w -> u has w < u)
         const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
-        if (u == w) continue;
+        if (u == w || (u > w && nb[3 * t + k] != kNoId)) continue;
         keep_min<kShared>(nn2[u], x.q[k]);
         keep_min<kShared>(nn2[w], x.q[k]);
       }
@@ -591,7 +592,6 @@ void merge(QualityReport& r, Part& all, Part& p) {
   all.smax = std::max(all.smax, p.smax);
   all.otop.values().insert(all.otop.values().end(), p.otop.values().begin(), p.otop.values().end());
   all.stop.values().insert(all.stop.values().end(), p.stop.values().begin(), p.stop.values().end());
-  all.not_delaunay.insert(all.not_delaunay.end(), p.not_delaunay.begin(), p.not_delaunay.end());
   all.ccw = all.ccw && p.ccw;
 }
 
@@ -650,27 +650,62 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
   auto chunk = [&](std::size_t c) { return std::pair{c * kChunk, std::min(nt, (c + 1) * kChunk)}; };
   std::optional<Part> theirs;
+  // The nearest-neighbour search over the mesher's mesh, in vertex chunks claimed by both threads.
+  std::optional<MeshNearestNeighbours> search;
+  std::atomic<std::size_t> next_vertices{0};
+  auto search_chunks = [&] {
+    constexpr std::size_t kVertices = 8192;
+    for (std::size_t lo; (lo = next_vertices.fetch_add(kVertices)) < nv;) search->search(lo, std::min(nv, lo + kVertices));
+  };
+  auto build_search = [&](const Part* other) {
+    prep.not_delaunay = mine.not_delaunay;
+    if (other) prep.not_delaunay.insert(prep.not_delaunay.end(), other->not_delaunay.begin(), other->not_delaunay.end());
+    prep.ccw = mine.ccw && (!other || other->ccw);
+    search.emplace(m, nb, prep);
+  };
   if (two) {
     theirs.emplace(r, top_k);
     auto other_pass = std::make_unique<Pass>(pass);
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
+    // The second thread, done with its chunks, builds the search (once the calling thread is done
+    // with its chunks: every triangle measured) while the calling thread evaluates f on the second
+    // thread's chunks; then both search.
+    std::latch mine_done(1), search_built(1);
     std::exception_ptr error;
     std::thread other([&] {
+      bool built = false;
       try {
         for (std::size_t c = nchunks; c-- > 0;) {
           if (claimed[c].exchange(1)) break;  // met the calling thread
           const auto [lo, hi] = chunk(c);
           other_pass->measure<true>(lo, hi, *theirs, false);
         }
+        if (walk) {
+          mine_done.wait();
+          build_search(&*theirs);
+          search_built.count_down();
+          built = true;
+          if (search->usable()) search_chunks();
+        }
       } catch (...) {
         error = std::current_exception();
       }
+      if (walk && !built) search_built.count_down();
     });
     struct Join {
       std::thread& t;
-      ~Join() { if (t.joinable()) t.join(); }
-    } join{other};
+      std::latch& done;
+      bool counted = false;
+      void count() {
+        if (!counted) done.count_down();
+        counted = true;
+      }
+      ~Join() {
+        count();  // also when f throws: the other thread must not wait for ever
+        if (t.joinable()) t.join();
+      }
+    } join{other, mine_done};
     if (f && fill_f_at_vertices)
       for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
     std::size_t c = 0;
@@ -678,13 +713,22 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       const auto [lo, hi] = chunk(c);
       pass.measure<true>(lo, hi, mine, true);
     }
+    join.count();
     if (c < nchunks) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
+    if (walk) {
+      search_built.wait();
+      if (search && search->usable()) search_chunks();
+    }
     other.join();
     if (error) std::rethrow_exception(error);
   } else {
     if (f && fill_f_at_vertices)
       for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
     pass.measure<false>(0, nt, mine, true);
+    if (walk) {
+      build_search(nullptr);
+      if (search->usable()) search->search(0, nv);
+    }
   }
   if (f && fill_f_at_vertices) f_at_vertices = fill_f_at_vertices;
   merge(r, mine, mine);
@@ -704,11 +748,8 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
   std::vector<double> nn;
-  if (walk) {
-    prep.not_delaunay = std::move(mine.not_delaunay);
-    prep.ccw = mine.ccw;
-    nn = mesh_nearest_neighbour_sq(m, nb, max_threads(), &prep);
-  }
+  if (search && search->usable()) nn = search->take();
+  search.reset();
   if (!nn.empty()) {
     for (double& d : nn) d = std::sqrt(d);
   } else {
