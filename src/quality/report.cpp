@@ -14,6 +14,9 @@
 #include <string>
 #include <exception>
 #include <atomic>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <latch>
 #include <memory>
 #include <thread>
@@ -179,14 +182,26 @@ class AngleBins {
   // branch on the data): a clear comparison far from the angle's bin cannot be wrong.
   template <std::size_t N>
   static bool bin(const Edges<N>& e, double d, double acr, double tol, std::size_t& out) {
+    static_assert(N % 2 == 0);
     if (!e.ok) return false;
-    long k = 0, unclear = 0;
+    unsigned k = 0, unclear = 0;
+#if defined(__SSE2__)
+    // Two edges per instruction (the same IEEE operations as the scalar loop below).
+    const __m128d vd = _mm_set1_pd(d), va = _mm_set1_pd(acr), vtol = _mm_set1_pd(tol), zero = _mm_setzero_pd();
+    const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+    for (std::size_t i = 0; i < N; i += 2) {
+      const __m128d g = _mm_sub_pd(vd, _mm_mul_pd(va, _mm_loadu_pd(&e.cot[i])));
+      k += static_cast<unsigned>(__builtin_popcount(static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(g, zero)))));
+      unclear |= static_cast<unsigned>(_mm_movemask_pd(_mm_cmpngt_pd(_mm_and_pd(g, abs_mask), vtol)));
+    }
+#else
     for (std::size_t i = 0; i < N; ++i) {
       const double g = d - acr * e.cot[i];
       k += g <= 0;
-      unclear += !(std::fabs(g) > tol);
+      unclear |= !(std::fabs(g) > tol);
     }
-    out = static_cast<std::size_t>(k);
+#endif
+    out = k;
     return unclear == 0;
   }
   Edges<12> lo_;  // the report: 11 inner edges (0..60 deg by 5)
