@@ -364,6 +364,40 @@ inline void keep_corner(Index& x, Index t) {
   else x = t;
 }
 
+// Two divisions / square roots in one instruction where SSE2 is there (the same IEEE results as
+// one at a time): the report's pass is bound by them.
+inline void div2(double a0, double b0, double a1, double b1, double& q0, double& q1) {
+#if defined(__SSE2__)
+  const __m128d q = _mm_div_pd(_mm_set_pd(a1, a0), _mm_set_pd(b1, b0));
+  q0 = _mm_cvtsd_f64(q);
+  q1 = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
+#else
+  q0 = a0 / b0;
+  q1 = a1 / b1;
+#endif
+}
+inline void sqrt2(double a0, double a1, double& r0, double& r1) {
+#if defined(__SSE2__)
+  const __m128d r = _mm_sqrt_pd(_mm_set_pd(a1, a0));
+  r0 = _mm_cvtsd_f64(r);
+  r1 = _mm_cvtsd_f64(_mm_unpackhi_pd(r, r));
+#else
+  r0 = std::sqrt(a0);
+  r1 = std::sqrt(a1);
+#endif
+}
+// predicates::circumcenter, operation for operation, with its two divisions paired.
+inline Point2 circumcentre(Point2 a, Point2 b, Point2 c, double* r2) {
+  const double bx = b.x - a.x, by = b.y - a.y;
+  const double cx = c.x - a.x, cy = c.y - a.y;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double d = 2.0 * (bx * cy - by * cx);
+  double ux, uy;
+  div2(cy * b2 - by * c2, d, bx * c2 - cx * b2, d, ux, uy);
+  if (r2) *r2 = ux * ux + uy * uy;
+  return {a.x + ux, a.y + uy};
+}
+
 // What one thread measures on its triangles (merged in a fixed order: figures do not depend on
 // how the triangles were split).
 struct Part {
@@ -433,7 +467,7 @@ struct Pass {
   struct Tri {
     Point2 a, b, c;
     double cr, q[3], lmin, lmax, radius;
-    Point2 cc;
+    Point2 cc, cell;  // circumcentre; cell centre (when the triangle measures an edge)
     int o;
   };
   // Per interior edge of a batch (measured from its half-edge u -> w with u <= w).
@@ -498,10 +532,9 @@ struct Pass {
       x.q[0] = norm2(d);
       x.q[1] = norm2(x.c - x.b);
       x.q[2] = norm2(e);
-      x.lmin = std::sqrt(std::min({x.q[0], x.q[1], x.q[2]}));
-      x.lmax = std::sqrt(std::max({x.q[0], x.q[1], x.q[2]}));
+      sqrt2(std::min({x.q[0], x.q[1], x.q[2]}), std::max({x.q[0], x.q[1], x.q[2]}), x.lmin, x.lmax);
       double r2 = 0;
-      x.cc = predicates::circumcenter(x.a, x.b, x.c, &r2);  // a zero determinant: R infinite
+      x.cc = circumcentre(x.a, x.b, x.c, &r2);  // a zero determinant: R infinite
       x.radius = x.o != 0 && x.cr != 0 ? std::sqrt(r2) : kInf;
     }
     // 3. Per triangle: per-vertex bounds, angles, R/l, f.
@@ -537,21 +570,30 @@ struct Pass {
     }
     // 4. Per interior edge: the cell centres' link against the edge, the area ratio, the local
     // Delaunay check.
+    for (std::size_t j = 0; j < ne; ++j)
+      if (j == 0 || edge_[j].i != edge_[j - 1].i) {
+        Tri& x = tri_[edge_[j].i];
+        x.cell = cell_centre(x.a, x.b, x.c, x.cc);
+      }
     double ortho[3 * kBatch], smooth[3 * kBatch];
     for (std::size_t j = 0; j < ne; ++j) {
       const Edge& e = edge_[j];
       const Tri& x = tri_[e.i];
-      const Point2 cct = cell_centre(x.a, x.b, x.c, x.cc);
+      const Point2 cct = x.cell;
       const double at = 0.5 * std::fabs(x.cr);
-      const Point2 ccu = cell_centre(e.ga, e.gb, e.gc, predicates::circumcenter(e.ga, e.gb, e.gc));
+      const Point2 ccu = cell_centre(e.ga, e.gb, e.gc, circumcentre(e.ga, e.gb, e.gc, nullptr));
       const double au = 0.5 * std::fabs((e.gb.x - e.ga.x) * (e.gc.y - e.ga.y) - (e.gb.y - e.ga.y) * (e.gc.x - e.ga.x));
       const Point2 u = e.k == 0 ? x.a : e.k == 1 ? x.b : x.c;
       const Point2 w = e.k == 0 ? x.b : e.k == 1 ? x.c : x.a;
       const Point2 ev = w - u, l = cct - ccu;
-      const double len = std::sqrt(norm2(ev)) * std::sqrt(norm2(l));
+      double le, ll;
+      sqrt2(norm2(ev), norm2(l), le, ll);
+      const double len = le * ll;
       const double alo = std::min(at, au), ahi = std::max(at, au);
-      ortho[j] = len > 0 ? std::fabs(dot(ev, l)) / len : 0.0;
-      smooth[j] = alo > 0 ? ahi / alo : kInf;
+      double o, sm;  // both divided, the unusable one discarded
+      div2(std::fabs(dot(ev, l)), len, ahi, alo, o, sm);
+      ortho[j] = len > 0 ? o : 0.0;
+      smooth[j] = alo > 0 ? sm : kInf;
     }
     if (walk)
       for (std::size_t j = 0; j < ne; ++j) {
