@@ -252,6 +252,7 @@ class OccupancyGrid {
     y0_ = y0 - 2 * margin_;
     cell_ = (span + 4 * margin_) / static_cast<double>(n_);
     if (!(cell_ > 0) || !std::isfinite(cell_)) return;
+    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
     occupied_.assign(n_ * n_, 0);
     std::size_t marked = 0;
     for (Index h : he) {
@@ -287,15 +288,15 @@ class OccupancyGrid {
  private:
   // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis.
   void range(double lo, double hi, double origin, std::size_t& k0, std::size_t& k1) const {
-    auto cell = [&](double v) {
-      const double c = std::floor((v - origin) / cell_);
-      return c <= 0 ? std::size_t{0} : c >= static_cast<double>(n_ - 1) ? n_ - 1 : static_cast<std::size_t>(c);
+    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
+      const double c = (v - origin) * inv_cell_;
+      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n_ - 1) ? n_ - 1 : static_cast<std::size_t>(c);
     };
     k0 = cell(lo - margin_);
     k1 = cell(hi + margin_);
   }
   std::size_t n_ = 0;
-  double x0_ = 0, y0_ = 0, cell_ = 0, margin_ = 0;
+  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
   std::vector<std::uint8_t> occupied_;
 };
 
