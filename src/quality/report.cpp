@@ -430,13 +430,23 @@ struct Pass {
   double bound_B;
   TriangleValues* per_triangle;
   bool walk;  // gather what the nearest-neighbour walk needs (tri_of_vertex, local Delaunay check)
-  std::vector<double>& el;   // per vertex: longest edge of its triangles (-1: on no triangle)
+  // f at the vertices (null without f): el(p)/f(p) is the largest of lmax(T)/f(p) over the
+  // triangles T at p (a division by f(p) > 0 keeps the order, also as rounded), so no el array.
+  const double* fv;
   std::vector<double>& nn2;  // per vertex: shortest mesh edge, squared
   std::vector<Index>& tov;   // per vertex: last triangle with that corner
   // The calling thread's sums (triangle order).
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
   QualityReport* r = nullptr;  // max_R_over_f, bad_triangles, spacing_invalid
+
+  std::optional<double> el_f_max;  // el(p)/f(p) over the calling thread's triangles
+  void el_over_f(const std::array<Index, 3>& tr, double lmax) {
+    if (!fv) return;
+    const double l = std::max(0.0, lmax);  // el starts at 0 (a NaN length counts as 0)
+    for (const Index v : tr)
+      if (usable_spacing(fv[v])) update_max(el_f_max, l / fv[v]);
+  }
 
   void add_f(std::size_t t, double cr, double radius, Point2 center) {
     area.add(0.5 * cr);
@@ -500,7 +510,7 @@ struct Pass {
         const auto& ahead = T[t + 8];
         for (int k = 0; k < 3; ++k) {
           __builtin_prefetch(&V[ahead[k]]);
-          __builtin_prefetch(&el[ahead[k]], 1);
+          if (fv) __builtin_prefetch(&fv[ahead[k]]);
           __builtin_prefetch(&nn2[ahead[k]], 1);
           if (walk) __builtin_prefetch(&tov[ahead[k]], 1);
           const Index g = nb[3 * (t + 8) + k];
@@ -550,11 +560,9 @@ struct Pass {
       if (x.o == 0) ++p.q.degenerate_triangles;
       if (x.o < 0) ++p.q.inverted_triangles;
       if (x.o <= 0) p.ccw = false;
-      const double lel = std::max(0.0, x.lmax);  // >= 0 marks a corner (a NaN length counts as 0)
-      for (int k = 0; k < 3; ++k) {
-        keep_max<kShared>(el[tr[k]], lel);
-        if (walk) keep_corner<kShared>(tov[tr[k]], static_cast<Index>(t));
-      }
+      if (with_f) el_over_f(tr, x.lmax);
+      if (walk)
+        for (int k = 0; k < 3; ++k) keep_corner<kShared>(tov[tr[k]], static_cast<Index>(t));
       for (int k = 0; k < 3; ++k) {  // an interior edge from one side (its twin w -> u has w < u)
         const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
         if (u == w || (u > w && nb[3 * t + k] != kNoId)) continue;
@@ -622,10 +630,14 @@ struct Pass {
     const auto& V = m.vertices;
     for (std::size_t t = lo; t < hi; ++t) {
       if (t + 8 < hi)
-        for (const Index v : T[t + 8]) __builtin_prefetch(&V[v]);
+        for (const Index v : T[t + 8]) {
+          __builtin_prefetch(&V[v]);
+          if (fv) __builtin_prefetch(&fv[v]);
+        }
       const Point2 a = V[T[t][0]], b = V[T[t][1]], c = V[T[t][2]];
       const Point2 d = b - a, e = c - a;
       const double cr = d.x * e.y - d.y * e.x;
+      if (fv) el_over_f(T[t], std::sqrt(std::max({norm2(d), norm2(c - b), norm2(e)})));
       if (!f) {
         add_f(t, cr, kInf, {});
         continue;
@@ -686,7 +698,6 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   const std::vector<Index>& nb = own_nb ? built : m.neighbours;
   const bool walk = !own_nb && nv >= 2;  // nearest neighbours by walking the mesher's mesh
 
-  if (f && fill_f_at_vertices) fill_f_at_vertices->resize(nv);
   if (f) r.bad_triangles = 0;
   if (per_triangle) {
     per_triangle->area.assign(nt, 0.0);
@@ -694,12 +705,18 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     if (f) per_triangle->r_over_f.assign(nt, kInf);
     else per_triangle->r_over_f.clear();
   }
-  std::vector<double> el(nv, -1.0);  // -1: a vertex on no triangle
+  // f at the vertices, evaluated first on this thread (when not given): el(p)/f(p) is measured
+  // per triangle.
+  std::vector<double> own_fv;
+  std::vector<double>* fill = fill_f_at_vertices;
+  if (f && !fill && !(f_at_vertices && f_at_vertices->size() == nv)) fill = &own_fv;
+  if (f && fill) fill->resize(nv);
+  const double* fv = f ? (fill ? fill->data() : f_at_vertices->data()) : m.f.size() == nv ? m.f.data() : nullptr;
   MeshWalkPrep prep;
   prep.nn2.assign(nv, kInf);
   if (walk) prep.tri_of_vertex.assign(nv, kNoId);
   // Each thread has its own batch buffers.
-  auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, el, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}});
+  auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}, {}});
   Pass& pass = *pass_mine;
 
   // The triangles in chunks: the calling thread takes them from the front (with f), a second
@@ -770,8 +787,8 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
         if (t.joinable()) t.join();
       }
     } join{other, mine_done};
-    if (f && fill_f_at_vertices)
-      for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    if (f && fill)
+      for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
     std::size_t c = 0;
     for (; c < nchunks && !claimed[c].exchange(1); ++c) {
       const auto [lo, hi] = chunk(c);
@@ -786,15 +803,15 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     other.join();
     if (error) std::rethrow_exception(error);
   } else {
-    if (f && fill_f_at_vertices)
-      for (std::size_t i = 0; i < nv; ++i) (*fill_f_at_vertices)[i] = (*f)(m.vertices[i]);
+    if (f && fill)
+      for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
     pass.measure<false>(0, nt, mine, true);
     if (walk) {
       build_search(nullptr);
       if (search->usable()) search->search(0, nv);
     }
   }
-  if (f && fill_f_at_vertices) f_at_vertices = fill_f_at_vertices;
+  if (f && fill) f_at_vertices = fill;
   merge(r, mine, mine);
   if (theirs) merge(r, mine, *theirs);
   r.area = pass.area.value();
@@ -836,14 +853,13 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
+  r.el_over_f_max = pass.el_f_max;  // el(p) is defined at corners only
 
-  // Conformity nn(p)/f(p) and el(p)/f(p): with f at the vertices in an array, two halves of the
-  // vertices at once (merged in order; the compensated sum runs over every vertex in order on
+  // Conformity nn(p)/f(p): with f at the vertices in an array, two halves of the vertices at once (merged in order; the compensated sum runs over every vertex in order on
   // this thread). p05 from the smallest 5 % (as negated largest values): no copy of every value.
-  const double* fv = !f ? m.f.data() : f_at_vertices && f_at_vertices->size() == nv ? f_at_vertices->data() : nullptr;
   struct VertexPart {
     std::size_t invalid = 0, nconf = 0;
-    std::optional<double> nn_over_f_min, el_over_f_max, conf_min;
+    std::optional<double> nn_over_f_min, conf_min;
     Histogram hist;
     TopK low;
   };
@@ -859,11 +875,10 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       if (sum) sum->add(ci);
       vp.hist.add(ci);
       update_min(vp.nn_over_f_min, q);
-      if (el[i] >= 0) update_max(vp.el_over_f_max, el[i] / fp);  // el(p) is defined at corners only
     }
   };
   std::vector<VertexPart> vparts(fv && max_threads() > 1 && nv >= 16384 ? 2 : 1,
-                                 VertexPart{0, 0, {}, {}, {}, r.conformity_histogram, TopK(nv / 20 + 4)});
+                                 VertexPart{0, 0, {}, {}, r.conformity_histogram, TopK(nv / 20 + 4)});
   CompensatedSum conf_sum;
   const std::size_t half = vparts.size() == 2 ? nv / 2 : nv;
   if (vparts.size() == 2) {
@@ -894,7 +909,6 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     r.spacing_invalid += vp.invalid;
     nconf += vp.nconf;
     if (vp.nn_over_f_min) update_min(r.nn_over_f_min, *vp.nn_over_f_min);
-    if (vp.el_over_f_max) update_max(r.el_over_f_max, *vp.el_over_f_max);
     if (vp.conf_min) update_min(conf_min, *vp.conf_min);
     for (std::size_t b = 0; b < r.conformity_histogram.counts.size(); ++b)
       r.conformity_histogram.counts[b] += vp.hist.counts[b];

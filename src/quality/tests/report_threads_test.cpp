@@ -116,6 +116,13 @@ void check(const mesh::MeshView& m, const sizing::SizingField* f, bool per_trian
     }
     EXPECT_EQ(*one.r.conformity_p05, nearest_rank(conf, 0.05));
     EXPECT_EQ(*one.r.conformity_min, *std::min_element(conf.begin(), conf.end()));
+    std::vector<double> el(m.vertices.size(), 0.0);  // longest edge of the triangles at each vertex
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j) el[t[k]] = std::max(el[t[k]], dist(m.vertices[t[j]], m.vertices[t[(j + 1) % 3]]));
+    double el_f = 0;
+    for (std::size_t i = 0; i < el.size(); ++i) el_f = std::max(el_f, el[i] / (*f)(m.vertices[i]));
+    EXPECT_EQ(*one.r.el_over_f_max, el_f);
   }
 }
 
