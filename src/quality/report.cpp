@@ -499,21 +499,22 @@ struct Pass {
     const auto& T = m.triangles;
     const auto& V = m.vertices;
     const std::size_t n = hi - lo;
-    // 1. Loads (corners, neighbours' corners), with the next batch's fetched ahead.
+    // 1. Loads (corners, neighbours' corners). The next batch's corners and the one after's
+    // neighbouring triangles are fetched now: the computations below hide their latency.
     std::size_t ne = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t t = lo + i;
-      if (t + 16 < T.size())
+      if (t + 2 * kBatch < T.size())
         for (int k = 0; k < 3; ++k)
-          if (const Index g = nb[3 * (t + 16) + k]; g != kNoId) __builtin_prefetch(&T[g / 3]);
-      if (t + 8 < T.size()) {
-        const auto& ahead = T[t + 8];
+          if (const Index g = nb[3 * (t + 2 * kBatch) + k]; g != kNoId) __builtin_prefetch(&T[g / 3]);
+      if (t + kBatch < T.size()) {
+        const auto& ahead = T[t + kBatch];
         for (int k = 0; k < 3; ++k) {
           __builtin_prefetch(&V[ahead[k]]);
           if (fv) __builtin_prefetch(&fv[ahead[k]]);
           __builtin_prefetch(&nn2[ahead[k]], 1);
           if (walk) __builtin_prefetch(&tov[ahead[k]], 1);
-          const Index g = nb[3 * (t + 8) + k];
+          const Index g = nb[3 * (t + kBatch) + k];
           if (g != kNoId) __builtin_prefetch(&V[T[g / 3][(g % 3 + 2) % 3]]);
         }
       }
