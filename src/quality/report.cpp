@@ -434,7 +434,7 @@ struct Pass {
   // triangles T at p (a division by f(p) > 0 keeps the order, also as rounded), so no el array.
   const double* fv;
   std::vector<double>& nn2;  // per vertex: shortest mesh edge, squared
-  std::vector<Index>& tov;   // per vertex: last triangle with that corner
+  std::vector<Index>& tov;   // per vertex: a triangle with that corner (keep_corner)
   // The calling thread's sums (triangle order).
   CompensatedSum area, r_over_f_sum;
   std::size_t r_over_f_count = 0;
