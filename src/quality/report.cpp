@@ -337,30 +337,6 @@ std::optional<double> quantile_from_top(std::vector<double>& top, std::size_t ke
   return *at;
 }
 
-// Per-vertex min/max shared by two threads: the same result as the sequential std::min/std::max
-// chain (a NaN never replaces a value) whatever the interleaving.
-template <bool kShared>
-inline void keep_max(double& x, double v) {
-  if constexpr (kShared) {
-    std::atomic_ref<double> r(x);
-    double cur = r.load(std::memory_order_relaxed);
-    while (cur < v && !r.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
-    }
-  } else {
-    x = std::max(x, v);
-  }
-}
-template <bool kShared>
-inline void keep_min(double& x, double v) {
-  if constexpr (kShared) {
-    std::atomic_ref<double> r(x);
-    double cur = r.load(std::memory_order_relaxed);
-    while (v < cur && !r.compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
-    }
-  } else {
-    x = std::min(x, v);
-  }
-}
 // A triangle with that corner, where the nearest-neighbour walk starts (any one gives the same
 // distances: the walk is exact from each of them). Two threads may store it in either order.
 template <bool kShared>
@@ -567,8 +543,8 @@ struct Pass {
       for (int k = 0; k < 3; ++k) {  // an interior edge from one side (its twin w -> u has w < u)
         const Index u = tr[k], w = tr[k == 2 ? 0 : k + 1];
         if (u == w || (u > w && nb[3 * t + k] != kNoId)) continue;
-        keep_min<kShared>(nn2[u], x.q[k]);
-        keep_min<kShared>(nn2[w], x.q[k]);
+        nn2[u] = std::min(nn2[u], x.q[k]);  // each thread has its own nn2 (merged after the pass)
+        nn2[w] = std::min(nn2[w], x.q[k]);
       }
       if (per_triangle || !p.angles.fast(x.a, x.b, x.c, x.cr, p.q, std::max({x.q[0], x.q[1], x.q[2]}))) {
         const double ang[3] = {angle_at(x.a, x.b, x.c), angle_at(x.b, x.c, x.a), angle_at(x.c, x.a, x.b)};
@@ -747,7 +723,11 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   };
   if (two) {
     theirs.emplace(r, top_k);
-    auto other_pass = std::make_unique<Pass>(pass);
+    // The second thread keeps its own shortest edges (merged by the minimum once both are done):
+    // no atomic update per edge.
+    std::vector<double> nn2_other(nv, kInf);
+    auto other_pass = std::make_unique<Pass>(
+        Pass{m, nb, f, bound_B, per_triangle, walk, fv, nn2_other, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}, {}});
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
     // The second thread, done with its chunks, builds the search (once the calling thread is done
@@ -763,8 +743,10 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
           const auto [lo, hi] = chunk(c);
           other_pass->measure<true>(lo, hi, *theirs, false);
         }
+        mine_done.wait();  // every triangle measured
+        for (std::size_t v = 0; v < nv; ++v) prep.nn2[v] = std::min(prep.nn2[v], nn2_other[v]);
+        release_vector(nn2_other);
         if (walk) {
-          mine_done.wait();
           build_search(&*theirs);
           search_built.count_down();
           built = true;
