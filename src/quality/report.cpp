@@ -593,12 +593,15 @@ struct Pass {
           p.not_delaunay.push_back(static_cast<Index>(3 * (lo + e.i) + static_cast<std::size_t>(e.k)));
       }
     p.interior += ne;
+    double omax = p.omax, smax = p.smax;  // in registers (the buffers' stores alias them)
     for (std::size_t j = 0; j < ne; ++j) {
-      p.omax = std::max(p.omax, ortho[j]);
-      p.smax = std::max(p.smax, smooth[j]);
+      omax = std::max(omax, ortho[j]);
+      smax = std::max(smax, smooth[j]);
       p.otop.add(ortho[j]);
       p.stop.add(smooth[j]);
     }
+    p.omax = omax;
+    p.smax = smax;
   }
 
   // The area and R/f(c) of the triangles [lo, hi) measured on another thread (calling thread).
