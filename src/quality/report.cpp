@@ -216,9 +216,10 @@ bool usable_spacing(double v) { return std::isfinite(v) && v > 0; }
 
 void Histogram::add(double v) {
   if (counts.empty()) return;
-  double b = std::floor((v - lo) / width);
-  if (!(b >= 0)) b = 0;  // also catches NaN
-  std::size_t i = b >= static_cast<double>(counts.size()) ? counts.size() - 1 : static_cast<std::size_t>(b);
+  // The floor of b without a libm call: truncation equals it for b >= 0, and below 0 (or NaN) the
+  // first bin takes the value either way.
+  const double b = (v - lo) / width;
+  const std::size_t i = !(b >= 0) ? 0 : b >= static_cast<double>(counts.size()) ? counts.size() - 1 : static_cast<std::size_t>(b);
   ++counts[i];
 }
 
