@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <thread>
 #include <unordered_set>
 
@@ -199,11 +200,6 @@ class Walker {
 
 namespace {
 
-template <class V>
-void release(V& v) {
-  V().swap(v);
-}
-
 // The half-edge a -> b, else b -> a, found by rotating around a (kNoId when a's triangles
 // reachable by rotation do not have it, e.g. at a vertex where two fans touch).
 Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Index t0, Index a, Index b) {
@@ -229,6 +225,153 @@ Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Inde
 
 }  // namespace
 
+namespace {
+
+// Which cells of a uniform grid over the S edges hold part of one (their bounding boxes, a
+// little enlarged): a disk whose box meets no such cell holds no S edge, and then the search
+// needs no query of the edge index (an occupancy test, conservative by the margins).
+class OccupancyGrid {
+ public:
+  OccupancyGrid(const mesh::MeshView& m, const std::vector<Index>& he) {
+    if (he.empty()) return;
+    auto tail = [&](Index h) { return m.vertices[m.triangles[h / 3][h % 3]]; };
+    auto head = [&](Index h) { return m.vertices[m.triangles[h / 3][(h % 3 + 1) % 3]]; };
+    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+    for (Index h : he)
+      for (const Point2 q : {tail(h), head(h)}) {
+        x0 = std::min(x0, q.x);
+        y0 = std::min(y0, q.y);
+        x1 = std::max(x1, q.x);
+        y1 = std::max(y1, q.y);
+      }
+    if (!(x1 - x0 < kInf) || !(y1 - y0 < kInf)) return;
+    const double span = std::max({x1 - x0, y1 - y0, 1e-300});
+    margin_ = 1e-9 * (span + std::max({std::fabs(x0), std::fabs(y0), std::fabs(x1), std::fabs(y1)}));
+    n_ = static_cast<std::size_t>(std::clamp(std::sqrt(static_cast<double>(he.size())), 1.0, 1024.0));
+    x0_ = x0 - 2 * margin_;
+    y0_ = y0 - 2 * margin_;
+    cell_ = (span + 4 * margin_) / static_cast<double>(n_);
+    if (!(cell_ > 0) || !std::isfinite(cell_)) return;
+    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
+    occupied_.assign(n_ * n_, 0);
+    std::size_t marked = 0;
+    for (Index h : he) {
+      const Point2 a = tail(h), b = head(h);
+      std::size_t i0, i1, j0, j1;
+      range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, i0, i1);
+      range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, j0, j1);
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i) occupied_[j * n_ + i] = 1;
+      marked += (i1 - i0 + 1) * (j1 - j0 + 1);
+      if (marked > 64 * he.size() + n_ * n_) {  // long diagonal edges cover the grid: no use
+        occupied_.clear();
+        return;
+      }
+    }
+  }
+  // False only when no S edge comes within sqrt(r2) of p.
+  bool maybe_near(Point2 p, double r2) const {
+    if (occupied_.empty()) return true;
+    const double r = std::sqrt(r2) * (1 + 1e-6);
+    if (!(r < kInf)) return true;
+    std::size_t i0, i1, j0, j1;
+    const double lim = x0_ + cell_ * static_cast<double>(n_), limy = y0_ + cell_ * static_cast<double>(n_);
+    if (p.x + r < x0_ || p.y + r < y0_ || p.x - r > lim || p.y - r > limy) return false;  // outside every edge's box
+    range(p.x - r, p.x + r, x0_, i0, i1);
+    range(p.y - r, p.y + r, y0_, j0, j1);
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i)
+        if (occupied_[j * n_ + i]) return true;
+    return false;
+  }
+
+ private:
+  // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis.
+  void range(double lo, double hi, double origin, std::size_t& k0, std::size_t& k1) const {
+    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
+      const double c = (v - origin) * inv_cell_;
+      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n_ - 1) ? n_ - 1 : static_cast<std::size_t>(c);
+    };
+    k0 = cell(lo - margin_);
+    k1 = cell(hi + margin_);
+  }
+  std::size_t n_ = 0;
+  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
+  std::vector<std::uint8_t> occupied_;
+};
+
+}  // namespace
+
+struct MeshNearestNeighbours::Impl {
+  const mesh::MeshView& m;
+  const std::vector<Index>& nb;
+  const std::vector<Index>& tri_of_vertex;
+  std::vector<double> nn;
+  bool usable = false, certify = false;
+  std::unique_ptr<EdgeIndex> si;
+  OccupancyGrid grid;
+  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov, const OccupancyGrid& g)
+      : m(mm), nb(nbb), tri_of_vertex(tov), grid(g) {}
+};
+
+MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std::vector<Index>& nb,
+                                             MeshWalkPrep& prep) {
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
+  impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex, OccupancyGrid(m, {}));
+  const std::vector<Index>& tri_of_vertex = prep.tri_of_vertex;
+  if (nv < 2 || nb.size() != 3 * nt || prep.nn2.size() != nv || tri_of_vertex.size() != nv) return;
+  // One triangle of every vertex (prep.nn2 is left intact when the walk cannot be used).
+  if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return;
+  impl_->nn = std::move(prep.nn2);  // upper bounds from the mesh edges
+  impl_->usable = true;
+
+  // S: the boundary and the constrained edges (m.edges), as half-edges, sorted.
+  std::vector<Index> s_edges;
+  bool certify = prep.ccw;  // and every edge of m.edges found (else the shortcut below is off)
+  for (std::size_t h = 0; h < 3 * nt; ++h)
+    if (nb[h] == kNoId) s_edges.push_back(static_cast<Index>(h));
+  for (const auto& e : m.edges) {
+    if (e.a >= nv || e.b >= nv) { certify = false; continue; }
+    const Index h = find_half_edge(m, nb, tri_of_vertex[e.a], e.a, e.b);
+    if (h == kNoId) { certify = false; continue; }
+    s_edges.push_back(h);
+    if (nb[h] != kNoId) s_edges.push_back(nb[h]);
+  }
+  std::sort(s_edges.begin(), s_edges.end());
+  s_edges.erase(std::unique(s_edges.begin(), s_edges.end()), s_edges.end());
+  // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
+  // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
+  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
+  // triangles surround it, and a vertex v nearer than d lies beyond some edge uw of them, in the
+  // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
+  // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
+  // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
+  for (Index h : prep.not_delaunay)
+    if (!std::binary_search(s_edges.begin(), s_edges.end(), h)) certify = false;
+  impl_->certify = certify;
+  if (certify) impl_->grid = OccupancyGrid(m, s_edges);
+  impl_->si = std::make_unique<EdgeIndex>(m, std::move(s_edges));
+}
+
+MeshNearestNeighbours::~MeshNearestNeighbours() = default;
+
+bool MeshNearestNeighbours::usable() const { return impl_->usable; }
+
+void MeshNearestNeighbours::search(std::size_t lo, std::size_t hi) {
+  Impl& s = *impl_;
+  if (!s.usable) return;
+  Walker w(s.m, s.nb, *s.si);
+  for (std::size_t v = lo; v < hi && v < s.nn.size(); ++v) {
+    const Point2 p = s.m.vertices[v];
+    if (s.certify &&
+        (!s.grid.maybe_near(p, s.nn[v]) || !s.si->for_each_near(p, s.nn[v], [](Index) { return true; })))
+      continue;  // exact: no S edge within nn[v] (see the constructor)
+    s.nn[v] = w.nearest_sq(static_cast<Index>(v), s.tri_of_vertex[v], s.nn[v]);
+  }
+}
+
+std::vector<double> MeshNearestNeighbours::take() { return std::move(impl_->nn); }
+
 std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb, unsigned threads,
                                               MeshWalkPrep* prep) {
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
@@ -241,54 +384,17 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
     prep = &own;
     compute_orthogonality(m, nb, prep);
   }
-  // Upper bounds from the mesh edges, and one triangle of every vertex.
-  std::vector<double> nn = std::move(prep->nn2);
-  const std::vector<Index>& tri_of_vertex = prep->tri_of_vertex;
-  if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return {};
-
-  // S: the boundary and the constrained edges (m.edges), as half-edges; `sflag` marks them.
-  std::vector<std::uint8_t> sflag(3 * nt, 0);
-  bool certify = prep->ccw;  // and every edge of m.edges found (else the shortcut below is off)
-  for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (nb[h] == kNoId) sflag[h] = 1;
-  for (const auto& e : m.edges) {
-    if (e.a >= nv || e.b >= nv) { certify = false; continue; }
-    const Index h = find_half_edge(m, nb, tri_of_vertex[e.a], e.a, e.b);
-    if (h == kNoId) { certify = false; continue; }
-    sflag[h] = 1;
-    if (nb[h] != kNoId) sflag[nb[h]] = 1;
-  }
-  // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
-  // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
-  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
-  // triangles surround it, and a vertex v nearer than d lies beyond some edge uw of them, in the
-  // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
-  // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
-  // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
-  for (Index h : prep->not_delaunay)
-    if (!sflag[h]) certify = false;
-  std::vector<Index> s_edges;
-  for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (sflag[h]) s_edges.push_back(static_cast<Index>(h));
-  release(sflag);
-  const EdgeIndex si(m, std::move(s_edges));
-
+  MeshNearestNeighbours s(m, nb, *prep);
+  if (!s.usable()) return {};
   // Vertices in two fixed halves (results per vertex do not depend on the split).
-  auto run = [&](std::size_t lo, std::size_t hi) {
-    Walker w(m, nb, si);
-    for (std::size_t v = lo; v < hi; ++v) {
-      if (certify && !si.for_each_near(m.vertices[v], nn[v], [](Index) { return true; })) continue;  // exact
-      nn[v] = w.nearest_sq(static_cast<Index>(v), tri_of_vertex[v], nn[v]);
-    }
-  };
   if (threads > 1 && nv >= 4096) {
-    std::thread other(run, nv / 2, nv);
-    run(0, nv / 2);
+    std::thread other([&] { s.search(nv / 2, nv); });
+    s.search(0, nv / 2);
     other.join();
   } else {
-    run(0, nv);
+    s.search(0, nv);
   }
-  return nn;
+  return s.take();
 }
 
 }  // namespace fdr::quality

@@ -1,6 +1,7 @@
 // Triangle adjacency of a MeshView and the exact nearest-neighbour search that walks it (the
 // quality report's nn(p), FDR paper Definition 2.1, without a global search structure).
 #pragma once
+#include <memory>
 #include <vector>
 #include "mesh/mesh_view.hpp"
 
@@ -35,5 +36,24 @@ struct MeshWalkPrep {
 // `prep`, when given, comes from compute_orthogonality(m, nb, prep) (else it is gathered here).
 std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std::vector<Index>& nb,
                                               unsigned threads = 1, MeshWalkPrep* prep = nullptr);
+
+// The same search in pieces: the constructor checks the mesh and builds the index of the
+// boundary and constrained edges (taking prep.nn2 when usable()), search(lo, hi) finds the
+// nearest neighbours of the vertices [lo, hi) (disjoint ranges may run on different threads),
+// take() gives the squared distances. Not usable (then use a global search) in the cases where
+// mesh_nearest_neighbour_sq returns an empty vector (vertex ids must be valid: the caller checks);
+// `m`, `nb` and `prep` must outlive it.
+class MeshNearestNeighbours {
+ public:
+  MeshNearestNeighbours(const mesh::MeshView& m, const std::vector<Index>& nb, MeshWalkPrep& prep);
+  ~MeshNearestNeighbours();
+  bool usable() const;
+  void search(std::size_t lo, std::size_t hi);
+  std::vector<double> take();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace fdr::quality

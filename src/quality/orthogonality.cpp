@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "predicates/predicates.hpp"
+#include "quality/cell_centre.hpp"
 #include "quality/mesh_adjacency.hpp"
 
 namespace fdr::quality {
@@ -40,23 +41,6 @@ double kth(std::vector<double>& v, std::size_t k) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
 }
-// The circumcentre c of triangle abc (counter-clockwise), or the nearest point of the triangle's
-// boundary when c lies outside (a measurement: plain doubles, no exact predicate needed).
-Point2 cell_centre(Point2 a, Point2 b, Point2 c, Point2 cc) {
-  auto side = [](Point2 p, Point2 q, Point2 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
-  if (side(a, b, cc) >= 0 && side(b, c, cc) >= 0 && side(c, a, cc) >= 0) return cc;
-  auto nearest = [](Point2 p, Point2 u, Point2 v) {
-    const Point2 d = v - u;
-    const double l2 = norm2(d);
-    const double t = l2 > 0 ? std::clamp(dot(p - u, d) / l2, 0.0, 1.0) : 0.0;
-    return u + t * d;
-  };
-  Point2 best = nearest(cc, a, b);
-  for (const Point2 q : {nearest(cc, b, c), nearest(cc, c, a)})
-    if (norm2(q - cc) < norm2(best - cc)) best = q;
-  return best;
-}
-
 }  // namespace
 
 OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, unsigned threads) {

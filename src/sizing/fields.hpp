@@ -119,7 +119,11 @@ class ClampField final : public SizingField {
 class ShiftedField final : public SizingField {
  public:
   ShiftedField(SizingPtr f, Point2 origin) : f_(std::move(f)), o_(origin) {}
-  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  // Scalar additions: a vectorized pair spilled through the stack made a store-forwarding stall
+  // on every evaluation (same values).
+  __attribute__((optimize("no-tree-slp-vectorize"))) double operator()(Point2 p) const override {
+    return (*f_)({p.x + o_.x, p.y + o_.y});
+  }
   double lipschitz() const override { return f_->lipschitz(); }
   bool thread_safe() const override { return f_->thread_safe(); }
   double upper_bound() const override { return f_->upper_bound(); }
