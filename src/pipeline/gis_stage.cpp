@@ -33,7 +33,10 @@ namespace {
 class ShiftedField : public sizing::SizingField {
  public:
   ShiftedField(sizing::SizingPtr f, Point2 o) : f_(std::move(f)), o_(o) {}
-  double operator()(Point2 p) const override { return (*f_)({p.x + o_.x, p.y + o_.y}); }
+  // (scalar additions: see sizing::ShiftedField)
+  __attribute__((optimize("no-tree-slp-vectorize"))) double operator()(Point2 p) const override {
+    return (*f_)({p.x + o_.x, p.y + o_.y});
+  }
   double lipschitz() const override { return f_->lipschitz(); }
   bool thread_safe() const override { return f_->thread_safe(); }
   double upper_bound() const override { return f_->upper_bound(); }
