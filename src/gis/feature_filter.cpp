@@ -1364,13 +1364,16 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     polygons_of(W0.get(), wps);
     polygons_of(R.get(), rps);
     std::vector<int> owner(rps.size(), -1);
+    std::vector<Point2> rin(rps.size());  // inner points, computed once
+    std::vector<char> has_rin(rps.size(), 0);
     for (std::size_t i = 0; i < wps.size() && rps.size() > 1; ++i) {
       Prepared pw(wps[i].get());
       OGREnvelope we;
       wps[i]->getEnvelope(&we);
       for (std::size_t j = 0; j < rps.size(); ++j) {
         if (owner[j] >= 0) continue;
-        const Point2 q = inside_point(rps[j].get());
+        if (!has_rin[j]) { rin[j] = inside_point(rps[j].get()); has_rin[j] = 1; }
+        const Point2 q = rin[j];
         if (!(we.MinX <= q.x && q.x <= we.MaxX && we.MinY <= q.y && q.y <= we.MaxY)) continue;
         OGRPoint pt(q.x, q.y);
         if (pw.intersects(&pt)) owner[j] = static_cast<int>(i);
@@ -1510,16 +1513,23 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       GeomPtr g_all = checked(W0->Difference(rm.get()), "difference input - result");
       polygons_of(g_all.get(), gone);
     }
+    // The places of the water bodies already listed as removed (collected once: the repairs list
+    // holds thousands of entries, the removed pieces are thousands too).
+    std::vector<Point2> listed_at;
+    for (const auto& r : res.repairs)
+      if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
     for (const auto& g : gone) {
       const double a = g->get_Area();
       double per = g->getExteriorRing()->get_Length();
       for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
       if (!(a > 0) || 2 * a <= hair * per) continue;
       bool listed = false;  // a cut-off water body already listed
-      for (const auto& r : res.repairs) {
-        if (r.kind != "cut_off_water_removed" && r.kind != "water_body_removed") continue;
-        OGRPoint pt(r.where.x, r.where.y);
-        if (g->Intersects(&pt)) listed = true;
+      OGREnvelope ge;
+      g->getEnvelope(&ge);
+      for (const Point2 w : listed_at) {
+        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
+        OGRPoint pt(w.x, w.y);
+        if (g->Intersects(&pt)) { listed = true; break; }
       }
       if (listed) continue;
       res.closed_area += a;
