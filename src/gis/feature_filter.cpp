@@ -508,9 +508,13 @@ class CoastRestorer {
       // segments (same coordinates, same run) that were there before was found then and its runs
       // given up, so only contacts near a new segment can give up more (same result, a
       // fraction of the work: an ocean basin's second round checked 400k segments for 20 new).
+      // (FDR_RESTORE_FULL_ROUNDS: every round examines everything, as before; for the test that
+      // the results are the same)
+      const bool full_rounds = std::getenv("FDR_RESTORE_FULL_ROUNDS") != nullptr;
       std::unordered_set<SegKey, SegKeyHash> prev_keys;
       bool settled = false;
-      for (int round = 0; round < 8 && !settled; ++round) {
+      int rounds = 0;
+      for (int round = 0; round < 8 && !settled; ++round, ++rounds) {
         rings.clear();
         std::vector<Point2> pts;
         std::vector<pslg::Segment> segs;
@@ -538,7 +542,8 @@ class CoastRestorer {
         // The segments to examine (all in the first round) and the points among their ends.
         std::vector<std::size_t> sub;
         std::vector<char> alive;
-        if (round == 0) {
+        const bool all = round == 0 || full_rounds;
+        if (all) {
           sub.resize(segs.size());
           for (std::size_t si = 0; si < segs.size(); ++si) sub[si] = si;
         } else {
@@ -554,7 +559,7 @@ class CoastRestorer {
         std::vector<pslg::Segment> sub_segs;
         sub_segs.reserve(sub.size());
         for (std::size_t si : sub) sub_segs.push_back(segs[si]);
-        const pslg::Contacts ct = pslg::find_contacts(pts, sub_segs, round == 0 ? nullptr : &alive);
+        const pslg::Contacts ct = pslg::find_contacts(pts, sub_segs, all ? nullptr : &alive);
         for (const auto& [x, y] : ct.segment_pairs) { bad.push_back(sub[static_cast<std::size_t>(x)]); bad.push_back(sub[static_cast<std::size_t>(y)]); }
         for (const auto& [v, sg] : ct.vertex_on_segment) {
           bad.push_back(sub[static_cast<std::size_t>(sg)]);
@@ -565,7 +570,7 @@ class CoastRestorer {
           std::vector<std::size_t> order;
           order.reserve(pts.size());
           for (std::size_t i = 0; i < pts.size(); ++i)
-            if (round == 0 || alive[i]) order.push_back(i);
+            if (all || alive[i]) order.push_back(i);
           std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
             return pts[x].x != pts[y].x ? pts[x].x < pts[y].x : (pts[x].y != pts[y].y ? pts[x].y < pts[y].y : x < y);
           });
@@ -588,8 +593,8 @@ class CoastRestorer {
         for (const auto& pl : plans) nin += pl.v.size();
         for (const auto& r : rings) nout += r.size();
         for (char c : off) noff += c != 0;
-        std::fprintf(stderr, "restore: %zu -> %zu vertices, %zu runs, %zu given up, settled %d\n", nin, nout, nruns,
-                     noff, settled);
+        std::fprintf(stderr, "restore: %zu -> %zu vertices, %zu runs, %zu given up, settled %d after %d rounds\n", nin,
+                     nout, nruns, noff, settled, rounds);
       }
       if (!settled) continue;  // (cap reached: the buffer's coordinates stay)
       bool changed = false;
