@@ -511,7 +511,7 @@ class CoastRestorer {
       // (FDR_RESTORE_FULL_ROUNDS: every round examines everything, as before; for the test that
       // the results are the same)
       const bool full_rounds = std::getenv("FDR_RESTORE_FULL_ROUNDS") != nullptr;
-      std::unordered_set<SegKey, SegKeyHash> prev_keys;
+      std::vector<SegKey> prev_keys;  // the previous round's segments
       bool settled = false;
       int rounds = 0;
       for (int round = 0; round < 8 && !settled; ++round, ++rounds) {
@@ -540,22 +540,31 @@ class CoastRestorer {
         for (std::size_t si = 0; si < segs.size(); ++si)
           keys[si] = seg_key(pts[static_cast<std::size_t>(segs[si].a)], pts[static_cast<std::size_t>(segs[si].b)], tag[si]);
         // The segments to examine (all in the first round) and the points among their ends.
+        const bool all = round == 0 || full_rounds;
         std::vector<std::size_t> sub;
         std::vector<char> alive;
-        const bool all = round == 0 || full_rounds;
         if (all) {
           sub.resize(segs.size());
           for (std::size_t si = 0; si < segs.size(); ++si) sub[si] = si;
         } else {
-          local_subset(pts, segs, keys, prev_keys, sub);
+          const std::unordered_set<SegKey, SegKeyHash> prev(prev_keys.begin(), prev_keys.end());
+          // A key found twice in this round counts as new in every copy (the previous round
+          // may have had one copy only).
+          std::unordered_set<SegKey, SegKeyHash> cur, dup;
+          cur.reserve(keys.size());
+          for (const SegKey& k : keys)
+            if (!cur.insert(k).second) dup.insert(k);
+          std::vector<char> repeated(segs.size(), 0);
+          if (!dup.empty())
+            for (std::size_t si = 0; si < segs.size(); ++si) repeated[si] = dup.count(keys[si]) ? 1 : 0;
+          local_subset(pts, segs, keys, repeated, prev, sub);
           alive.assign(pts.size(), 0);
           for (std::size_t si : sub) {
             alive[static_cast<std::size_t>(segs[si].a)] = 1;
             alive[static_cast<std::size_t>(segs[si].b)] = 1;
           }
         }
-        prev_keys.clear();
-        prev_keys.insert(keys.begin(), keys.end());
+        prev_keys = std::move(keys);
         std::vector<pslg::Segment> sub_segs;
         sub_segs.reserve(sub.size());
         for (std::size_t si : sub) sub_segs.push_back(segs[si]);
@@ -649,18 +658,18 @@ class CoastRestorer {
   static bool boxes_meet(const Box2& p, const Box2& q) {
     return p.lo.x <= q.hi.x && q.lo.x <= p.hi.x && p.lo.y <= q.hi.y && q.lo.y <= p.hi.y;
   }
-  // sub = the segments not in `prev` (new) and every segment whose bounding box meets a new
+  // sub = the segments not in `prev` or repeated (new) and every segment whose bounding box meets a new
   // one's: any contact with a new segment or with an end of one is among them.
   static void local_subset(const std::vector<Point2>& pts, const std::vector<pslg::Segment>& segs,
-                           const std::vector<SegKey>& keys, const std::unordered_set<SegKey, SegKeyHash>& prev,
-                           std::vector<std::size_t>& sub) {
+                           const std::vector<SegKey>& keys, const std::vector<char>& repeated,
+                           const std::unordered_set<SegKey, SegKeyHash>& prev, std::vector<std::size_t>& sub) {
     sub.clear();
     std::vector<std::size_t> fresh;
     Box2 fb;
     double len = 0;
     auto P = [&](Index i) { return pts[static_cast<std::size_t>(i)]; };
     for (std::size_t si = 0; si < segs.size(); ++si)
-      if (!prev.count(keys[si])) {
+      if (repeated[si] || !prev.count(keys[si])) {
         fresh.push_back(si);
         fb.add(P(segs[si].a));
         fb.add(P(segs[si].b));
