@@ -69,3 +69,33 @@ TEST(SharedData, WaterOpenBoundaryAndRawRingsCleanUp) {
                 t_read, rin.raw.segments.size(), rin.pslg.segments.size(), rin.repairs.size(), seconds_since(t0), dev);
   }
 }
+
+// The coast restorer's rounds after the first examine only the segments the previous round
+// changed (and those near them); FDR_RESTORE_FULL_ROUNDS makes every round examine everything.
+// Chesapeake with the pipeline's defaults for hmin 150 m gives up runs (so a second round runs):
+// the results must be the same bit for bit.
+TEST(SharedData, CoastRestorerLocalRoundsGiveTheFullResult) {
+  const std::string dir = kShared + "/chesapeake_mouth/";
+  if (!std::filesystem::exists(dir + "chesapeake_mouth.gpkg")) GTEST_SKIP() << "shared data not present: " << dir;
+  DomainOptions o;
+  o.domain = {dir + "chesapeake_mouth.gpkg", "water", ""};
+  const GisInput in = read_domain(o);
+  ASSERT_FALSE(in.domain_polygons.empty());
+  const double hmin = 150;
+  FeatureFilterOptions fo;  // as pipeline/gis_stage.cpp sets them
+  fo.close_width = 0.25 * hmin;
+  fo.min_feature = 0.1 * hmin;
+  fo.min_island_area = 0.1 * hmin * hmin;
+  fo.list_area = 0.5 * hmin * hmin;
+  fo.tip_clearance = 0.8 * hmin;
+  unsetenv("FDR_RESTORE_FULL_ROUNDS");
+  const FeatureFilterResult local = filter_features(in.domain_polygons, fo);
+  setenv("FDR_RESTORE_FULL_ROUNDS", "1", 1);
+  const FeatureFilterResult full = filter_features(in.domain_polygons, fo);
+  unsetenv("FDR_RESTORE_FULL_ROUNDS");
+  ASSERT_EQ(local.polygons.size(), full.polygons.size());
+  for (std::size_t i = 0; i < local.polygons.size(); ++i) EXPECT_EQ(local.polygons[i], full.polygons[i]) << i;
+  EXPECT_EQ(local.repairs.size(), full.repairs.size());
+  EXPECT_EQ(local.closed_area, full.closed_area);
+  EXPECT_EQ(local.output_area, full.output_area);
+}
