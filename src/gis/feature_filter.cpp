@@ -1326,6 +1326,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     // in the inner squares (an ocean basin: 9.5 s for the whole of R).
     if (r2 > 0) {
       const std::vector<Point2> pins = pinch_points(R.get());
+      if (dbg_time) for (const Point2& p : pins) std::fprintf(stderr, "pinch at %.3f %.3f\n", p.x, p.y);
       if (!pins.empty()) {
         auto squares = [&](double half) {
           std::vector<std::unique_ptr<OGRPolygon>> sq;
