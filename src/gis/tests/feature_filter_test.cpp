@@ -9,10 +9,13 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "base/scoped_env.hpp"
 #include "gis/feature_filter.hpp"
 
 namespace fdr::gis {
 namespace {
+
+using fdr::ThreadsEnv;
 
 Rings rect(double x0, double y0, double x1, double y1) { return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}; }
 
@@ -173,12 +176,11 @@ TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   EXPECT_GT(r.land_removed_area, 1000.0);  // the cut needle (about 4000 m^2)
   EXPECT_LT(r.land_removed_area, 4000.0 + 1000.0);
   // Deterministic, whatever the thread count (the rings are closed on several threads).
-  for (const char* t : {"1", "2", "3"}) {
-    setenv("FDR_THREADS", t, 1);
+  for (int t : {1, 2, 3}) {
+    ThreadsEnv env(t);
     const FeatureFilterResult r2 = filter_features(in, o);
     EXPECT_EQ(r2.polygons, r.polygons) << "FDR_THREADS=" << t;
   }
-  unsetenv("FDR_THREADS");
   // Without tip clearance every thin part is cut, as before.
   const FeatureFilterResult r0 = filter_features(in, opts(100));
   EXPECT_FALSE(has_vertex(r0, {2000, 1300}));

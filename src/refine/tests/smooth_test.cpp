@@ -13,6 +13,7 @@
 #include "refine/refine.hpp"
 #include "refine/smooth.hpp"
 #include "refine/tests/fn_field.hpp"
+#include "base/scoped_env.hpp"
 
 using namespace fdr;
 using fdr::testing::FnField;
@@ -42,22 +43,7 @@ mesh::Triangulation refined(const pslg::Pslg& p, const sizing::SizingField& f, d
   return T;
 }
 
-// Sets FDR_THREADS for the scope (restores the previous value).
-class ThreadsEnv {
- public:
-  explicit ThreadsEnv(int n) {
-    if (const char* v = std::getenv("FDR_THREADS")) old_ = v, had_ = true;
-    setenv("FDR_THREADS", std::to_string(n).c_str(), 1);
-  }
-  ~ThreadsEnv() {
-    if (had_) setenv("FDR_THREADS", old_.c_str(), 1);
-    else unsetenv("FDR_THREADS");
-  }
-
- private:
-  std::string old_;
-  bool had_ = false;
-};
+using fdr::ThreadsEnv;
 
 }  // namespace
 

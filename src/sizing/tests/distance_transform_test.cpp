@@ -15,28 +15,14 @@
 #include "sizing/raster_rules.hpp"
 #include "sizing/spacing_grid.hpp"
 #include "sizing/spacing_rules.hpp"
+#include "base/scoped_env.hpp"
 
 namespace fdr::sizing {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Sets FDR_THREADS for the scope (restores the previous value).
-class ThreadsEnv {
- public:
-  explicit ThreadsEnv(int n) {
-    if (const char* v = std::getenv("FDR_THREADS")) old_ = v, had_ = true;
-    setenv("FDR_THREADS", std::to_string(n).c_str(), 1);
-  }
-  ~ThreadsEnv() {
-    if (had_) setenv("FDR_THREADS", old_.c_str(), 1);
-    else unsetenv("FDR_THREADS");
-  }
-
- private:
-  std::string old_;
-  bool had_ = false;
-};
+using fdr::ThreadsEnv;
 
 double brute_d2(std::size_t nx, std::size_t ny, double dx, double dy, const std::vector<char>& seed, std::size_t i,
                 std::size_t j) {
