@@ -148,7 +148,7 @@ const std::vector<OptSpec>& option_table() {
       // mesh: repair
       {"mesh", "--snap", "snap", field<&MeshOptions::snap>, "float", "M", "1e-6 of the domain size", "Repair", "Merge vertices closer than this (metres)"},
       {"mesh", "--min-island", "min-island", field<&MeshOptions::min_island_factor>, "float", "FACTOR", "0.1 (0 with --keep-coast)", "Repair", "Remove islands with area < FACTOR * hmin^2 (listed in repairs)"},
-      {"mesh", "--close-width", "close-width", field<&MeshOptions::close_width>, "float", "M", "hmin/4 (0 with --keep-coast)", "Repair", "Close dead-end water (inlets, gaps, slivers) and remove land thinner than M metres (spits, thin islands near other land); tips of land stay unless other land is within 0.8 hmin of their end (listed in repairs; 0: keep)"},
+      {"mesh", "--close-width", "close-width", field<&MeshOptions::close_width>, "float", "M", "0.15*hmin (0 with --keep-coast)", "Repair", "Close dead-end water (inlets, gaps, slivers) and remove land thinner than M metres (spits, thin islands near other land); tips of land stay unless other land is within 0.8 hmin of their end (listed in repairs; 0: keep)"},
       {"mesh", "--min-feature", "min-feature", field<&MeshOptions::min_feature>, "float", "M", "hmin/10", "Repair", "Keep channels joining water bodies down to M metres wide; narrower ones are closed (listed)"},
       {"mesh", "--coast-tol", "coast-tol", field<&MeshOptions::coast_tol>, "float", "FACTOR", "0.25", "Repair", "Resample boundaries to f keeping the shape within FACTOR * f"},
       {"mesh", "--keep-coast", "keep-coast", field<&MeshOptions::keep_coast>, "flag", "", "", "Repair", "Keep every input boundary vertex and close nothing (no resampling)"},

@@ -83,7 +83,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
       throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " +
                                                  (opt.hmax ? num(*opt.hmax) : std::string("auto")) + ")");
     gis::FeatureFilterOptions fo;
-    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.25 * hmin);
+    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);  // README: why 0.15
     fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.1) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off

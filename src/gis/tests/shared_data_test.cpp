@@ -82,7 +82,7 @@ TEST(SharedData, CoastRestorerLocalRoundsGiveTheFullResult) {
   const GisInput in = read_domain(o);
   ASSERT_FALSE(in.domain_polygons.empty());
   const double hmin = 150;
-  FeatureFilterOptions fo;  // as pipeline/gis_stage.cpp sets them
+  FeatureFilterOptions fo;  // pipeline/gis_stage.cpp's settings, with close width hmin/4 (more runs given up)
   fo.close_width = 0.25 * hmin;
   fo.min_feature = 0.1 * hmin;
   fo.min_island_area = 0.1 * hmin * hmin;
