@@ -901,6 +901,8 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
   std::vector<PolyRings> polys;
   std::vector<std::unique_ptr<OGRPolygon>> pieces;  // thin land
   std::vector<std::size_t> piece_ring;
+  // W's vertices: a tip's coast is made of them, its cut of the closing's arc points.
+  std::unordered_set<std::uint64_t> wv;
   {
     // Every ring is closed (outer) or opened (island) on its own: the rings are shared out to
     // the threads (an atomic counter), the results kept per ring and combined in ring order, so
@@ -918,6 +920,8 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
       jobs.push_back({wp->getExteriorRing(), true, nullptr, {}});
       for (int k = 0; k < wp->getNumInteriorRings(); ++k) jobs.push_back({wp->getInteriorRing(k), false, nullptr, {}});
     }
+    for (const Job& jb : jobs)
+      for (int k = 0; k < jb.ring->getNumPoints(); ++k) wv.insert(point_key(jb.ring->getX(k), jb.ring->getY(k)));
     auto run = [&](Job& j) {
       OGRPolygon rp;
       rp.addRing(const_cast<OGRLinearRing*>(j.ring));
@@ -958,19 +962,6 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
         rings.push_back(std::move(r));
       }
       polys.push_back(std::move(pr));
-    }
-  }
-  // W's vertices: a tip's coast is made of them, its cut of the closing's arc points.
-  std::unordered_set<std::uint64_t> wv;
-  {
-    std::vector<std::unique_ptr<OGRPolygon>> wps;
-    polygons_of(W, wps);
-    auto add = [&](const OGRLinearRing* r) {
-      for (int k = 0; k < r->getNumPoints(); ++k) wv.insert(point_key(r->getX(k), r->getY(k)));
-    };
-    for (const auto& wp : wps) {
-      add(wp->getExteriorRing());
-      for (int k = 0; k < wp->getNumInteriorRings(); ++k) add(wp->getInteriorRing(k));
     }
   }
   // Other land: the boundaries of the closed rings (without a tip's own cut), in a bucket grid;
