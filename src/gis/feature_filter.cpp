@@ -1080,6 +1080,71 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
   return GeomPtr(multi(out).release());
 }
 
+// Thin water widened (README, "Narrow water widened"). The parts of W no disk of radius rw fits
+// in, T = W - open(W, rw), that are at least 2 s wide (their core C = (W - s) - open(W, rw)) are
+// grown by rw - s: a channel w wide (2 s <= w < 2 rw) becomes about w + 2 (rw - s) wide, its
+// banks moved by rw - s into the land. Why: a channel narrower than the resolution keeps its
+// coast only with elements as narrow as itself (every edge across it is < w); widened to ~2 rw it
+// holds elements near hmin and the coast moves by less than hmin/2, where closing it would move
+// the coast by its whole length. A grown piece that would join two separate water bodies (cut
+// through the land between them) is not used; the rest stays inside W's bounding box (an open
+// boundary there does not move).
+GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const FeatureFilterOptions& o,
+                         FeatureFilterResult& res) {
+  GeomPtr Wo = opening(W, rw);
+  GeomPtr We = offset(W, -s);
+  if (We->IsEmpty()) return GeomPtr(W.clone());
+  GeomPtr C = Wo->IsEmpty() ? GeomPtr(We->clone()) : checked(We->Difference(Wo.get()), "thin water core");
+  if (C->IsEmpty()) return GeomPtr(W.clone());
+  GeomPtr D = offset(*C, rw - s);
+  OGREnvelope we;
+  W.getEnvelope(&we);
+  {
+    OGRLinearRing lr;
+    lr.addPoint(we.MinX, we.MinY);
+    lr.addPoint(we.MaxX, we.MinY);
+    lr.addPoint(we.MaxX, we.MaxY);
+    lr.addPoint(we.MinX, we.MaxY);
+    lr.closeRings();
+    OGRPolygon box;
+    box.addRing(&lr);
+    D = checked(D->Intersection(&box), "widened water inside the domain's box");
+  }
+  std::vector<std::unique_ptr<OGRPolygon>> wps, dps;
+  polygons_of(&W, wps);
+  polygons_of(D.get(), dps);
+  std::vector<OGREnvelope> wenv(wps.size());
+  for (std::size_t i = 0; i < wps.size(); ++i) wps[i]->getEnvelope(&wenv[i]);
+  std::vector<std::unique_ptr<Prepared>> prep(wps.size());
+  std::vector<std::unique_ptr<OGRPolygon>> pieces;
+  for (auto& p : wps) pieces.emplace_back(p->clone());
+  for (auto& d : dps) {
+    if (!(d->get_Area() > 0)) continue;
+    OGREnvelope e;
+    d->getEnvelope(&e);
+    std::size_t meets = 0;
+    for (std::size_t i = 0; i < wps.size() && meets < 2; ++i) {
+      if (!wenv[i].Intersects(e)) continue;
+      if (!prep[i]) prep[i] = std::make_unique<Prepared>(wps[i].get());
+      if (prep[i]->intersects(d.get())) ++meets;
+    }
+    if (meets != 1) continue;  // would join two water bodies (or meets none: cannot happen)
+    ++res.widened;
+    const double a = d->get_Area();
+    if (a >= o.list_area)
+      res.repairs.push_back({"water_widened", inside_point(d.get()), a,
+                             "water narrower than " + num(2 * rw) + " m was widened (banks moved by up to " +
+                                 num(rw - s) + " m into the land); the widened part covers " + num(a) + " m^2",
+                             -1});
+    pieces.push_back(std::move(d));
+  }
+  const double hair = 1e-6 * rw;
+  GeomPtr out = union_pieces(pieces, hair, "union of the widened water");
+  const double added = area_of(out.get()) - area_of(&W);
+  if (added > 0) res.widened_area += added;
+  return out;
+}
+
 Polygons offset_polygons(const Polygons& input, double d) {
   GdalQuiet quiet;
   auto m = std::make_unique<OGRMultiPolygon>();
@@ -1220,6 +1285,12 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     }
   }
   lap("islands");
+
+  // 1b'. Narrow water widened (see widen_thin_water): channels from close_width to widen_width wide.
+  if (o.widen_width > o.close_width && o.close_width > 0) {
+    W = widen_thin_water(*W, 0.5 * o.widen_width, 0.5 * o.close_width, o, res);
+    lap("widen");
+  }
 
   // 1c. Closing at the same scale: land thinner than close_width (spits, slivers of land between
   //     two waters, thin islands) becomes water. Why: a sliver of land leaves two coast segments

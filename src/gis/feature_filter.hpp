@@ -31,6 +31,8 @@ struct FeatureFilterOptions {
   double grow_island_area = 0; // islands with a smaller area (but >= min_island_area) are grown
   double grow_island = 0;      // ... by this distance (m)
   double list_area = 0;        // removed water pieces at least this large are listed one by one
+  double widen_width = 0;      // water narrower than this (and at least close_width wide) is
+                               // widened to about this width (m); 0: not widened
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
 };
@@ -49,6 +51,8 @@ struct FeatureFilterResult {
   std::size_t cut_off = 0;           // water bodies cut off by a closed connection, removed
   double cut_off_area = 0;
   double land_removed_area = 0;      // land thinner than close_width that became water (m^2)
+  std::size_t widened = 0;           // pieces of narrow water widened
+  double widened_area = 0;           // land that became water by widening (m^2)
   std::size_t tips_kept = 0;         // thin land tips (and thin islands) kept instead of cut
   std::size_t islands_grown = 0;
   double islands_grown_area = 0;     // land added
