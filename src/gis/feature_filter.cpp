@@ -1128,7 +1128,12 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
       if (!prep[i]) prep[i] = std::make_unique<Prepared>(wps[i].get());
       if (prep[i]->intersects(d.get())) ++meets;
     }
-    if (meets != 1) continue;  // would join two water bodies (or meets none: cannot happen)
+    if (meets != 1) {  // would join two water bodies (or meets none: cannot happen)
+      if (std::getenv("FDR_DEBUG_FILTER"))
+        std::fprintf(stderr, "widen: piece of %.0f m^2 near %.1f %.1f meets %zu water bodies: not used\n",
+                     d->get_Area(), 0.5 * (e.MinX + e.MaxX), 0.5 * (e.MinY + e.MaxY), meets);
+      continue;
+    }
     ++res.widened;
     const double a = d->get_Area();
     if (a >= o.list_area)

@@ -85,13 +85,13 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     gis::FeatureFilterOptions fo;
     fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);  // README: why 0.15
     fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
-    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.6 * hmin);  // README: why 0.6
-    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.1) * hmin * hmin;
+    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.6 * hmin);  // README: why 0.6  // README: why 0.6
+    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
-    // Tips of land thinner than --close-width stay unless other land is within 0.8 hmin of their
+    // Tips of land thinner than --close-width stay unless other land is within hmin/2 of their
     // end (README, "Tips of land").
-    fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.8) * hmin;
+    fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.5) * hmin;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
     return fo;
