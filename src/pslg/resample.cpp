@@ -295,15 +295,20 @@ class Resampler {
     std::vector<std::size_t> ks;
     for (std::size_t k = 0; k <= m; ++k)
       if (key[k]) ks.push_back(k);
+    // slack: a tiny piece (shorter than kTinyPiece * f) may move the coast by its own length
+    // beyond the (possibly halved) tolerance: one of its two keys serves both within that length.
+    // Crossings are still excluded (checked after placing, as for every piece).
+    double slack = 0;
     auto ok = [&](std::size_t i, std::size_t j) {
       const double sc = tol_scale(c, i, j);
-      return sc > 0 && chord_deviation(c, i, j) <= tol(P(c, i), P(c, j)) * sc;
+      return sc > 0 && chord_deviation(c, i, j) <= tol(P(c, i), P(c, j)) * sc + slack;
     };
     // Bounded: every change removes at least one key.
     for (std::size_t i = 0; i + 1 < ks.size();) {
       const std::size_t a = ks[i], b = ks[i + 1];
       const double len = dist(P(c, a), P(c, b));
       if (!(len < kShortPiece * std::min(f(P(c, a)), f(P(c, b))))) { ++i; continue; }
+      slack = len < kTinyPiece * std::min(f(P(c, a)), f(P(c, b))) ? len : 0.0;
       const bool a_free = i > 0, b_free = i + 2 < ks.size();
       const std::size_t pa = a_free ? ks[i - 1] : a, nb = b_free ? ks[i + 2] : b;
       // Candidates: one input vertex k in [a, b] replaces both keys (k == a: b dropped, k == b:
@@ -617,6 +622,7 @@ class Resampler {
   static constexpr double kPi = 3.14159265358979323846;
   static constexpr double kSharp = kPi / 6;  // wedges under 30 degrees are checked
   static constexpr double kCornerTurn = kPi / 9;  // a key turning less than 20 degrees is no corner
+  static constexpr double kTinyPiece = 0.05;      // ... and below this * f, by their own length beyond the tolerance
   static constexpr double kShortPiece = 0.6;      // pieces shorter than this * f lose a key if they can
   std::vector<double> wedge_;
   const Pslg& in_;
