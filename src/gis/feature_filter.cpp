@@ -1630,12 +1630,70 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     }
   }
   lap("removed");
+  // Input vertices (exact coordinates), for the tiny-edge clean-up below.
+  std::unordered_set<std::uint64_t> input_vertex;
+  if (o.close_width > 0) {
+    std::vector<std::unique_ptr<OGRPolygon>> wps;
+    polygons_of(W0.get(), wps);
+    for (const auto& w : wps)
+      for (int k = -1; k < w->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? w->getExteriorRing() : w->getInteriorRing(k);
+        for (int i = 0; i < r->getNumPoints(); ++i) input_vertex.insert(point_key(r->getX(i), r->getY(i)));
+      }
+  }
   for (const auto& p : outp) {
     if (p->IsEmpty()) continue;
     Rings rings;
     rings.push_back(ring_points(p->getExteriorRing(), true));
     for (int k = 0; k < p->getNumInteriorRings(); ++k) rings.push_back(ring_points(p->getInteriorRing(k), false));
     if (rings[0].size() < 3) continue;
+    if (o.close_width > 0) {
+      // Tiny edges: where a cut or a widened bank meets the input coast, GEOS leaves a vertex a
+      // few metres from a corner (an arc point, an intersection point); the mesh would refine to
+      // that distance around it. A vertex that is not an input vertex and is nearer than a
+      // quarter of --close-width to a neighbour is dropped (the coast moves by less than that),
+      // when the polygon stays valid.
+      const double tiny = o.close_width / 4;
+      Rings cleaned = rings;
+      bool changed = false;
+      for (auto& r : cleaned) {
+        for (std::size_t pass = 0; pass < 4 && r.size() > 3; ++pass) {  // capped: each pass drops or stops
+          const std::size_t n = r.size();
+          std::vector<Point2> kept;
+          kept.reserve(n);
+          std::size_t drops = 0;
+          bool first_dropped = false;
+          for (std::size_t i = 0; i < n; ++i) {
+            const Point2 v = r[i];
+            const Point2 prev = kept.empty() ? r[n - 1] : kept.back();
+            const Point2 next = r[(i + 1) % n];
+            // never two neighbours in one pass (the coast moves by at most `tiny` per pass)
+            const bool droppable = n - drops > 3 && !(i + 1 == n && first_dropped) &&
+                                   !input_vertex.count(point_key(v.x, v.y)) &&
+                                   (dist(v, prev) < tiny || dist(v, next) < tiny);
+            if (droppable) {
+              ++drops;
+              if (i == 0) first_dropped = true;
+              if (i + 1 < n) kept.push_back(r[++i]);
+              continue;
+            }
+            kept.push_back(v);
+          }
+          if (drops == 0) break;
+          changed = true;
+          r = std::move(kept);
+        }
+      }
+      if (changed) {
+        bool ok = surely_valid(cleaned);
+        if (!ok) {
+          OGRPolygon q = to_ogr(cleaned);
+          ok = q.IsValid();
+        }
+        if (ok) rings = std::move(cleaned);
+        if (dbg_time) std::fprintf(stderr, "tiny edges: polygon of %zu rings cleaned: %s\n", rings.size(), ok ? "valid" : "invalid, kept");
+      }
+    }
     res.output_area += std::fabs(signed_area(rings[0]));
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
