@@ -1091,16 +1091,32 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
 // boundary there does not move).
 GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const FeatureFilterOptions& o,
                          FeatureFilterResult& res) {
+  const bool dbg = std::getenv("FDR_DEBUG_FILTER") != nullptr;
+  auto t0 = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    if (!dbg) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "  widen %s %.3f s\n", what, std::chrono::duration<double>(now - t0).count());
+    t0 = now;
+  };
+  // The opening and the erosion are independent: one on each core (as the openings below).
+  auto we_job = std::async(std::launch::async, [&W, s] {
+    GdalQuiet q2;
+    return offset(W, -s);
+  });
   GeomPtr Wo = opening(W, rw);
-  GeomPtr We = offset(W, -s);
+  GeomPtr We = we_job.get();
+  lap("opening + erosion");
   if (We->IsEmpty()) return GeomPtr(W.clone());
   GeomPtr C = Wo->IsEmpty() ? GeomPtr(We->clone()) : checked(We->Difference(Wo.get()), "thin water core");
   if (C->IsEmpty()) return GeomPtr(W.clone());
   // The grown pieces are new coast: their arcs need not be finer than the resampling keeps
   // (a tenth of the move; every arc point would otherwise go through the openings below).
+  lap("core");
   C = checked(C->SimplifyPreserveTopology(0.1 * (rw - s)), "thin water core simplified");
   GeomPtr D = offset(*C, rw - s, 2);
   D = checked(D->SimplifyPreserveTopology(0.1 * (rw - s)), "widened water simplified");
+  lap("grown");
   OGREnvelope we;
   W.getEnvelope(&we);
   {
@@ -1122,15 +1138,21 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   std::vector<std::unique_ptr<Prepared>> prep(wps.size());
   std::vector<std::unique_ptr<OGRPolygon>> pieces;
   for (auto& p : wps) pieces.emplace_back(p->clone());
+  const double margin = 2 * s;  // the close width
   for (auto& d : dps) {
     if (!(d->get_Area() > 0)) continue;
+    // Tested grown by the close width: land thinner than that between it and another water
+    // body would be removed by the closing below and join them all the same.
     OGREnvelope e;
     d->getEnvelope(&e);
+    e.MinX -= margin; e.MinY -= margin; e.MaxX += margin; e.MaxY += margin;
     std::size_t meets = 0;
+    GeomPtr dg;
     for (std::size_t i = 0; i < wps.size() && meets < 2; ++i) {
       if (!wenv[i].Intersects(e)) continue;
+      if (wps.size() > 1 && !dg) dg = checked(d->Buffer(margin, 1), "buffer of a widened piece");
       if (!prep[i]) prep[i] = std::make_unique<Prepared>(wps[i].get());
-      if (prep[i]->intersects(d.get())) ++meets;
+      if (prep[i]->intersects(wps.size() > 1 ? dg.get() : d.get())) ++meets;
     }
     if (meets != 1) {  // would join two water bodies (or meets none: cannot happen)
       if (std::getenv("FDR_DEBUG_FILTER"))
@@ -1147,8 +1169,10 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
                              -1});
     pieces.push_back(std::move(d));
   }
+  lap("pieces");
   const double hair = 1e-6 * rw;
   GeomPtr out = union_pieces(pieces, hair, "union of the widened water");
+  lap("union");
   const double added = area_of(out.get()) - area_of(&W);
   if (added > 0) res.widened_area += added;
   return out;
@@ -1656,33 +1680,86 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       const double tiny = o.close_width / 4;
       Rings cleaned = rings;
       bool changed = false;
-      for (auto& r : cleaned) {
-        for (std::size_t pass = 0; pass < 4 && r.size() > 3; ++pass) {  // capped: each pass drops or stops
-          const std::size_t n = r.size();
-          std::vector<Point2> kept;
-          kept.reserve(n);
-          std::size_t drops = 0;
-          bool first_dropped = false;
-          for (std::size_t i = 0; i < n; ++i) {
-            const Point2 v = r[i];
-            const Point2 prev = kept.empty() ? r[n - 1] : kept.back();
-            const Point2 next = r[(i + 1) % n];
-            // never two neighbours in one pass (the coast moves by at most `tiny` per pass)
-            const bool droppable = n - drops > 3 && !(i + 1 == n && first_dropped) &&
-                                   !input_vertex.count(point_key(v.x, v.y)) &&
-                                   (dist(v, prev) < tiny || dist(v, next) < tiny);
-            if (droppable) {
-              ++drops;
-              if (i == 0) first_dropped = true;
-              if (i + 1 < n) kept.push_back(r[++i]);
-              continue;
-            }
-            kept.push_back(v);
-          }
-          if (drops == 0) break;
-          changed = true;
-          r = std::move(kept);
+      for (int pass = 0; pass < 3; ++pass) {  // capped; a pass without a drop ends it
+      const Rings cur = cleaned;
+      // Every segment of the polygon in a grid: a drop replaces p-v-n by p-n, which keeps the
+      // polygon valid when no other segment meets p-n and no other vertex lies in the triangle
+      // (exact orientation tests). Drops in one pass never touch neighbours.
+      std::vector<std::size_t> first(cur.size() + 1, 0);
+      for (std::size_t k = 0; k < cur.size(); ++k) first[k + 1] = first[k] + cur[k].size();
+      std::unique_ptr<pslg::SegmentGrid> grid;
+      std::vector<Index> near;
+      auto seg_of = [&](Index id, std::size_t* rk, std::size_t* j) {
+        *rk = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), static_cast<std::size_t>(id)) - first.begin()) - 1;
+        *j = id - first[*rk];
+      };
+      auto inside_tri = [](Point2 a, Point2 b, Point2 c, Point2 q) {  // closed triangle
+        const int o1 = predicates::orient2d(a, b, q), o2 = predicates::orient2d(b, c, q), o3 = predicates::orient2d(c, a, q);
+        return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
+      };
+      auto meets = [](Point2 a, Point2 b, Point2 c, Point2 d) {  // closed segments
+        const int o1 = predicates::orient2d(a, b, c), o2 = predicates::orient2d(a, b, d);
+        const int o3 = predicates::orient2d(c, d, a), o4 = predicates::orient2d(c, d, b);
+        if (o1 == 0 && o2 == 0)
+          return std::max(std::min(a.x, b.x), std::min(c.x, d.x)) <= std::min(std::max(a.x, b.x), std::max(c.x, d.x)) &&
+                 std::max(std::min(a.y, b.y), std::min(c.y, d.y)) <= std::min(std::max(a.y, b.y), std::max(c.y, d.y));
+        return o1 * o2 <= 0 && o3 * o4 <= 0;
+      };
+      auto drop_ok = [&](std::size_t rk, std::size_t i, Point2 p, Point2 v, Point2 n) {
+        if (!grid) {
+          Box2 box;
+          double total = 0;
+          for (const auto& r : cur)
+            for (std::size_t q = 0; q < r.size(); ++q) { box.add(r[q]); total += dist(r[q], r[(q + 1) % r.size()]); }
+          grid = std::make_unique<pslg::SegmentGrid>(box, first.back(), std::max(total / static_cast<double>(first.back()), 1e-6));
+          for (std::size_t k = 0; k < cur.size(); ++k)
+            for (std::size_t q = 0; q < cur[k].size(); ++q)
+              grid->add_segment(static_cast<Index>(first[k] + q), cur[k][q], cur[k][(q + 1) % cur[k].size()]);
         }
+        Box2 qb;
+        qb.add(p); qb.add(v); qb.add(n);
+        grid->segments_near(qb, &near);
+        const std::size_t m = cur[rk].size();
+        for (Index id : near) {
+          std::size_t sk, j;
+          seg_of(id, &sk, &j);
+          if (sk == rk && (j == i || j == (i + m - 1) % m)) continue;  // p-v and v-n themselves
+          const Point2 c = cur[sk][j], d = cur[sk][(j + 1) % cur[sk].size()];
+          const bool cp = c == p || c == n, dp = d == p || d == n;
+          if (cp && dp) return false;
+          if (!cp && !dp) {
+            if (meets(p, n, c, d) || inside_tri(p, v, n, c) || inside_tri(p, v, n, d)) return false;
+          } else if (inside_tri(p, v, n, cp ? d : c)) {
+            return false;
+          }
+        }
+        return true;
+      };
+      bool pass_changed = false;
+      for (std::size_t rk = 0; rk < cleaned.size(); ++rk) {
+        auto& r = cleaned[rk];
+        std::vector<char> drop(r.size(), 0);
+        std::size_t drops = 0;
+        const std::size_t n = r.size();
+        for (std::size_t i = 0; i < n && n - drops > 3; ++i) {
+          const std::size_t ip = (i + n - 1) % n, in = (i + 1) % n;
+          if (drop[ip] || (in == 0 && drop[0])) continue;  // never two neighbours
+          const Point2 v = r[i], pv = r[ip], nv = r[in];
+          if (input_vertex.count(point_key(v.x, v.y))) continue;
+          if (!(dist(v, pv) < tiny || dist(v, nv) < tiny)) continue;
+          if (!drop_ok(rk, i, pv, v, nv)) continue;
+          drop[i] = 1;
+          ++drops;
+        }
+        if (drops == 0) continue;
+        std::vector<Point2> kept;
+        kept.reserve(n - drops);
+        for (std::size_t i = 0; i < n; ++i)
+          if (!drop[i]) kept.push_back(r[i]);
+        r = std::move(kept);
+        changed = pass_changed = true;
+      }
+      if (!pass_changed) break;
       }
       if (changed) {
         bool ok = surely_valid(cleaned);
