@@ -1117,6 +1117,20 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   GeomPtr D = offset(*C, rw - s, 2);
   D = checked(D->SimplifyPreserveTopology(0.1 * (rw - s)), "widened water simplified");
   lap("grown");
+  if (dbg) {
+    auto nverts = [](const OGRGeometry* g) {
+      std::vector<std::unique_ptr<OGRPolygon>> ps;
+      polygons_of(g, ps);
+      std::size_t nv = 0;
+      for (const auto& p : ps) {
+        nv += p->getExteriorRing()->getNumPoints();
+        for (int k = 0; k < p->getNumInteriorRings(); ++k) nv += p->getInteriorRing(k)->getNumPoints();
+      }
+      return nv;
+    };
+    std::fprintf(stderr, "  widen: W %zu, W-s %zu, open(W) %zu, core %zu, grown %zu vertices\n", nverts(&W), nverts(We.get()),
+                 nverts(Wo.get()), nverts(C.get()), nverts(D.get()));
+  }
   OGREnvelope we;
   W.getEnvelope(&we);
   {
@@ -1323,6 +1337,17 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   if (o.widen_width > o.close_width && o.close_width > 0) {
     W = widen_thin_water(*W, 0.5 * o.widen_width, 0.5 * o.close_width, o, res);
     lap("widen");
+    if (dbg_time) {
+      std::vector<std::unique_ptr<OGRPolygon>> ps;
+      polygons_of(W.get(), ps);
+      std::size_t nr = 0, nv = 0;
+      for (const auto& p : ps) {
+        nr += 1 + p->getNumInteriorRings();
+        nv += p->getExteriorRing()->getNumPoints();
+        for (int k = 0; k < p->getNumInteriorRings(); ++k) nv += p->getInteriorRing(k)->getNumPoints();
+      }
+      std::fprintf(stderr, "widened: %zu polygons, %zu rings, %zu vertices\n", ps.size(), nr, nv);
+    }
   }
 
   // 1c. Closing at the same scale: land thinner than close_width (spits, slivers of land between
