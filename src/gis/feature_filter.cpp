@@ -1081,14 +1081,17 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
 }
 
 // Thin water widened (README, "Narrow water widened"). The parts of W no disk of radius rw fits
-// in, T = W - open(W, rw), that are at least 2 s wide (their core C = (W - s) - open(W, rw)) are
-// grown by rw - s: a channel w wide (2 s <= w < 2 rw) becomes about w + 2 (rw - s) wide, its
-// banks moved by rw - s into the land. Why: a channel narrower than the resolution keeps its
-// coast only with elements as narrow as itself (every edge across it is < w); widened to ~2 rw it
-// holds elements near hmin and the coast moves by less than hmin/2, where closing it would move
-// the coast by its whole length. A grown piece that would join two separate water bodies (cut
-// through the land between them) is not used; the rest stays inside W's bounding box (an open
-// boundary there does not move).
+// in, T = W - open(W, rw), that are at least 2 s wide (their core C = (W - s) - open(W, rw), a
+// strip w - 2 s wide along a channel w wide) are grown by rw - s: the channel becomes
+// w + 2 rw - 4 s >= 2 rw wide (for w >= 2 s), each bank moved by rw - 2 s into the land. Why: a
+// channel narrower than the resolution keeps its coast only with elements as narrow as itself
+// (every edge across it is < w); widened to 2 rw it holds elements near hmin and the coast moves
+// by a fraction of hmin, where closing it would move the coast by its whole length. Convex water
+// corners leave core bits too (sharper corners larger ones): they are blunted the same way, as a
+// wedge of water would need elements as narrow as itself. A grown piece that would join two
+// separate water bodies (come within the close width of another one) is not used; the rest
+// stays inside W's bounding box (an open boundary there does not move). The grown pieces are
+// simplified (they are new coast; the resampler's tolerance is far coarser).
 GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const FeatureFilterOptions& o,
                          FeatureFilterResult& res) {
   const bool dbg = std::getenv("FDR_DEBUG_FILTER") != nullptr;
@@ -1113,6 +1116,16 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   // The grown pieces are new coast: their arcs need not be finer than the resampling keeps
   // (a tenth of the move; every arc point would otherwise go through the openings below).
   lap("core");
+  {  // bits of the core in right-angled water corners (about 0.3 rw - s across) are no channels;
+     // those of acute corners are larger and kept: the corner is blunted, as a wedge of water
+     // would need elements as narrow as itself
+    std::vector<std::unique_ptr<OGRPolygon>> cps, big;
+    polygons_of(C.get(), cps);
+    for (auto& cp : cps)
+      if (cp->get_Area() >= 0.05 * s * s) big.push_back(std::move(cp));
+    if (big.size() < cps.size()) C = multi(big);
+    if (C->IsEmpty()) return GeomPtr(W.clone());
+  }
   C = checked(C->SimplifyPreserveTopology(0.1 * (rw - s)), "thin water core simplified");
   GeomPtr D = offset(*C, rw - s, 2);
   D = checked(D->SimplifyPreserveTopology(0.1 * (rw - s)), "widened water simplified");
@@ -1699,9 +1712,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     if (o.close_width > 0) {
       // Tiny edges: where a cut or a widened bank meets the input coast, GEOS leaves a vertex a
       // few metres from a corner (an arc point, an intersection point); the mesh would refine to
-      // that distance around it. A vertex that is not an input vertex and is nearer than a
-      // quarter of --close-width to a neighbour is dropped (the coast moves by less than that),
-      // when the polygon stays valid.
+      // that distance around it. A corner (turning by more than 30 degrees) that is not an input
+      // vertex and is nearer than a quarter of --close-width to a neighbour is dropped (the coast
+      // moves by less than that), when the polygon stays valid.
       const double tiny = o.close_width / 4;
       Rings cleaned = rings;
       bool changed = false;
@@ -1772,6 +1785,11 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           const Point2 v = r[i], pv = r[ip], nv = r[in];
           if (input_vertex.count(point_key(v.x, v.y))) continue;
           if (!(dist(v, pv) < tiny || dist(v, nv) < tiny)) continue;
+          // only a corner (turning by more than 30 degrees): the points of a rounded corner turn
+          // less (22.5 degrees at most), and dropping one next to a long edge would tilt that edge
+          const Point2 e0 = v - pv, e1 = nv - v;
+          const double cr = e0.x * e1.y - e0.y * e1.x, dt = e0.x * e1.x + e0.y * e1.y;
+          if (!(std::atan2(std::fabs(cr), dt) > 0.5235987755982988)) continue;  // pi / 6
           if (!drop_ok(rk, i, pv, v, nv)) continue;
           drop[i] = 1;
           ++drops;

@@ -204,6 +204,109 @@ TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
   EXPECT_FALSE(has_vertex(r, {1400, 70}));
 }
 
+// Even-odd point-in-polygon over every ring (test helper; points well away from edges).
+bool water_at(const FeatureFilterResult& r, Point2 q) {
+  bool in = false;
+  for (const auto& poly : r.polygons)
+    for (const auto& ring : poly)
+      for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+        if ((ring[i].y > q.y) != (ring[j].y > q.y) &&
+            q.x < ring[j].x + (q.y - ring[j].y) * (ring[i].x - ring[j].x) / (ring[i].y - ring[j].y))
+          in = !in;
+  return in;
+}
+
+FeatureFilterOptions widen_opts() {  // the CLI's defaults at hmin 100
+  FeatureFilterOptions o = opts(100);
+  o.close_width = 15;
+  o.widen_width = 60;
+  return o;
+}
+
+TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
+  // A 30 m inlet (close_width 15 <= 30 < widen_width 60): its banks move by
+  // widen_width / 2 - close_width = 15 m into the land, so it becomes 60 m wide.
+  const Polygons in = basin_with_inlet(30);
+  const FeatureFilterResult r = filter_features(in, widen_opts());
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_GE(r.widened, 1u);
+  EXPECT_GE(count(r, "water_widened"), 1u);
+  for (double x : {1100.0, 1250.0, 1400.0}) {
+    EXPECT_TRUE(water_at(r, {x, 500 + 27})) << x;  // was land
+    EXPECT_TRUE(water_at(r, {x, 500 - 27})) << x;
+    EXPECT_FALSE(water_at(r, {x, 500 + 34})) << x;  // stays land: the coast moved by about 15 m
+    EXPECT_FALSE(water_at(r, {x, 500 - 34})) << x;
+  }
+  // About 2 x 15 m along the inlet's 500 m; the basin's corners and the inlet's end round a little.
+  EXPECT_NEAR(r.widened_area, 15000.0, 2500.0);
+  EXPECT_NEAR(area(r.polygons), area(in) + r.widened_area, corner_loss(widen_opts(), 8) + 2000.0);
+  // An inlet at least widen_width wide keeps its banks; only its convex corners (right angles,
+  // like sharper ones, would need narrow elements) are blunted by a few metres.
+  const Polygons wide = basin_with_inlet(80);
+  const FeatureFilterResult r2 = filter_features(wide, widen_opts());
+  for (double x : {1100.0, 1250.0, 1400.0}) {
+    EXPECT_TRUE(water_at(r2, {x, 500 + 38})) << x;
+    EXPECT_FALSE(water_at(r2, {x, 500 + 42})) << x;
+    EXPECT_FALSE(water_at(r2, {x, 500 - 42})) << x;
+  }
+  EXPECT_LT(r2.widened_area, 6 * 300.0);
+  // Off: as before.
+  FeatureFilterOptions off = widen_opts();
+  off.widen_width = 0;
+  EXPECT_EQ(filter_features(in, off).widened, 0u);
+  // Same polygons whatever the thread count.
+  for (int t : {1, 2, 3}) {
+    ThreadsEnv env(t);
+    EXPECT_EQ(filter_features(in, widen_opts()).polygons, r.polygons) << "FDR_THREADS=" << t;
+  }
+}
+
+TEST(FeatureFilter, WideningNeverJoinsTwoWaterBodies) {
+  // The 30 m inlet runs 20 m below a second water body: widening it would leave 5 m of land
+  // between them (less than close_width, which the closing removes), so it is not widened and
+  // the two bodies stay apart.
+  const Polygons in{basin_with_inlet(30)[0] /* inlet y 485..515 */, rect(1040, 535, 1500, 1000)};
+  const FeatureFilterResult r = filter_features(in, widen_opts());
+  EXPECT_EQ(r.input_pieces, 2u);
+  EXPECT_EQ(r.output_pieces, 2u);
+  EXPECT_FALSE(water_at(r, {1250, 525}));
+  EXPECT_FALSE(water_at(r, {1250, 475 - 4}));  // the piece is judged whole: the south bank stays too
+}
+
+TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
+  // A needle cut near other land and an inlet widened: every edge with an endpoint that is not
+  // an input vertex is at least close_width / 4 long.
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings b = island_with_needle(1000, 2400);  // its tip 40 m from island c: cut
+  const Rings c{{{2040, 2400}, {2040, 3000}, {2600, 3000}, {2600, 2400}}};
+  const Polygons in{{sea[0], b[0], c[0]}};
+  FeatureFilterOptions o = widen_opts();
+  o.tip_clearance = 50;
+  const FeatureFilterResult r = filter_features(in, o);
+  std::size_t checked = 0;
+  std::set<std::pair<double, double>> input;
+  for (const auto& ring : in[0])
+    for (const Point2& q : ring) input.insert({q.x, q.y});
+  for (const auto& poly : r.polygons)
+    for (const auto& ring : poly)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 a = ring[i], q = ring[(i + 1) % ring.size()];
+        if (input.count({a.x, a.y}) && input.count({q.x, q.y})) continue;
+        // at a corner (a turn of more than 60 degrees at either end; arcs turn less)
+        auto turn = [&](Point2 u, Point2 v, Point2 w) {
+          const double cx = (v.x - u.x) * (w.y - v.y) - (v.y - u.y) * (w.x - v.x);
+          const double dt = (v.x - u.x) * (w.x - v.x) + (v.y - u.y) * (w.y - v.y);
+          return std::atan2(std::fabs(cx), dt);
+        };
+        const std::size_t n = ring.size();
+        const bool corner = (!input.count({a.x, a.y}) && turn(ring[(i + n - 1) % n], a, q) > 1.05) ||
+                            (!input.count({q.x, q.y}) && turn(a, q, ring[(i + 2) % n]) > 1.05);
+        if (corner) EXPECT_GE(std::hypot(a.x - q.x, a.y - q.y), o.close_width / 4) << a.x << " " << a.y;
+        ++checked;
+      }
+  EXPECT_GT(checked, 10u);
+}
+
 TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
