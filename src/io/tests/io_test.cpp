@@ -1000,6 +1000,68 @@ TEST(IoBoundaries, LoopsRunsOrderAndOrientation) {
   EXPECT_EQ(b2.ordered_nodes(), b.ordered_nodes());
 }
 
+namespace {
+// MeshView::neighbours by brute force (what the mesher fills): the half-edge running the other way.
+std::vector<Index> brute_neighbours(const mesh::MeshView& m) {
+  std::map<std::pair<Index, Index>, Index> he;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) he[{m.triangles[t][k], m.triangles[t][(k + 1) % 3]}] = static_cast<Index>(3 * t + k);
+  std::vector<Index> nb(3 * m.triangles.size(), kNoId);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = he.find({m.triangles[t][(k + 1) % 3], m.triangles[t][k]});
+      if (it != he.end()) nb[3 * t + k] = it->second;
+    }
+  return nb;
+}
+void expect_same_boundaries(const io::Boundaries& a, const io::Boundaries& b) {
+  ASSERT_EQ(a.loops.size(), b.loops.size());
+  for (std::size_t i = 0; i < a.loops.size(); ++i) {
+    EXPECT_EQ(a.loops[i].nodes, b.loops[i].nodes);
+    EXPECT_EQ(a.loops[i].edge_open, b.loops[i].edge_open);
+    EXPECT_EQ(a.loops[i].outer, b.loops[i].outer);
+  }
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t i = 0; i < a.runs.size(); ++i) {
+    EXPECT_EQ(a.runs[i].nodes, b.runs[i].nodes);
+    EXPECT_EQ(a.runs[i].kind, b.runs[i].kind);
+    EXPECT_EQ(a.runs[i].closed, b.runs[i].closed);
+  }
+}
+}  // namespace
+
+// The mesher's adjacency (MeshView::neighbours) and the table built from the triangles alone
+// give the same loops and runs, pinch nodes included.
+TEST(IoBoundaries, SameWithAndWithoutTheMeshersAdjacency) {
+  // A 6x5 grid of squares with two holes (one square each) and an open edge, triangles shuffled.
+  mesh::MeshView g;
+  const int nx = 6, ny = 5;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) g.vertices.push_back({double(i), double(j)});
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if ((i == 1 && j == 1) || (i == 4 && j == 3)) continue;
+      g.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      g.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::reverse(g.triangles.begin() + 10, g.triangles.end());
+  g.edges.push_back({id(0, 0), id(1, 0), static_cast<std::int32_t>(mesh::EdgeKind::kOpen), 0});
+  g.edges.push_back({id(1, 0), id(2, 0), static_cast<std::int32_t>(mesh::EdgeKind::kOpen), 0});
+  mesh::MeshView bow;  // two triangles touching at vertex 0
+  bow.vertices = {{0, 0}, {1, 0}, {1, 1}, {-1, 0}, {-1, -1}};
+  bow.triangles = {{0, 1, 2}, {0, 3, 4}};
+  for (mesh::MeshView m : {sample_mesh(), g, bow}) {
+    m.neighbours.clear();
+    const io::Boundaries without = io::extract_boundaries(m, "m");
+    m.neighbours = brute_neighbours(m);
+    const io::Boundaries with = io::extract_boundaries(m, "m");
+    expect_same_boundaries(without, with);
+  }
+  io::Boundaries gb = io::extract_boundaries(g, "g");
+  EXPECT_EQ(gb.loops.size(), 3u);  // the outer loop and the two holes
+}
+
 TEST(IoBoundaries, PinchNodeIsFoundAndSelafinRefusesIt) {
   // Two triangles touching at vertex 0 (a bow-tie): two loops through node 0.
   mesh::MeshView m;
