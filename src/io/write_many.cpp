@@ -1,6 +1,7 @@
 // Several outputs of one mesh written concurrently (see write_many.hpp).
 #include "io/write_many.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,18 @@ std::vector<std::string> files_of(const std::string& path, Format f) {
   if (ext == ".node" || ext == ".ele") base = path.substr(0, path.size() - ext.size());
   return {base + ".node", base + ".ele"};
 }
+// 0 for the writers that cost most per triangle (SQLite, netCDF, XML), 1 for the text formats.
+int cost_rank(Format f) {
+  switch (f) {
+    case Format::kGpkg:
+    case Format::kUgrid:
+    case Format::kDflowfm:
+    case Format::kVtu:
+      return 0;
+    default:
+      return 1;
+  }
+}
 }  // namespace
 
 void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& paths, const std::vector<Format>& formats,
@@ -30,9 +43,15 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   if (formats.size() != n) throw Error(ExitCode::kInternal, "write_meshes: one format per path expected");
   std::vector<std::exception_ptr> errors(n);
   std::vector<char> done(n, 0);
+  // The costliest outputs start first (a GeoPackage takes as long as several text files), so
+  // the last file to finish is a cheap one; which thread writes a file changes nothing in it.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost_rank(formats[a]) < cost_rank(formats[b]); });
   std::atomic<std::size_t> next{0};
   auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < n;) {
+    for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+      const std::size_t i = order[k];
       try {
         if (formats[i] == Format::kUgrid) {
           // The netCDF library is not thread-safe: one UGRID file at a time.

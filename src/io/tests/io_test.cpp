@@ -15,7 +15,10 @@
 #include <sstream>
 #include <tuple>
 
+#include <sqlite3.h>
+
 #include "base/error.hpp"
+#include "base/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
@@ -491,6 +494,63 @@ std::string sql_text(GDALDataset* ds, const std::string& sql) {
   return r;
 }
 }  // namespace
+
+namespace {
+// Every row of every table of a SQLite file (blobs as hex), table by table in name order,
+// without gpkg_contents.last_change (the time of writing).
+std::vector<std::string> all_rows(const std::string& path) {
+  sqlite3* db = nullptr;
+  std::vector<std::string> out;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) return {"<cannot open>"};
+  std::vector<std::string> tables;
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name", -1, &st, nullptr);
+  while (sqlite3_step(st) == SQLITE_ROW) tables.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)));
+  sqlite3_finalize(st);
+  for (const std::string& t : tables) {
+    // The rtree virtual tables are read through their shadow tables (_node, _parent, _rowid).
+    if (t.rfind("rtree_", 0) == 0 && t.size() > 5 && t.compare(t.size() - 5, 5, "_geom") == 0) continue;
+    const std::string sql = t == "gpkg_contents" ? "SELECT table_name, min_x, min_y, max_x, max_y FROM gpkg_contents"
+                                                 : "SELECT * FROM \"" + t + "\"";
+    sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr);
+    while (sqlite3_step(st) == SQLITE_ROW) {
+      std::string row = t + ":";
+      for (int c = 0; c < sqlite3_column_count(st); ++c) {
+        const auto* b = static_cast<const unsigned char*>(sqlite3_column_blob(st, c));
+        const int n = sqlite3_column_bytes(st, c);
+        row += '|';
+        for (int k = 0; k < n; ++k) {
+          char h[3];
+          std::snprintf(h, sizeof h, "%02x", b[k]);
+          row += h;
+        }
+      }
+      out.push_back(std::move(row));
+    }
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return out;
+}
+}  // namespace
+
+// The R-trees planned on a helper thread (FDR_THREADS=2) are the ones planned inline (=1): same
+// rows in every table, shadow tables of the R-trees included; and the file is as large.
+TEST_F(IoRoundTrip, GeoPackageSameForEveryThreadCount) {
+  mesh::MeshView g = grid_mesh(90);  // 15842 triangles: three R-tree levels
+  std::vector<std::string> rows[2];
+  std::uintmax_t size[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    ThreadsEnv env(k + 1);
+    const std::string p = tmp / ("t" + std::to_string(k + 1) + ".gpkg");
+    io::write_mesh(g, p, Format::kGpkg, opts);
+    rows[k] = all_rows(p);
+    size[k] = fs::file_size(p);
+  }
+  EXPECT_GT(rows[0].size(), 3u * 15842u);
+  EXPECT_TRUE(rows[0] == rows[1]);
+  EXPECT_EQ(size[0], size[1]);
+}
 
 TEST_F(IoRoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
   mesh::MeshView g = grid_mesh(60);  // 6962 triangles, 3600 nodes
