@@ -240,4 +240,20 @@ Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) 
   return out;
 }
 
+const Boundaries& BoundaryCache::get(const mesh::MeshView& m, const std::string& path) {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!done_) {
+    b_ = extract_boundaries(m, path);
+    done_ = true;
+  }
+  return b_;
+}
+
+const Boundaries& boundaries_for(const mesh::MeshView& m, const std::string& path, BoundaryCache* cache,
+                                 Boundaries& own) {
+  if (cache) return cache->get(m, path);
+  own = extract_boundaries(m, path);
+  return own;
+}
+
 }  // namespace fdr::io

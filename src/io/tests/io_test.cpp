@@ -21,6 +21,7 @@
 #include "base/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
+#include "io/write_many.hpp"
 #include "io/writer.hpp"
 
 namespace fs = std::filesystem;
@@ -1139,6 +1140,27 @@ TEST(IoBoundaries, PinchNodeIsFoundAndSelafinRefusesIt) {
     EXPECT_NE(std::string(e.what()).find("node 1 at (0.000000, 0.000000) lies twice on the boundary"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(tmp.entries().empty());
+}
+
+// write_meshes shares one boundary extraction between the outputs that carry boundaries and
+// starts the costliest outputs first: every file is the one write_mesh writes alone.
+TEST_F(IoRoundTrip, WriteMeshesSharesBoundariesSameFiles) {
+  opts.f = nullptr;  // concurrent writers: no sizing field evaluated
+  const std::vector<std::string> names = {"a.2dm", "a.14", "a.gr3", "a.slf", "a.gpkg", "a_net.nc"};
+  std::vector<std::string> many;
+  std::vector<Format> formats;
+  for (const auto& n : names) {
+    many.push_back(tmp / ("many_" + n));
+    formats.push_back(io::format_from_path(many.back()));
+  }
+  io::write_meshes(m, many, formats, opts, 2);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (formats[i] == Format::kGpkg || formats[i] == Format::kDflowfm) continue;  // these hold times of writing
+    const std::string one = tmp / ("one_" + names[i]);
+    io::write_mesh(m, one, formats[i], opts);
+    EXPECT_EQ(slurp(one), slurp(many[i])) << names[i];
+  }
+  EXPECT_EQ(slurp(tmp / "many_a.cli"), slurp(tmp / "one_a.cli"));
 }
 
 TEST_F(IoRoundTrip, Gr3AndLl) {
