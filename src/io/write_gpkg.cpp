@@ -286,11 +286,14 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   GeomBlob gb(srs_id);
   Extent mesh_ext, repair_ext;
 
+  // The rows of nodes and triangles are built on one thread and bound and stepped by another
+  // (BatchInsert async) when threads allow.
+  const bool async = max_threads() > 1;
   auto write_rows = [&] {
     // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
     // previous + 1, as the ids below assume) instead of searching the B-tree for it.
     {
-      BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256);
+      BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256, async);
       for (std::size_t v = 0; v < nv; ++v) {
         const Point2 p = m.world(static_cast<Index>(v));
         double f = std::nan("");
@@ -312,7 +315,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     std::vector<double>().swap(nn);
     {
       BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
-                      128);
+                      128, async);
       Point2 w[3];
       for (std::size_t t = 0; t < nt; ++t) {
         const auto& tr = m.triangles[t];
