@@ -21,6 +21,7 @@
 #include "base/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
+#include "io/sqlite_db.hpp"
 #include "io/write_many.hpp"
 #include "io/writer.hpp"
 
@@ -534,6 +535,52 @@ std::vector<std::string> all_rows(const std::string& path) {
   return out;
 }
 }  // namespace
+
+// BatchInsert with its own writing thread: the same rows in the same order as without, and a
+// failing batch (here a UNIQUE violation) surfaces as kOutputError from a later call, without
+// hanging and without writing the batches after it.
+TEST(IoSqlite, AsyncBatchInsertSameRowsAndErrors) {
+  TmpDir tmp;
+  for (bool async : {false, true}) {
+    const std::string p = tmp / (async ? "a.sqlite" : "s.sqlite");
+    {
+      io::detail::SqliteDb db(p, p);
+      db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; CREATE TABLE t (k INTEGER, v REAL, b BLOB, s TEXT)");
+      io::detail::BatchInsert ins(db, "t", {"k", "v", "b", "s"}, 16, async);
+      std::string blob;
+      for (int i = 0; i < 1000; ++i) {
+        blob.assign(static_cast<std::size_t>(i % 7), static_cast<char>(i));
+        ins.add_int(i).add_real_or_null(i % 5 ? 0.5 * i : std::nan("")).add_blob(blob.data(), blob.size());
+        ins.add_text("row" + std::to_string(i));
+        ins.end_row();
+      }
+      ins.finish();
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t"), 1000);
+      EXPECT_EQ(db.query_int("SELECT SUM(k * rowid) FROM t"), 333333000);  // rowid = k + 1: sum of k (k + 1)
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t WHERE v IS NULL"), 200);
+      EXPECT_EQ(db.query_int("SELECT SUM(length(b)) FROM t"), [] {
+        std::int64_t n = 0;
+        for (int i = 0; i < 1000; ++i) n += i % 7;
+        return n;
+      }());
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t WHERE s = 'row' || k"), 1000);
+      db.exec("CREATE TABLE u (k INTEGER UNIQUE)");
+      try {
+        io::detail::BatchInsert bad(db, "u", {"k"}, 8, async);
+        for (int i = 0; i < 200; ++i) {
+          bad.add_int(i == 20 ? 3 : i);  // the third batch repeats 3
+          bad.end_row();
+        }
+        bad.finish();
+        ADD_FAILURE() << "duplicate accepted";
+      } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::kOutputError);
+        EXPECT_NE(std::string(e.what()).find("cannot write rows of table 'u'"), std::string::npos) << e.what();
+      }
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM u"), 16);  // the two batches before the bad one
+    }
+  }
+}
 
 // The R-trees planned on a helper thread (FDR_THREADS=2) are the ones planned inline (=1): same
 // rows in every table, shadow tables of the R-trees included; and the file is as large.
