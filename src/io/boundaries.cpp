@@ -82,13 +82,13 @@ Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) 
       for (Index v : tr) ++start[v + 1];
     for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
     {
-      std::vector<std::size_t> fill(start.begin(), start.end() - 1), fill_in(start.begin(), start.end() - 1);
-      for (std::size_t t = 0; t < nt; ++t)
-        for (std::size_t k = 0; k < 3; ++k) {
-          const Index a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-          out_he[fill[a]++] = {b, static_cast<Index>(3 * t + k)};
-          in_tail[fill_in[b]++] = a;
-        }
+      // One cursor array for both fills (the rows' ends, counted down): less memory at the peak.
+      std::vector<std::size_t> fill(start.begin() + 1, start.end());
+      for (std::size_t t = nt; t-- > 0;)
+        for (std::size_t k = 3; k-- > 0;) out_he[--fill[m.triangles[t][k]]] = {m.triangles[t][(k + 1) % 3], static_cast<Index>(3 * t + k)};
+      std::copy(start.begin() + 1, start.end(), fill.begin());
+      for (std::size_t t = nt; t-- > 0;)
+        for (std::size_t k = 3; k-- > 0;) in_tail[--fill[m.triangles[t][(k + 1) % 3]]] = m.triangles[t][k];
     }
     // Each row sorted by head vertex (then h: filled in h order, and the sorts are stable):
     // lookups by binary search, duplicates side by side.

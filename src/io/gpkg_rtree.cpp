@@ -154,9 +154,6 @@ RtreePlan plan_gpkg_rtree(std::vector<RtreeEntry> entries, std::size_t cap) {
   RtreePlan p;
   p.cap = cap;
   if (entries.empty() || cap < 2) return p;
-  std::int64_t max_id = 0;
-  for (const Cell& c : entries) max_id = std::max(max_id, c.id);
-  p.leaf_of.assign(static_cast<std::size_t>(max_id) + 1, 0);
   std::vector<Cell> cur = std::move(entries);
   std::int64_t next_no = 2;
   // Level by level; a level that fits in one node becomes the root (node 1).
@@ -168,8 +165,6 @@ RtreePlan plan_gpkg_rtree(std::vector<RtreeEntry> entries, std::size_t cap) {
     const Cell* grp = cur.data();
     for (const std::size_t n : sizes) {
       const std::int64_t no = root ? 1 : next_no++;
-      if (depth == 0)
-        for (const Cell* c = grp; c != grp + n; ++c) p.leaf_of[static_cast<std::size_t>(c->id)] = no;
       Cell q{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
       for (const Cell* c = grp; c != grp + n; ++c) {
         q.box[0] = std::min(q.box[0], c->box[0]);
@@ -238,9 +233,23 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
         grp += n;
       }
     }
+    // The leaf of every row id (level 0's nodes are numbered first: 2, 3, ..., or 1 for a root
+    // leaf), made only now: the plan may have been made while other writers held memory.
+    std::vector<std::int64_t> leaf_of;
+    {
+      std::int64_t max_id = 0;
+      for (const Cell& c : plan.levels[0]) max_id = std::max(max_id, c.id);
+      leaf_of.assign(static_cast<std::size_t>(max_id) + 1, 0);
+      const Cell* grp = plan.levels[0].data();
+      std::int64_t no = plan.sizes[0].size() == 1 ? 1 : 2;
+      for (const std::size_t n : plan.sizes[0]) {
+        for (const Cell* c = grp; c != grp + n; ++c) leaf_of[static_cast<std::size_t>(c->id)] = no;
+        grp += n;
+        ++no;
+      }
+    }
     // Dense ids 1..n (nodes, triangles) are appended without naming the rowid (SQLite then
     // takes previous + 1 without searching the B-tree); sparse ids name it.
-    const std::vector<std::int64_t>& leaf_of = plan.leaf_of;
     bool dense = true;
     for (std::size_t id = 1; id < leaf_of.size() && dense; ++id) dense = leaf_of[id] != 0;
     BatchInsert rowid_rows(db, rt + "_rowid", dense ? std::vector<std::string>{"nodeno"}

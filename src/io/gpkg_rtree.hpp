@@ -18,14 +18,12 @@ struct RtreeEntry {
 
 // An STR-packed tree computed without the database (so on another thread while the rows are
 // inserted): the cells of each level in packed order (level 0: the entries; above: one cell per
-// node of the level below, its id that node's number), the node sizes per level, and per row id
-// its leaf's node number. Node numbers as build_gpkg_rtree writes them: 2, 3, ... level by
-// level, the root 1.
+// node of the level below, its id that node's number) and the node sizes per level. Node
+// numbers as build_gpkg_rtree writes them: 2, 3, ... level by level, the root 1.
 struct RtreePlan {
   std::size_t cap = 0;  // cells per node the plan was made for
   std::vector<std::vector<RtreeEntry>> levels;
   std::vector<std::vector<std::size_t>> sizes;
-  std::vector<std::int64_t> leaf_of;  // by row id, 0: no row
 };
 RtreePlan plan_gpkg_rtree(std::vector<RtreeEntry> entries, std::size_t cap);
 // Cells per node of a 2D rtree virtual table made in a database of this page size (SQLite's
