@@ -104,7 +104,17 @@ std::vector<std::size_t> str_pack(std::vector<Cell>& cells, std::size_t cap) {
   std::size_t nodes = (cells.size() + cap - 1) / cap;
   auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   std::size_t per_slice = slices * cap;
-  radix_sort(cells.begin(), cells.end(), cx);
+  // The sort of all cells sorts in place when the ids ascend (as the writer makes them): a stable
+  // sort by x centre of cells in id order is the sort by (x centre, id), which needs no buffer
+  // of the cells' size (25 MB at 1 M triangles, held while other writers run).
+  const bool ids_ascend = std::is_sorted(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.id < b.id; });
+  if (ids_ascend && cells.size() > 65536)
+    std::sort(cells.begin(), cells.end(), [&](const Cell& a, const Cell& b) {
+      const std::uint64_t ka = cx(a), kb = cx(b);
+      return ka < kb || (ka == kb && a.id < b.id);
+    });
+  else
+    radix_sort(cells.begin(), cells.end(), cx);
   std::vector<std::size_t> out;
   out.reserve(nodes + slices);
   for (std::size_t s = 0; s < cells.size(); s += per_slice) {
