@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "base/error.hpp"
@@ -61,40 +60,87 @@ Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) 
   auto tail = [&](std::size_t h) { return m.triangles[h / 3][h % 3]; };
   auto head = [&](std::size_t h) { return m.triangles[h / 3][(h % 3 + 1) % 3]; };
   auto next_in_tri = [](std::size_t h) { return 3 * (h / 3) + (h % 3 + 1) % 3; };
-  // Half-edges h = 3 t + k grouped by their tail vertex (compressed rows): the twin of a -> b is
-  // found among the few half-edges leaving b, with no hashing.
-  std::vector<std::size_t> start(nv + 1, 0), out_he(3 * nt);
-  for (std::size_t h = 0; h < 3 * nt; ++h) ++start[tail(h) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t h = 0; h < 3 * nt; ++h) out_he[fill[tail(h)]++] = h;
-  }
-  // Each row sorted by head vertex: lookups by binary search, duplicates side by side.
-  for (std::size_t v = 0; v < nv; ++v) {
-    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[v]);
-    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
-    std::sort(b0, b1, [&](std::size_t x, std::size_t y) { return head(x) < head(y); });
-    for (auto it = b0; it != b1 && it + 1 != b1; ++it)
-      if (head(*it) == head(*(it + 1)))
-        detail::fail_output(path, "invalid mesh: edge " + std::to_string(v) + "-" + std::to_string(head(*it)) +
-                                      " is used twice in the same direction (overlapping or inverted triangles)");
+  // With the mesher's adjacency (MeshView::neighbours) the twin of a half-edge is one array read
+  // (a mesh from the mesher is valid by construction); a mesh read from a file has none.
+  const bool have_nb = m.neighbours.size() == 3 * nt;
+  // Else half-edges h = 3 t + k grouped by their tail vertex (compressed rows of (head, h), the
+  // head stored beside h so that a row is read without touching the triangles): the twin of
+  // a -> b is found among the few half-edges leaving b, with no hashing.
+  struct Out {
+    Index head;
+    Index he;
+  };
+  std::vector<std::size_t> start(have_nb ? 0 : nv + 1, 0);
+  std::vector<Out> out_he(have_nb ? 0 : 3 * nt);
+  // Row v also lists the tails of the half-edges entering v (as many as leave it: one of each
+  // per triangle at v), sorted: v -> w has a twin iff w is among them, decided row by row with
+  // no lookup in another row.
+  std::vector<Index> in_tail(have_nb ? 0 : 3 * nt);
+  std::vector<std::size_t> bnd;  // boundary half-edges, in increasing order (triangle order)
+  if (!have_nb) {
+    for (const auto& tr : m.triangles)
+      for (Index v : tr) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    {
+      // One cursor array for both fills (the rows' ends, counted down): less memory at the peak.
+      std::vector<std::size_t> fill(start.begin() + 1, start.end());
+      for (std::size_t t = nt; t-- > 0;)
+        for (std::size_t k = 3; k-- > 0;) out_he[--fill[m.triangles[t][k]]] = {m.triangles[t][(k + 1) % 3], static_cast<Index>(3 * t + k)};
+      std::copy(start.begin() + 1, start.end(), fill.begin());
+      for (std::size_t t = nt; t-- > 0;)
+        for (std::size_t k = 3; k-- > 0;) in_tail[--fill[m.triangles[t][(k + 1) % 3]]] = m.triangles[t][k];
+    }
+    // Each row sorted by head vertex (then h: filled in h order, and the sorts are stable):
+    // lookups by binary search, duplicates side by side.
+    for (std::size_t v = 0; v < nv; ++v) {
+      Out* b0 = out_he.data() + start[v];
+      Out* b1 = out_he.data() + start[v + 1];
+      Index* i0 = in_tail.data() + start[v];
+      Index* i1 = in_tail.data() + start[v + 1];
+      auto by_head = [](const Out& x, const Out& y) { return x.head < y.head; };
+      if (b1 - b0 <= 32) {
+        for (Out* i = b0 + 1; i < b1; ++i)  // insertion sorts: a vertex has a handful of half-edges
+          for (Out* j = i; j > b0 && by_head(*j, *(j - 1)); --j) std::swap(*j, *(j - 1));
+        for (Index* i = i0 + 1; i < i1; ++i)
+          for (Index* j = i; j > i0 && *j < *(j - 1); --j) std::swap(*j, *(j - 1));
+      } else {
+        std::stable_sort(b0, b1, by_head);
+        std::sort(i0, i1);
+      }
+      for (Out* it = b0; it != b1 && it + 1 != b1; ++it)
+        if (it->head == (it + 1)->head)
+          detail::fail_output(path, "invalid mesh: edge " + std::to_string(v) + "-" + std::to_string(it->head) +
+                                        " is used twice in the same direction (overlapping or inverted triangles)");
+      // v -> w is a boundary half-edge iff no half-edge w -> v: a merge of the two sorted lists.
+      const Index* in = i0;
+      for (const Out* it = b0; it != b1; ++it) {
+        while (in != i1 && *in < it->head) ++in;
+        if (in == i1 || *in != it->head) bnd.push_back(it->he);
+      }
+    }
+    std::sort(bnd.begin(), bnd.end());
   }
   auto find_half = [&](Index a, Index b) -> std::size_t {  // the half-edge a -> b, or SIZE_MAX
-    auto b0 = out_he.begin() + static_cast<std::ptrdiff_t>(start[a]);
-    auto b1 = out_he.begin() + static_cast<std::ptrdiff_t>(start[a + 1]);
-    auto it = std::lower_bound(b0, b1, b, [&](std::size_t x, Index key) { return head(x) < key; });
-    return it != b1 && head(*it) == b ? *it : SIZE_MAX;
+    const Out* b0 = out_he.data() + start[a];
+    const Out* b1 = out_he.data() + start[a + 1];
+    const Out* it = std::lower_bound(b0, b1, b, [](const Out& x, Index key) { return x.head < key; });
+    return it != b1 && it->head == b ? it->he : SIZE_MAX;
   };
-  auto twin = [&](std::size_t h) { return find_half(head(h), tail(h)); };
+  auto twin = [&](std::size_t h) -> std::size_t {
+    if (have_nb) return m.neighbours[h] == kNoId ? SIZE_MAX : static_cast<std::size_t>(m.neighbours[h]);
+    return find_half(head(h), tail(h));
+  };
 
   // Boundary half-edges in triangle order (deterministic).
-  std::vector<std::size_t> bnd;
-  for (std::size_t h = 0; h < 3 * nt; ++h)
-    if (twin(h) == SIZE_MAX) bnd.push_back(h);
-  std::unordered_map<std::size_t, std::size_t> pos;  // half-edge -> index in bnd
-  pos.reserve(bnd.size() * 2 + 1);
-  for (std::size_t i = 0; i < bnd.size(); ++i) pos.emplace(bnd[i], i);
+  if (have_nb)
+    for (std::size_t h = 0; h < 3 * nt; ++h)
+      if (m.neighbours[h] == kNoId) bnd.push_back(h);
+  // Index in bnd of a boundary half-edge (bnd is increasing: a binary search, no hash table).
+  auto pos_of = [&](std::size_t h) {
+    const auto it = std::lower_bound(bnd.begin(), bnd.end(), h);
+    if (it == bnd.end() || *it != h) detail::fail_output(path, "invalid mesh: boundary walk leaves the boundary");
+    return static_cast<std::size_t>(it - bnd.begin());
+  };
 
   // Why: the boundary edge after u->v is found by turning around v through the triangles from
   // the one left of u->v until an edge without twin appears; unlike "the other boundary edge at
@@ -120,7 +166,7 @@ Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) 
     BoundaryLoop loop;
     std::size_t h = bnd[i0];
     for (;;) {
-      const std::size_t i = pos.at(h);
+      const std::size_t i = pos_of(h);
       if (used[i]) break;
       used[i] = 1;
       if (++steps > bnd.size())
@@ -192,6 +238,22 @@ Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path) 
     }
   }
   return out;
+}
+
+const Boundaries& BoundaryCache::get(const mesh::MeshView& m, const std::string& path) {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!done_) {
+    b_ = extract_boundaries(m, path);
+    done_ = true;
+  }
+  return b_;
+}
+
+const Boundaries& boundaries_for(const mesh::MeshView& m, const std::string& path, BoundaryCache* cache,
+                                 Boundaries& own) {
+  if (cache) return cache->get(m, path);
+  own = extract_boundaries(m, path);
+  return own;
 }
 
 }  // namespace fdr::io

@@ -3,6 +3,8 @@
 // Delft3D FM net file edge types), so that all formats of one run agree.
 #pragma once
 #include <cstdint>
+#include <mutex>
+#include <string>
 #include <vector>
 #include "mesh/mesh_view.hpp"
 
@@ -62,6 +64,23 @@ struct Boundaries {
 // Throws Error(kOutputError) naming `path` if the triangles do not form a valid surface (an edge
 // used twice in the same direction).
 Boundaries extract_boundaries(const mesh::MeshView& m, const std::string& path);
+
+// extract_boundaries once for several writers of the same mesh, from any thread: the first
+// get() extracts (naming its path in errors; after a failure the next get() tries again), the
+// others wait for it and share the result.
+class BoundaryCache {
+ public:
+  const Boundaries& get(const mesh::MeshView& m, const std::string& path);
+
+ private:
+  std::mutex mu_;
+  bool done_ = false;
+  Boundaries b_;
+};
+
+// The mesh's boundaries for a writer: from `cache` when given, else extracted into `own`.
+const Boundaries& boundaries_for(const mesh::MeshView& m, const std::string& path, BoundaryCache* cache,
+                                 Boundaries& own);
 
 // The first node that appears more than once in the loops' node lists, or kNoId.
 Index pinch_node(const Boundaries& b, std::size_t num_vertices);

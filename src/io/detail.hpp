@@ -127,7 +127,8 @@ struct BoundaryLists {
     return r;
   }
 };
-BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& path, BoundaryFlavor flavor);
+BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& path, BoundaryFlavor flavor,
+                                   BoundaryCache* cache = nullptr);
 
 // Format back ends (write_mesh validates the mesh first and dispatches here).
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o);

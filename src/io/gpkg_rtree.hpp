@@ -16,6 +16,21 @@ struct RtreeEntry {
   static RtreeEntry of(std::int64_t id, double minx, double maxx, double miny, double maxy);
 };
 
+// An STR-packed tree computed without the database (so on another thread while the rows are
+// inserted): the cells of each level in packed order (level 0: the entries; above: one cell per
+// node of the level below, its id that node's number) and the node sizes per level. Node
+// numbers as build_gpkg_rtree writes them: 2, 3, ... level by level, the root 1.
+struct RtreePlan {
+  std::size_t cap = 0;  // cells per node the plan was made for
+  std::vector<std::vector<RtreeEntry>> levels;
+  std::vector<std::vector<std::size_t>> sizes;
+};
+RtreePlan plan_gpkg_rtree(std::vector<RtreeEntry> entries, std::size_t cap);
+// Cells per node of a 2D rtree virtual table made in a database of this page size (SQLite's
+// rule: node size page - 64 bytes, at most 51 cells); build_gpkg_rtree checks it against the
+// table it creates.
+std::size_t gpkg_rtree_cap(std::int64_t page_size);
+
 // Creates the spatial index of `table`.`geom_col` (already filled) inside the current transaction:
 // the rtree virtual table, its node/parent/rowid tables written directly from an STR-packed tree
 // (SQLite inserts row by row with forced reinsertion, which is what made 1M-triangle GeoPackages
@@ -23,5 +38,8 @@ struct RtreeEntry {
 // its gpkg_extensions row (the gpkg_extensions table must exist). Throws kOutputError.
 void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
                       std::vector<RtreeEntry> entries);
+// The same from a plan (made again here if its cap differs from the table's).
+void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
+                      RtreePlan plan);
 
 }  // namespace fdr::io::detail

@@ -65,30 +65,43 @@ void SqliteStmt::step_done(const char* what) {
   sqlite3_clear_bindings(st_);
 }
 
-BatchInsert::BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt)
-    : db_(db), table_(std::move(table)), cols_(std::move(cols)), per_stmt_(rows_per_stmt ? rows_per_stmt : 1) {
+BatchInsert::BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt,
+                         bool async)
+    : db_(db), table_(std::move(table)), cols_(std::move(cols)), per_stmt_(rows_per_stmt ? rows_per_stmt : 1),
+      async_(async) {
   // Stay within this SQLite build's limit on bound parameters per statement (999 in old builds).
   const int max_vars = sqlite3_limit(db.get(), SQLITE_LIMIT_VARIABLE_NUMBER, -1);
   if (!cols_.empty() && max_vars > 0)
     per_stmt_ = std::max<std::size_t>(1, std::min(per_stmt_, static_cast<std::size_t>(max_vars) / cols_.size()));
-  vals_.reserve(per_stmt_ * cols_.size());
+  cur_.vals.reserve(per_stmt_ * cols_.size());
+  if (async_) worker_ = std::thread([this] { run(); });
 }
 
-BatchInsert::~BatchInsert() { sqlite3_finalize(full_); }
+BatchInsert::~BatchInsert() {
+  if (worker_.joinable()) {  // left by an exception: the batches still waiting are not written
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      closing_ = abandon_ = true;
+    }
+    cv_.notify_all();
+    worker_.join();
+  }
+  sqlite3_finalize(full_);
+}
 
 BatchInsert& BatchInsert::add_real_or_null(double v) {
   return std::isfinite(v) ? add_real(v) : add_null();
 }
 
 BatchInsert& BatchInsert::add_blob(const void* data, std::size_t n) {
-  vals_.push_back({kBlob, 0, 0, bytes_.size(), n});
-  bytes_.append(static_cast<const char*>(data), n);
+  cur_.vals.push_back({kBlob, static_cast<std::uint32_t>(n), {.off = cur_.bytes.size()}});
+  cur_.bytes.append(static_cast<const char*>(data), n);
   return *this;
 }
 
 BatchInsert& BatchInsert::add_text(std::string_view s) {
-  vals_.push_back({kText, 0, 0, bytes_.size(), s.size()});
-  bytes_.append(s);
+  cur_.vals.push_back({kText, static_cast<std::uint32_t>(s.size()), {.off = cur_.bytes.size()}});
+  cur_.bytes.append(s);
   return *this;
 }
 
@@ -110,28 +123,27 @@ sqlite3_stmt* BatchInsert::prepare(std::size_t rows) {
   return st;
 }
 
-void BatchInsert::flush() {
-  if (rows_ == 0) return;
-  if (vals_.size() != rows_ * cols_.size())
+void BatchInsert::write(Batch& b) {
+  if (b.vals.size() != b.rows * cols_.size())
     fail_output(db_.path(), "internal: wrong number of values for table '" + table_ + "'");
   sqlite3_stmt* st;
   sqlite3_stmt* partial = nullptr;
-  if (rows_ == per_stmt_) {
+  if (b.rows == per_stmt_) {
     if (!full_) full_ = prepare(per_stmt_);
     st = full_;
   } else {
-    st = partial = prepare(rows_);
+    st = partial = prepare(b.rows);
   }
   int rc = SQLITE_OK;
-  for (std::size_t i = 0; i < vals_.size() && rc == SQLITE_OK; ++i) {
-    const Val& v = vals_[i];
+  for (std::size_t i = 0; i < b.vals.size() && rc == SQLITE_OK; ++i) {
+    const Val& v = b.vals[i];
     const int k = static_cast<int>(i + 1);
     switch (v.type) {
       case kNull: rc = sqlite3_bind_null(st, k); break;
       case kInt: rc = sqlite3_bind_int64(st, k, v.i); break;
       case kReal: rc = sqlite3_bind_double(st, k, v.d); break;
-      case kBlob: rc = sqlite3_bind_blob64(st, k, bytes_.data() + v.off, v.len, SQLITE_STATIC); break;
-      case kText: rc = sqlite3_bind_text64(st, k, bytes_.data() + v.off, v.len, SQLITE_STATIC, SQLITE_UTF8); break;
+      case kBlob: rc = sqlite3_bind_blob64(st, k, b.bytes.data() + v.off, v.len, SQLITE_STATIC); break;
+      case kText: rc = sqlite3_bind_text64(st, k, b.bytes.data() + v.off, v.len, SQLITE_STATIC, SQLITE_UTF8); break;
     }
   }
   if (rc == SQLITE_OK) rc = sqlite3_step(st);
@@ -140,11 +152,66 @@ void BatchInsert::flush() {
   sqlite3_reset(st);
   sqlite3_finalize(partial);
   if (!ok) fail_output(db_.path(), "cannot write rows of table '" + table_ + "': " + msg);
-  vals_.clear();
-  bytes_.clear();
-  rows_ = 0;
+  b.vals.clear();
+  b.bytes.clear();
+  b.rows = 0;
 }
 
-void BatchInsert::finish() { flush(); }
+void BatchInsert::run() {
+  std::unique_lock<std::mutex> lock(mu_);
+  for (;;) {
+    cv_.wait(lock, [&] { return !queue_.empty() || closing_; });
+    if (queue_.empty() || abandon_) return;
+    Batch b = std::move(queue_.front());
+    queue_.pop_front();
+    const bool failed = error_ != nullptr;  // after a failure the rest is dropped
+    lock.unlock();
+    std::exception_ptr err;
+    try {
+      if (!failed) write(b);
+    } catch (...) {
+      err = std::current_exception();
+    }
+    b.vals.clear();
+    b.bytes.clear();
+    b.rows = 0;
+    lock.lock();
+    if (err && !error_) error_ = err;
+    spare_.push_back(std::move(b));
+    cv_.notify_all();
+  }
+}
+
+void BatchInsert::flush() {
+  if (cur_.rows == 0) return;
+  if (!async_) {
+    write(cur_);
+    return;
+  }
+  std::unique_lock<std::mutex> lock(mu_);
+  cv_.wait(lock, [&] { return queue_.size() < 2 || error_; });
+  if (error_) std::rethrow_exception(error_);
+  queue_.push_back(std::move(cur_));
+  if (!spare_.empty()) {
+    cur_ = std::move(spare_.back());
+    spare_.pop_back();
+  } else {
+    cur_ = Batch{};
+    cur_.vals.reserve(per_stmt_ * cols_.size());
+  }
+  cv_.notify_all();
+}
+
+void BatchInsert::finish() {
+  flush();
+  if (!async_) return;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    closing_ = true;
+  }
+  cv_.notify_all();
+  worker_.join();
+  if (error_) std::rethrow_exception(error_);
+}
 
 }  // namespace fdr::io::detail

@@ -3,9 +3,14 @@
 #pragma once
 #include <sqlite3.h>
 
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <exception>
+#include <mutex>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 namespace fdr::io::detail {
@@ -48,38 +53,63 @@ class SqliteStmt {
 // Values of a row are appended with the add_* calls (in column order), end_row() closes it; the
 // last partial batch is written by finish() through a statement of its own size. Blob and text
 // bytes are copied into the batch, so callers may reuse their buffers.
+//
+// With `async`, full batches are bound and stepped by a thread of the BatchInsert's own while
+// the caller builds the next ones (at most two wait): the caller must not use the database
+// between construction and finish(). Same statements, same rows, same order, so the same file.
 class BatchInsert {
  public:
-  BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt = 128);
+  BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt = 128,
+              bool async = false);
   ~BatchInsert();
-  BatchInsert& add_int(std::int64_t v) { vals_.push_back({kInt, v, 0, 0, 0}); return *this; }
-  BatchInsert& add_real(double v) { vals_.push_back({kReal, 0, v, 0, 0}); return *this; }
+  BatchInsert(const BatchInsert&) = delete;
+  BatchInsert& operator=(const BatchInsert&) = delete;
+  BatchInsert& add_int(std::int64_t v) { cur_.vals.push_back({kInt, 0, {.i = v}}); return *this; }
+  BatchInsert& add_real(double v) { cur_.vals.push_back({kReal, 0, {.d = v}}); return *this; }
   BatchInsert& add_real_or_null(double v);  // NULL for NaN/inf
-  BatchInsert& add_null() { vals_.push_back({kNull, 0, 0, 0, 0}); return *this; }
+  BatchInsert& add_null() { cur_.vals.push_back({kNull, 0, {.i = 0}}); return *this; }
   BatchInsert& add_blob(const void* data, std::size_t n);
   BatchInsert& add_text(std::string_view s);
   void end_row() {
-    if (++rows_ == per_stmt_) flush();
+    if (++cur_.rows == per_stmt_) flush();
   }
-  void finish();  // writes the remaining rows
+  void finish();  // writes the remaining rows (and, async, waits for every batch)
 
  private:
   enum Type : std::uint8_t { kNull, kInt, kReal, kBlob, kText };
   struct Val {
     Type type;
-    std::int64_t i;
-    double d;
-    std::size_t off, len;  // into bytes_ (blob/text)
+    std::uint32_t len;  // blob/text bytes
+    union {
+      std::int64_t i;
+      double d;
+      std::uint64_t off;  // into the batch's bytes (blob/text)
+    };
+  };
+  struct Batch {
+    std::vector<Val> vals;
+    std::string bytes;
+    std::size_t rows = 0;
   };
   void flush();
+  void write(Batch& b);  // binds and steps one batch (on the writing thread)
+  void run();            // the async writing thread
   sqlite3_stmt* prepare(std::size_t rows);
   SqliteDb& db_;
   std::string table_;
   std::vector<std::string> cols_;
-  std::size_t per_stmt_, rows_ = 0;
+  std::size_t per_stmt_;
   sqlite3_stmt* full_ = nullptr;
-  std::vector<Val> vals_;
-  std::string bytes_;
+  Batch cur_;
+  // async: batches waiting for the writing thread, emptied ones for reuse, the first error.
+  bool async_ = false;
+  std::thread worker_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<Batch> queue_;
+  std::vector<Batch> spare_;
+  bool closing_ = false, abandon_ = false;
+  std::exception_ptr error_;
 };
 
 }  // namespace fdr::io::detail

@@ -7,9 +7,12 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <mutex>
+#include <thread>
 
+#include "base/threads.hpp"
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
 #include "io/gpkg_rtree.hpp"
@@ -248,129 +251,179 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       "CREATE TABLE \"metadata\" ( \"fid\" INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, \"key\" TEXT, \"value\" TEXT);");
 
   const bool index = o.gpkg_spatial_index;
-  std::vector<RtreeEntry> node_boxes, tri_boxes, chain_boxes, repair_boxes;
-  if (index) {
-    node_boxes.reserve(nv);
-    tri_boxes.reserve(nt);
-  }
+  std::vector<RtreeEntry> chain_boxes, repair_boxes;
+  // The R-trees of nodes and triangles (their boxes and STR packing) are planned from the mesh
+  // alone, while the rows go in when threads allow (same trees either way).
+  RtreePlan node_plan, tri_plan;
+  std::exception_ptr plan_error;
+  auto plan_trees = [&, cap = index ? gpkg_rtree_cap(db.query_int("PRAGMA page_size")) : 0] {
+    try {
+      std::vector<RtreeEntry> boxes;
+      boxes.reserve(nv);
+      for (std::size_t v = 0; v < nv; ++v) {
+        const Point2 p = m.world(static_cast<Index>(v));
+        boxes.push_back(RtreeEntry::of(static_cast<std::int64_t>(v + 1), p.x, p.x, p.y, p.y));
+      }
+      node_plan = plan_gpkg_rtree(std::move(boxes), cap);
+      boxes = {};
+      boxes.reserve(nt);
+      Point2 w[3];
+      for (std::size_t t = 0; t < nt; ++t) {
+        for (int k = 0; k < 3; ++k) w[k] = m.world(m.triangles[t][k]);
+        // The envelope as GeomBlob::envelope computes it (the same comparisons in the same order).
+        double minx = w[0].x, maxx = w[0].x, miny = w[0].y, maxy = w[0].y;
+        for (int k = 1; k < 3; ++k) {
+          minx = std::min(minx, w[k].x), maxx = std::max(maxx, w[k].x);
+          miny = std::min(miny, w[k].y), maxy = std::max(maxy, w[k].y);
+        }
+        boxes.push_back(RtreeEntry::of(static_cast<std::int64_t>(t + 1), minx, maxx, miny, maxy));
+      }
+      tri_plan = plan_gpkg_rtree(std::move(boxes), cap);
+    } catch (...) {
+      plan_error = std::current_exception();
+    }
+  };
   GeomBlob gb(srs_id);
   Extent mesh_ext, repair_ext;
 
-  // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
-  // previous + 1, as the ids below assume) instead of searching the B-tree for it.
-  {
-    BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256);
-    for (std::size_t v = 0; v < nv; ++v) {
-      const Point2 p = m.world(static_cast<Index>(v));
-      double f = std::nan("");
-      if (!m.f.empty()) f = m.f[v];
-      else if (o.f) f = (*o.f)(m.vertices[v]);
-      double c = std::nan("");
-      if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
-      const std::string& g = gb.point(p.x, p.y);
-      const auto fid = static_cast<std::int64_t>(v + 1);
-      ins.add_blob(g.data(), g.size()).add_int(fid);
-      if (m.z.empty()) ins.add_null();
-      else ins.add_real_or_null(m.z[v]);
-      ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
-      ins.end_row();
-      mesh_ext.add(p.x, p.x, p.y, p.y);
-      if (index) node_boxes.push_back(RtreeEntry::of(fid, p.x, p.x, p.y, p.y));
+  // The rows of nodes and triangles are built on one thread and bound and stepped by another
+  // (BatchInsert async) when threads allow.
+  const bool async = max_threads() > 1;
+  auto write_rows = [&] {
+    // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
+    // previous + 1, as the ids below assume) instead of searching the B-tree for it.
+    {
+      BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256, async);
+      for (std::size_t v = 0; v < nv; ++v) {
+        const Point2 p = m.world(static_cast<Index>(v));
+        double f = std::nan("");
+        if (!m.f.empty()) f = m.f[v];
+        else if (o.f) f = (*o.f)(m.vertices[v]);
+        double c = std::nan("");
+        if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
+        const std::string& g = gb.point(p.x, p.y);
+        const auto fid = static_cast<std::int64_t>(v + 1);
+        ins.add_blob(g.data(), g.size()).add_int(fid);
+        if (m.z.empty()) ins.add_null();
+        else ins.add_real_or_null(m.z[v]);
+        ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
+        ins.end_row();
+        mesh_ext.add(p.x, p.x, p.y, p.y);
+      }
+      ins.finish();
     }
-    ins.finish();
-  }
-  std::vector<double>().swap(nn);
-  {
-    BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
-                    128);
-    Point2 w[3];
-    for (std::size_t t = 0; t < nt; ++t) {
-      const auto& tr = m.triangles[t];
-      for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
-      const std::string& g = gb.polygon(w, 3);
-      const auto fid = static_cast<std::int64_t>(t + 1);
-      if (index) tri_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
-      ins.add_blob(g.data(), g.size()).add_int(fid);
-      for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
-      ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
-      ins.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
-      if (o.f || o.triangle_r_over_f) {
-        double r;
-        if (o.triangle_r_over_f) {
-          r = (*o.triangle_r_over_f)[t];
+    std::vector<double>().swap(nn);
+    {
+      BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
+                      128, async);
+      Point2 w[3];
+      for (std::size_t t = 0; t < nt; ++t) {
+        const auto& tr = m.triangles[t];
+        for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
+        const std::string& g = gb.polygon(w, 3);
+        const auto fid = static_cast<std::int64_t>(t + 1);
+        ins.add_blob(g.data(), g.size()).add_int(fid);
+        for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
+        ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
+        ins.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
+        if (o.f || o.triangle_r_over_f) {
+          double r;
+          if (o.triangle_r_over_f) {
+            r = (*o.triangle_r_over_f)[t];
+          } else {
+            Point2 c;
+            r = circumradius(m, t, c) / (*o.f)(c);
+          }
+          ins.add_real_or_null(r);
+          if (o.bound_B > 0) ins.add_real_or_null(r / o.bound_B);
+          else ins.add_null();
         } else {
-          Point2 c;
-          r = circumradius(m, t, c) / (*o.f)(c);
+          ins.add_null().add_null();
         }
-        ins.add_real_or_null(r);
-        if (o.bound_B > 0) ins.add_real_or_null(r / o.bound_B);
-        else ins.add_null();
-      } else {
-        ins.add_null().add_null();
+        ins.end_row();
       }
-      ins.end_row();
+      ins.finish();
     }
-    ins.finish();
-  }
-  {
-    const std::vector<Chain> chains = build_chains(m);
-    BatchInsert ins(db, "boundaries", {"geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
-    std::vector<Point2> pts;
-    for (std::size_t i = 0; i < chains.size(); ++i) {
-      const Chain& c = chains[i];
-      pts.clear();
-      for (Index v : c.nodes) pts.push_back(m.world(v));
-      const std::string& g = gb.linestring(pts.data(), static_cast<std::uint32_t>(pts.size()), c.closed);
-      const auto fid = static_cast<std::int64_t>(i + 1);
-      ins.add_blob(g.data(), g.size()).add_int(fid).add_text(kind_name(c.marker)).add_int(c.marker);
-      ins.add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
-      ins.end_row();
-      mesh_ext.add(gb.minx, gb.maxx, gb.miny, gb.maxy);
-      chain_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
-    }
-    ins.finish();
-  }
-  {
-    BatchInsert ins(db, "repairs", {"geom", "kind", "size", "reason", "part"}, 64);
-    for (std::size_t i = 0; i < o.repairs.size(); ++i) {
-      const RepairRow& r = o.repairs[i];
-      const std::string& g = gb.point(r.x, r.y);
-      const auto fid = static_cast<std::int64_t>(i + 1);
-      ins.add_blob(g.data(), g.size()).add_text(r.kind).add_real_or_null(r.size).add_text(r.reason);
-      ins.add_int(r.part);
-      ins.end_row();
-      if (std::isfinite(r.x) && std::isfinite(r.y)) {
-        repair_boxes.push_back(RtreeEntry::of(fid, r.x, r.x, r.y, r.y));
-        repair_ext.add(r.x, r.x, r.y, r.y);
+    {
+      const std::vector<Chain> chains = build_chains(m);
+      BatchInsert ins(db, "boundaries", {"geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
+      std::vector<Point2> pts;
+      for (std::size_t i = 0; i < chains.size(); ++i) {
+        const Chain& c = chains[i];
+        pts.clear();
+        for (Index v : c.nodes) pts.push_back(m.world(v));
+        const std::string& g = gb.linestring(pts.data(), static_cast<std::uint32_t>(pts.size()), c.closed);
+        const auto fid = static_cast<std::int64_t>(i + 1);
+        ins.add_blob(g.data(), g.size()).add_int(fid).add_text(kind_name(c.marker)).add_int(c.marker);
+        ins.add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
+        ins.end_row();
+        mesh_ext.add(gb.minx, gb.maxx, gb.miny, gb.maxy);
+        chain_boxes.push_back(RtreeEntry::of(fid, gb.minx, gb.maxx, gb.miny, gb.maxy));
       }
+      ins.finish();
     }
-    ins.finish();
-  }
-  {
-    BatchInsert ins(db, "metadata", {"key", "value"}, 16);
-    auto row = [&](const std::string& k, const std::string& v) {
-      ins.add_text(k).add_text(v);
-      ins.end_row();
-    };
-    bool has_title = false, has_b = false;
-    for (const auto& [k, v] : o.metadata) {
-      has_title |= k == "title";
-      has_b |= k == "bound_B";
-      row(k, v);
+    {
+      BatchInsert ins(db, "repairs", {"geom", "kind", "size", "reason", "part"}, 64);
+      for (std::size_t i = 0; i < o.repairs.size(); ++i) {
+        const RepairRow& r = o.repairs[i];
+        const std::string& g = gb.point(r.x, r.y);
+        const auto fid = static_cast<std::int64_t>(i + 1);
+        ins.add_blob(g.data(), g.size()).add_text(r.kind).add_real_or_null(r.size).add_text(r.reason);
+        ins.add_int(r.part);
+        ins.end_row();
+        if (std::isfinite(r.x) && std::isfinite(r.y)) {
+          repair_boxes.push_back(RtreeEntry::of(fid, r.x, r.x, r.y, r.y));
+          repair_ext.add(r.x, r.x, r.y, r.y);
+        }
+      }
+      ins.finish();
     }
-    if (!has_title && !o.title.empty()) row("title", o.title);
-    if (!has_b && o.bound_B > 0) row("bound_B", real_or_null(o.bound_B));
-    ins.finish();
+    {
+      BatchInsert ins(db, "metadata", {"key", "value"}, 16);
+      auto row = [&](const std::string& k, const std::string& v) {
+        ins.add_text(k).add_text(v);
+        ins.end_row();
+      };
+      bool has_title = false, has_b = false;
+      for (const auto& [k, v] : o.metadata) {
+        has_title |= k == "title";
+        has_b |= k == "bound_B";
+        row(k, v);
+      }
+      if (!has_title && !o.title.empty()) row("title", o.title);
+      if (!has_b && o.bound_B > 0) row("bound_B", real_or_null(o.bound_B));
+      ins.finish();
+    }
+    // Table order as OGR lists layers: the order of gpkg_contents rows.
+    register_table(db, "nodes", "POINT", srs.id, mesh_ext);
+    register_table(db, "triangles", "POLYGON", srs.id, mesh_ext);
+    register_table(db, "boundaries", "LINESTRING", srs.id, mesh_ext);
+    register_table(db, "repairs", "POINT", srs.id, repair_ext);
+    register_table(db, "metadata", nullptr, 0, {});
+  };
+  // Two threads when allowed: the rows go in on a helper thread while this one plans the
+  // R-trees (the plans' large arrays then come from this thread's heap, as without threads).
+  if (index && max_threads() > 1) {
+    std::exception_ptr rows_error;
+    {
+      std::jthread rows([&] {
+        try {
+          write_rows();
+        } catch (...) {
+          rows_error = std::current_exception();
+        }
+      });
+      plan_trees();
+    }  // joined here
+    if (rows_error) std::rethrow_exception(rows_error);
+  } else {
+    if (index) plan_trees();
+    write_rows();
   }
-  // Table order as OGR lists layers: the order of gpkg_contents rows.
-  register_table(db, "nodes", "POINT", srs.id, mesh_ext);
-  register_table(db, "triangles", "POLYGON", srs.id, mesh_ext);
-  register_table(db, "boundaries", "LINESTRING", srs.id, mesh_ext);
-  register_table(db, "repairs", "POINT", srs.id, repair_ext);
-  register_table(db, "metadata", nullptr, 0, {});
   if (index) {
-    build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_boxes));
-    build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_boxes));
+    if (plan_error) std::rethrow_exception(plan_error);
+    build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_plan));
+    build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_plan));
     build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
     build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
   }

@@ -32,8 +32,10 @@ void split_closed(const BoundaryRun& r, std::vector<BoundaryList>& out) {
 
 }  // namespace
 
-BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& path, BoundaryFlavor flavor) {
-  const Boundaries b = extract_boundaries(m, path);
+BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& path, BoundaryFlavor flavor,
+                                   BoundaryCache* cache) {
+  Boundaries own;
+  const Boundaries& b = boundaries_for(m, path, cache, own);
   BoundaryLists out;
   for (const BoundaryRun& r : b.runs) {
     auto& dst = r.kind == BoundaryKind::kOpen ? out.open : out.walls;
@@ -66,7 +68,7 @@ BoundaryLists model_boundary_lists(const mesh::MeshView& m, const std::string& p
 // boundary its node count (fort.14 adds IBTYPEE 0: elevation specified) and nodes / NBOU, NVEL,
 // per land boundary "NVELL IBTYPE" (0 mainland, 1 island) and nodes. See model_boundary_lists.
 void write_adcirc(const mesh::MeshView& m, const std::string& path, const WriteOptions& o, BoundaryFlavor flavor) {
-  const BoundaryLists bl = model_boundary_lists(m, path, flavor);
+  const BoundaryLists bl = model_boundary_lists(m, path, flavor, o.boundary_cache);
   std::vector<LonLat> ll;
   if (flavor == BoundaryFlavor::kLl && !m.vertices.empty()) ll = gis::points_to_lonlat(m.vertices, m.origin, m.crs_wkt);
   const bool down = flavor != BoundaryFlavor::kFort14 || o.fort14_depth_positive_down;
@@ -190,7 +192,8 @@ void write_selafin(const mesh::MeshView& m, const std::string& path, const Write
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
   if (nv > static_cast<std::size_t>(INT32_MAX) || 3 * nt > static_cast<std::size_t>(INT32_MAX))
     fail_output(path, "mesh too large for Selafin (32-bit counts)");
-  const Boundaries b = extract_boundaries(m, path);
+  Boundaries own;
+  const Boundaries& b = boundaries_for(m, path, o.boundary_cache, own);
   if (const Index p = pinch_node(b, nv); p != kNoId) {
     const Point2 w = m.world(p);
     fail_output(path, "node " + std::to_string(p + 1) + " at (" + std::to_string(w.x) + ", " + std::to_string(w.y) +

@@ -41,7 +41,8 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
           etype.push_back(1);
         }
       }
-    const Boundaries bnd = extract_boundaries(m, path);
+    Boundaries own;
+    const Boundaries& bnd = boundaries_for(m, path, o.boundary_cache, own);
     for (const auto& l : bnd.loops)
       for (std::size_t i = 0; i < l.nodes.size(); ++i) {
         auto it = seen.find(ukey(l.nodes[i], l.nodes[(i + 1) % l.nodes.size()]));

@@ -52,7 +52,7 @@ void write_2dm(const mesh::MeshView& m, const std::string& path, const WriteOpti
   // One nodestring per boundary run (open runs first, then land and island runs; see
   // detail::model_boundary_lists); closed runs are split in two, as SMS does not allow a
   // nodestring that starts and ends on the same node.
-  for (const auto& ns : detail::model_boundary_lists(m, path, detail::BoundaryFlavor::k2dm).all()) {
+  for (const auto& ns : detail::model_boundary_lists(m, path, detail::BoundaryFlavor::k2dm, o.boundary_cache).all()) {
     const std::vector<Index>& ids = ns.nodes;
     for (std::size_t i = 0; i < ids.size(); ++i) {
       if (i % 10 == 0) out.str(i ? "\nNS" : "NS");

@@ -44,6 +44,8 @@ struct RepairRow {
   std::vector<std::int64_t> ids;  // vertex/segment ids concerned (.poly inputs: input ids)
 };
 
+class BoundaryCache;  // io/boundaries.hpp
+
 struct WriteOptions {
   // Spacing function in the mesh's local frame; when set, triangles get R/f(c) and quality
   // columns and nodes without a per-vertex f get f evaluated at the vertex.
@@ -68,6 +70,9 @@ struct WriteOptions {
   // of the open-boundary nodes in the .cli (default 5 4 4: prescribed elevation, free velocity).
   bool slf_double = false;
   std::array<int, 3> telemac_open_codes{5, 4, 4};
+  // Boundary loops shared by the writers of one mesh (write_meshes sets it when several outputs
+  // carry boundaries, so they are extracted once); null: each writer extracts its own.
+  BoundaryCache* boundary_cache = nullptr;
 };
 
 // Parses --telemac-open "L,U,V" (three Telemac boundary codes 0..6, comma or blank separated);

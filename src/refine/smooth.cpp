@@ -185,6 +185,7 @@ class Smoother {
 
   bool try_vertex(Index v) {
     if (!star(v, hs_)) return false;
+    star_before();
     const bool on_segment = t_.vkind[v] == mesh::VertexKind::kSegment;
     Point2 la, lb;
     double t_lo = 0, t_hi = 0;
@@ -232,7 +233,11 @@ class Smoother {
           if (p == p0 || !std::isfinite(p.x) || !std::isfinite(p.y)) break;
           if (!(star_sum(p) > sum0)) continue;
           if (attempt(v, p0, p)) return true;
-          if (deferred_ || (!flips_.empty() && !star(v, hs_))) return false;
+          if (deferred_) return false;
+          if (!flips_.empty()) {
+            if (!star(v, hs_)) return false;
+            star_before();
+          }
         }
       }
     }
@@ -264,7 +269,10 @@ class Smoother {
       if (deferred_) return false;
       // An undone attempt restores the same triangles, but its flips may have renumbered their
       // half-edges: take the star again (unless there were none).
-      if (!flips_.empty() && !star(v, hs_)) return false;
+      if (!flips_.empty()) {
+        if (!star(v, hs_)) return false;
+        star_before();
+      }
     }
     return false;
   }
@@ -276,12 +284,14 @@ class Smoother {
     // The move itself must keep every star triangle counter-clockwise (p in the star's kernel).
     for (HalfEdge h : hs_)
       if (predicates::orient2d(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]) <= 0) return false;
+    // The star's triangles as touch() would record them, from the values star_before() kept
+    // (the same numbers in the same order: v is back at p0 after every undone attempt).
     touched_.clear();
-    before_min_ = 1e300;
-    before_sum_ = 0;
-    before_angle_ = 1e300;
-    before_len2_ = 1e300;
-    for (HalfEdge h : hs_) touch(mesh::tri_of(h));
+    for (HalfEdge h : hs_) touched_.push_back(mesh::tri_of(h));
+    before_min_ = star_min_;
+    before_sum_ = star_sum_;
+    before_angle_ = star_angle_;
+    before_len2_ = star_len2_;
     t_.pts[v] = p;
     moved_ = v;
     stack_.clear();
@@ -331,12 +341,28 @@ class Smoother {
     // stamp array, whose random accesses missed the cache.
     if (std::find(touched_.begin(), touched_.end(), t) != touched_.end()) return;
     touched_.push_back(t);
+    add_before(t, before_min_, before_sum_, before_angle_, before_len2_);
+  }
+
+  // Adds triangle t (as it is now) to the worst quality, summed quality, smallest angle key and
+  // shortest squared edge of the triangles before a move.
+  void add_before(TriangleId t, double& qmin, double& qsum, double& angle, double& len2) const {
     const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
     const double q = tri_quality(a, b, c);
-    before_min_ = std::min(before_min_, q);
-    before_sum_ += q;
-    before_angle_ = std::min(before_angle_, min_angle_key(a, b, c));
-    before_len2_ = std::min({before_len2_, norm2(b - a), norm2(c - b), norm2(a - c)});
+    qmin = std::min(qmin, q);
+    qsum += q;
+    angle = std::min(angle, min_angle_key(a, b, c));
+    len2 = std::min({len2, norm2(b - a), norm2(c - b), norm2(a - c)});
+  }
+
+  // The star's triangles before any move, once per star (an attempt used to measure them again:
+  // up to six attempts per vertex).
+  void star_before() {
+    star_min_ = 1e300;
+    star_sum_ = 0;
+    star_angle_ = 1e300;
+    star_len2_ = 1e300;
+    for (HalfEdge h : hs_) add_before(mesh::tri_of(h), star_min_, star_sum_, star_angle_, star_len2_);
   }
 
   // The touched triangles after the move: valid, R/f(c) <= B, no encroached subsegment, worst
@@ -361,12 +387,12 @@ class Smoother {
     if (!(nmin >= std::min(before_min_, 0.8) && nsum > before_sum_)) return false;
     // Nor may the shortest touched edge get shorter, unless it stays above f/2 at the moved
     // vertex: a short edge sets the model's time step.
+    double fp = -1;  // f(p) at the moved vertex p once needed
     if (nlen2 < before_len2_) {
-      const double fv = f_(t_.pts[moved_]);
-      if (!(nlen2 >= 0.25 * fv * fv)) return false;
+      fp = f_(t_.pts[moved_]);
+      if (!(nlen2 >= 0.25 * fp * fp)) return false;
     }
     const Point2 p = t_.pts[moved_];
-    double fp = -1;  // f(p) once needed
     for (TriangleId t : touched_) {
       const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
       for (int k = 0; k < 3; ++k) {
@@ -456,6 +482,7 @@ class Smoother {
   mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
   double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
+  double star_min_ = 0, star_sum_ = 0, star_angle_ = 0, star_len2_ = 0;  // the same over the star (star_before)
   double floor_key_ = 0;  // min_angle_key of --min-angle
   double lipschitz_ = -1;  // of f, when known (else negative)
   Index moved_ = 0;  // the vertex of the current attempt

@@ -15,9 +15,14 @@
 #include <sstream>
 #include <tuple>
 
+#include <sqlite3.h>
+
 #include "base/error.hpp"
+#include "base/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
+#include "io/sqlite_db.hpp"
+#include "io/write_many.hpp"
 #include "io/writer.hpp"
 
 namespace fs = std::filesystem;
@@ -491,6 +496,109 @@ std::string sql_text(GDALDataset* ds, const std::string& sql) {
   return r;
 }
 }  // namespace
+
+namespace {
+// Every row of every table of a SQLite file (blobs as hex), table by table in name order,
+// without gpkg_contents.last_change (the time of writing).
+std::vector<std::string> all_rows(const std::string& path) {
+  sqlite3* db = nullptr;
+  std::vector<std::string> out;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) return {"<cannot open>"};
+  std::vector<std::string> tables;
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name", -1, &st, nullptr);
+  while (sqlite3_step(st) == SQLITE_ROW) tables.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)));
+  sqlite3_finalize(st);
+  for (const std::string& t : tables) {
+    // The rtree virtual tables are read through their shadow tables (_node, _parent, _rowid).
+    if (t.rfind("rtree_", 0) == 0 && t.size() > 5 && t.compare(t.size() - 5, 5, "_geom") == 0) continue;
+    const std::string sql = t == "gpkg_contents" ? "SELECT table_name, min_x, min_y, max_x, max_y FROM gpkg_contents"
+                                                 : "SELECT * FROM \"" + t + "\"";
+    sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr);
+    while (sqlite3_step(st) == SQLITE_ROW) {
+      std::string row = t + ":";
+      for (int c = 0; c < sqlite3_column_count(st); ++c) {
+        const auto* b = static_cast<const unsigned char*>(sqlite3_column_blob(st, c));
+        const int n = sqlite3_column_bytes(st, c);
+        row += '|';
+        for (int k = 0; k < n; ++k) {
+          char h[3];
+          std::snprintf(h, sizeof h, "%02x", b[k]);
+          row += h;
+        }
+      }
+      out.push_back(std::move(row));
+    }
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return out;
+}
+}  // namespace
+
+// BatchInsert with its own writing thread: the same rows in the same order as without, and a
+// failing batch (here a UNIQUE violation) surfaces as kOutputError from a later call, without
+// hanging and without writing the batches after it.
+TEST(IoSqlite, AsyncBatchInsertSameRowsAndErrors) {
+  TmpDir tmp;
+  for (bool async : {false, true}) {
+    const std::string p = tmp / (async ? "a.sqlite" : "s.sqlite");
+    {
+      io::detail::SqliteDb db(p, p);
+      db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; CREATE TABLE t (k INTEGER, v REAL, b BLOB, s TEXT)");
+      io::detail::BatchInsert ins(db, "t", {"k", "v", "b", "s"}, 16, async);
+      std::string blob;
+      for (int i = 0; i < 1000; ++i) {
+        blob.assign(static_cast<std::size_t>(i % 7), static_cast<char>(i));
+        ins.add_int(i).add_real_or_null(i % 5 ? 0.5 * i : std::nan("")).add_blob(blob.data(), blob.size());
+        ins.add_text("row" + std::to_string(i));
+        ins.end_row();
+      }
+      ins.finish();
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t"), 1000);
+      EXPECT_EQ(db.query_int("SELECT SUM(k * rowid) FROM t"), 333333000);  // rowid = k + 1: sum of k (k + 1)
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t WHERE v IS NULL"), 200);
+      EXPECT_EQ(db.query_int("SELECT SUM(length(b)) FROM t"), [] {
+        std::int64_t n = 0;
+        for (int i = 0; i < 1000; ++i) n += i % 7;
+        return n;
+      }());
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t WHERE s = 'row' || k"), 1000);
+      db.exec("CREATE TABLE u (k INTEGER UNIQUE)");
+      try {
+        io::detail::BatchInsert bad(db, "u", {"k"}, 8, async);
+        for (int i = 0; i < 200; ++i) {
+          bad.add_int(i == 20 ? 3 : i);  // the third batch repeats 3
+          bad.end_row();
+        }
+        bad.finish();
+        ADD_FAILURE() << "duplicate accepted";
+      } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::kOutputError);
+        EXPECT_NE(std::string(e.what()).find("cannot write rows of table 'u'"), std::string::npos) << e.what();
+      }
+      EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM u"), 16);  // the two batches before the bad one
+    }
+  }
+}
+
+// The R-trees planned on a helper thread (FDR_THREADS=2) are the ones planned inline (=1): same
+// rows in every table, shadow tables of the R-trees included; and the file is as large.
+TEST_F(IoRoundTrip, GeoPackageSameForEveryThreadCount) {
+  mesh::MeshView g = grid_mesh(90);  // 15842 triangles: three R-tree levels
+  std::vector<std::string> rows[2];
+  std::uintmax_t size[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    ThreadsEnv env(k + 1);
+    const std::string p = tmp / ("t" + std::to_string(k + 1) + ".gpkg");
+    io::write_mesh(g, p, Format::kGpkg, opts);
+    rows[k] = all_rows(p);
+    size[k] = fs::file_size(p);
+  }
+  EXPECT_GT(rows[0].size(), 3u * 15842u);
+  EXPECT_TRUE(rows[0] == rows[1]);
+  EXPECT_EQ(size[0], size[1]);
+}
 
 TEST_F(IoRoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
   mesh::MeshView g = grid_mesh(60);  // 6962 triangles, 3600 nodes
@@ -1000,6 +1108,68 @@ TEST(IoBoundaries, LoopsRunsOrderAndOrientation) {
   EXPECT_EQ(b2.ordered_nodes(), b.ordered_nodes());
 }
 
+namespace {
+// MeshView::neighbours by brute force (what the mesher fills): the half-edge running the other way.
+std::vector<Index> brute_neighbours(const mesh::MeshView& m) {
+  std::map<std::pair<Index, Index>, Index> he;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) he[{m.triangles[t][k], m.triangles[t][(k + 1) % 3]}] = static_cast<Index>(3 * t + k);
+  std::vector<Index> nb(3 * m.triangles.size(), kNoId);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = he.find({m.triangles[t][(k + 1) % 3], m.triangles[t][k]});
+      if (it != he.end()) nb[3 * t + k] = it->second;
+    }
+  return nb;
+}
+void expect_same_boundaries(const io::Boundaries& a, const io::Boundaries& b) {
+  ASSERT_EQ(a.loops.size(), b.loops.size());
+  for (std::size_t i = 0; i < a.loops.size(); ++i) {
+    EXPECT_EQ(a.loops[i].nodes, b.loops[i].nodes);
+    EXPECT_EQ(a.loops[i].edge_open, b.loops[i].edge_open);
+    EXPECT_EQ(a.loops[i].outer, b.loops[i].outer);
+  }
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t i = 0; i < a.runs.size(); ++i) {
+    EXPECT_EQ(a.runs[i].nodes, b.runs[i].nodes);
+    EXPECT_EQ(a.runs[i].kind, b.runs[i].kind);
+    EXPECT_EQ(a.runs[i].closed, b.runs[i].closed);
+  }
+}
+}  // namespace
+
+// The mesher's adjacency (MeshView::neighbours) and the table built from the triangles alone
+// give the same loops and runs, pinch nodes included.
+TEST(IoBoundaries, SameWithAndWithoutTheMeshersAdjacency) {
+  // A 6x5 grid of squares with two holes (one square each) and an open edge, triangles shuffled.
+  mesh::MeshView g;
+  const int nx = 6, ny = 5;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) g.vertices.push_back({double(i), double(j)});
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if ((i == 1 && j == 1) || (i == 4 && j == 3)) continue;
+      g.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      g.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::reverse(g.triangles.begin() + 10, g.triangles.end());
+  g.edges.push_back({id(0, 0), id(1, 0), static_cast<std::int32_t>(mesh::EdgeKind::kOpen), 0});
+  g.edges.push_back({id(1, 0), id(2, 0), static_cast<std::int32_t>(mesh::EdgeKind::kOpen), 0});
+  mesh::MeshView bow;  // two triangles touching at vertex 0
+  bow.vertices = {{0, 0}, {1, 0}, {1, 1}, {-1, 0}, {-1, -1}};
+  bow.triangles = {{0, 1, 2}, {0, 3, 4}};
+  for (mesh::MeshView m : {sample_mesh(), g, bow}) {
+    m.neighbours.clear();
+    const io::Boundaries without = io::extract_boundaries(m, "m");
+    m.neighbours = brute_neighbours(m);
+    const io::Boundaries with = io::extract_boundaries(m, "m");
+    expect_same_boundaries(without, with);
+  }
+  io::Boundaries gb = io::extract_boundaries(g, "g");
+  EXPECT_EQ(gb.loops.size(), 3u);  // the outer loop and the two holes
+}
+
 TEST(IoBoundaries, PinchNodeIsFoundAndSelafinRefusesIt) {
   // Two triangles touching at vertex 0 (a bow-tie): two loops through node 0.
   mesh::MeshView m;
@@ -1017,6 +1187,27 @@ TEST(IoBoundaries, PinchNodeIsFoundAndSelafinRefusesIt) {
     EXPECT_NE(std::string(e.what()).find("node 1 at (0.000000, 0.000000) lies twice on the boundary"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(tmp.entries().empty());
+}
+
+// write_meshes shares one boundary extraction between the outputs that carry boundaries and
+// starts the costliest outputs first: every file is the one write_mesh writes alone.
+TEST_F(IoRoundTrip, WriteMeshesSharesBoundariesSameFiles) {
+  opts.f = nullptr;  // concurrent writers: no sizing field evaluated
+  const std::vector<std::string> names = {"a.2dm", "a.14", "a.gr3", "a.slf", "a.gpkg", "a_net.nc"};
+  std::vector<std::string> many;
+  std::vector<Format> formats;
+  for (const auto& n : names) {
+    many.push_back(tmp / ("many_" + n));
+    formats.push_back(io::format_from_path(many.back()));
+  }
+  io::write_meshes(m, many, formats, opts, 2);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (formats[i] == Format::kGpkg || formats[i] == Format::kDflowfm) continue;  // these hold times of writing
+    const std::string one = tmp / ("one_" + names[i]);
+    io::write_mesh(m, one, formats[i], opts);
+    EXPECT_EQ(slurp(one), slurp(many[i])) << names[i];
+  }
+  EXPECT_EQ(slurp(tmp / "many_a.cli"), slurp(tmp / "one_a.cli"));
 }
 
 TEST_F(IoRoundTrip, Gr3AndLl) {
