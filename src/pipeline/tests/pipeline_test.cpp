@@ -196,7 +196,8 @@ TEST(PipelineChesapeake, ShapefileAndGpkgInputsAgreeWithGeoJson) {
   Result rg = run(gp, nullptr, nullptr);
   for (const Result* r : {&rs, &rg}) {
     EXPECT_EQ(r->crs_name, gj.crs_name);
-    EXPECT_NEAR(mesh_area(r->mesh) / mesh_area(gj.mesh), 1.0, 1e-9);
+    // (GeoJSON keeps fewer digits: the widened banks, new coast, differ by that rounding)
+    EXPECT_NEAR(mesh_area(r->mesh) / mesh_area(gj.mesh), 1.0, 1e-6);
     EXPECT_NEAR(static_cast<double>(r->mesh.num_triangles()) / static_cast<double>(gj.mesh.num_triangles()), 1.0, 0.02);
     EXPECT_EQ(r->report.bad_triangles.value_or(1), 0u);
     // Open-boundary edges found in every encoding.
