@@ -7,6 +7,8 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
+#include "base/scoped_env.hpp"
+#include "quality/mesh_adjacency.hpp"
 #include "quality/model_ready.hpp"
 #include "quality/report.hpp"
 
@@ -264,6 +266,65 @@ TEST(ModelReady, FiguresAreaChangeAndJson) {
   EXPECT_NE(s.find("Model readiness (hmin = 1 m)"), std::string::npos) << s;
   EXPECT_NE(s.find("pieces mesh / input           : 1 / 3"), std::string::npos) << s;
   EXPECT_NE(s.find("islands removed               : 5"), std::string::npos) << s;
+}
+
+// Issue 7: with the mesher's adjacency the figures come from one pass over the triangles on up to
+// two threads; they must equal the plain path's (half-edges grouped and sorted) bit for bit, for
+// every FDR_THREADS. A jittered grid (random diagonals) with holes cut out (several pieces, inner
+// boundaries), repeated edge lengths (ties for the shortest edge), depths, and a random input coast.
+TEST(ModelReady, AdjacencyPathEqualsPlainForEveryThreadCount) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.2, 0.2), depth(-40, 5), u(-5, 175);
+    std::bernoulli_distribution coin(0.5), keep(0.97);
+    const int n = 170;
+    mesh::MeshView m;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const bool inner = i > 0 && j > 0 && i < n - 1 && j < n - 1 && (i + j) % 7 != 0;  // some exact grid points
+        m.vertices.push_back({i + (inner ? jitter(rng) : 0.0), j + (inner ? jitter(rng) : 0.0)});
+        m.z.push_back(depth(rng));
+      }
+    auto id = [n](int i, int j) { return Index(j * n + i); };
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        if (!keep(rng) || (i / 20 == 3 && j / 30 == 2) || j == 100) continue;  // holes, a cut across
+        if (coin(rng)) {
+          m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+          m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        } else {
+          m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+          m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+      }
+    std::shuffle(m.triangles.begin(), m.triangles.end(), rng);  // ties met in any order
+    m.origin = {350000, 4100000};
+    std::vector<std::pair<Point2, Point2>> coast;
+    for (int r = 0; r < 40; ++r) {  // random closed polylines
+      std::vector<Point2> p;
+      const Point2 c{u(rng), u(rng)};
+      for (int k = 0; k < 12; ++k) p.push_back(c + Point2{8 * jitter(rng) * 5, 8 * jitter(rng) * 5});
+      for (const auto& s : ring(p)) coast.push_back(s);
+    }
+    for (const auto& s : square(-0.3, n - 0.7)) coast.push_back(s);
+    const std::vector<std::pair<std::string, double>> figs = {{"input_pieces", 2}, {"input_area_m2", 28000}};
+    ModelReadyInputs in;
+    in.hmin = 1.5;
+    in.min_depth_m = 2;
+    in.input_boundary = &coast;
+    in.coast_figures = &figs;
+    const std::string plain = model_ready_json(compute_model_readiness_plain(m, in)).dump();
+    EXPECT_EQ(plain, model_ready_json(compute_model_readiness(m, in)).dump());  // no adjacency: the plain path
+    m.neighbours = half_edge_neighbours(m);
+    ASSERT_GE(m.triangles.size(), 4u * 8192u);  // several chunks for each thread
+    for (int t : {1, 2, 3}) {
+      const ThreadsEnv env(t);
+      const ModelReadiness r = compute_model_readiness(m, in);
+      EXPECT_EQ(plain, model_ready_json(r).dump()) << "seed " << seed << ", FDR_THREADS=" << t;
+      EXPECT_GT(r.mesh_pieces, 1u);
+      EXPECT_GT(r.mesh_boundary_edges, 4u * (n - 1));
+    }
+  }
 }
 
 class Constant : public sizing::SizingField {
