@@ -50,13 +50,14 @@ class SegmentGrid {
     lo_ = box.lo;
     const double n = static_cast<double>(segs.size());
     const double w = box.width(), h = box.height();
-    cell_ = std::max(total / n, std::sqrt(w * h / (2.0 * n)));
+    // Cells about as long as the segments, at most about 16 per segment (a coast fills few of
+    // the cells of its box; the queries lie near it and mostly end in their own cell).
+    cell_ = std::max(total / n, std::sqrt(w * h / (16.0 * n)));
     if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = std::max({w, h, 1.0});
-    // Cap the number of cells at about 4 per segment (thin domains: one long axis).
     for (int guard = 0; guard < 200; ++guard) {
       nx_ = static_cast<std::size_t>(w / cell_) + 1;
       ny_ = static_cast<std::size_t>(h / cell_) + 1;
-      if (static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * n + 16.0) break;
+      if (static_cast<double>(nx_) * static_cast<double>(ny_) <= 16.0 * n + 16.0) break;
       cell_ *= 1.5;
     }
     start_.assign(nx_ * ny_ + 1, 0);
@@ -111,9 +112,19 @@ class SegmentGrid {
           else i = i_hi;
         }
       }
-      // Cells of ring r+1 are at least r cells away from q (also when q lies outside the grid).
-      const double reach = static_cast<double>(r) * cell_;
-      if (best2 <= reach * reach) break;
+      // The cells not scanned yet lie beyond the sides of the square of rings 0..r that have
+      // cells beyond them, at least that far from q (q inside the square, or outside the grid on
+      // a side without cells beyond). Rounding: ~1e-16 of the coordinates, far inside the slack.
+      double reach = kInf;
+      const double sx0 = lo_.x + static_cast<double>(i_lo) * cell_, sx1 = lo_.x + static_cast<double>(i_hi + 1) * cell_;
+      const double sy0 = lo_.y + static_cast<double>(j_lo) * cell_, sy1 = lo_.y + static_cast<double>(j_hi + 1) * cell_;
+      if (i_lo > 0) reach = std::min(reach, q.x - sx0);
+      if (i_hi + 1 < static_cast<long long>(nx_)) reach = std::min(reach, sx1 - q.x);
+      if (j_lo > 0) reach = std::min(reach, q.y - sy0);
+      if (j_hi + 1 < static_cast<long long>(ny_)) reach = std::min(reach, sy1 - q.y);
+      if (reach == kInf) break;  // every cell scanned
+      reach -= 1e-9 * (std::fabs(q.x) + std::fabs(q.y) + cell_);
+      if (reach > 0 && best2 <= reach * reach) break;
     }
     return std::sqrt(best2);
   }
