@@ -89,18 +89,154 @@ inline bool may_matter(Index p, Point2 P, Index a, Index b, Point2 A, Point2 B, 
   return true;
 }
 
+// The S edges in the cells of a uniform grid, cells about as long as the S edges on average (at
+// most 2^26 cells): an occupancy bitmap, the number of occupied cells before each 64-bit word,
+// and the edges of every occupied cell (compressed rows). Each edge is listed in every cell its
+// bounding box (a little enlarged) meets; a query lists the edges of the cells its disk's box
+// meets, so it finds every edge within the radius in a few cells. Not usable (ok() false) when
+// long diagonal edges would be listed in too many cells: then the tree below.
+class CellIndex {
+ public:
+  CellIndex(const mesh::MeshView& m, const std::vector<Index>& he) : m_(m) {
+    if (he.empty()) return;
+    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf, total = 0;
+    for (Index h : he) {
+      const Point2 a = tail(h), b = head(h);
+      for (const Point2 q : {a, b}) {
+        x0 = std::min(x0, q.x);
+        y0 = std::min(y0, q.y);
+        x1 = std::max(x1, q.x);
+        y1 = std::max(y1, q.y);
+      }
+      total += std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
+    }
+    if (!(x1 - x0 < kInf) || !(y1 - y0 < kInf) || !(total < kInf)) return;
+    const double span = std::max({x1 - x0, y1 - y0, 1e-300});
+    margin_ = 1e-9 * (span + std::max({std::fabs(x0), std::fabs(y0), std::fabs(x1), std::fabs(y1)}));
+    double cell = std::max(total / static_cast<double>(he.size()), span / 65536.0);
+    const double w = x1 - x0 + 4 * margin_, h = y1 - y0 + 4 * margin_;
+    for (int guard = 0; guard < 64 && (w / cell + 1) * (h / cell + 1) > 67108864.0; ++guard) cell *= 1.5;
+    if (!(cell > 0) || !std::isfinite(cell)) return;
+    nx_ = static_cast<std::size_t>(w / cell) + 1;
+    ny_ = static_cast<std::size_t>(h / cell) + 1;
+    x0_ = x0 - 2 * margin_;
+    y0_ = y0 - 2 * margin_;
+    cell_ = cell;
+    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
+    words_ = (nx_ + 63) / 64;
+    bits_.assign(words_ * ny_, 0);
+    // Every (edge, cell) pair, three times: mark, count, fill.
+    std::size_t marked = 0;
+    auto each = [&](auto&& visit) {
+      for (Index e : he) {
+        const Point2 a = tail(e), b = head(e);
+        std::size_t i0, i1, j0, j1;
+        range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
+        range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
+        for (std::size_t j = j0; j <= j1; ++j)
+          for (std::size_t i = i0; i <= i1; ++i) visit(j * words_ * 64 + i, e);
+      }
+    };
+    for (Index e : he) {  // the cost first: long diagonal edges would cover the grid
+      const Point2 a = tail(e), b = head(e);
+      std::size_t i0, i1, j0, j1;
+      range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
+      range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
+      marked += (i1 - i0 + 1) * (j1 - j0 + 1);
+      if (marked > 16 * he.size() + 4096) {
+        bits_.clear();
+        return;
+      }
+    }
+    each([&](std::size_t bit, Index) { bits_[bit / 64] |= std::uint64_t{1} << (bit % 64); });
+    before_.resize(bits_.size() + 1);
+    before_[0] = 0;
+    for (std::size_t k = 0; k < bits_.size(); ++k) before_[k + 1] = before_[k] + popcount(bits_[k]);
+    start_.assign(before_.back() + 1, 0);
+    each([&](std::size_t bit, Index) { ++start_[rank(bit) + 1]; });
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+    items_.resize(start_.back());
+    std::vector<std::size_t> cursor(start_.begin(), start_.end() - 1);
+    each([&](std::size_t bit, Index e) { items_[cursor[rank(bit)]++] = e; });
+  }
+  bool ok() const { return !bits_.empty(); }
+  // Calls f(h) for every listed half-edge h (some more than once) of the cells that the box of
+  // the disk (p, sqrt(r2)) meets whose segment may come closer to p than sqrt(r2) (segment_near);
+  // stops when f returns true, and returns whether it did.
+  template <class F>
+  bool for_each_near(Point2 p, double r2, F&& f) const {
+    const double r = std::sqrt(r2) * (1 + 1e-6);
+    if (!(r < kInf)) return scan_all(p, r2, f);
+    const double limx = x0_ + cell_ * static_cast<double>(nx_), limy = y0_ + cell_ * static_cast<double>(ny_);
+    if (p.x + r < x0_ || p.y + r < y0_ || p.x - r > limx || p.y - r > limy) return false;  // outside every edge's box
+    std::size_t i0, i1, j0, j1;
+    range(p.x - r, p.x + r, x0_, nx_, i0, i1);
+    range(p.y - r, p.y + r, y0_, ny_, j0, j1);
+    const std::size_t w0 = i0 / 64, w1 = i1 / 64;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t w = w0; w <= w1; ++w) {
+        std::uint64_t b = bits_[j * words_ + w];
+        if (w == w0) b &= ~std::uint64_t{0} << (i0 % 64);
+        if (w == w1) b &= ~std::uint64_t{0} >> (63 - i1 % 64);
+        while (b) {
+          const std::size_t bit = (j * words_ + w) * 64 + static_cast<std::size_t>(__builtin_ctzll(b));
+          b &= b - 1;
+          const std::size_t c = rank(bit);
+          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k)
+            if (segment_near(p, tail(items_[k]), head(items_[k]), r2) && f(items_[k])) return true;
+        }
+      }
+    return false;
+  }
+
+ private:
+  Point2 tail(Index h) const { return m_.vertices[m_.triangles[h / 3][h % 3]]; }
+  Point2 head(Index h) const { return m_.vertices[m_.triangles[h / 3][(h % 3 + 1) % 3]]; }
+  static std::size_t popcount(std::uint64_t x) {  // no popcnt instruction in the baseline ISA
+    x = x - ((x >> 1) & 0x5555555555555555ULL);
+    x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
+    return static_cast<std::size_t>((x * 0x0101010101010101ULL) >> 56);
+  }
+  std::size_t rank(std::size_t bit) const {  // occupied cells before this one
+    return before_[bit / 64] + popcount(bits_[bit / 64] & ((std::uint64_t{1} << (bit % 64)) - 1));
+  }
+  template <class F>
+  bool scan_all(Point2 p, double r2, F& f) const {
+    for (Index h : items_)
+      if (segment_near(p, tail(h), head(h), r2) && f(h)) return true;
+    return false;
+  }
+  // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis of n cells.
+  void range(double lo, double hi, double origin, std::size_t n, std::size_t& k0, std::size_t& k1) const {
+    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
+      const double c = (v - origin) * inv_cell_;
+      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n - 1) ? n - 1 : static_cast<std::size_t>(c);
+    };
+    k0 = cell(lo - margin_);
+    k1 = cell(hi + margin_);
+  }
+  const mesh::MeshView& m_;
+  std::size_t nx_ = 0, ny_ = 0, words_ = 0;
+  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
+  std::vector<std::uint64_t> bits_;
+  std::vector<std::size_t> before_, start_;
+  std::vector<Index> items_;
+};
+
 // Half-edges (the boundary and the constrained edges) in a static bounding-box tree: ranges of
 // the array sorted by midpoint (median splits, alternating axis), node boxes in heap order.
 class EdgeIndex {
  public:
   EdgeIndex(const mesh::MeshView& m, const std::vector<Index>& nb, std::vector<Index> he)
-      : m_(m), nb_(nb), he_(std::move(he)) {
-    if (!he_.empty()) build(0, 0, he_.size(), 0);
+      : m_(m), nb_(nb), he_(std::move(he)), cells_(m, he_) {
+    if (!he_.empty() && !cells_.ok()) build(0, 0, he_.size(), 0);  // the tree only when the cells cannot serve
   }
-  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2);
-  // stops when f returns true, and returns whether it did.
+  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2)
+  // (some more than once); stops when f returns true, and returns whether it did.
   template <class F>
   bool for_each_near(Point2 p, double r2, F&& f) const {
+    if (cells_.ok()) return cells_.for_each_near(p, r2, f);
     return !he_.empty() && query(0, 0, he_.size(), p, r2, f);
   }
   Index tail_id(Index h) const { return m_.triangles[h / 3][h % 3]; }
@@ -160,6 +296,7 @@ class EdgeIndex {
   const mesh::MeshView& m_;
   const std::vector<Index>& nb_;
   std::vector<Index> he_;
+  CellIndex cells_;
   std::vector<Box> box_;
 };
 
@@ -260,100 +397,6 @@ Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Inde
 
 namespace {
 
-// Which cells of a uniform grid over the S edges hold part of one (their bounding boxes, a
-// little enlarged): a disk whose box meets no such cell holds no S edge, and then the search
-// needs no query of the edge index (an occupancy test, conservative by the margins). Cells about
-// as long as the S edges on average (at most 2^26 of them, one bit each), so that only the
-// vertices next to an S edge reach the index.
-class OccupancyGrid {
- public:
-  OccupancyGrid(const mesh::MeshView& m, const std::vector<Index>& he) {
-    if (he.empty()) return;
-    auto tail = [&](Index h) { return m.vertices[m.triangles[h / 3][h % 3]]; };
-    auto head = [&](Index h) { return m.vertices[m.triangles[h / 3][(h % 3 + 1) % 3]]; };
-    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf, total = 0;
-    for (Index h : he) {
-      const Point2 a = tail(h), b = head(h);
-      for (const Point2 q : {a, b}) {
-        x0 = std::min(x0, q.x);
-        y0 = std::min(y0, q.y);
-        x1 = std::max(x1, q.x);
-        y1 = std::max(y1, q.y);
-      }
-      total += std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
-    }
-    if (!(x1 - x0 < kInf) || !(y1 - y0 < kInf) || !(total < kInf)) return;
-    const double span = std::max({x1 - x0, y1 - y0, 1e-300});
-    margin_ = 1e-9 * (span + std::max({std::fabs(x0), std::fabs(y0), std::fabs(x1), std::fabs(y1)}));
-    double cell = std::max(total / static_cast<double>(he.size()), span / 65536.0);
-    const double w = x1 - x0 + 4 * margin_, h = y1 - y0 + 4 * margin_;
-    for (int guard = 0; guard < 64 && (w / cell + 1) * (h / cell + 1) > 67108864.0; ++guard) cell *= 1.5;
-    if (!(cell > 0) || !std::isfinite(cell)) return;
-    nx_ = static_cast<std::size_t>(w / cell) + 1;
-    ny_ = static_cast<std::size_t>(h / cell) + 1;
-    x0_ = x0 - 2 * margin_;
-    y0_ = y0 - 2 * margin_;
-    cell_ = cell;
-    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
-    words_ = (nx_ + 63) / 64;
-    bits_.assign(words_ * ny_, 0);
-    std::size_t marked = 0;
-    for (Index e : he) {
-      const Point2 a = tail(e), b = head(e);
-      std::size_t i0, i1, j0, j1;
-      range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
-      range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
-      for (std::size_t j = j0; j <= j1; ++j)
-        for (std::size_t i = i0; i <= i1; ++i) bits_[j * words_ + i / 64] |= std::uint64_t{1} << (i % 64);
-      marked += (i1 - i0 + 1) * (j1 - j0 + 1);
-      if (marked > 64 * he.size() + 4096) {  // long diagonal edges cover the grid: no use
-        bits_.clear();
-        return;
-      }
-    }
-  }
-  // False only when no S edge comes within sqrt(r2) of p.
-  bool maybe_near(Point2 p, double r2) const {
-    if (bits_.empty()) return true;
-    const double r = std::sqrt(r2) * (1 + 1e-6);
-    if (!(r < kInf)) return true;
-    const double limx = x0_ + cell_ * static_cast<double>(nx_), limy = y0_ + cell_ * static_cast<double>(ny_);
-    if (p.x + r < x0_ || p.y + r < y0_ || p.x - r > limx || p.y - r > limy) return false;  // outside every edge's box
-    std::size_t i0, i1, j0, j1;
-    range(p.x - r, p.x + r, x0_, nx_, i0, i1);
-    range(p.y - r, p.y + r, y0_, ny_, j0, j1);
-    const std::size_t w0 = i0 / 64, w1 = i1 / 64;
-    const std::uint64_t first = ~std::uint64_t{0} << (i0 % 64);
-    const std::uint64_t last = ~std::uint64_t{0} >> (63 - i1 % 64);
-    for (std::size_t j = j0; j <= j1; ++j) {
-      const std::uint64_t* row = bits_.data() + j * words_;
-      if (w0 == w1) {
-        if (row[w0] & first & last) return true;
-        continue;
-      }
-      if (row[w0] & first) return true;
-      for (std::size_t k = w0 + 1; k < w1; ++k)
-        if (row[k]) return true;
-      if (row[w1] & last) return true;
-    }
-    return false;
-  }
-
- private:
-  // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis of n cells.
-  void range(double lo, double hi, double origin, std::size_t n, std::size_t& k0, std::size_t& k1) const {
-    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
-      const double c = (v - origin) * inv_cell_;
-      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n - 1) ? n - 1 : static_cast<std::size_t>(c);
-    };
-    k0 = cell(lo - margin_);
-    k1 = cell(hi + margin_);
-  }
-  std::size_t nx_ = 0, ny_ = 0, words_ = 0;
-  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
-  std::vector<std::uint64_t> bits_;
-};
-
 }  // namespace
 
 struct MeshNearestNeighbours::Impl {
@@ -363,15 +406,14 @@ struct MeshNearestNeighbours::Impl {
   std::vector<double> nn;
   bool usable = false, certify = false;
   std::unique_ptr<EdgeIndex> si;
-  OccupancyGrid grid;
-  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov, const OccupancyGrid& g)
-      : m(mm), nb(nbb), tri_of_vertex(tov), grid(g) {}
+  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov)
+      : m(mm), nb(nbb), tri_of_vertex(tov) {}
 };
 
 MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std::vector<Index>& nb,
                                              MeshWalkPrep& prep) {
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
-  impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex, OccupancyGrid(m, {}));
+  impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex);
   const std::vector<Index>& tri_of_vertex = prep.tri_of_vertex;
   if (nv < 2 || nb.size() != 3 * nt || prep.nn2.size() != nv || tri_of_vertex.size() != nv) return;
   // One triangle of every vertex (prep.nn2 is left intact when the walk cannot be used).
@@ -408,7 +450,6 @@ MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std:
   for (Index h : prep.not_delaunay)
     if (!std::binary_search(s_edges.begin(), s_edges.end(), h)) certify = false;
   impl_->certify = certify;
-  if (certify) impl_->grid = OccupancyGrid(m, s_edges);
   impl_->si = std::make_unique<EdgeIndex>(m, nb, std::move(s_edges));
 }
 
@@ -424,8 +465,7 @@ void MeshNearestNeighbours::search(std::size_t lo, std::size_t hi) {
     const Point2 p = s.m.vertices[v];
     const Index pv = static_cast<Index>(v);
     const double r2 = s.nn[v];
-    if (s.certify && (!s.grid.maybe_near(p, r2) ||
-                      !s.si->for_each_near(p, r2, [&](Index h) { return s.si->matters(h, pv, p, r2); })))
+    if (s.certify && !s.si->for_each_near(p, r2, [&](Index h) { return s.si->matters(h, pv, p, r2); }))
       continue;  // exact: no S edge within nn[v] that matters (see the constructor)
     s.nn[v] = w.nearest_sq(static_cast<Index>(v), s.tri_of_vertex[v], s.nn[v]);
   }
