@@ -191,6 +191,46 @@ TEST(ModelReady, GridDistanceMatchesBruteForce) {
   EXPECT_TRUE(std::isinf(distances_to_segments({{0, 0}}, {})[0]));
 }
 
+// Issue 7: the grid's cells are about one segment long and a query stops once the nearest cell
+// not scanned is farther than the best distance: the same value, bit for bit, as the minimum of
+// the same per-segment formula over every segment (random closed polylines of very different
+// segment lengths, points on them, near them, far away and outside the grid).
+TEST(ModelReady, GridDistanceEqualsBruteForceBitForBit) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::pair<Point2, Point2>> segs;
+  for (int r = 0; r < 60; ++r) {
+    const Point2 c{u(rng) * 5000, u(rng) * 3000};
+    const double rad = 20 + 400 * u(rng);
+    const int k = 3 + static_cast<int>(60 * u(rng));
+    std::vector<Point2> p;
+    for (int i = 0; i < k; ++i) {
+      const double a = 6.283185307179586 * i / k, rr = rad * (0.6 + 0.4 * u(rng));
+      p.push_back(c + Point2{rr * std::cos(a), rr * std::sin(a)});
+    }
+    for (const auto& s : ring(p)) segs.push_back(s);
+  }
+  std::vector<Point2> pts;
+  for (const auto& [a, b] : segs) {
+    pts.push_back(a);
+    pts.push_back(a + u(rng) * (b - a));
+    pts.push_back(a + u(rng) * (b - a) + Point2{u(rng) - 0.5, u(rng) - 0.5});
+    pts.push_back(a + Point2{(u(rng) - 0.5) * 100, (u(rng) - 0.5) * 100});
+  }
+  for (int i = 0; i < 500; ++i) pts.push_back({u(rng) * 8000 - 1500, u(rng) * 6000 - 1500});
+  const auto d = distances_to_segments(pts, segs);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    double best2 = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : segs) {  // the grid's per-segment formula
+      const Point2 e = b - a;
+      const double l2 = norm2(e);
+      const double t = l2 > 0 ? std::clamp(dot(pts[i] - a, e) / l2, 0.0, 1.0) : 0.0;
+      best2 = std::min(best2, norm2(pts[i] - (a + t * e)));
+    }
+    ASSERT_EQ(d[i], std::sqrt(best2)) << i;
+  }
+}
+
 TEST(ModelReady, TimeStepFromShortestAltitudeAndClampedDepth) {
   // Two equilateral triangles of side 10: one 4 m deep, one on land (z = +3, clamped to 1 m).
   mesh::MeshView m;
