@@ -98,7 +98,7 @@ inline bool may_matter(Index p, Point2 P, Index a, Index b, Point2 A, Point2 B, 
 class CellIndex {
  public:
   CellIndex(const mesh::MeshView& m, const std::vector<Index>& he) : m_(m) {
-    if (he.empty()) return;
+    if (he.empty() || he.size() >= 0xffffffffu) return;
     double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf, total = 0;
     for (Index h : he) {
       const Point2 a = tail(h), b = head(h);
@@ -127,14 +127,19 @@ class CellIndex {
     bits_.assign(words_ * ny_, 0);
     // Every (edge, cell) pair, three times: mark, count, fill.
     std::size_t marked = 0;
+    // The edges' endpoints in one compact array (a query reads them without the two scattered
+    // loads through the triangles).
+    he_ = he;
+    seg_.resize(he.size());
+    for (std::size_t k = 0; k < he.size(); ++k) seg_[k] = {tail(he[k]), head(he[k])};
     auto each = [&](auto&& visit) {
-      for (Index e : he) {
-        const Point2 a = tail(e), b = head(e);
+      for (std::uint32_t k = 0; k < seg_.size(); ++k) {
+        const Point2 a = seg_[k].a, b = seg_[k].b;
         std::size_t i0, i1, j0, j1;
         range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
         range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
         for (std::size_t j = j0; j <= j1; ++j)
-          for (std::size_t i = i0; i <= i1; ++i) visit(j * words_ * 64 + i, e);
+          for (std::size_t i = i0; i <= i1; ++i) visit(j * words_ * 64 + i, k);
       }
     };
     for (Index e : he) {  // the cost first: long diagonal edges would cover the grid
@@ -148,16 +153,16 @@ class CellIndex {
         return;
       }
     }
-    each([&](std::size_t bit, Index) { bits_[bit / 64] |= std::uint64_t{1} << (bit % 64); });
+    each([&](std::size_t bit, std::uint32_t) { bits_[bit / 64] |= std::uint64_t{1} << (bit % 64); });
     before_.resize(bits_.size() + 1);
     before_[0] = 0;
     for (std::size_t k = 0; k < bits_.size(); ++k) before_[k + 1] = before_[k] + popcount(bits_[k]);
     start_.assign(before_.back() + 1, 0);
-    each([&](std::size_t bit, Index) { ++start_[rank(bit) + 1]; });
+    each([&](std::size_t bit, std::uint32_t) { ++start_[rank(bit) + 1]; });
     for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
     items_.resize(start_.back());
     std::vector<std::size_t> cursor(start_.begin(), start_.end() - 1);
-    each([&](std::size_t bit, Index e) { items_[cursor[rank(bit)]++] = e; });
+    each([&](std::size_t bit, std::uint32_t k) { items_[cursor[rank(bit)]++] = k; });
   }
   bool ok() const { return !bits_.empty(); }
   // Calls f(h) for every listed half-edge h (some more than once) of the cells that the box of
@@ -182,8 +187,10 @@ class CellIndex {
           const std::size_t bit = (j * words_ + w) * 64 + static_cast<std::size_t>(__builtin_ctzll(b));
           b &= b - 1;
           const std::size_t c = rank(bit);
-          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k)
-            if (segment_near(p, tail(items_[k]), head(items_[k]), r2) && f(items_[k])) return true;
+          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+            const Seg& sg = seg_[items_[k]];
+            if (segment_near(p, sg.a, sg.b, r2) && f(he_[items_[k]])) return true;
+          }
         }
       }
     return false;
@@ -203,8 +210,8 @@ class CellIndex {
   }
   template <class F>
   bool scan_all(Point2 p, double r2, F& f) const {
-    for (Index h : items_)
-      if (segment_near(p, tail(h), head(h), r2) && f(h)) return true;
+    for (std::size_t k = 0; k < seg_.size(); ++k)
+      if (segment_near(p, seg_[k].a, seg_[k].b, r2) && f(he_[k])) return true;
     return false;
   }
   // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis of n cells.
@@ -221,7 +228,12 @@ class CellIndex {
   double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
   std::vector<std::uint64_t> bits_;
   std::vector<std::size_t> before_, start_;
-  std::vector<Index> items_;
+  struct Seg {
+    Point2 a, b;
+  };
+  std::vector<Seg> seg_;             // per listed edge: tail, head
+  std::vector<Index> he_;            // per listed edge: its half-edge
+  std::vector<std::uint32_t> items_;  // per occupied cell (compressed rows): listed edges
 };
 
 // Half-edges (the boundary and the constrained edges) in a static bounding-box tree: ranges of
