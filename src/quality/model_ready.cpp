@@ -406,6 +406,10 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     std::vector<Key> boundary;  // the boundary edges
   };
   auto measure = [&](std::size_t lo, std::size_t hi, Part& p) {
+    // The accumulators in locals (the per-triangle stores below could alias them), written back.
+    std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
+    double shortest = p.shortest, min_q = p.min_q.value_or(kInf), best_dt = p.step ? p.step->dt_s : kInf;
+    Key shortest_key = p.shortest_key;
     for (std::size_t t = lo; t < hi; ++t) {
       if (t + 16 < hi)  // the corners a few triangles ahead (scattered loads)
         for (const Index v : T[t + 16]) {
@@ -421,40 +425,62 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
         if (!boundary && !(u < w)) continue;
         const Key key{std::min(u, w), std::max(u, w)};
         if (boundary) p.boundary.push_back(key);
-        ++p.edges;
+        ++edges;
         // dist() is symmetric bit for bit: len[k] is the plain path's dist(smaller, larger).
-        if (len[k] < p.shortest || (len[k] == p.shortest && key < p.shortest_key)) {
-          p.shortest = len[k];
-          p.shortest_key = key;
+        if (len[k] < shortest || (len[k] == shortest && key < shortest_key)) {
+          shortest = len[k];
+          shortest_key = key;
         }
-        if (hmin > 0) {
-          if (len[k] < half) ++p.below_half;
-          if (len[k] < tenth) ++p.below_tenth;
-        }
+        below_half += len[k] < half;
+        below_tenth += len[k] < tenth;
       }
       const double cr = (pt[1].x - pt[0].x) * (pt[2].y - pt[0].y) - (pt[1].y - pt[0].y) * (pt[2].x - pt[0].x);
       a[t] = 0.5 * cr;
       const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
       const double qt = sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
       q[t] = qt;
-      if (!p.min_q || qt < *p.min_q) p.min_q = qt;
+      if (qt < min_q) min_q = qt;  // qt is finite (the mesher's coordinates)
       const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
       const int apex = (ks + 2) % 3;
       const double lu = len[(ks + 1) % 3], lv = len[(ks + 2) % 3];
-      const double c = lu > 0 && lv > 0 ? dot(pt[(apex + 1) % 3] - pt[apex], pt[(apex + 2) % 3] - pt[apex]) / (lu * lv) : 1.0;
-      if (c > kCos20) ++p.below20;
-      if (c > kCos30) ++p.below30;
+      if (lu > 0 && lv > 0) {
+        // c = d / (lu lv) > cos 30 (and so > cos 20) is impossible when d is clearly below
+        // cos 30 * lu lv (the division's rounding is ~1e-16 of c): no division then.
+        const double d = dot(pt[(apex + 1) % 3] - pt[apex], pt[(apex + 2) % 3] - pt[apex]), l = lu * lv;
+        if (!(d < kCos30 * l * (1 - 1e-12))) {
+          const double c = d / l;
+          below20 += c > kCos20;
+          below30 += c > kCos30;
+        }
+      } else {  // c = 1
+        below20 += 1.0 > kCos20;
+        below30 += 1.0 > kCos30;
+      }
       if (have_z) {
         const double lmax = std::max({len[0], len[1], len[2]});
         const double h = lmax > 0 ? std::fabs(cr) / lmax : 0.0;
         const double depth = std::max(-(m.z[tri[0]] + m.z[tri[1]] + m.z[tri[2]]) / 3.0, min_depth);
-        if (depth > 0 && std::isfinite(depth)) {
+        // dt = h / sqrt(g depth) >= best_dt is certain when h^2 >= best_dt^2 g depth by a margin
+        // far above the rounding of either side: no square root or division then.
+        if (depth > 0 && std::isfinite(depth) && !(h * h > best_dt * best_dt * (kGravity * depth) * (1 + 1e-9))) {
           const double dt = h / std::sqrt(kGravity * depth);
-          if (!p.step || dt < p.step->dt_s)
+          if (!p.step || dt < p.step->dt_s) {
             p.step = TimeStep{dt, h, depth, m.origin + (1.0 / 3.0) * (pt[0] + pt[1] + pt[2]), t};
+            best_dt = dt;
+          }
         }
       }
     }
+    p.edges += edges;
+    if (hmin > 0) {
+      p.below_half += below_half;
+      p.below_tenth += below_tenth;
+    }
+    p.below20 += below20;
+    p.below30 += below30;
+    p.shortest = shortest;
+    p.shortest_key = shortest_key;
+    if (min_q < kInf) p.min_q = min_q;
   };
   // Two contiguous ranges: [0, split) on this thread, [split, nt) on the other.
   Part front, back;
