@@ -488,22 +488,27 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
   const bool two = max_threads() > 1 && nchunks >= 4;
   std::size_t pieces = 0;
-  auto count_pieces = [&] {  // union-find over the triangles through the adjacency
-    std::vector<Index> parent(nt);
-    std::iota(parent.begin(), parent.end(), Index{0});
-    auto find = [&](Index x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const Index g = nb[3 * t + k];
-        if (g == kNoId || g / 3 <= t) continue;
-        const Index x = find(static_cast<Index>(t)), y = find(g / 3);
-        if (x != y) parent[std::max(x, y)] = std::min(x, y);
-      }
+  auto count_pieces = [&] {  // flood fill over the triangles through the adjacency (one visit each)
+    std::vector<std::uint8_t> seen(nt, 0);
+    std::vector<Index> stack;
     std::size_t n = 0;
-    for (std::size_t t = 0; t < nt; ++t) n += parent[t] == t;
+    for (std::size_t s0 = 0; s0 < nt; ++s0) {
+      if (seen[s0]) continue;
+      ++n;
+      seen[s0] = 1;
+      stack.push_back(static_cast<Index>(s0));
+      while (!stack.empty()) {
+        const Index t = stack.back();
+        stack.pop_back();
+        for (int k = 0; k < 3; ++k) {
+          const Index g = nb[3 * static_cast<std::size_t>(t) + k];
+          if (g != kNoId && !seen[g / 3]) {
+            seen[g / 3] = 1;
+            stack.push_back(g / 3);
+          }
+        }
+      }
+    }
     return n;
   };
   CompensatedSum area, qsum;
