@@ -122,9 +122,12 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   rf.alpha = fig.refine.alpha;
   // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
   // writers then never evaluate f, which lets them run concurrently).
+  // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,
+  // which measure_mesh releases.
+  std::optional<quality::ModelReadiness> ready;
+  if (plan.gis) ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
   quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values);
-  if (plan.gis)  // model readiness against the input coast (issue 11)
-    report.model_ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
+  report.model_ready = std::move(ready);
   for (const auto& r : in.repairs) report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});
   if (tin) {
     report.vertical_error_max_m = tin->first;

@@ -69,18 +69,198 @@ inline bool segment_near(Point2 p, Point2 u, Point2 v, double r2) {
   return norm2(c) <= r2 * (1 + 1e-9) + 1e-12 * (norm2(d) + l2);
 }
 
+// Whether S edge ab can matter for the nearest neighbour of vertex p (position P) given the bound
+// r2 (a squared distance, nn2 or the walk's best so far), once segment_near(P, A, B, r2) held. It
+// cannot when it has p as an endpoint, nor when its point nearest to p is certainly an endpoint z
+// (dot product clearly negative: the rounding of a dot of differences is ~1e-16 of the terms)
+// that is not nearer than r2 by the same formula as the result's (norm2(z - P) >= r2). Why: the
+// edges that matter (the blocking edge of the constrained-Delaunay shortcut, the edge through
+// which the segment from p to its nearest vertex q leaves or re-enters the mesh) meet that segment
+// at a point x other than p with |px| <= |pq|; an edge through p and x would lie along pq and
+// hold q or a nearer vertex inside it. If the edge's point nearest to p is an endpoint z, then
+// |pz| <= |px| <= |pq|, so z is q itself (when x = q: then norm2(z - P) < r2 unless the bound
+// already is q's distance) or a vertex nearer than q, which there is not.
+inline bool may_matter(Index p, Point2 P, Index a, Index b, Point2 A, Point2 B, double r2) {
+  if (a == p || b == p) return false;
+  const Point2 e = B - A, pa = P - A, pb = P - B;
+  const double da = dot(pa, e), db = -dot(pb, e);  // at a: (P - A).(B - A); at b: (P - B).(A - B)
+  if (da < -1e-12 * (std::fabs(pa.x * e.x) + std::fabs(pa.y * e.y))) return norm2(A - P) < r2;
+  if (db < -1e-12 * (std::fabs(pb.x * e.x) + std::fabs(pb.y * e.y))) return norm2(B - P) < r2;
+  return true;
+}
+
+// The S edges in the cells of a uniform grid, cells about as long as the S edges on average (at
+// most 2^26 cells): an occupancy bitmap, the number of occupied cells before each 64-bit word,
+// and the edges of every occupied cell (compressed rows). Each edge is listed in every cell its
+// bounding box (a little enlarged) meets; a query lists the edges of the cells its disk's box
+// meets, so it finds every edge within the radius in a few cells. Not usable (ok() false) when
+// long diagonal edges would be listed in too many cells: then the tree below.
+class CellIndex {
+ public:
+  CellIndex(const mesh::MeshView& m, const std::vector<Index>& he) : m_(m) {
+    if (he.empty() || he.size() >= 0xffffffffu) return;
+    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf, total = 0;
+    for (Index h : he) {
+      const Point2 a = tail(h), b = head(h);
+      for (const Point2 q : {a, b}) {
+        x0 = std::min(x0, q.x);
+        y0 = std::min(y0, q.y);
+        x1 = std::max(x1, q.x);
+        y1 = std::max(y1, q.y);
+      }
+      total += std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
+    }
+    if (!(x1 - x0 < kInf) || !(y1 - y0 < kInf) || !(total < kInf)) return;
+    const double span = std::max({x1 - x0, y1 - y0, 1e-300});
+    margin_ = 1e-9 * (span + std::max({std::fabs(x0), std::fabs(y0), std::fabs(x1), std::fabs(y1)}));
+    double cell = std::max(total / static_cast<double>(he.size()), span / 65536.0);
+    const double w = x1 - x0 + 4 * margin_, h = y1 - y0 + 4 * margin_;
+    for (int guard = 0; guard < 64 && (w / cell + 1) * (h / cell + 1) > 67108864.0; ++guard) cell *= 1.5;
+    if (!(cell > 0) || !std::isfinite(cell)) return;
+    nx_ = static_cast<std::size_t>(w / cell) + 1;
+    ny_ = static_cast<std::size_t>(h / cell) + 1;
+    x0_ = x0 - 2 * margin_;
+    y0_ = y0 - 2 * margin_;
+    cell_ = cell;
+    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
+    words_ = (nx_ + 63) / 64;
+    bits_.assign(words_ * ny_, 0);
+    // Every (edge, cell) pair, three times: mark, count, fill.
+    std::size_t marked = 0;
+    // The edges' endpoints in one compact array (a query reads them without the two scattered
+    // loads through the triangles).
+    he_ = he;
+    seg_.resize(he.size());
+    for (std::size_t k = 0; k < he.size(); ++k) seg_[k] = {tail(he[k]), head(he[k])};
+    auto each = [&](auto&& visit) {
+      for (std::uint32_t k = 0; k < seg_.size(); ++k) {
+        const Point2 a = seg_[k].a, b = seg_[k].b;
+        std::size_t i0, i1, j0, j1;
+        range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
+        range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
+        for (std::size_t j = j0; j <= j1; ++j)
+          for (std::size_t i = i0; i <= i1; ++i) visit(j * words_ * 64 + i, k);
+      }
+    };
+    for (Index e : he) {  // the cost first: long diagonal edges would cover the grid
+      const Point2 a = tail(e), b = head(e);
+      std::size_t i0, i1, j0, j1;
+      range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, nx_, i0, i1);
+      range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, ny_, j0, j1);
+      marked += (i1 - i0 + 1) * (j1 - j0 + 1);
+      if (marked > 16 * he.size() + 4096) {
+        bits_.clear();
+        return;
+      }
+    }
+    each([&](std::size_t bit, std::uint32_t) { bits_[bit / 64] |= std::uint64_t{1} << (bit % 64); });
+    before_.resize(bits_.size() + 1);
+    before_[0] = 0;
+    for (std::size_t k = 0; k < bits_.size(); ++k) before_[k + 1] = before_[k] + popcount(bits_[k]);
+    start_.assign(before_.back() + 1, 0);
+    each([&](std::size_t bit, std::uint32_t) { ++start_[rank(bit) + 1]; });
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+    items_.resize(start_.back());
+    std::vector<std::size_t> cursor(start_.begin(), start_.end() - 1);
+    each([&](std::size_t bit, std::uint32_t k) { items_[cursor[rank(bit)]++] = k; });
+  }
+  bool ok() const { return !bits_.empty(); }
+  // Calls f(h) for every listed half-edge h (some more than once) of the cells that the box of
+  // the disk (p, sqrt(r2)) meets whose segment may come closer to p than sqrt(r2) (segment_near);
+  // stops when f returns true, and returns whether it did.
+  template <class F>
+  bool for_each_near(Point2 p, double r2, F&& f) const {
+    const double r = std::sqrt(r2) * (1 + 1e-6);
+    if (!(r < kInf)) return scan_all(p, r2, f);
+    const double limx = x0_ + cell_ * static_cast<double>(nx_), limy = y0_ + cell_ * static_cast<double>(ny_);
+    if (p.x + r < x0_ || p.y + r < y0_ || p.x - r > limx || p.y - r > limy) return false;  // outside every edge's box
+    std::size_t i0, i1, j0, j1;
+    range(p.x - r, p.x + r, x0_, nx_, i0, i1);
+    range(p.y - r, p.y + r, y0_, ny_, j0, j1);
+    const std::size_t w0 = i0 / 64, w1 = i1 / 64;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t w = w0; w <= w1; ++w) {
+        std::uint64_t b = bits_[j * words_ + w];
+        if (w == w0) b &= ~std::uint64_t{0} << (i0 % 64);
+        if (w == w1) b &= ~std::uint64_t{0} >> (63 - i1 % 64);
+        while (b) {
+          const std::size_t bit = (j * words_ + w) * 64 + static_cast<std::size_t>(__builtin_ctzll(b));
+          b &= b - 1;
+          const std::size_t c = rank(bit);
+          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+            const Seg& sg = seg_[items_[k]];
+            if (segment_near(p, sg.a, sg.b, r2) && f(he_[items_[k]])) return true;
+          }
+        }
+      }
+    return false;
+  }
+
+ private:
+  Point2 tail(Index h) const { return m_.vertices[m_.triangles[h / 3][h % 3]]; }
+  Point2 head(Index h) const { return m_.vertices[m_.triangles[h / 3][(h % 3 + 1) % 3]]; }
+  static std::size_t popcount(std::uint64_t x) {  // no popcnt instruction in the baseline ISA
+    x = x - ((x >> 1) & 0x5555555555555555ULL);
+    x = (x & 0x3333333333333333ULL) + ((x >> 2) & 0x3333333333333333ULL);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
+    return static_cast<std::size_t>((x * 0x0101010101010101ULL) >> 56);
+  }
+  std::size_t rank(std::size_t bit) const {  // occupied cells before this one
+    return before_[bit / 64] + popcount(bits_[bit / 64] & ((std::uint64_t{1} << (bit % 64)) - 1));
+  }
+  template <class F>
+  bool scan_all(Point2 p, double r2, F& f) const {
+    for (std::size_t k = 0; k < seg_.size(); ++k)
+      if (segment_near(p, seg_[k].a, seg_[k].b, r2) && f(he_[k])) return true;
+    return false;
+  }
+  // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis of n cells.
+  void range(double lo, double hi, double origin, std::size_t n, std::size_t& k0, std::size_t& k1) const {
+    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
+      const double c = (v - origin) * inv_cell_;
+      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n - 1) ? n - 1 : static_cast<std::size_t>(c);
+    };
+    k0 = cell(lo - margin_);
+    k1 = cell(hi + margin_);
+  }
+  const mesh::MeshView& m_;
+  std::size_t nx_ = 0, ny_ = 0, words_ = 0;
+  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
+  std::vector<std::uint64_t> bits_;
+  std::vector<std::size_t> before_, start_;
+  struct Seg {
+    Point2 a, b;
+  };
+  std::vector<Seg> seg_;             // per listed edge: tail, head
+  std::vector<Index> he_;            // per listed edge: its half-edge
+  std::vector<std::uint32_t> items_;  // per occupied cell (compressed rows): listed edges
+};
+
 // Half-edges (the boundary and the constrained edges) in a static bounding-box tree: ranges of
 // the array sorted by midpoint (median splits, alternating axis), node boxes in heap order.
 class EdgeIndex {
  public:
-  EdgeIndex(const mesh::MeshView& m, std::vector<Index> he) : m_(m), he_(std::move(he)) {
-    if (!he_.empty()) build(0, 0, he_.size(), 0);
+  EdgeIndex(const mesh::MeshView& m, const std::vector<Index>& nb, std::vector<Index> he)
+      : m_(m), nb_(nb), he_(std::move(he)), cells_(m, he_) {
+    if (!he_.empty() && !cells_.ok()) build(0, 0, he_.size(), 0);  // the tree only when the cells cannot serve
   }
-  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2);
-  // stops when f returns true, and returns whether it did.
+  // Calls f(h) for every indexed half-edge h whose segment may come closer to p than sqrt(r2)
+  // (some more than once); stops when f returns true, and returns whether it did.
   template <class F>
   bool for_each_near(Point2 p, double r2, F&& f) const {
+    if (cells_.ok()) return cells_.for_each_near(p, r2, f);
     return !he_.empty() && query(0, 0, he_.size(), p, r2, f);
+  }
+  Index tail_id(Index h) const { return m_.triangles[h / 3][h % 3]; }
+  Index head_id(Index h) const { return m_.triangles[h / 3][(h % 3 + 1) % 3]; }
+  // Whether h can matter for vertex p: not a boundary edge of one of p's own triangles (the
+  // segment from p to a vertex beyond it would re-enter the mesh through another boundary edge,
+  // which cannot be one of p's: each of p's triangles spans its own angle around p), and
+  // may_matter.
+  bool matters(Index h, Index p, Point2 P, double r2) const {
+    if (nb_[h] == kNoId && m_.triangles[h / 3][(h % 3 + 2) % 3] == p) return false;
+    const Index a = tail_id(h), b = head_id(h);
+    return may_matter(p, P, a, b, m_.vertices[a], m_.vertices[b], r2);
   }
 
  private:
@@ -126,7 +306,9 @@ class EdgeIndex {
     return query(2 * node + 1, lo, mid, p, r2, f) || query(2 * node + 2, mid, hi, p, r2, f);
   }
   const mesh::MeshView& m_;
+  const std::vector<Index>& nb_;
   std::vector<Index> he_;
+  CellIndex cells_;
   std::vector<Box> box_;
 };
 
@@ -169,7 +351,7 @@ class Walker {
       if (!boundary || seeded) break;
       seeded = true;  // the region near p may continue beyond the boundary: start from every near boundary edge
       bi_.for_each_near(P, best, [&](Index h) {
-        if (!seen(h / 3)) visit(h / 3);
+        if (!seen(h / 3) && bi_.matters(h, p, P, best)) visit(h / 3);
         return false;
       });
     }
@@ -227,79 +409,6 @@ Index find_half_edge(const mesh::MeshView& m, const std::vector<Index>& nb, Inde
 
 namespace {
 
-// Which cells of a uniform grid over the S edges hold part of one (their bounding boxes, a
-// little enlarged): a disk whose box meets no such cell holds no S edge, and then the search
-// needs no query of the edge index (an occupancy test, conservative by the margins).
-class OccupancyGrid {
- public:
-  OccupancyGrid(const mesh::MeshView& m, const std::vector<Index>& he) {
-    if (he.empty()) return;
-    auto tail = [&](Index h) { return m.vertices[m.triangles[h / 3][h % 3]]; };
-    auto head = [&](Index h) { return m.vertices[m.triangles[h / 3][(h % 3 + 1) % 3]]; };
-    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
-    for (Index h : he)
-      for (const Point2 q : {tail(h), head(h)}) {
-        x0 = std::min(x0, q.x);
-        y0 = std::min(y0, q.y);
-        x1 = std::max(x1, q.x);
-        y1 = std::max(y1, q.y);
-      }
-    if (!(x1 - x0 < kInf) || !(y1 - y0 < kInf)) return;
-    const double span = std::max({x1 - x0, y1 - y0, 1e-300});
-    margin_ = 1e-9 * (span + std::max({std::fabs(x0), std::fabs(y0), std::fabs(x1), std::fabs(y1)}));
-    n_ = static_cast<std::size_t>(std::clamp(std::sqrt(static_cast<double>(he.size())), 1.0, 1024.0));
-    x0_ = x0 - 2 * margin_;
-    y0_ = y0 - 2 * margin_;
-    cell_ = (span + 4 * margin_) / static_cast<double>(n_);
-    if (!(cell_ > 0) || !std::isfinite(cell_)) return;
-    inv_cell_ = 1 / cell_;  // its rounding is far below the margins
-    occupied_.assign(n_ * n_, 0);
-    std::size_t marked = 0;
-    for (Index h : he) {
-      const Point2 a = tail(h), b = head(h);
-      std::size_t i0, i1, j0, j1;
-      range(std::min(a.x, b.x), std::max(a.x, b.x), x0_, i0, i1);
-      range(std::min(a.y, b.y), std::max(a.y, b.y), y0_, j0, j1);
-      for (std::size_t j = j0; j <= j1; ++j)
-        for (std::size_t i = i0; i <= i1; ++i) occupied_[j * n_ + i] = 1;
-      marked += (i1 - i0 + 1) * (j1 - j0 + 1);
-      if (marked > 64 * he.size() + n_ * n_) {  // long diagonal edges cover the grid: no use
-        occupied_.clear();
-        return;
-      }
-    }
-  }
-  // False only when no S edge comes within sqrt(r2) of p.
-  bool maybe_near(Point2 p, double r2) const {
-    if (occupied_.empty()) return true;
-    const double r = std::sqrt(r2) * (1 + 1e-6);
-    if (!(r < kInf)) return true;
-    std::size_t i0, i1, j0, j1;
-    const double lim = x0_ + cell_ * static_cast<double>(n_), limy = y0_ + cell_ * static_cast<double>(n_);
-    if (p.x + r < x0_ || p.y + r < y0_ || p.x - r > lim || p.y - r > limy) return false;  // outside every edge's box
-    range(p.x - r, p.x + r, x0_, i0, i1);
-    range(p.y - r, p.y + r, y0_, j0, j1);
-    for (std::size_t j = j0; j <= j1; ++j)
-      for (std::size_t i = i0; i <= i1; ++i)
-        if (occupied_[j * n_ + i]) return true;
-    return false;
-  }
-
- private:
-  // The cells [k0, k1] that [lo, hi] (enlarged by the margin) meets along one axis.
-  void range(double lo, double hi, double origin, std::size_t& k0, std::size_t& k1) const {
-    auto cell = [&](double v) {  // truncation is the floor for c > 0 (no libm call)
-      const double c = (v - origin) * inv_cell_;
-      return !(c > 0) ? std::size_t{0} : c >= static_cast<double>(n_ - 1) ? n_ - 1 : static_cast<std::size_t>(c);
-    };
-    k0 = cell(lo - margin_);
-    k1 = cell(hi + margin_);
-  }
-  std::size_t n_ = 0;
-  double x0_ = 0, y0_ = 0, cell_ = 0, inv_cell_ = 0, margin_ = 0;
-  std::vector<std::uint8_t> occupied_;
-};
-
 }  // namespace
 
 struct MeshNearestNeighbours::Impl {
@@ -309,15 +418,14 @@ struct MeshNearestNeighbours::Impl {
   std::vector<double> nn;
   bool usable = false, certify = false;
   std::unique_ptr<EdgeIndex> si;
-  OccupancyGrid grid;
-  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov, const OccupancyGrid& g)
-      : m(mm), nb(nbb), tri_of_vertex(tov), grid(g) {}
+  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov)
+      : m(mm), nb(nbb), tri_of_vertex(tov) {}
 };
 
 MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std::vector<Index>& nb,
                                              MeshWalkPrep& prep) {
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
-  impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex, OccupancyGrid(m, {}));
+  impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex);
   const std::vector<Index>& tri_of_vertex = prep.tri_of_vertex;
   if (nv < 2 || nb.size() != 3 * nt || prep.nn2.size() != nv || tri_of_vertex.size() != nv) return;
   // One triangle of every vertex (prep.nn2 is left intact when the walk cannot be used).
@@ -341,16 +449,20 @@ MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std:
   s_edges.erase(std::unique(s_edges.begin(), s_edges.end()), s_edges.end());
   // The shortcut needs a constrained Delaunay triangulation with respect to S: every triangle
   // counter-clockwise and every other interior edge locally Delaunay (which implies it, Lawson).
-  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour. p's
-  // triangles surround it, and a vertex v nearer than d lies beyond some edge uw of them, in the
-  // part of the disk D(p, d) beyond uw, which lies inside the circumcircle of puw (that circle
-  // passes through p, and u, w are outside D). In a constrained Delaunay triangulation v must
-  // then be hidden from puw by an S edge, which would cross D(p, d). So nn(p) = d.
+  // Why it then holds: let p have no S edge nearer than d, its nearest mesh neighbour, that
+  // matters (may_matter: p's own S edges and those whose nearest point is an endpoint not nearer
+  // than d do not). Let v be the nearest vertex, |pv| < d. If the direction of v from p lies in
+  // one of p's triangles puw, v lies beyond uw, in the part of the disk D(p, d) beyond uw, which
+  // lies inside the circumcircle of puw (that circle passes through p, and u, w are outside D);
+  // in a constrained Delaunay triangulation v must then be hidden from puw by an S edge, which
+  // crosses the segment pv at a point x other than p and v. Otherwise (p on the boundary, v seen
+  // across the exterior) pv re-enters the mesh through a boundary edge at a point x other than p
+  // (possibly v). Either edge meets pv at x with |px| <= |pv|, so it matters (see may_matter).
+  // So nn(p) = d.
   for (Index h : prep.not_delaunay)
     if (!std::binary_search(s_edges.begin(), s_edges.end(), h)) certify = false;
   impl_->certify = certify;
-  if (certify) impl_->grid = OccupancyGrid(m, s_edges);
-  impl_->si = std::make_unique<EdgeIndex>(m, std::move(s_edges));
+  impl_->si = std::make_unique<EdgeIndex>(m, nb, std::move(s_edges));
 }
 
 MeshNearestNeighbours::~MeshNearestNeighbours() = default;
@@ -363,9 +475,10 @@ void MeshNearestNeighbours::search(std::size_t lo, std::size_t hi) {
   Walker w(s.m, s.nb, *s.si);
   for (std::size_t v = lo; v < hi && v < s.nn.size(); ++v) {
     const Point2 p = s.m.vertices[v];
-    if (s.certify &&
-        (!s.grid.maybe_near(p, s.nn[v]) || !s.si->for_each_near(p, s.nn[v], [](Index) { return true; })))
-      continue;  // exact: no S edge within nn[v] (see the constructor)
+    const Index pv = static_cast<Index>(v);
+    const double r2 = s.nn[v];
+    if (s.certify && !s.si->for_each_near(p, r2, [&](Index h) { return s.si->matters(h, pv, p, r2); }))
+      continue;  // exact: no S edge within nn[v] that matters (see the constructor)
     s.nn[v] = w.nearest_sq(static_cast<Index>(v), s.tri_of_vertex[v], s.nn[v]);
   }
 }

@@ -5,8 +5,13 @@
 #include "quality/model_ready.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <thread>
 #include <limits>
 #include <numeric>
 #include <ostream>
@@ -14,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
+#include "base/threads.hpp"
 
 namespace fdr::quality {
 namespace {
@@ -44,13 +50,14 @@ class SegmentGrid {
     lo_ = box.lo;
     const double n = static_cast<double>(segs.size());
     const double w = box.width(), h = box.height();
-    cell_ = std::max(total / n, std::sqrt(w * h / (2.0 * n)));
+    // Cells about as long as the segments, at most about 16 per segment (a coast fills few of
+    // the cells of its box; the queries lie near it and mostly end in their own cell).
+    cell_ = std::max(total / n, std::sqrt(w * h / (16.0 * n)));
     if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = std::max({w, h, 1.0});
-    // Cap the number of cells at about 4 per segment (thin domains: one long axis).
     for (int guard = 0; guard < 200; ++guard) {
       nx_ = static_cast<std::size_t>(w / cell_) + 1;
       ny_ = static_cast<std::size_t>(h / cell_) + 1;
-      if (static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * n + 16.0) break;
+      if (static_cast<double>(nx_) * static_cast<double>(ny_) <= 16.0 * n + 16.0) break;
       cell_ *= 1.5;
     }
     start_.assign(nx_ * ny_ + 1, 0);
@@ -105,9 +112,19 @@ class SegmentGrid {
           else i = i_hi;
         }
       }
-      // Cells of ring r+1 are at least r cells away from q (also when q lies outside the grid).
-      const double reach = static_cast<double>(r) * cell_;
-      if (best2 <= reach * reach) break;
+      // The cells not scanned yet lie beyond the sides of the square of rings 0..r that have
+      // cells beyond them, at least that far from q (q inside the square, or outside the grid on
+      // a side without cells beyond). Rounding: ~1e-16 of the coordinates, far inside the slack.
+      double reach = kInf;
+      const double sx0 = lo_.x + static_cast<double>(i_lo) * cell_, sx1 = lo_.x + static_cast<double>(i_hi + 1) * cell_;
+      const double sy0 = lo_.y + static_cast<double>(j_lo) * cell_, sy1 = lo_.y + static_cast<double>(j_hi + 1) * cell_;
+      if (i_lo > 0) reach = std::min(reach, q.x - sx0);
+      if (i_hi + 1 < static_cast<long long>(nx_)) reach = std::min(reach, sx1 - q.x);
+      if (j_lo > 0) reach = std::min(reach, q.y - sy0);
+      if (j_hi + 1 < static_cast<long long>(ny_)) reach = std::min(reach, sy1 - q.y);
+      if (reach == kInf) break;  // every cell scanned
+      reach -= 1e-9 * (std::fabs(q.x) + std::fabs(q.y) + cell_);
+      if (reach > 0 && best2 <= reach * reach) break;
     }
     return std::sqrt(best2);
   }
@@ -156,15 +173,43 @@ std::vector<Point2> sample_segments(const std::vector<std::pair<Point2, Point2>>
   return out;
 }
 
-CoastDeviation deviation(const std::vector<Point2>& samples, const SegmentGrid& grid, Point2 origin) {
+// `threads` > 1: the samples in two halves at once (the same distances; the first largest wins).
+CoastDeviation deviation(const std::vector<Point2>& samples, const SegmentGrid& grid, Point2 origin,
+                         unsigned threads = 1) {
   CoastDeviation d;
   d.samples = samples.size();
   if (samples.empty()) return d;
   std::vector<double> dd(samples.size());
+  auto part = [&](std::size_t lo, std::size_t hi) {
+    std::size_t arg = lo;
+    for (std::size_t i = lo; i < hi; ++i) {
+      dd[i] = grid.nearest(samples[i]);
+      if (dd[i] > dd[arg]) arg = i;
+    }
+    return arg;
+  };
   std::size_t arg = 0;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    dd[i] = grid.nearest(samples[i]);
-    if (dd[i] > dd[arg]) arg = i;
+  if (threads > 1 && samples.size() >= 8192) {
+    const std::size_t half = samples.size() / 2;
+    std::size_t arg2 = half;
+    std::exception_ptr error;
+    std::thread other([&] {
+      try {
+        arg2 = part(half, samples.size());
+      } catch (...) {
+        error = std::current_exception();
+      }
+    });
+    struct Join {
+      std::thread& t;
+      ~Join() { if (t.joinable()) t.join(); }
+    } join{other};
+    arg = part(0, half);
+    other.join();
+    if (error) std::rethrow_exception(error);
+    if (dd[arg2] > dd[arg]) arg = arg2;
+  } else {
+    arg = part(0, samples.size());
   }
   d.max_m = dd[arg];
   d.max_at = origin + samples[arg];
@@ -190,6 +235,19 @@ struct UnionFind {
   }
 };
 
+// Coast deviation, both directions, sampled at every vertex and every hmin/2 (`boundary`: the
+// mesh boundary edges ordered by their (smaller, larger) vertex ids, from the smaller).
+void coast_deviation(ModelReadiness& r, const std::vector<std::pair<Point2, Point2>>& boundary,
+                     const ModelReadyInputs& in, double hmin, Point2 origin) {
+  if (!in.input_boundary || in.input_boundary->empty() || boundary.empty()) return;
+  const unsigned threads = max_threads();
+  const double step = hmin > 0 ? 0.5 * hmin : 0.0;
+  const SegmentGrid mesh_grid(boundary);
+  r.input_to_mesh = deviation(sample_segments(*in.input_boundary, step), mesh_grid, origin, threads);
+  const SegmentGrid input_grid(*in.input_boundary);
+  r.mesh_to_input = deviation(sample_segments(boundary, step), input_grid, origin, threads);
+}
+
 }  // namespace
 
 std::vector<double> distances_to_segments(const std::vector<Point2>& points,
@@ -200,7 +258,7 @@ std::vector<double> distances_to_segments(const std::vector<Point2>& points,
   return out;
 }
 
-ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReadyInputs& in) {
+ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const ModelReadyInputs& in) {
   ModelReadiness r;
   const double hmin = in.hmin > 0 && std::isfinite(in.hmin) ? in.hmin : 0.0;
   if (hmin > 0) r.hmin_m = hmin;
@@ -306,14 +364,225 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     if (pieces.find(static_cast<Index>(t)) == t) ++r.mesh_pieces;
   r.mesh_boundary_edges = boundary.size();
 
-  // Coast deviation, both directions, sampled at every vertex and every hmin/2.
-  if (in.input_boundary && !in.input_boundary->empty() && !boundary.empty()) {
-    const double step = hmin > 0 ? 0.5 * hmin : 0.0;
-    const SegmentGrid mesh_grid(boundary);
-    r.input_to_mesh = deviation(sample_segments(*in.input_boundary, step), mesh_grid, m.origin);
-    const SegmentGrid input_grid(*in.input_boundary);
-    r.mesh_to_input = deviation(sample_segments(boundary, step), input_grid, m.origin);
+  coast_deviation(r, boundary, in, hmin, m.origin);
+  return r;
+}
+
+// With the mesher's adjacency (m.neighbours): every figure of compute_model_readiness_plain, the
+// same values bit for bit, without grouping and sorting the half-edges: an edge is counted once,
+// from its boundary half-edge or from its interior half-edge u -> w with u < w; the pieces join
+// triangles through m.neighbours. The triangles in chunks claimed from the front by the calling
+// thread and from the back by a second one (two contiguous ranges: first-in-order ties are kept
+// by preferring the front's), the compensated sums added afterwards in triangle order.
+ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReadyInputs& in) {
+  const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
+  if (m.neighbours.size() != 3 * nt || nt == 0) return compute_model_readiness_plain(m, in);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (Index v : m.triangles[t])
+      if (v >= nv) return compute_model_readiness_plain(m, in);  // which throws the error
+  ModelReadiness r;
+  const double hmin = in.hmin > 0 && std::isfinite(in.hmin) ? in.hmin : 0.0;
+  if (hmin > 0) r.hmin_m = hmin;
+  r.min_depth_m = in.min_depth_m;
+  if (in.coast_figures) r.coast_figures = *in.coast_figures;
+  r.input_pieces = r.figure("input_pieces");
+  r.input_area_m2 = r.figure("input_area_m2");
+  r.triangles = nt;
+
+  const auto& T = m.triangles;
+  const auto& V = m.vertices;
+  const auto& nb = m.neighbours;
+  const bool have_z = !m.z.empty() && m.z.size() == nv;
+  const double min_depth = in.min_depth_m > 0 ? in.min_depth_m : 0.0;
+  const double half = 0.5 * hmin, tenth = 0.1 * hmin;
+  using Key = std::pair<Index, Index>;
+  std::vector<double> q(nt), a(nt);  // per triangle: quality, signed area (summed in order below)
+  struct Part {
+    std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
+    double shortest = kInf;
+    Key shortest_key{kNoId, kNoId};  // (smaller id, larger id): the first in the plain path's order
+    std::optional<double> min_q;
+    std::optional<TimeStep> step;
+    std::vector<Key> boundary;  // the boundary edges
+  };
+  auto measure = [&](std::size_t lo, std::size_t hi, Part& p) {
+    // The accumulators in locals (the per-triangle stores below could alias them), written back.
+    std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
+    double shortest = p.shortest, min_q = p.min_q.value_or(kInf), best_dt = p.step ? p.step->dt_s : kInf;
+    Key shortest_key = p.shortest_key;
+    for (std::size_t t = lo; t < hi; ++t) {
+      if (t + 16 < hi)  // the corners a few triangles ahead (scattered loads)
+        for (const Index v : T[t + 16]) {
+          __builtin_prefetch(&V[v]);
+          if (have_z) __builtin_prefetch(&m.z[v]);
+        }
+      const auto& tri = T[t];
+      const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
+      const double len[3] = {dist(pt[0], pt[1]), dist(pt[1], pt[2]), dist(pt[2], pt[0])};
+      for (int k = 0; k < 3; ++k) {
+        const Index u = tri[k], w = tri[k == 2 ? 0 : k + 1];
+        const bool boundary = nb[3 * t + k] == kNoId;
+        if (!boundary && !(u < w)) continue;
+        const Key key{std::min(u, w), std::max(u, w)};
+        if (boundary) p.boundary.push_back(key);
+        ++edges;
+        // dist() is symmetric bit for bit: len[k] is the plain path's dist(smaller, larger).
+        if (len[k] < shortest || (len[k] == shortest && key < shortest_key)) {
+          shortest = len[k];
+          shortest_key = key;
+        }
+        below_half += len[k] < half;
+        below_tenth += len[k] < tenth;
+      }
+      const double cr = (pt[1].x - pt[0].x) * (pt[2].y - pt[0].y) - (pt[1].y - pt[0].y) * (pt[2].x - pt[0].x);
+      a[t] = 0.5 * cr;
+      const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
+      const double qt = sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
+      q[t] = qt;
+      if (qt < min_q) min_q = qt;  // qt is finite (the mesher's coordinates)
+      const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
+      const int apex = (ks + 2) % 3;
+      const double lu = len[(ks + 1) % 3], lv = len[(ks + 2) % 3];
+      if (lu > 0 && lv > 0) {
+        // c = d / (lu lv) > cos 30 (and so > cos 20) is impossible when d is clearly below
+        // cos 30 * lu lv (the division's rounding is ~1e-16 of c): no division then.
+        const double d = dot(pt[(apex + 1) % 3] - pt[apex], pt[(apex + 2) % 3] - pt[apex]), l = lu * lv;
+        if (!(d < kCos30 * l * (1 - 1e-12))) {
+          const double c = d / l;
+          below20 += c > kCos20;
+          below30 += c > kCos30;
+        }
+      } else {  // c = 1
+        below20 += 1.0 > kCos20;
+        below30 += 1.0 > kCos30;
+      }
+      if (have_z) {
+        const double lmax = std::max({len[0], len[1], len[2]});
+        const double h = lmax > 0 ? std::fabs(cr) / lmax : 0.0;
+        const double depth = std::max(-(m.z[tri[0]] + m.z[tri[1]] + m.z[tri[2]]) / 3.0, min_depth);
+        // dt = h / sqrt(g depth) >= best_dt is certain when h^2 >= best_dt^2 g depth by a margin
+        // far above the rounding of either side: no square root or division then.
+        if (depth > 0 && std::isfinite(depth) && !(h * h > best_dt * best_dt * (kGravity * depth) * (1 + 1e-9))) {
+          const double dt = h / std::sqrt(kGravity * depth);
+          if (!p.step || dt < p.step->dt_s) {
+            p.step = TimeStep{dt, h, depth, m.origin + (1.0 / 3.0) * (pt[0] + pt[1] + pt[2]), t};
+            best_dt = dt;
+          }
+        }
+      }
+    }
+    p.edges += edges;
+    if (hmin > 0) {
+      p.below_half += below_half;
+      p.below_tenth += below_tenth;
+    }
+    p.below20 += below20;
+    p.below30 += below30;
+    p.shortest = shortest;
+    p.shortest_key = shortest_key;
+    if (min_q < kInf) p.min_q = min_q;
+  };
+  // Two contiguous ranges: [0, split) on this thread, [split, nt) on the other.
+  Part front, back;
+  constexpr std::size_t kChunk = 8192;
+  const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
+  const bool two = max_threads() > 1 && nchunks >= 4;
+  std::size_t pieces = 0;
+  auto count_pieces = [&] {  // flood fill over the triangles through the adjacency (one visit each)
+    std::vector<std::uint8_t> seen(nt, 0);
+    std::vector<Index> stack;
+    std::size_t n = 0;
+    for (std::size_t s0 = 0; s0 < nt; ++s0) {
+      if (seen[s0]) continue;
+      ++n;
+      seen[s0] = 1;
+      stack.push_back(static_cast<Index>(s0));
+      while (!stack.empty()) {
+        const Index t = stack.back();
+        stack.pop_back();
+        for (int k = 0; k < 3; ++k) {
+          const Index g = nb[3 * static_cast<std::size_t>(t) + k];
+          if (g != kNoId && !seen[g / 3]) {
+            seen[g / 3] = 1;
+            stack.push_back(g / 3);
+          }
+        }
+      }
+    }
+    return n;
+  };
+  CompensatedSum area, qsum;
+  auto sums = [&] {
+    for (std::size_t t = 0; t < nt; ++t) {
+      area.add(a[t]);
+      qsum.add(q[t]);
+    }
+  };
+  if (two) {
+    std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
+    for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
+    std::size_t split = nt;  // first triangle of the back range
+    std::exception_ptr error;
+    std::thread other([&] {
+      try {
+        std::size_t lo = nt;
+        for (std::size_t c = nchunks; c-- > 0;) {
+          if (claimed[c].exchange(1)) break;
+          const std::size_t clo = c * kChunk;
+          measure(clo, lo, back);
+          lo = clo;
+        }
+        split = lo;
+        pieces = count_pieces();
+      } catch (...) {
+        error = std::current_exception();
+      }
+    });
+    struct Join {
+      std::thread& t;
+      ~Join() { if (t.joinable()) t.join(); }
+    } join{other};
+    for (std::size_t c = 0; c < nchunks && !claimed[c].exchange(1); ++c)
+      measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front);
+    other.join();
+    if (error) std::rethrow_exception(error);
+    (void)split;
+    sums();
+  } else {
+    measure(0, nt, front);
+    pieces = count_pieces();
+    sums();
   }
+  // Merge: the front range comes first in triangle order.
+  r.edges = front.edges + back.edges;
+  r.edges_below_half_hmin = front.below_half + back.below_half;
+  r.edges_below_tenth_hmin = front.below_tenth + back.below_tenth;
+  r.triangles_below_20_deg = front.below20 + back.below20;
+  r.triangles_below_30_deg = front.below30 + back.below30;
+  const Part& se = back.shortest < front.shortest || (back.shortest == front.shortest && back.shortest_key < front.shortest_key)
+                       ? back : front;
+  if (std::isfinite(se.shortest)) {
+    r.shortest_edge_m = se.shortest;
+    const Point2 pa = V[se.shortest_key.first], pb = V[se.shortest_key.second];
+    r.shortest_edge_at = m.origin + 0.5 * (pa + pb);
+  }
+  r.min_quality = front.min_q;
+  if (back.min_q && (!r.min_quality || *back.min_q < *r.min_quality)) r.min_quality = back.min_q;
+  r.time_step = front.step;
+  if (back.step && (!r.time_step || back.step->dt_s < r.time_step->dt_s)) r.time_step = back.step;
+  r.mean_quality = qsum.value() / static_cast<double>(nt);
+  r.mesh_area_m2 = area.value();
+  r.mesh_pieces = pieces;
+  std::vector<double>().swap(q);
+  std::vector<double>().swap(a);
+  // The boundary in the plain path's order: by (smaller id, larger id), from the smaller.
+  std::vector<Key>& keys = front.boundary;
+  keys.insert(keys.end(), back.boundary.begin(), back.boundary.end());
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<Point2, Point2>> boundary(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) boundary[i] = {V[keys[i].first], V[keys[i].second]};
+  r.mesh_boundary_edges = boundary.size();
+  coast_deviation(r, boundary, in, hmin, m.origin);
   return r;
 }
 

@@ -88,8 +88,13 @@ struct ModelReadiness {
 };
 
 // Measures `m` (local frame, triangles counter-clockwise; z positive up when present). Linear in
-// the mesh size; the coast deviation uses a uniform grid over the boundary segments.
+// the mesh size; the coast deviation uses a uniform grid over the boundary segments. With the
+// mesher's adjacency (m.neighbours filled: call it before the report releases it) one pass over
+// the triangles on up to two threads (FDR_THREADS); else compute_model_readiness_plain. The
+// figures are the same bit for bit either way and for every FDR_THREADS.
 ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReadyInputs& in);
+// Without the adjacency (meshes read from files): the half-edges grouped by their smaller vertex.
+ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const ModelReadyInputs& in);
 
 // Distance from each point to the nearest of `segments` (+inf when there is none); exposed for
 // tests.

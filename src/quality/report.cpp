@@ -102,6 +102,27 @@ double angle_at(Point2 apex, Point2 p, Point2 q) {
   return std::atan2(std::fabs(cr), dot(u, v)) * kDeg;
 }
 
+// The smallest of angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b), the same value, with
+// atan2 only at the corners that may hold it: the smallest angle is at the largest dot product d
+// (the three angles share |cross|), and a corner whose d is below the largest by more than
+// 1e-7 L^2 (L^2 = l2, the largest squared edge) has an angle larger by at least ~5e-11 rad on a
+// triangle that is not a sliver (|cross| >= 1e-3 L^2), far above the rounding of d, |cross| and
+// atan2 (~1e-13 rad there). Slivers, degenerate and non-finite triangles: all three.
+double min_angle(Point2 a, Point2 b, Point2 c, double cross, double l2) {
+  const Point2 ab = b - a, bc = c - b, ca = a - c;
+  const double acr = std::fabs(cross);
+  if (!(acr >= 1e-3 * l2) || !(l2 < kInf))
+    return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+  const double d[3] = {-dot(ab, ca), -dot(bc, ab), -dot(ca, bc)};  // at a, b, c
+  const int k = d[0] >= d[1] ? (d[0] >= d[2] ? 0 : 2) : (d[1] >= d[2] ? 1 : 2);
+  auto at = [&](int i) { return i == 0 ? angle_at(a, b, c) : i == 1 ? angle_at(b, c, a) : angle_at(c, a, b); };
+  const double tol = 1e-7 * l2;
+  double amin = at(k);
+  for (int i = 0; i < 3; ++i)
+    if (i != k && !(d[k] - d[i] > tol)) amin = std::min(amin, at(i));
+  return amin;
+}
+
 void update_min(std::optional<double>& m, double v) { if (!m || v < *m) m = v; }
 void update_max(std::optional<double>& m, double v) { if (!m || v > *m) m = v; }
 
@@ -547,7 +568,10 @@ struct Pass {
         nn2[u] = std::min(nn2[u], x.q[k]);  // each thread has its own nn2 (merged after the pass)
         nn2[w] = std::min(nn2[w], x.q[k]);
       }
-      if (per_triangle || !p.angles.fast(x.a, x.b, x.c, x.cr, p.q, std::max({x.q[0], x.q[1], x.q[2]}))) {
+      const double l2max = std::max({x.q[0], x.q[1], x.q[2]});
+      if (p.angles.fast(x.a, x.b, x.c, x.cr, p.q, l2max)) {
+        if (per_triangle) per_triangle->min_angle_deg[t] = min_angle(x.a, x.b, x.c, x.cr, l2max);
+      } else {
         const double ang[3] = {angle_at(x.a, x.b, x.c), angle_at(x.b, x.c, x.a), angle_at(x.c, x.a, x.b)};
         const double amin = std::min({ang[0], ang[1], ang[2]});
         if (per_triangle) per_triangle->min_angle_deg[t] = amin;

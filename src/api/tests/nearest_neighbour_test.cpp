@@ -149,6 +149,70 @@ TEST(NearestNeighbour, UnusedVertexNeedsTheGlobalSearch) {
   EXPECT_TRUE(fdr::quality::mesh_nearest_neighbour_sq(m, m.neighbours).empty());
 }
 
+// Issue 7 (GIS report): the shortcut and the walk skip S edges that cannot matter (a vertex's own,
+// the boundary edges of its own triangles, those nearest at an endpoint not nearer than the
+// bound) and find S edges in a cell index. Coast-like meshes where those cases occur: a comb
+// whose teeth face each other across narrow exterior slots with vertices exactly opposite (the
+// nearest vertex across the exterior is itself on the re-entry edge), concave star-shaped coasts
+// with many islands (holes) close to each other and to the coast, CDT and refined.
+TEST(NearestNeighbour, CoastsCombsAndIslands) {
+  // Comb: 6 teeth of width 1 separated by slots of width 0.01, each side of a slot split at the
+  // same heights.
+  {
+    std::vector<Point2> ring{{0, 0}};
+    const int teeth = 6;
+    const double slot = 0.01;
+    double x = 0;
+    for (int k = 0; k < teeth; ++k) {
+      // up the left side of tooth k (facing the previous slot), over its top, down its right side
+      for (int i = 0; i <= 20; ++i) ring.push_back({x, 1 + 0.2 * i});
+      ring.push_back({x + 0.5, 5.3});
+      for (int i = 20; i >= 0; --i) ring.push_back({x + 1, 1 + 0.2 * i});
+      x += 1 + slot;
+    }
+    ring.back() = {x - slot, 1};
+    ring.push_back({x - slot, 0});
+    ring.erase(ring.begin() + 1);  // the first tooth starts at (0, 1.2): (0, 0) -> (0, 1.2) is a side
+    fdr::Pslg g = polygon(ring);
+    fdr::TriangulateOptions o;
+    o.strict = false;
+    fdr::Triangulator t(g, o);
+    expect_exact(t.view(), "comb, CDT");
+    t.refine(fdr::make_spacing("0.15"));
+    expect_exact(t.view(), "comb, refined");
+  }
+  for (unsigned seed : {11u, 12u, 13u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    // A star-shaped coast (radius 8..10 around (10, 10): concave bays), islands on a jittered grid.
+    std::vector<Point2> ring;
+    const int n = 160;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979323846 * i / n, r = 8 + 2 * u(rng);
+      ring.push_back({10 + r * std::cos(a), 10 + r * std::sin(a)});
+    }
+    fdr::Pslg g = polygon(ring);
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 9; ++i) {
+        const Point2 c{10 - 5.6 + 1.4 * i + 0.3 * (u(rng) - 0.5), 10 - 5.6 + 1.4 * j + 0.3 * (u(rng) - 0.5)};
+        if (std::hypot(c.x - 10, c.y - 10) > 7 || u(rng) < 0.3) continue;
+        const double s = 0.2 + 0.35 * u(rng);  // islands up to 0.04 apart
+        const Index b = static_cast<Index>(g.points.size());
+        const int k = 3 + static_cast<int>(3 * u(rng));
+        for (int q = 0; q < k; ++q) {
+          const double a = 2 * 3.14159265358979323846 * q / k + u(rng) * 0.5;
+          g.points.push_back({c.x + s * std::cos(a), c.y + s * std::sin(a)});
+        }
+        for (int q = 0; q < k; ++q) g.segments.push_back({b + q, b + (q + 1) % k, 2, 0});
+        g.holes.push_back(c);
+      }
+    fdr::Triangulator t(g);
+    expect_exact(t.view(), "coast and islands, CDT");
+    t.refine(fdr::make_spacing("0.25"));
+    expect_exact(t.view(), "coast and islands, refined");
+  }
+}
+
 TEST(NearestNeighbour, ReportIsTheSameWithAndWithoutTheAdjacency) {
   // compute_quality on the mesher's view (adjacency: the walk) and on a copy without it (k-d
   // tree, adjacency rebuilt from the triangles): every figure equal.

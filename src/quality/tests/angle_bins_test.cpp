@@ -46,6 +46,23 @@ void expect_same(const mesh::MeshView& m) {
   EXPECT_EQ(*r.max_angle_deg, ref.max_deg);
   EXPECT_EQ(r.min_angle_histogram.counts, ref.lo.counts);
   EXPECT_EQ(r.max_angle_histogram.counts, ref.hi.counts);
+  // With per-triangle values (the writers'): the same figures, and each triangle's smallest angle
+  // equal to the smallest of its three atan2 angles (atan2 only where the smallest may be).
+  TriangleValues tv;
+  const QualityReport rt = compute_quality(m, nullptr, 1.0, -1, RunInfo{}, &tv);
+  EXPECT_EQ(*rt.min_angle_deg, ref.min_deg);
+  EXPECT_EQ(*rt.max_angle_deg, ref.max_deg);
+  EXPECT_EQ(rt.min_angle_histogram.counts, ref.lo.counts);
+  EXPECT_EQ(rt.max_angle_histogram.counts, ref.hi.counts);
+  ASSERT_EQ(tv.min_angle_deg.size(), m.triangles.size());
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    const auto& t = m.triangles[i];
+    const Point2 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+    const double amin = std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+    wrong += !(tv.min_angle_deg[i] == amin || (std::isnan(amin) && std::isnan(tv.min_angle_deg[i])));
+  }
+  EXPECT_EQ(wrong, 0u);
 }
 
 // One triangle per entry: apex at the origin, base along x, the angle at the origin `deg`.
@@ -99,6 +116,28 @@ TEST(AngleBins, RandomTrianglesOfEveryShape) {
     const Point2 a{u(rng) * s + 1e4, u(rng) * s}, b{u(rng) * s + 1e4, u(rng) * s}, c{u(rng) * s + 1e4, u(rng) * s};
     const Index o = static_cast<Index>(m.vertices.size());
     m.vertices.insert(m.vertices.end(), {a, b, c});
+    m.triangles.push_back({o, o + 1, o + 2});
+  }
+  expect_same(m);
+}
+
+// Two (or three) corners with the same smallest angle up to rounding or a tiny perturbation:
+// isosceles triangles with an apex above the base's midpoint moved by 0 to 1e-6, nearly
+// equilateral ones, at several scales and offsets (the per-triangle smallest angle takes atan2
+// at every corner that may hold it).
+TEST(AngleBins, NearTiesForTheSmallestAngle) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  mesh::MeshView m;
+  const double eps[] = {0.0, 1e-16, 1e-15, 1e-13, 1e-11, 1e-9, 1e-8, 1e-7, 1e-6};
+  for (int i = 0; i < 20000; ++i) {
+    const double s = std::pow(10.0, 3 * u(rng)), off = 1e5 * u(rng);
+    const double height = i % 3 == 0 ? std::sqrt(3.0) / 2 : 0.2 + 1.5 * (u(rng) + 1);
+    const double e = eps[i % 9] * (u(rng) > 0 ? 1 : -1);
+    const Index o = static_cast<Index>(m.vertices.size());
+    m.vertices.push_back({off, off});
+    m.vertices.push_back({off + s, off});
+    m.vertices.push_back({off + s * (0.5 + e), off + s * height});
     m.triangles.push_back({o, o + 1, o + 2});
   }
   expect_same(m);

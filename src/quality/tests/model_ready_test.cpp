@@ -7,6 +7,8 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
+#include "base/scoped_env.hpp"
+#include "quality/mesh_adjacency.hpp"
 #include "quality/model_ready.hpp"
 #include "quality/report.hpp"
 
@@ -189,6 +191,46 @@ TEST(ModelReady, GridDistanceMatchesBruteForce) {
   EXPECT_TRUE(std::isinf(distances_to_segments({{0, 0}}, {})[0]));
 }
 
+// Issue 7: the grid's cells are about one segment long and a query stops once the nearest cell
+// not scanned is farther than the best distance: the same value, bit for bit, as the minimum of
+// the same per-segment formula over every segment (random closed polylines of very different
+// segment lengths, points on them, near them, far away and outside the grid).
+TEST(ModelReady, GridDistanceEqualsBruteForceBitForBit) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::pair<Point2, Point2>> segs;
+  for (int r = 0; r < 60; ++r) {
+    const Point2 c{u(rng) * 5000, u(rng) * 3000};
+    const double rad = 20 + 400 * u(rng);
+    const int k = 3 + static_cast<int>(60 * u(rng));
+    std::vector<Point2> p;
+    for (int i = 0; i < k; ++i) {
+      const double a = 6.283185307179586 * i / k, rr = rad * (0.6 + 0.4 * u(rng));
+      p.push_back(c + Point2{rr * std::cos(a), rr * std::sin(a)});
+    }
+    for (const auto& s : ring(p)) segs.push_back(s);
+  }
+  std::vector<Point2> pts;
+  for (const auto& [a, b] : segs) {
+    pts.push_back(a);
+    pts.push_back(a + u(rng) * (b - a));
+    pts.push_back(a + u(rng) * (b - a) + Point2{u(rng) - 0.5, u(rng) - 0.5});
+    pts.push_back(a + Point2{(u(rng) - 0.5) * 100, (u(rng) - 0.5) * 100});
+  }
+  for (int i = 0; i < 500; ++i) pts.push_back({u(rng) * 8000 - 1500, u(rng) * 6000 - 1500});
+  const auto d = distances_to_segments(pts, segs);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    double best2 = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : segs) {  // the grid's per-segment formula
+      const Point2 e = b - a;
+      const double l2 = norm2(e);
+      const double t = l2 > 0 ? std::clamp(dot(pts[i] - a, e) / l2, 0.0, 1.0) : 0.0;
+      best2 = std::min(best2, norm2(pts[i] - (a + t * e)));
+    }
+    ASSERT_EQ(d[i], std::sqrt(best2)) << i;
+  }
+}
+
 TEST(ModelReady, TimeStepFromShortestAltitudeAndClampedDepth) {
   // Two equilateral triangles of side 10: one 4 m deep, one on land (z = +3, clamped to 1 m).
   mesh::MeshView m;
@@ -264,6 +306,65 @@ TEST(ModelReady, FiguresAreaChangeAndJson) {
   EXPECT_NE(s.find("Model readiness (hmin = 1 m)"), std::string::npos) << s;
   EXPECT_NE(s.find("pieces mesh / input           : 1 / 3"), std::string::npos) << s;
   EXPECT_NE(s.find("islands removed               : 5"), std::string::npos) << s;
+}
+
+// Issue 7: with the mesher's adjacency the figures come from one pass over the triangles on up to
+// two threads; they must equal the plain path's (half-edges grouped and sorted) bit for bit, for
+// every FDR_THREADS. A jittered grid (random diagonals) with holes cut out (several pieces, inner
+// boundaries), repeated edge lengths (ties for the shortest edge), depths, and a random input coast.
+TEST(ModelReady, AdjacencyPathEqualsPlainForEveryThreadCount) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.2, 0.2), depth(-40, 5), u(-5, 175);
+    std::bernoulli_distribution coin(0.5), keep(0.97);
+    const int n = 170;
+    mesh::MeshView m;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const bool inner = i > 0 && j > 0 && i < n - 1 && j < n - 1 && (i + j) % 7 != 0;  // some exact grid points
+        m.vertices.push_back({i + (inner ? jitter(rng) : 0.0), j + (inner ? jitter(rng) : 0.0)});
+        m.z.push_back(depth(rng));
+      }
+    auto id = [n](int i, int j) { return Index(j * n + i); };
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        if (!keep(rng) || (i / 20 == 3 && j / 30 == 2) || j == 100) continue;  // holes, a cut across
+        if (coin(rng)) {
+          m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+          m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        } else {
+          m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+          m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+      }
+    std::shuffle(m.triangles.begin(), m.triangles.end(), rng);  // ties met in any order
+    m.origin = {350000, 4100000};
+    std::vector<std::pair<Point2, Point2>> coast;
+    for (int r = 0; r < 40; ++r) {  // random closed polylines
+      std::vector<Point2> p;
+      const Point2 c{u(rng), u(rng)};
+      for (int k = 0; k < 12; ++k) p.push_back(c + Point2{8 * jitter(rng) * 5, 8 * jitter(rng) * 5});
+      for (const auto& s : ring(p)) coast.push_back(s);
+    }
+    for (const auto& s : square(-0.3, n - 0.7)) coast.push_back(s);
+    const std::vector<std::pair<std::string, double>> figs = {{"input_pieces", 2}, {"input_area_m2", 28000}};
+    ModelReadyInputs in;
+    in.hmin = 1.5;
+    in.min_depth_m = 2;
+    in.input_boundary = &coast;
+    in.coast_figures = &figs;
+    const std::string plain = model_ready_json(compute_model_readiness_plain(m, in)).dump();
+    EXPECT_EQ(plain, model_ready_json(compute_model_readiness(m, in)).dump());  // no adjacency: the plain path
+    m.neighbours = half_edge_neighbours(m);
+    ASSERT_GE(m.triangles.size(), 4u * 8192u);  // several chunks for each thread
+    for (int t : {1, 2, 3}) {
+      const ThreadsEnv env(t);
+      const ModelReadiness r = compute_model_readiness(m, in);
+      EXPECT_EQ(plain, model_ready_json(r).dump()) << "seed " << seed << ", FDR_THREADS=" << t;
+      EXPECT_GT(r.mesh_pieces, 1u);
+      EXPECT_GT(r.mesh_boundary_edges, 4u * (n - 1));
+    }
+  }
 }
 
 class Constant : public sizing::SizingField {
