@@ -256,13 +256,16 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     coast_figures.push_back({"islands_removed_m2", ff.islands_area});
     coast_figures.push_back({"thin_land_removed_m2", ff.land_removed_area});
     coast_figures.push_back({"tips_kept", static_cast<double>(ff.tips_kept)});
+    coast_figures.push_back({"water_widened", static_cast<double>(ff.widened)});
+    coast_figures.push_back({"water_widened_m2", ff.widened_area});
     coast_figures.push_back({"input_area_m2", ff.input_area});
     info("features: " + std::to_string(ff.input_pieces) + " water bodies in, " + std::to_string(ff.output_pieces) +
          " out; " + std::to_string(ff.closed) + " narrow water pieces closed (" + num(ff.closed_area / 1e6) +
          " km^2 with corner rounding), " + std::to_string(ff.channels_kept) + " narrow connections kept, " +
          std::to_string(ff.islands_removed) + " islands removed (" + num(ff.islands_area / 1e6) + " km^2), " +
          num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
-         " tips of land kept, " + std::to_string(ff.united) + " overlaps united");
+         " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
+         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
   }
   std::map<std::string, std::size_t> kinds;
   for (const auto& r : g.repairs) ++kinds[r.repair.kind];

@@ -731,6 +731,7 @@ void write_model_ready_text(const ModelReadiness& r, std::ostream& out) {
   };
   removed("narrow water closed", "narrow_water_closed", "water_removed_m2");
   removed("islands removed", "islands_removed", "islands_removed_m2");
+  removed("narrow water widened", "water_widened", "water_widened_m2");
   if (auto a = r.figure("thin_land_removed_m2"))
     line(out, "thin land removed, tips kept",
          fmt(*a / 1e6, "%.4g") + " km^2, " + fmt(r.figure("tips_kept").value_or(0), "%.0f"));
