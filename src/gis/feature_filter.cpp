@@ -1676,6 +1676,14 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           owner[j] = static_cast<int>(i);
         }
       }
+      // (water the widening added: its vertices lie on former land; the body it meets owns it)
+      for (std::size_t i = 0; i < wps.size() && owner[j] < 0; ++i) {
+        OGREnvelope we;
+        wps[i]->getEnvelope(&we);
+        if (!we.Intersects(re)) continue;
+        Prepared pw(wps[i].get());
+        if (pw.intersects(rps[j].get())) owner[j] = static_cast<int>(i);
+      }
     }
     std::vector<int> best(wps.size(), -1);
     for (std::size_t j = 0; j < rps.size(); ++j) {
