@@ -404,18 +404,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   // Two threads when allowed: the rows go in on a helper thread while this one plans the
   // R-trees (the plans' large arrays then come from this thread's heap, as without threads).
   if (index && max_threads() > 1) {
-    std::exception_ptr rows_error;
-    {
-      std::jthread rows([&] {
-        try {
-          write_rows();
-        } catch (...) {
-          rows_error = std::current_exception();
-        }
-      });
-      plan_trees();
-    }  // joined here
-    if (rows_error) std::rethrow_exception(rows_error);
+    run_beside([&] { write_rows(); }, [&] { plan_trees(); });
   } else {
     if (index) plan_trees();
     write_rows();

@@ -192,21 +192,7 @@ CoastDeviation deviation(const std::vector<Point2>& samples, const SegmentGrid& 
   if (threads > 1 && samples.size() >= 8192) {
     const std::size_t half = samples.size() / 2;
     std::size_t arg2 = half;
-    std::exception_ptr error;
-    std::thread other([&] {
-      try {
-        arg2 = part(half, samples.size());
-      } catch (...) {
-        error = std::current_exception();
-      }
-    });
-    struct Join {
-      std::thread& t;
-      ~Join() { if (t.joinable()) t.join(); }
-    } join{other};
-    arg = part(0, half);
-    other.join();
-    if (error) std::rethrow_exception(error);
+    run_beside([&] { arg2 = part(half, samples.size()); }, [&] { arg = part(0, half); });
     if (dd[arg2] > dd[arg]) arg = arg2;
   } else {
     arg = part(0, samples.size());
@@ -258,7 +244,8 @@ std::vector<double> distances_to_segments(const std::vector<Point2>& points,
   return out;
 }
 
-ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const ModelReadyInputs& in) {
+// The figures both paths start from: hmin, minimum depth and the coast figures of the run.
+static ModelReadiness readiness_from_inputs(const ModelReadyInputs& in) {
   ModelReadiness r;
   const double hmin = in.hmin > 0 && std::isfinite(in.hmin) ? in.hmin : 0.0;
   if (hmin > 0) r.hmin_m = hmin;
@@ -266,6 +253,12 @@ ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const Mode
   if (in.coast_figures) r.coast_figures = *in.coast_figures;
   r.input_pieces = r.figure("input_pieces");
   r.input_area_m2 = r.figure("input_area_m2");
+  return r;
+}
+
+ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const ModelReadyInputs& in) {
+  ModelReadiness r = readiness_from_inputs(in);
+  const double hmin = r.hmin_m.value_or(0.0);
 
   const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
   r.triangles = nt;
@@ -380,13 +373,8 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   for (std::size_t t = 0; t < nt; ++t)
     for (Index v : m.triangles[t])
       if (v >= nv) return compute_model_readiness_plain(m, in);  // which throws the error
-  ModelReadiness r;
-  const double hmin = in.hmin > 0 && std::isfinite(in.hmin) ? in.hmin : 0.0;
-  if (hmin > 0) r.hmin_m = hmin;
-  r.min_depth_m = in.min_depth_m;
-  if (in.coast_figures) r.coast_figures = *in.coast_figures;
-  r.input_pieces = r.figure("input_pieces");
-  r.input_area_m2 = r.figure("input_area_m2");
+  ModelReadiness r = readiness_from_inputs(in);
+  const double hmin = r.hmin_m.value_or(0.0);
   r.triangles = nt;
 
   const auto& T = m.triangles;
@@ -522,30 +510,22 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
     std::size_t split = nt;  // first triangle of the back range
-    std::exception_ptr error;
-    std::thread other([&] {
-      try {
-        std::size_t lo = nt;
-        for (std::size_t c = nchunks; c-- > 0;) {
-          if (claimed[c].exchange(1)) break;
-          const std::size_t clo = c * kChunk;
-          measure(clo, lo, back);
-          lo = clo;
-        }
-        split = lo;
-        pieces = count_pieces();
-      } catch (...) {
-        error = std::current_exception();
-      }
-    });
-    struct Join {
-      std::thread& t;
-      ~Join() { if (t.joinable()) t.join(); }
-    } join{other};
-    for (std::size_t c = 0; c < nchunks && !claimed[c].exchange(1); ++c)
-      measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front);
-    other.join();
-    if (error) std::rethrow_exception(error);
+    run_beside(
+        [&] {
+          std::size_t lo = nt;
+          for (std::size_t c = nchunks; c-- > 0;) {
+            if (claimed[c].exchange(1)) break;
+            const std::size_t clo = c * kChunk;
+            measure(clo, lo, back);
+            lo = clo;
+          }
+          split = lo;
+          pieces = count_pieces();
+        },
+        [&] {
+          for (std::size_t c = 0; c < nchunks && !claimed[c].exchange(1); ++c)
+            measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front);
+        });
     (void)split;
     sums();
   } else {

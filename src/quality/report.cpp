@@ -893,23 +893,12 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   CompensatedSum conf_sum;
   const std::size_t half = vparts.size() == 2 ? nv / 2 : nv;
   if (vparts.size() == 2) {
-    std::exception_ptr error;
-    std::thread other([&] {
-      try {
-        vertices(half, nv, vparts[1], nullptr);
-      } catch (...) {
-        error = std::current_exception();
-      }
-    });
-    struct Join {
-      std::thread& t;
-      ~Join() { if (t.joinable()) t.join(); }
-    } join{other};
-    vertices(0, half, vparts[0], &conf_sum);
-    for (std::size_t i = half; i < nv; ++i)  // the sum in vertex order
-      if (usable_spacing(fv[i])) conf_sum.add(std::min(nn[i] / fv[i], fv[i] / nn[i]));
-    other.join();
-    if (error) std::rethrow_exception(error);
+    run_beside([&] { vertices(half, nv, vparts[1], nullptr); },
+               [&] {
+                 vertices(0, half, vparts[0], &conf_sum);
+                 for (std::size_t i = half; i < nv; ++i)  // the sum in vertex order
+                   if (usable_spacing(fv[i])) conf_sum.add(std::min(nn[i] / fv[i], fv[i] / nn[i]));
+               });
   } else {
     vertices(0, nv, vparts[0], &conf_sum);
   }

@@ -2,6 +2,8 @@
 // table's per-theorem {bound, measured, holds} in the JSON report.
 #include <gtest/gtest.h>
 
+#include "quality/tests/grid_cells.hpp"
+
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -329,13 +331,7 @@ TEST(ModelReady, AdjacencyPathEqualsPlainForEveryThreadCount) {
     for (int j = 0; j + 1 < n; ++j)
       for (int i = 0; i + 1 < n; ++i) {
         if (!keep(rng) || (i / 20 == 3 && j / 30 == 2) || j == 100) continue;  // holes, a cut across
-        if (coin(rng)) {
-          m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-          m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-        } else {
-          m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-          m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-        }
+        test::push_cell(m, n, i, j, coin(rng));
       }
     std::shuffle(m.triangles.begin(), m.triangles.end(), rng);  // ties met in any order
     m.origin = {350000, 4100000};

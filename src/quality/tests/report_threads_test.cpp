@@ -4,6 +4,8 @@
 // the percentiles, extremes and nearest neighbours the same as a plain computation over all values.
 #include <gtest/gtest.h>
 
+#include "quality/tests/grid_cells.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -47,13 +49,7 @@ mesh::MeshView jittered_grid(int n, unsigned seed, bool adjacency) {
   auto id = [n](int i, int j) { return Index(j * n + i); };
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
-      if (coin(rng)) {
-        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      } else {
-        m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-        m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-      }
+      test::push_cell(m, n, i, j, coin(rng));
     }
   for (int i = 0; i + 1 < n; ++i) {
     m.edges.push_back({id(i, 0), id(i + 1, 0), 1, 0});
