@@ -1429,13 +1429,80 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //     than grow_island_area are grown by grow_island (buffer), so that the mesh keeps them with
   //     elements near hmin instead of elements as small as the island. Why grow rather than drop:
   //     a dropped island near the coast moves the coastline the model sees by its whole distance.
+  std::vector<Point2> placed;  // centres of the islets kept as triangles (step 2c keeps them)
   {
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W.get(), wps);
     auto grown = std::make_unique<OGRMultiPolygon>();
+    // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
+    // equilateral triangle of side islet_side around its centroid instead of water. Why: a dropped
+    // islet moves the coast the model sees by its distance to the next coast (its vertices are
+    // input coast too), a kept one forces elements as small as itself; the triangle keeps it within
+    // about islet_side / 2 with elements near hmin. Other land (every ring but its own, and the
+    // triangles placed before it) must be farther than islet_side / 2 beyond the triangle's corners.
+    const double tri_r = o.islet_side / std::sqrt(3.0);  // circumradius
+    std::unique_ptr<pslg::SegmentGrid> land;
+    std::vector<std::pair<Point2, Point2>> land_seg;
+    std::vector<const OGRLinearRing*> land_ring;
+    std::vector<Index> near;
+    if (o.islet_side > 0 && o.min_island_area > 0) {
+      Box2 box;
+      for (const auto& p : wps)
+        for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+          const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
+          for (int i = 0; i + 1 < r->getNumPoints(); ++i) {
+            land_seg.push_back({{r->getX(i), r->getY(i)}, {r->getX(i + 1), r->getY(i + 1)}});
+            land_ring.push_back(r);
+            box.add(land_seg.back().first);
+          }
+        }
+      if (!land_seg.empty()) {
+        land = std::make_unique<pslg::SegmentGrid>(box, land_seg.size(), o.islet_side);
+        for (std::size_t k = 0; k < land_seg.size(); ++k)
+          land->add_segment(static_cast<Index>(k), land_seg[k].first, land_seg[k].second);
+      }
+    }
+    auto islet_room = [&](const OGRLinearRing* h, Point2 c) {
+      const double lim = tri_r + 0.5 * o.islet_side;
+      for (const Point2& q : placed)
+        if (dist(q, c) < lim + tri_r) return false;
+      Box2 qb;
+      qb.add({c.x - lim, c.y - lim});
+      qb.add({c.x + lim, c.y + lim});
+      land->segments_near(qb, &near);
+      for (Index k : near)
+        if (land_ring[k] != h && dist_to_segment(c, land_seg[k].first, land_seg[k].second) < lim) return false;
+      return true;
+    };
     const bool changed = filter_holes(wps, [&](const OGRLinearRing* h, double a) {
       OGRPolygon hp;
       hp.addRing(const_cast<OGRLinearRing*>(h));
+      if (a < o.min_island_area && land) {
+        OGRPoint cen;
+        if (hp.Centroid(&cen) == OGRERR_NONE) {
+          const Point2 c{cen.getX(), cen.getY()};
+          if (islet_room(h, c)) {
+            placed.push_back(c);
+            OGRLinearRing tr;
+            for (int k = 0; k < 3; ++k) {
+              const double t = 1.5707963267948966 - 2.0943951023931957 * k;  // clockwise, apex up
+              tr.addPoint(c.x + tri_r * std::cos(t), c.y + tri_r * std::sin(t));
+            }
+            tr.closeRings();
+            auto tp = std::make_unique<OGRPolygon>();
+            tp->addRing(&tr);
+            const double ta = tp->get_Area();
+            ++res.islets_replaced;
+            res.repairs.push_back({"islet_simplified", c, a,
+                                   "island of " + num(a) + " m^2 is smaller than " + num(o.min_island_area) +
+                                       " m^2 (--min-island); kept as a triangle of side " + num(o.islet_side) +
+                                       " m (" + num(ta) + " m^2) around its centroid",
+                                   -1});
+            grown->addGeometryDirectly(tp.release());
+            return false;
+          }
+        }
+      }
       if (a < o.min_island_area) {
         ++res.islands_removed;
         res.islands_area += a;
@@ -1716,6 +1783,12 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       if (!(a < o.min_island_area)) return true;
       OGRPolygon hp;
       hp.addRing(const_cast<OGRLinearRing*>(h));
+      if (!placed.empty()) {  // an islet's triangle stays
+        OGRPoint cen;
+        if (hp.Centroid(&cen) == OGRERR_NONE)
+          for (const Point2& q : placed)
+            if (dist(q, {cen.getX(), cen.getY()}) < 0.1 * o.islet_side) return true;
+      }
       ++res.islands_removed;
       res.islands_area += a;
       res.repairs.push_back({"island_removed", inside_point(&hp), a,

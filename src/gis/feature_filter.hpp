@@ -33,6 +33,8 @@ struct FeatureFilterOptions {
   double list_area = 0;        // removed water pieces at least this large are listed one by one
   double widen_width = 0;      // water narrower than this (and at least close_width wide) is
                                // widened to about this width (m); 0: not widened
+  double islet_side = 0;       // an island below min_island_area with no other land within this of
+                               // its replacement becomes a triangle of this side (m); 0: removed
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
 };
@@ -53,6 +55,7 @@ struct FeatureFilterResult {
   double land_removed_area = 0;      // land thinner than close_width that became water (m^2)
   std::size_t widened = 0;           // pieces of narrow water widened
   double widened_area = 0;           // land that became water by widening (m^2)
+  std::size_t islets_replaced = 0;   // islands below --min-island kept as triangles of islet_side
   std::size_t tips_kept = 0;         // thin land tips (and thin islands) kept instead of cut
   std::size_t islands_grown = 0;
   double islands_grown_area = 0;     // land added

@@ -307,6 +307,32 @@ TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
   EXPECT_GT(checked, 10u);
 }
 
+TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
+  // hmin 100: --min-island 0.3 hmin^2 = 3000 m^2; islets of 400 m^2, one in open water, one 30 m
+  // from a large island; triangles of side 70 m.
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings open_islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
+  const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
+  const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  const FeatureFilterResult r = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 3u);  // sea, the big island, the open islet's triangle
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(count(r, "islet_simplified"), 1u);
+  EXPECT_EQ(r.islands_removed, 1u);
+  EXPECT_FALSE(water_at(r, {2010, 2010}));  // land: inside the triangle around (2010, 2010)
+  EXPECT_TRUE(water_at(r, {1540, 1010}));   // the islet near the big island is water
+  EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - 1e6 - std::sqrt(3.0) / 4 * 70 * 70, 300.0);
+  // Without islet_side: both removed.
+  o.islet_side = 0;
+  const FeatureFilterResult r0 = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  EXPECT_EQ(r0.polygons[0].size(), 2u);
+  EXPECT_EQ(r0.islands_removed, 2u);
+}
+
 TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
