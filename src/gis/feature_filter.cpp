@@ -1188,17 +1188,27 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
     return r.outer ? checked(r.base->Difference(u.get()), "closed water without kept tips") : std::move(u);
   };
   std::vector<std::unique_ptr<OGRPolygon>> out;
+  const bool two = max_threads() >= 2;
   for (auto& pr : polys) {
-    GeomPtr b = with_tips(rings[pr.outer]);
+    // The outer ring's kept tips (an overlay of the closed outer ring) and the islands' (their
+    // union) are independent: one on each core when there are two.
+    Ring& outer = rings[pr.outer];
+    std::future<GeomPtr> b_job;
+    if (two && !outer.tips.empty() && !pr.holes.empty())
+      b_job = std::async(std::launch::async, [&with_tips, &outer] {
+        GdalQuiet q2;
+        return with_tips(outer);
+      });
+    GeomPtr b = b_job.valid() ? nullptr : with_tips(outer);
     std::vector<std::unique_ptr<OGRPolygon>> hs;
     for (std::size_t h : pr.holes) {
       GeomPtr g = with_tips(rings[h]);
       if (g && !g->IsEmpty()) polygons_of(g.get(), hs);
     }
-    if (!hs.empty()) {
-      GeomPtr hu = union_pieces(hs, hair, "union of islands");
-      b = checked(b->Difference(hu.get()), "closed water minus islands");
-    }
+    GeomPtr hu;
+    if (!hs.empty()) hu = union_pieces(hs, hair, "union of islands");
+    if (b_job.valid()) b = b_job.get();
+    if (hu) b = checked(b->Difference(hu.get()), "closed water minus islands");
     polygons_of(b.get(), out);
   }
   if (out.size() > 1) return union_pieces(out, hair, "union of closed water");
@@ -1726,10 +1736,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //    breaklines, open boundaries and fixed points still meet exactly where nothing was removed.
   if (o.close_width > 0) R = CoastRestorer(W0.get(), 0.05 * o.close_width).restore(std::move(R));
   lap("restore");
+  std::future<GeomPtr> gone_job;  // W0 - result
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
   if (o.close_width > 0) {
-    const double hair = 0.05 * o.close_width;
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W0.get(), wps);
     // A snap that makes a polygon invalid (a vertex moved across a nearby edge) is not taken:
@@ -1743,6 +1753,18 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       qr.push_back(ring_points(q->getExteriorRing(), true));
       for (int k = 0; k < q->getNumInteriorRings(); ++k) qr.push_back(ring_points(q->getInteriorRing(k), false));
       if (surely_valid(qr) || q->IsValid()) p = std::move(q);
+    }
+    // The input minus the result (for the listing of removed water below), computed on the other
+    // core while this one checks the water bodies and cleans tiny edges (results in the same
+    // order; GEOS on its own copies).
+    {
+      auto rm = std::make_unique<OGRMultiPolygon>();
+      for (const auto& p : outp) rm->addGeometry(p.get());
+      auto job = [w0 = GeomPtr(W0->clone()), rm = std::move(rm)]() mutable {
+        GdalQuiet q2;
+        return checked(w0->Difference(rm.get()), "difference input - result");
+      };
+      gone_job = std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(job));
     }
     // Whole input water bodies nowhere --min-feature wide.
     // (each result piece's inner point computed once, each input body prepared once: an ocean
@@ -1775,48 +1797,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                  " m wide (--min-feature); it was removed",
                              -1});
     }
-    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
-    // than the snapping distance are rounding, not features.
-    (void)dropped;
-    std::vector<std::unique_ptr<OGRPolygon>> gone;
-    {
-      auto rm = std::make_unique<OGRMultiPolygon>();
-      for (const auto& p : outp) rm->addGeometry(p.get());
-      GeomPtr g_all = checked(W0->Difference(rm.get()), "difference input - result");
-      polygons_of(g_all.get(), gone);
-    }
-    // The places of the water bodies already listed as removed (collected once: the repairs list
-    // holds thousands of entries, the removed pieces are thousands too).
-    std::vector<Point2> listed_at;
-    for (const auto& r : res.repairs)
-      if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
-    for (const auto& g : gone) {
-      const double a = g->get_Area();
-      double per = g->getExteriorRing()->get_Length();
-      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
-      if (!(a > 0) || 2 * a <= hair * per) continue;
-      bool listed = false;  // a cut-off water body already listed
-      OGREnvelope ge;
-      g->getEnvelope(&ge);
-      for (const Point2 w : listed_at) {
-        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
-        OGRPoint pt(w.x, w.y);
-        if (g->Intersects(&pt)) { listed = true; break; }
-      }
-      if (listed) continue;
-      res.closed_area += a;
-      if (a < o.list_area) {
-        ++res.corner_pieces;
-        continue;
-      }
-      ++res.closed;
-      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
-                             "dead-end water narrower than the resolution (" + num(o.close_width) +
-                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
-                             -1});
-    }
   }
-  lap("removed");
+  lap("removed (start)");
   // Input vertices (exact coordinates), for the tiny-edge clean-up below.
   std::unordered_set<std::uint64_t> input_vertex;
   if (o.close_width > 0) {
@@ -1943,6 +1925,48 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
   }
+  if (o.close_width > 0) {
+    const double hair = 0.05 * o.close_width;
+    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
+    // than the snapping distance are rounding, not features.
+    (void)dropped;
+    std::vector<std::unique_ptr<OGRPolygon>> gone;
+    {
+      GeomPtr g_all = gone_job.get();
+      polygons_of(g_all.get(), gone);
+    }
+    // The places of the water bodies already listed as removed (collected once: the repairs list
+    // holds thousands of entries, the removed pieces are thousands too).
+    std::vector<Point2> listed_at;
+    for (const auto& r : res.repairs)
+      if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
+    for (const auto& g : gone) {
+      const double a = g->get_Area();
+      double per = g->getExteriorRing()->get_Length();
+      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
+      if (!(a > 0) || 2 * a <= hair * per) continue;
+      bool listed = false;  // a cut-off water body already listed
+      OGREnvelope ge;
+      g->getEnvelope(&ge);
+      for (const Point2 w : listed_at) {
+        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
+        OGRPoint pt(w.x, w.y);
+        if (g->Intersects(&pt)) { listed = true; break; }
+      }
+      if (listed) continue;
+      res.closed_area += a;
+      if (a < o.list_area) {
+        ++res.corner_pieces;
+        continue;
+      }
+      ++res.closed;
+      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
+                             "dead-end water narrower than the resolution (" + num(o.close_width) +
+                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
+                             -1});
+    }
+  }
+  lap("removed");
   res.output_pieces = res.polygons.size();
   if (const char* dbg = std::getenv("FDR_DEBUG_FILTER")) {  // developer aid: WKT of the result
     if (FILE* fp = std::fopen(dbg, "w")) {
