@@ -487,6 +487,51 @@ class Snapper {
   std::unordered_map<std::uint64_t, std::vector<Point2>> cells_;
 };
 
+// pslg::find_contacts on two cores: the segments are split at the median of their left ends into
+// those reaching left of it and those reaching right of it (a segment across it goes to both),
+// each half is searched on its own, and the results are concatenated (segment indices into
+// `segs`; a contact may be listed twice). The same contacts as one search: two segments that
+// meet share a point, and both reach that point's side; a point inside a segment lies in its
+// x-range, so it and the segments ending at it are in a half with that segment. For callers that
+// use the contacts as a set (or only whether there are any). Small inputs: one search.
+pslg::Contacts find_contacts_2(const std::vector<Point2>& pts, const std::vector<pslg::Segment>& segs,
+                               const std::vector<char>* alive) {
+  if (segs.size() < 20000 || max_threads() < 2) return pslg::find_contacts(pts, segs, alive);
+  std::vector<double> lo(segs.size());
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    lo[i] = std::min(pts[static_cast<std::size_t>(segs[i].a)].x, pts[static_cast<std::size_t>(segs[i].b)].x);
+  std::vector<double> sorted = lo;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double split = sorted[sorted.size() / 2];
+  auto half = [&](bool left) {
+    std::vector<pslg::Segment> sub;
+    std::vector<std::size_t> id;
+    std::vector<char> live(pts.size(), 0);
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      const double hi = std::max(pts[static_cast<std::size_t>(segs[i].a)].x, pts[static_cast<std::size_t>(segs[i].b)].x);
+      if (left ? !(lo[i] <= split) : !(hi >= split)) continue;
+      sub.push_back(segs[i]);
+      id.push_back(i);
+      for (const Index e : {segs[i].a, segs[i].b})
+        if (!alive || (*alive)[static_cast<std::size_t>(e)]) live[static_cast<std::size_t>(e)] = 1;
+    }
+    pslg::Contacts c = pslg::find_contacts(pts, sub, &live);
+    for (auto& [x, y] : c.segment_pairs) {
+      x = static_cast<Index>(id[static_cast<std::size_t>(x)]);
+      y = static_cast<Index>(id[static_cast<std::size_t>(y)]);
+    }
+    for (auto& vs : c.vertex_on_segment) vs.second = static_cast<Index>(id[static_cast<std::size_t>(vs.second)]);
+    return c;
+  };
+  auto right_job = std::async(std::launch::async, half, false);
+  pslg::Contacts out = half(true);
+  pslg::Contacts r = right_job.get();
+  out.segment_pairs.insert(out.segment_pairs.end(), r.segment_pairs.begin(), r.segment_pairs.end());
+  out.kinds.insert(out.kinds.end(), r.kinds.begin(), r.kinds.end());
+  out.vertex_on_segment.insert(out.vertex_on_segment.end(), r.vertex_on_segment.begin(), r.vertex_on_segment.end());
+  return out;
+}
+
 // A sufficient test of validity with the mesher's exact contact finder: every ring simple, no
 // two rings meeting at all, every hole inside the outer ring and none inside another hole.
 // Why: GEOS's IsValid on a basin polygon with 10 000 holes costs seconds, this a tenth of a
@@ -512,7 +557,7 @@ bool surely_valid(const Rings& rings) {
     std::sort(sorted.begin(), sorted.end(), [](Point2 a, Point2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
   }
-  const pslg::Contacts ct = pslg::find_contacts(pts, segs, nullptr);
+  const pslg::Contacts ct = find_contacts_2(pts, segs, nullptr);
   if (!ct.segment_pairs.empty() || !ct.vertex_on_segment.empty()) return false;
   if (rings.size() == 1) return true;
   // Rings are disjoint: one vertex decides on which side of another ring a ring lies.
@@ -693,7 +738,7 @@ class CoastRestorer {
         std::vector<pslg::Segment> sub_segs;
         sub_segs.reserve(sub.size());
         for (std::size_t si : sub) sub_segs.push_back(segs[si]);
-        const pslg::Contacts ct = pslg::find_contacts(pts, sub_segs, all ? nullptr : &alive);
+        const pslg::Contacts ct = find_contacts_2(pts, sub_segs, all ? nullptr : &alive);
         for (const auto& [x, y] : ct.segment_pairs) { bad.push_back(sub[static_cast<std::size_t>(x)]); bad.push_back(sub[static_cast<std::size_t>(y)]); }
         for (const auto& [v, sg] : ct.vertex_on_segment) {
           bad.push_back(sub[static_cast<std::size_t>(sg)]);
@@ -1013,6 +1058,14 @@ class CoastRestorer {
 // *land_cut: the area of thin land that became water.
 GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, FeatureFilterResult& res,
                           double* land_cut) {
+  const bool dbg = std::getenv("FDR_DEBUG_FILTER") != nullptr;
+  auto t0 = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    if (!dbg) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "  closing %s %.3f s\n", what, std::chrono::duration<double>(now - t0).count());
+    t0 = now;
+  };
   const double clear = o.tip_clearance;
   const double rc = 0.5 * o.close_width;
   const double hair = std::max(1e-6 * o.close_width, 1e-9);
@@ -1075,6 +1128,7 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
     for (unsigned t = 1; t < nt; ++t) helpers.push_back(std::async(std::launch::async, worker));
     worker();
     for (auto& h : helpers) h.get();
+    lap("rings");
     std::size_t j = 0;
     for (const auto& wp : wps) {
       PolyRings pr;
@@ -1111,6 +1165,7 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
     }
   }
   std::vector<char> keep(pieces.size(), 0);
+  lap("other land");
   if (!bp.empty() && !pieces.empty()) {
     Box2 box;
     double total = 0;
@@ -1177,6 +1232,7 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
   *land_cut = 0;
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (!keep[i]) *land_cut += pieces[i]->get_Area();
+  lap("tips");
   // Closed water: per polygon, close(O) without its kept tips, minus the islands' openings with
   // theirs.
   auto with_tips = [&](Ring& r) -> GeomPtr {
@@ -1188,19 +1244,30 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
     return r.outer ? checked(r.base->Difference(u.get()), "closed water without kept tips") : std::move(u);
   };
   std::vector<std::unique_ptr<OGRPolygon>> out;
+  const bool two = max_threads() >= 2;
   for (auto& pr : polys) {
-    GeomPtr b = with_tips(rings[pr.outer]);
+    // The outer ring's kept tips (an overlay of the closed outer ring) and the islands' (their
+    // union) are independent: one on each core when there are two.
+    Ring& outer = rings[pr.outer];
+    std::future<GeomPtr> b_job;
+    if (two && !outer.tips.empty() && !pr.holes.empty())
+      b_job = std::async(std::launch::async, [&with_tips, &outer] {
+        GdalQuiet q2;
+        return with_tips(outer);
+      });
+    GeomPtr b = b_job.valid() ? nullptr : with_tips(outer);
     std::vector<std::unique_ptr<OGRPolygon>> hs;
     for (std::size_t h : pr.holes) {
       GeomPtr g = with_tips(rings[h]);
       if (g && !g->IsEmpty()) polygons_of(g.get(), hs);
     }
-    if (!hs.empty()) {
-      GeomPtr hu = union_pieces(hs, hair, "union of islands");
-      b = checked(b->Difference(hu.get()), "closed water minus islands");
-    }
+    GeomPtr hu;
+    if (!hs.empty()) hu = union_pieces(hs, hair, "union of islands");
+    if (b_job.valid()) b = b_job.get();
+    if (hu) b = checked(b->Difference(hu.get()), "closed water minus islands");
     polygons_of(b.get(), out);
   }
+  lap("with tips, minus islands");
   if (out.size() > 1) return union_pieces(out, hair, "union of closed water");
   return GeomPtr(multi(out).release());
 }
@@ -1807,10 +1874,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //    breaklines, open boundaries and fixed points still meet exactly where nothing was removed.
   if (o.close_width > 0) R = CoastRestorer(W0.get(), 0.05 * o.close_width).restore(std::move(R));
   lap("restore");
+  std::future<GeomPtr> gone_job;  // W0 - result
   std::vector<std::unique_ptr<OGRPolygon>> outp;
   polygons_of(R.get(), outp);
   if (o.close_width > 0) {
-    const double hair = 0.05 * o.close_width;
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W0.get(), wps);
     // A snap that makes a polygon invalid (a vertex moved across a nearby edge) is not taken:
@@ -1824,6 +1891,18 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       qr.push_back(ring_points(q->getExteriorRing(), true));
       for (int k = 0; k < q->getNumInteriorRings(); ++k) qr.push_back(ring_points(q->getInteriorRing(k), false));
       if (surely_valid(qr) || q->IsValid()) p = std::move(q);
+    }
+    // The input minus the result (for the listing of removed water below), computed on the other
+    // core while this one checks the water bodies and cleans tiny edges (results in the same
+    // order; GEOS on its own copies).
+    {
+      auto rm = std::make_unique<OGRMultiPolygon>();
+      for (const auto& p : outp) rm->addGeometry(p.get());
+      auto job = [w0 = GeomPtr(W0->clone()), rm = std::move(rm)]() mutable {
+        GdalQuiet q2;
+        return checked(w0->Difference(rm.get()), "difference input - result");
+      };
+      gone_job = std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(job));
     }
     // Whole input water bodies nowhere --min-feature wide.
     // (each result piece's inner point computed once, each input body prepared once: an ocean
@@ -1856,48 +1935,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                  " m wide (--min-feature); it was removed",
                              -1});
     }
-    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
-    // than the snapping distance are rounding, not features.
-    (void)dropped;
-    std::vector<std::unique_ptr<OGRPolygon>> gone;
-    {
-      auto rm = std::make_unique<OGRMultiPolygon>();
-      for (const auto& p : outp) rm->addGeometry(p.get());
-      GeomPtr g_all = checked(W0->Difference(rm.get()), "difference input - result");
-      polygons_of(g_all.get(), gone);
-    }
-    // The places of the water bodies already listed as removed (collected once: the repairs list
-    // holds thousands of entries, the removed pieces are thousands too).
-    std::vector<Point2> listed_at;
-    for (const auto& r : res.repairs)
-      if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
-    for (const auto& g : gone) {
-      const double a = g->get_Area();
-      double per = g->getExteriorRing()->get_Length();
-      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
-      if (!(a > 0) || 2 * a <= hair * per) continue;
-      bool listed = false;  // a cut-off water body already listed
-      OGREnvelope ge;
-      g->getEnvelope(&ge);
-      for (const Point2 w : listed_at) {
-        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
-        OGRPoint pt(w.x, w.y);
-        if (g->Intersects(&pt)) { listed = true; break; }
-      }
-      if (listed) continue;
-      res.closed_area += a;
-      if (a < o.list_area) {
-        ++res.corner_pieces;
-        continue;
-      }
-      ++res.closed;
-      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
-                             "dead-end water narrower than the resolution (" + num(o.close_width) +
-                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
-                             -1});
-    }
   }
-  lap("removed");
+  lap("removed (start)");
   // Input vertices (exact coordinates), for the tiny-edge clean-up below.
   std::unordered_set<std::uint64_t> input_vertex;
   if (o.close_width > 0) {
@@ -2024,6 +2063,48 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
   }
+  if (o.close_width > 0) {
+    const double hair = 0.05 * o.close_width;
+    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
+    // than the snapping distance are rounding, not features.
+    (void)dropped;
+    std::vector<std::unique_ptr<OGRPolygon>> gone;
+    {
+      GeomPtr g_all = gone_job.get();
+      polygons_of(g_all.get(), gone);
+    }
+    // The places of the water bodies already listed as removed (collected once: the repairs list
+    // holds thousands of entries, the removed pieces are thousands too).
+    std::vector<Point2> listed_at;
+    for (const auto& r : res.repairs)
+      if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
+    for (const auto& g : gone) {
+      const double a = g->get_Area();
+      double per = g->getExteriorRing()->get_Length();
+      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
+      if (!(a > 0) || 2 * a <= hair * per) continue;
+      bool listed = false;  // a cut-off water body already listed
+      OGREnvelope ge;
+      g->getEnvelope(&ge);
+      for (const Point2 w : listed_at) {
+        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
+        OGRPoint pt(w.x, w.y);
+        if (g->Intersects(&pt)) { listed = true; break; }
+      }
+      if (listed) continue;
+      res.closed_area += a;
+      if (a < o.list_area) {
+        ++res.corner_pieces;
+        continue;
+      }
+      ++res.closed;
+      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
+                             "dead-end water narrower than the resolution (" + num(o.close_width) +
+                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
+                             -1});
+    }
+  }
+  lap("removed");
   res.output_pieces = res.polygons.size();
   if (const char* dbg = std::getenv("FDR_DEBUG_FILTER")) {  // developer aid: WKT of the result
     if (FILE* fp = std::fopen(dbg, "w")) {
