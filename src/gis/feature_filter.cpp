@@ -1305,8 +1305,6 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   if (We->IsEmpty()) return GeomPtr(W.clone());
   GeomPtr C = Wo->IsEmpty() ? GeomPtr(We->clone()) : checked(We->Difference(Wo.get()), "thin water core");
   if (C->IsEmpty()) return GeomPtr(W.clone());
-  // The grown pieces are new coast: their arcs need not be finer than the resampling keeps
-  // (a tenth of the move; every arc point would otherwise go through the openings below).
   lap("core");
   {  // bits of the core in right-angled water corners (about 0.3 rw - s across) are no channels;
      // those of acute corners are larger and kept: the corner is blunted, as a wedge of water
@@ -1318,6 +1316,8 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
     if (big.size() < cps.size()) C = multi(big);
     if (C->IsEmpty()) return GeomPtr(W.clone());
   }
+  // The grown pieces are new coast: their arcs need not be finer than the resampling keeps
+  // (a tenth of the move; every arc point would otherwise go through the openings below).
   C = checked(C->SimplifyPreserveTopology(0.1 * (rw - s)), "thin water core simplified");
   GeomPtr D = offset(*C, rw - s, 2);
   D = checked(D->SimplifyPreserveTopology(0.1 * (rw - s)), "widened water simplified");
@@ -1383,8 +1383,8 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
     const double a = d->get_Area();
     if (a >= o.list_area)
       res.repairs.push_back({"water_widened", inside_point(d.get()), a,
-                             "water narrower than " + num(2 * rw) + " m was widened (banks moved by up to " +
-                                 num(rw - s) + " m into the land); the widened part covers " + num(a) + " m^2",
+                             "water narrower than " + num(2 * rw) + " m was widened (banks moved by about " +
+                                 num(rw - 2 * s) + " m into the land); the widened part covers " + num(a) + " m^2",
                              -1});
     pieces.push_back(std::move(d));
   }
