@@ -1272,6 +1272,41 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
   return GeomPtr(multi(out).release());
 }
 
+// How many of a set of polygons a piece meets, the piece grown by `grow` (the count stops at
+// two): the openings' pieces are judged by it (a piece and O1 share boundary points only up to
+// GEOS rounding) and so are the widened pieces (land thinner than the close width between them
+// and another water body would be closed all the same). With `alone_ungrown`, a set of one
+// polygon is tested against the piece itself (no buffer per piece).
+class Meets {
+ public:
+  Meets(const std::vector<std::unique_ptr<OGRPolygon>>& ps, double grow, bool alone_ungrown = false)
+      : ps_(ps), env_(ps.size()), prep_(ps.size()), grow_(grow), alone_ungrown_(alone_ungrown) {
+    for (std::size_t i = 0; i < ps.size(); ++i) ps[i]->getEnvelope(&env_[i]);
+  }
+  std::size_t count(const OGRPolygon& piece) {
+    OGREnvelope e;
+    piece.getEnvelope(&e);
+    e.MinX -= grow_; e.MinY -= grow_; e.MaxX += grow_; e.MaxY += grow_;
+    const bool ungrown = alone_ungrown_ && ps_.size() == 1;
+    std::size_t n = 0;
+    GeomPtr grown;
+    for (std::size_t i = 0; i < ps_.size(); ++i) {
+      if (!env_[i].Intersects(e)) continue;
+      if (!ungrown && !grown) grown = checked(piece.Buffer(grow_, 1), "buffer of a piece");
+      if (!prep_[i]) prep_[i] = std::make_unique<Prepared>(ps_[i].get());
+      if (prep_[i]->intersects(ungrown ? static_cast<const OGRGeometry*>(&piece) : grown.get()) && ++n >= 2) break;
+    }
+    return n;
+  }
+
+ private:
+  const std::vector<std::unique_ptr<OGRPolygon>>& ps_;
+  std::vector<OGREnvelope> env_;
+  std::vector<std::unique_ptr<Prepared>> prep_;
+  double grow_;
+  bool alone_ungrown_;
+};
+
 // Thin water widened (README, "Narrow water widened"). The parts of W no disk of radius rw fits
 // in, T = W - open(W, rw), that are at least 2 s wide (their core C = (W - s) - open(W, rw), a
 // strip w - 2 s wide along a channel w wide) are grown by rw - s: the channel becomes
@@ -1352,28 +1387,17 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   std::vector<std::unique_ptr<OGRPolygon>> wps, dps;
   polygons_of(&W, wps);
   polygons_of(D.get(), dps);
-  std::vector<OGREnvelope> wenv(wps.size());
-  for (std::size_t i = 0; i < wps.size(); ++i) wps[i]->getEnvelope(&wenv[i]);
-  std::vector<std::unique_ptr<Prepared>> prep(wps.size());
   std::vector<std::unique_ptr<OGRPolygon>> pieces;
   for (auto& p : wps) pieces.emplace_back(p->clone());
-  const double margin = 2 * s;  // the close width
+  // Tested grown by the close width: land thinner than that between a piece and another water
+  // body would be removed by the closing below and join them all the same.
+  Meets bodies(wps, 2 * s, true);
   for (auto& d : dps) {
     if (!(d->get_Area() > 0)) continue;
-    // Tested grown by the close width: land thinner than that between it and another water
-    // body would be removed by the closing below and join them all the same.
-    OGREnvelope e;
-    d->getEnvelope(&e);
-    e.MinX -= margin; e.MinY -= margin; e.MaxX += margin; e.MaxY += margin;
-    std::size_t meets = 0;
-    GeomPtr dg;
-    for (std::size_t i = 0; i < wps.size() && meets < 2; ++i) {
-      if (!wenv[i].Intersects(e)) continue;
-      if (wps.size() > 1 && !dg) dg = checked(d->Buffer(margin, 1), "buffer of a widened piece");
-      if (!prep[i]) prep[i] = std::make_unique<Prepared>(wps[i].get());
-      if (prep[i]->intersects(wps.size() > 1 ? dg.get() : d.get())) ++meets;
-    }
+    const std::size_t meets = bodies.count(*d);
     if (meets != 1) {  // would join two water bodies (or meets none: cannot happen)
+      OGREnvelope e;
+      d->getEnvelope(&e);
       if (std::getenv("FDR_DEBUG_FILTER"))
         std::fprintf(stderr, "widen: piece of %.0f m^2 near %.1f %.1f meets %zu water bodies: not used\n",
                      d->get_Area(), 0.5 * (e.MinX + e.MaxX), 0.5 * (e.MinY + e.MaxY), meets);
@@ -1667,27 +1691,15 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     std::vector<std::unique_ptr<OGRPolygon>> pieces;
     polygons_of(rest.get(), pieces);
     lap("diff");
-    std::vector<OGREnvelope> cenv(comps.size());
-    for (std::size_t i = 0; i < comps.size(); ++i) comps[i]->getEnvelope(&cenv[i]);
-    std::vector<std::unique_ptr<Prepared>> prep(comps.size());
     std::vector<std::unique_ptr<OGRPolygon>> keep;
     for (auto& c : comps) keep.emplace_back(c->clone());
     // Pieces are tested against slightly grown copies: a piece and O1 share boundary points up
     // to GEOS rounding.
     const double grow = std::max(1e-6 * o.close_width, 1e-9);
+    Meets o1_parts(comps, grow);
     for (auto& piece : pieces) {
       if (!(piece->get_Area() > 0)) continue;
-      OGREnvelope e;
-      piece->getEnvelope(&e);
-      e.MinX -= grow; e.MinY -= grow; e.MaxX += grow; e.MaxY += grow;
-      std::size_t touching = 0;
-      GeomPtr grown;
-      for (std::size_t i = 0; i < comps.size(); ++i) {
-        if (!cenv[i].Intersects(e)) continue;
-        if (!grown) grown = checked(piece->Buffer(grow, 1), "buffer");
-        if (!prep[i]) prep[i] = std::make_unique<Prepared>(comps[i].get());
-        if (prep[i]->intersects(grown.get()) && ++touching >= 2) break;
-      }
+      const std::size_t touching = o1_parts.count(*piece);
       if (touching == 1) {  // dead end: inlet, gap, corner or sliver (closed)
         dropped.push_back(std::move(piece));
         continue;
