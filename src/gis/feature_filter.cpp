@@ -1040,6 +1040,25 @@ class CoastRestorer {
 
 }  // namespace
 
+// Step timings on stderr when FDR_DEBUG_FILTER is set (developer aid): lap("x") prints the time
+// since the previous lap, prefixed.
+class DebugLaps {
+ public:
+  explicit DebugLaps(const char* prefix) : on_(std::getenv("FDR_DEBUG_FILTER") != nullptr), prefix_(prefix) {}
+  bool on() const { return on_; }
+  void operator()(const char* what) {
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "%s %s %.3f s\n", prefix_, what, std::chrono::duration<double>(now - t_).count());
+    t_ = now;
+  }
+
+ private:
+  bool on_;
+  const char* prefix_;
+  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+};
+
 // Closing of W at close_width/2 (land thinner than close_width becomes water), except for tips
 // of land (the thin end of a needle, a spit or a cape), which stay land unless other land is
 // near their end. Why keep them: the cut leaves a blunt end exactly close_width wide, two
@@ -1058,14 +1077,7 @@ class CoastRestorer {
 // *land_cut: the area of thin land that became water.
 GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, FeatureFilterResult& res,
                           double* land_cut) {
-  const bool dbg = std::getenv("FDR_DEBUG_FILTER") != nullptr;
-  auto t0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    if (!dbg) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "  closing %s %.3f s\n", what, std::chrono::duration<double>(now - t0).count());
-    t0 = now;
-  };
+  DebugLaps lap("  closing");
   const double clear = o.tip_clearance;
   const double rc = 0.5 * o.close_width;
   const double hair = std::max(1e-6 * o.close_width, 1e-9);
@@ -1321,14 +1333,8 @@ class Meets {
 // simplified (they are new coast; the resampler's tolerance is far coarser).
 GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const FeatureFilterOptions& o,
                          FeatureFilterResult& res) {
-  const bool dbg = std::getenv("FDR_DEBUG_FILTER") != nullptr;
-  auto t0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    if (!dbg) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "  widen %s %.3f s\n", what, std::chrono::duration<double>(now - t0).count());
-    t0 = now;
-  };
+  DebugLaps lap("  widen");
+  const bool dbg = lap.on();
   // The opening and the erosion are independent: one on each core (as the openings below).
   auto we_job = std::async(std::launch::async, [&W, s] {
     GdalQuiet q2;
@@ -1443,14 +1449,8 @@ Polygons offset_polygons(const Polygons& input, double d) {
 
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& o) {
   GdalQuiet quiet;
-  const bool dbg_time = std::getenv("FDR_DEBUG_FILTER") != nullptr;
-  auto t_last = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) {
-    if (!dbg_time) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "filter %s %.3f s\n", what, std::chrono::duration<double>(now - t_last).count());
-    t_last = now;
-  };
+  DebugLaps lap("filter");
+  const bool dbg_time = lap.on();
   FeatureFilterResult res;
   res.close_width = o.close_width;
   if (dbg_time) {
