@@ -168,6 +168,22 @@ std::vector<std::unique_ptr<OGRLinearRing>> attach_holes(std::vector<std::unique
   return left;
 }
 
+// ps with the holes put back (attach_holes); a hole no polygon takes (cannot happen: the holes
+// touch nothing) is left to the overlay. ps is emptied.
+GeomPtr with_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, std::vector<std::unique_ptr<OGRLinearRing>>& holes,
+                   const char* what) {
+  auto left = attach_holes(ps, holes);
+  GeomPtr m = multi(ps);
+  if (left.empty()) return m;
+  auto hm = std::make_unique<OGRMultiPolygon>();
+  for (auto& h : left) {
+    auto hp = std::make_unique<OGRPolygon>();
+    hp->addRingDirectly(h.release());
+    hm->addGeometryDirectly(hp.release());
+  }
+  return checked(m->Difference(hm.get()), what);
+}
+
 // The union of polygon pieces, overlaid only where they meet. Why: GEOS's cascaded union of a
 // polygon with a thousand holes and fifty small pieces overlays the big one at every level of
 // its tree (Gulf of Maine: 0.5 s); most pieces meet nothing, and the few that meet the big one
@@ -240,18 +256,8 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
     GeomPtr u = checked(ps[big]->Union(ru.get()), what);
     std::vector<std::unique_ptr<OGRPolygon>> ups;
     polygons_of(u.get(), ups);
-    auto left = attach_holes(ups, far);
-    if (!left.empty()) {  // cannot happen (the holes touch nothing); the overlay decides then
-      auto hm = std::make_unique<OGRMultiPolygon>();
-      for (auto& h : left) {
-        auto hp = std::make_unique<OGRPolygon>();
-        hp->addRingDirectly(h.release());
-        hm->addGeometryDirectly(hp.release());
-      }
-      GeomPtr d = checked(multi(ups)->Difference(hm.get()), what);
-      polygons_of(d.get(), ups);
-    }
-    for (auto& q : ups) out.push_back(std::move(q));
+    GeomPtr uh = with_holes(ups, far, what);
+    polygons_of(uh.get(), out);
   }
   ps.clear();
   return GeomPtr(multi(out).release());
@@ -330,18 +336,7 @@ GeomPtr offset(const OGRGeometry& g, double r, int quad_segs = kQuadSegs) {
         if (!free_holes.empty()) {
           std::vector<std::unique_ptr<OGRPolygon>> bps;
           polygons_of(b.get(), bps);
-          auto left = attach_holes(bps, free_holes);
-          GeomPtr bm = multi(bps);
-          if (!left.empty()) {  // cannot happen (they lie inside b); the overlay decides then
-            auto hm = std::make_unique<OGRMultiPolygon>();
-            for (auto& h : left) {
-              auto q = std::make_unique<OGRPolygon>();
-              q->addRingDirectly(h.release());
-              hm->addGeometryDirectly(q.release());
-            }
-            bm = checked(bm->Difference(hm.get()), "outer ring minus holes");
-          }
-          b = std::move(bm);
+          b = with_holes(bps, free_holes, "outer ring minus holes");
         }
       }
     }
