@@ -457,3 +457,59 @@ TEST(FeatureFilter, CoastRestoreIsDeterministic) {
 
 }  // namespace
 }  // namespace fdr::gis
+
+namespace fdr::gis {
+namespace {
+
+// A coast with everything the openings' difference sees: inlets from 4 to 70 m wide, channels
+// between two basins, islands in channels and next to inlets, an island inside a closed inlet.
+Polygons messy_coast() {
+  Rings outer;
+  double x = 0;
+  std::uint32_t s = 12345;
+  auto rnd = [&s] { s = s * 1664525u + 1013904223u; return (s >> 8) / 16777216.0; };
+  outer.emplace_back();
+  auto& o = outer[0];
+  o.push_back({0, 0});
+  while (x < 9000) {  // the south coast: inlets going south
+    const double w = 4 + 66 * rnd(), len = 40 + 300 * rnd();
+    o.push_back({x + 100, 0});
+    o.push_back({x + 100, -len});
+    o.push_back({x + 100 + w, -len});
+    o.push_back({x + 100 + w, 0});
+    x += 100 + w + 80 * rnd();
+  }
+  o.push_back({10000, 0});
+  o.push_back({10000, 4000});
+  o.push_back({0, 4000});
+  Polygons in{{o}};
+  for (int i = 0; i < 40; ++i) {  // islands: squares 10-60 m, some within a few metres of the coast
+    const double cx = 150 + 9500 * rnd(), cy = (i % 3 == 0 ? 8 + 30 * rnd() : 50 + 3800 * rnd()), h = 5 + 25 * rnd();
+    in[0].push_back({{cx - h, cy - h}, {cx - h, cy + h}, {cx + h, cy + h}, {cx + h, cy - h}});
+  }
+  return in;
+}
+
+TEST(FeatureFilter, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
+  // The pieces between the two openings come from the faces of their non-shared segments
+  // (difference_by_faces); FDR_DIFF_OVERLAY computes them with GEOS's overlay of the whole.
+  for (const Polygons& in : {messy_coast(), wavy_basin_with_inlet(), two_basins(15), two_basins(5)}) {
+    const FeatureFilterResult a = filter_features(in, opts(100));
+    FeatureFilterResult b;
+    {
+      ScopedEnv overlay("FDR_DIFF_OVERLAY", "1");
+      b = filter_features(in, opts(100));
+    }
+    EXPECT_EQ(a.polygons, b.polygons);
+    ASSERT_EQ(a.repairs.size(), b.repairs.size());
+    for (std::size_t i = 0; i < a.repairs.size(); ++i) {
+      EXPECT_EQ(a.repairs[i].kind, b.repairs[i].kind);
+      EXPECT_EQ(a.repairs[i].where, b.repairs[i].where);
+      EXPECT_EQ(a.repairs[i].size, b.repairs[i].size);
+    }
+    EXPECT_EQ(a.channels_kept, b.channels_kept);
+  }
+}
+
+}  // namespace
+}  // namespace fdr::gis
