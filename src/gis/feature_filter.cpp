@@ -2030,7 +2030,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       for (const auto& p : outp) rm->addGeometry(p.get());
       auto job = [w0 = GeomPtr(W0->clone()), rm = std::move(rm)]() mutable {
         GdalQuiet q2;
-        return checked(w0->Difference(rm.get()), "difference input - result");
+        return std::getenv("FDR_DIFF_OVERLAY") ? checked(w0->Difference(rm.get()), "difference input - result")
+                                               : difference_by_faces(w0.get(), rm.get(), "difference input - result");
       };
       gone_job = std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(job));
     }
