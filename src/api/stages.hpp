@@ -65,6 +65,8 @@ struct RunFigures {
   std::uint64_t segment_splits = 0, circumcenters = 0;  // Steiner points
   std::uint64_t angle_exempt = 0;          // RefineOutcome::angle_exempt
   double alpha = -1;                       // RefineOutcome::alpha
+  double conforming_D = std::numeric_limits<double>::quiet_NaN();  // RefineStats::conforming_D
+  Point2 conforming_D_at{0, 0};
 };
 
 // Measure stage (core): f at the vertices when the mesh does not carry it, then the quality

@@ -222,6 +222,8 @@ Triangulator& Triangulator::refine(SizingPtr world_f) {
   seg_splits_ += r.stats.segment_splits;
   circumcenters_ += r.stats.circumcenters;
   angle_exempt_ = r.angle_exempt;
+  conforming_D_ = r.stats.conforming_D;  // of this refinement's f
+  conforming_D_at_ = r.stats.conforming_D_at;
   return *this;
 }
 
@@ -236,6 +238,10 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   ri.predicate_filtered = predicates::counters().filtered;
   ri.predicate_exact = predicates::counters().exact;
   ri.exempt_small_angle_triangles = fig.angle_exempt;
+  if (std::isfinite(fig.conforming_D)) {
+    ri.conforming_D = fig.conforming_D;
+    ri.conforming_D_at = fig.conforming_D_at;
+  }
   ri.steiner_segment = fig.segment_splits;
   ri.steiner_interior = fig.circumcenters;
   ri.input_file = opt.source;
@@ -263,6 +269,8 @@ Mesh Triangulator::mesh() const {
   fig.circumcenters = circumcenters_;
   fig.angle_exempt = angle_exempt_;
   fig.alpha = alpha_;
+  fig.conforming_D = conforming_D_;
+  fig.conforming_D_at = conforming_D_at_;
   out.report = measure_mesh(out.view, f_.get(), opt_, fig);
   out.report.repairs = repairs_;
   out.report.run.peak_rss_mb = quality::peak_rss_mb_value();

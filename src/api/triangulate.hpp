@@ -11,6 +11,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -116,6 +117,8 @@ class Triangulator {
   std::optional<double> cdt_s_, refine_s_;
   std::vector<quality::QualityReport::Repair> repairs_;  // constraint fixes (world coordinates)
   std::uint64_t seg_splits_ = 0, circumcenters_ = 0, angle_exempt_ = 0;
+  double conforming_D_ = std::numeric_limits<double>::quiet_NaN();  // RefineStats::conforming_D
+  Point2 conforming_D_at_{0, 0};
 };
 
 // The JSON quality report (the document written by --report) as a string.

@@ -120,6 +120,8 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   rf.circumcenters = fig.refine.stats.circumcenters;
   rf.angle_exempt = fig.refine.angle_exempt;
   rf.alpha = fig.refine.alpha;
+  rf.conforming_D = fig.refine.stats.conforming_D;
+  rf.conforming_D_at = fig.refine.stats.conforming_D_at;
   // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
   // writers then never evaluate f, which lets them run concurrently).
   // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,

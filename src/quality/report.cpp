@@ -244,7 +244,7 @@ void Histogram::add(double v) {
   ++counts[i];
 }
 
-Guarantees compute_guarantees(double alpha, double bound_B) {
+Guarantees compute_guarantees(double alpha, double bound_B, std::optional<double> D) {
   Guarantees g;
   if (!std::isfinite(alpha) || alpha < 0) {
     g.note = "no guarantee: the Lipschitz constant alpha of f is unknown";
@@ -264,13 +264,29 @@ Guarantees compute_guarantees(double alpha, double bound_B) {
   }
   const double s = 2.0 * std::sqrt(2.0) + 3.0 * ab;
   g.valid = true;
-  g.beta = bound_B / s;
-  g.R_over_l_max = s / (2.0 * (1.0 - ab));
-  g.min_angle_deg = std::asin((1.0 - ab) / s) * kDeg;
+  g.beta_B = bound_B / s;
+  g.beta = g.beta_B;
+  // Section 4: beta = min(B/(2 sqrt(2) + 3 alpha B), D/(2 + alpha D)), D from nn_Mc >= D f. An
+  // input with features finer than f (two coast vertices closer than f, a thin spit between two
+  // waters) has a small D, and the bounds below are then the weaker ones the paper proves for it.
+  if (D && *D >= 0 && std::isfinite(*D)) {
+    g.beta_D = *D / (2.0 + alpha * *D);
+    g.beta = std::min(g.beta_B, *g.beta_D);
+  }
+  // Theorem 4.3: R/l <= B / (2 beta (1 - alpha B)); the smallest angle theta has sin(theta) = l/(2R)
+  // at the shortest edge.
+  g.R_over_l_max = g.beta > 0 ? bound_B / (2.0 * g.beta * (1.0 - ab)) : std::numeric_limits<double>::infinity();
+  g.min_angle_deg = g.beta > 0 ? std::asin(std::min(1.0, 0.5 / g.R_over_l_max)) * kDeg : 0.0;
   g.nn_over_f_min = 2.0 * g.beta / (1.0 + alpha * g.beta);
   g.el_over_f_max = 2.0 * bound_B / (1.0 + ab);
   g.el_over_f_max_corrected = 2.0 * bound_B / (1.0 - ab);
-  g.note = "2D, beta = B/(2*sqrt(2)+3*alpha*B), assuming beta <= D/(2+alpha*D) (Section 4)";
+  if (!g.beta_D)
+    g.note = "2D, beta = B/(2*sqrt(2)+3*alpha*B), assuming beta <= D/(2+alpha*D) (Section 4; D unknown)";
+  else if (g.beta < g.beta_B)
+    g.note = "2D, beta = D/(2+alpha*D) < B/(2*sqrt(2)+3*alpha*B): the conforming mesh has vertices nearer than f "
+             "(input features finer than the spacing; D below)";
+  else
+    g.note = "2D, beta = B/(2*sqrt(2)+3*alpha*B) <= D/(2+alpha*D) (Section 4; D of the conforming mesh below)";
   return g;
 }
 
@@ -687,7 +703,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (!(alpha >= 0) && f != nullptr && f->lipschitz() >= 0) alpha = f->lipschitz();
   r.alpha = alpha;
   r.spacing = f ? f->describe() : (!run.spacing.empty() ? run.spacing : std::string("none"));
-  r.guarantees = compute_guarantees(alpha, bound_B);
+  r.guarantees = compute_guarantees(alpha, bound_B, run.conforming_D);
   r.run = run;
 
   const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
@@ -1007,6 +1023,11 @@ void write_json(const QualityReport& r, std::ostream& out) {
   const Guarantees& g = r.guarantees;
   auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
   j["guarantees"] = {{"beta", gv(g.beta)},
+                     {"beta_B", gv(g.beta_B)},
+                     {"beta_D", g.valid && g.beta_D ? num(*g.beta_D) : Json(nullptr)},
+                     {"conforming_D", r.run.conforming_D ? num(*r.run.conforming_D) : Json(nullptr)},
+                     {"conforming_D_at", r.run.conforming_D ? Json::array({num(r.run.conforming_D_at.x), num(r.run.conforming_D_at.y)})
+                                                            : Json(nullptr)},
                      {"R_over_l_max", gv(g.R_over_l_max)},
                      {"min_angle_deg", gv(g.min_angle_deg)},
                      {"nn_over_f_min", gv(g.nn_over_f_min)},
@@ -1150,6 +1171,12 @@ void write_text(const QualityReport& r, std::ostream& out) {
       << ", B = " << fmt(r.bound_B) << ")\n";
   if (!g.valid) out << "    " << g.note << '\n';
   else out << "    beta = " << fmt(g.beta, "%.6f") << "; " << g.note << '\n';
+  if (g.valid && r.run.conforming_D) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "    D = min nn/f of the conforming mesh = %.4g at (%.1f, %.1f); beta_B = %.6f, beta_D = %.6f\n",
+                  *r.run.conforming_D, r.run.conforming_D_at.x, r.run.conforming_D_at.y, g.beta_B, g.beta_D.value_or(0));
+    out << buf;
+  }
   const auto checks = theorem_checks(r);
   if (!checks.empty()) {
     char buf[160];

@@ -25,6 +25,10 @@ struct RunInfo {
   std::string input_file;                                   // input path as given by the user
   std::string spacing;                                      // spacing description (SizingField::describe())
   std::optional<double> min_angle_option_deg;               // the --min-angle option, if any
+  // D of the conforming mesh M_c (refine::RefineStats::conforming_D): nn_Mc >= D f, the assumption
+  // that bounds beta (paper, Section 4); unset when unknown (a mesh read from a file).
+  std::optional<double> conforming_D;
+  Point2 conforming_D_at{0, 0};                             // where it is attained (world)
   std::uint64_t steiner_total() const { return steiner_segment + steiner_interior; }
 };
 
@@ -40,7 +44,9 @@ struct Histogram {
 struct Guarantees {
   bool valid = false;
   std::string note;            // why not valid, or the assumptions behind the numbers
-  double beta = 0;             // B / (2*sqrt(2) + 3*alpha*B)
+  double beta = 0;             // min(beta_B, beta_D): the protection radius factor of Section 4
+  double beta_B = 0;           // B / (2*sqrt(2) + 3*alpha*B)
+  std::optional<double> beta_D;  // D / (2 + alpha*D) when D of the conforming mesh is known
   double R_over_l_max = 0;     // Theorem 4.3 with that beta: (2*sqrt(2)+3aB) / (2(1-aB))
   double min_angle_deg = 0;    // asin((1-aB) / (2*sqrt(2)+3aB))
   double nn_over_f_min = 0;    // Theorem 4.4: 2*beta / (1 + alpha*beta)
@@ -50,7 +56,8 @@ struct Guarantees {
   // printed bound but stay within this one.
   double el_over_f_max_corrected = 0;
 };
-Guarantees compute_guarantees(double alpha, double bound_B);
+// D: the constant of nn_Mc >= D f (RunInfo::conforming_D); without it beta = beta_B is assumed.
+Guarantees compute_guarantees(double alpha, double bound_B, std::optional<double> conforming_D = std::nullopt);
 
 struct QualityReport {
   std::size_t vertices = 0;

@@ -3,6 +3,7 @@
 // order when descending to them), encroached subsegments first, with concentric-shell segment splitting.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 #include "base/progress.hpp"
@@ -31,6 +32,13 @@ struct RefineStats {
   std::uint64_t exempt_small_angle = 0;    // angle-bad triangles left alone: small input angle
   std::uint64_t stuck = 0;                 // bad triangles whose circumcenter could not be placed
   std::uint64_t triangles_tested = 0;
+  // The Delaunay-refinement-conforming mesh M_c (paper, Section 2: the first mesh without an
+  // encroached subsegment, before any circumcenter is inserted): D = min over its vertices v of
+  // nn(v) / f(v), the constant of the theorems' assumption nn_Mc >= D f, and where it is attained
+  // (world coordinates); NaN when refinement never got there.
+  double conforming_D = std::numeric_limits<double>::quiet_NaN();
+  Point2 conforming_D_at{0, 0};
+  std::uint64_t conforming_vertices = 0;
   std::uint64_t steiner() const { return segment_splits + circumcenters; }
 };
 
@@ -77,6 +85,7 @@ class Refiner {
   Index segment_of_vertex(Index v) const;
   Point2 split_point(Index a, Index b, Index* apex, int* shell_exp) const;
   bool may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const;
+  void record_conforming();
 
   mesh::Triangulation& tri_;
   const sizing::SizingField& f_;
@@ -88,6 +97,7 @@ class Refiner {
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;
   bool sort_next_ = false;
+  bool conforming_done_ = false;
   std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
   Point2 zlo_{0, 0};
   double zscale_ = 0;

@@ -77,6 +77,16 @@ TEST(ModelReadyCli, ChesapeakeReportAndQualityCommand) {
   EXPECT_EQ(rows, 6);
   EXPECT_EQ(g["valid"].get<bool>(), all);
   EXPECT_TRUE(g["fdr_R_over_f_max"]["holds"].get<bool>());  // the refiner's invariant
+  // beta from the conforming mesh's D (paper, Section 4): the table holds on a real coast (issue
+  // 11), with D measured where the input is finer than f and beta = min(beta_B, beta_D).
+  ASSERT_TRUE(g["conforming_D"].is_number());
+  const double D = g["conforming_D"].get<double>();
+  EXPECT_GT(D, 0.0);
+  EXPECT_EQ(g["conforming_D_at"].size(), 2u);
+  EXPECT_NEAR(g["beta"].get<double>(), std::min(g["beta_B"].get<double>(), g["beta_D"].get<double>()), 1e-12);
+  EXPECT_TRUE(g["valid"].get<bool>());
+  EXPECT_TRUE(g["theorem_4_4_nn_over_f_min"]["holds"].get<bool>());
+  EXPECT_TRUE(g["theorem_4_3_R_over_l_max"]["holds"].get<bool>());
 
   // `fdrmesh quality` on the written 2DM: mesh-only figures agree with the mesher's.
   ASSERT_EQ(run("quality " + (dir / "c.2dm").string() + " -q --report " + (dir / "q.json").string()), 0);

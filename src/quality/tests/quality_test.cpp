@@ -266,6 +266,31 @@ TEST(Guarantees, ConstantSpacingGivesSqrt2) {
   EXPECT_NEAR(g.el_over_f_max, 1.4, 1e-15);
 }
 
+// Section 4: beta = min(B / (2 sqrt 2 + 3 alpha B), D / (2 + alpha D)); the theorems' bounds follow
+// from that beta. A large D leaves the B-limited values; a small one weakens them.
+TEST(Guarantees, ConformingMeshDLimitsBeta) {
+  const auto g0 = compute_guarantees(0.1, 1.0);
+  const auto big = compute_guarantees(0.1, 1.0, 5.0);
+  ASSERT_TRUE(big.valid);
+  EXPECT_EQ(big.beta, g0.beta);
+  EXPECT_EQ(big.R_over_l_max, g0.R_over_l_max);
+  EXPECT_NEAR(*big.beta_D, 5.0 / 2.5, 1e-15);
+  const auto g = compute_guarantees(0.1, 1.0, 0.02);
+  ASSERT_TRUE(g.valid);
+  const double beta = 0.02 / (2 + 0.1 * 0.02);
+  EXPECT_NEAR(g.beta, beta, 1e-15);
+  EXPECT_NEAR(g.beta_B, g0.beta, 1e-15);
+  EXPECT_NEAR(g.R_over_l_max, 1.0 / (2 * beta * 0.9), 1e-9);
+  EXPECT_NEAR(g.nn_over_f_min, 2 * beta / (1 + 0.1 * beta), 1e-15);
+  EXPECT_NEAR(1.0 / (2.0 * std::sin(g.min_angle_deg * M_PI / 180)), g.R_over_l_max, 1e-9);
+  EXPECT_EQ(g.el_over_f_max, g0.el_over_f_max);  // Theorem 4.5 does not use beta
+  EXPECT_NE(g.note.find("D/(2+alpha*D) <"), std::string::npos) << g.note;
+  const auto z = compute_guarantees(0.1, 1.0, 0.0);  // two vertices at one point
+  EXPECT_TRUE(z.valid);
+  EXPECT_EQ(z.nn_over_f_min, 0.0);
+  EXPECT_TRUE(std::isinf(z.R_over_l_max));
+}
+
 TEST(Guarantees, InvalidWhenAlphaBAtLeastOne) {
   for (auto [a, b] : {std::pair{0.5, 2.0}, std::pair{1.0, 1.5}}) {
     const auto g = compute_guarantees(a, b);

@@ -226,3 +226,34 @@ TEST(Refine, ScaledAndTranslatedCopiesHoldInvariants) {
     }
   }
 }
+
+// D of the conforming mesh M_c (paper, Section 2): a vertex 0.3 from the bottom side encroaches
+// it, the side is split at (5, 0), and then nothing is encroached: M_c is the input plus that
+// midpoint, D = 0.3 / f. Theorem 4.4 with beta = min(B / (2 sqrt 2), D / 2) (alpha = 0) then
+// bounds the final mesh: nn >= 2 beta f.
+TEST(Refine, ConformingMeshConstantD) {
+  pslg::Pslg p;
+  p.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {5, 0.3}};
+  for (Index i = 0; i < 4; ++i) p.segments.push_back({i, static_cast<Index>((i + 1) % 4)});
+  FnField f([](Point2) { return 1.0; });
+  refine::RefineStats st;
+  auto T = refine_pslg(p, f, {}, &st);
+  expect_fdr_invariants(T, f, 1, 100, "D");
+  EXPECT_EQ(st.conforming_vertices, 6u);
+  EXPECT_NEAR(st.conforming_D, 0.3, 1e-12);
+  EXPECT_NEAR(st.conforming_D_at.x, 5.0, 1e-12);
+  EXPECT_NEAR(st.conforming_D_at.y, 0.0, 0.3 + 1e-12);
+  double nn = 1e300;
+  for (std::size_t a = 0; a < T.pts.size(); ++a)
+    for (std::size_t b = a + 1; b < T.pts.size(); ++b)
+      if (T.vkind[a] != mesh::VertexKind::kSuper && T.vkind[b] != mesh::VertexKind::kSuper && T.vhe[a] != kNoId &&
+          T.vhe[b] != kNoId)
+        nn = std::min(nn, dist(T.pts[a], T.pts[b]));
+  EXPECT_GE(nn, std::min(1 / std::sqrt(2.0), 0.3) - 1e-12);
+  // Without close input vertices D is that of the square's corners and midpoints (f = 1: 5).
+  pslg::Pslg q = p;
+  q.points.pop_back();
+  auto T2 = refine_pslg(q, f, {}, &st);
+  EXPECT_EQ(st.conforming_vertices, 4u);
+  EXPECT_NEAR(st.conforming_D, 10.0, 1e-12);
+}
