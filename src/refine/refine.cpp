@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <sstream>
 #include "base/error.hpp"
+#include "base/kd_tree.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
 
@@ -472,76 +473,34 @@ bool Refiner::step() {
 }
 
 // D of the conforming mesh (see RefineStats): the exact nearest other vertex of every vertex
-// (all vertices, across constraints and land too, as the paper's nn), by a uniform grid whose
-// rings are searched until no nearer vertex can lie beyond them.
+// (all vertices, across constraints and land too, as the paper's nn), by a 2-d tree (clustered
+// inputs, such as features 1e-12 of the domain, defeat a uniform grid).
 void Refiner::record_conforming() {
   conforming_done_ = true;
   const Triangulation& T = tri_;
-  std::vector<Index> ids;
-  Box2 box;
+  std::vector<Point2> pts;
   for (std::size_t v = 0; v < T.pts.size(); ++v)
-    if (T.vkind[v] != VertexKind::kSuper && T.vhe[v] != kNoId) {
-      ids.push_back(static_cast<Index>(v));
-      box.add(T.pts[v]);
-    }
-  stats_.conforming_vertices = ids.size();
-  if (ids.size() < 2) return;
-  const double n = static_cast<double>(ids.size());
-  double cs = std::sqrt(std::max(box.width() * box.height(), 1e-300) / n);
-  cs = std::max({cs, std::max(box.width(), box.height()) / std::sqrt(4 * n), 1e-300});
-  const long nx = std::min(static_cast<long>(box.width() / cs) + 1, 1L << 15);
-  const long ny = std::min(static_cast<long>(box.height() / cs) + 1, 1L << 15);
-  auto cell = [&](Point2 p, long* cx, long* cy) {
-    *cx = std::min(nx - 1, std::max(0L, static_cast<long>((p.x - box.lo.x) / cs)));
-    *cy = std::min(ny - 1, std::max(0L, static_cast<long>((p.y - box.lo.y) / cs)));
-  };
-  std::vector<std::uint32_t> start(static_cast<std::size_t>(nx * ny) + 1, 0), order(ids.size());
-  for (Index v : ids) {
-    long cx, cy;
-    cell(T.pts[v], &cx, &cy);
-    ++start[static_cast<std::size_t>(cy * nx + cx) + 1];
-  }
-  for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
-  {
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (Index v : ids) {
-      long cx, cy;
-      cell(T.pts[v], &cx, &cy);
-      order[fill[static_cast<std::size_t>(cy * nx + cx)]++] = v;
-    }
-  }
+    if (T.vkind[v] != VertexKind::kSuper && T.vhe[v] != kNoId) pts.push_back(T.pts[v]);
+  stats_.conforming_vertices = pts.size();
+  if (pts.size() < 2) return;
+  const KdTree tree(pts);
   double best_ratio = std::numeric_limits<double>::infinity();
-  for (Index v : ids) {
-    const Point2 p = T.pts[v];
-    long cx, cy;
-    cell(p, &cx, &cy);
-    double best2 = std::numeric_limits<double>::infinity();
-    for (long r = 0; r <= std::max(nx, ny); ++r) {
-      for (long y = cy - r; y <= cy + r; ++y) {
-        if (y < 0 || y >= ny) continue;
-        const bool edge_row = y == cy - r || y == cy + r;
-        for (long x = cx - r; x <= cx + r; x += edge_row ? 1 : 2 * r) {
-          if (x >= 0 && x < nx) {
-            const std::size_t c = static_cast<std::size_t>(y * nx + x);
-            for (std::uint32_t k = start[c]; k < start[c + 1]; ++k)
-              if (order[k] != v) best2 = std::min(best2, norm2(T.pts[order[k]] - p));
-          }
-          if (r == 0) break;
-        }
-      }
-      // every vertex outside the rings searched is at least r cells away
-      const double reach = static_cast<double>(r) * cs;
-      if (best2 <= reach * reach) break;
-    }
+  Point2 at{0, 0};
+  for (std::size_t k = 0; k < tree.size(); ++k) {
+    const Point2 p = pts[tree.id_at(k)];
     const double fv = f_(p);
-    if (!(fv > 0) || !std::isfinite(best2)) continue;
-    const double ratio = std::sqrt(best2) / fv;
-    if (ratio < best_ratio) {
+    if (!(fv > 0)) continue;
+    const double ratio = std::sqrt(tree.nearest_sq_at(k)) / fv;
+    // ties: the smaller point (the tree's order is not the input's)
+    if (ratio < best_ratio || (ratio == best_ratio && (p.x < at.x || (p.x == at.x && p.y < at.y)))) {
       best_ratio = ratio;
-      stats_.conforming_D_at = T.origin + p;
+      at = p;
     }
   }
-  if (std::isfinite(best_ratio)) stats_.conforming_D = best_ratio;
+  if (std::isfinite(best_ratio)) {
+    stats_.conforming_D = best_ratio;
+    stats_.conforming_D_at = T.origin + at;
+  }
 }
 
 void Refiner::run() {
