@@ -27,6 +27,11 @@ class KdTree {
     query(t_[pos].p, t_[pos].id, 0, t_.size(), 0, best);
     return best;
   }
+  // Calls f(index) for every point strictly nearer than sqrt(r2) to q (in tree order).
+  template <class F>
+  void for_each_within(Point2 q, double r2, F&& f) const {
+    within(q, r2, 0, t_.size(), 0, f);
+  }
 
  private:
   struct Node {
@@ -63,6 +68,19 @@ class KdTree {
       query(q, self, mid + 1, hi, 1 - axis, best);
       if (diff * diff < best) query(q, self, lo, mid, 1 - axis, best);
     }
+  }
+  template <class F>
+  void within(Point2 q, double r2, std::size_t lo, std::size_t hi, int axis, F& f) const {
+    if (hi - lo <= kScan) {
+      for (std::size_t k = lo; k < hi; ++k)
+        if (norm2(t_[k].p - q) < r2) f(t_[k].id);
+      return;
+    }
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (norm2(t_[mid].p - q) < r2) f(t_[mid].id);
+    const double diff = coord(q, axis) - coord(t_[mid].p, axis);
+    if (diff < 0 || diff * diff < r2) within(q, r2, lo, mid, 1 - axis, f);
+    if (diff >= 0 || diff * diff < r2) within(q, r2, mid + 1, hi, 1 - axis, f);
   }
   std::vector<Node> t_;
 };

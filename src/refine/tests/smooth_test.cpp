@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <set>
 #include <string>
 
 #include "cdt/cdt.hpp"
@@ -131,4 +133,53 @@ TEST(Smooth, SameMeshForEveryThreadCount) {
         ASSERT_EQ(views[i].vertices[v], views[0].vertices[v]) << "block " << block << ", threads " << i + 1;
     }
   }
+}
+
+// Vertices across a constraint (here the two sides of a thin strip of land, 0.15 f wide, with
+// differently spaced input vertices) are no mesh neighbours, so no test of a move's triangles
+// sees them: the smoothing must still not bring a vertex nearer to one of them than it was,
+// unless they stay f/2 apart (the report's nn is over all vertices: Theorem 4.4).
+TEST(Smooth, NoVertexComesNearerAcrossAThinStripOfLand) {
+  pslg::Pslg p;
+  p.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  for (Index i = 0; i < 4; ++i) p.segments.push_back({i, static_cast<Index>((i + 1) % 4)});
+  // the strip (a hole, clockwise): bottom side y = 5 with three vertices, top side y = 5.15 with five
+  const std::vector<Point2> strip = {{1, 5}, {1, 5.15}, {2.7, 5.15}, {4.1, 5.15}, {6.3, 5.15}, {9, 5.15}, {9, 5}, {4.9, 5}};
+  const Index base = static_cast<Index>(p.points.size());
+  for (Point2 q : strip) p.points.push_back(q);
+  for (Index i = 0; i < strip.size(); ++i) p.segments.push_back({base + i, base + static_cast<Index>((i + 1) % strip.size())});
+  p.holes.push_back({5, 5.07});
+  FnField f([](Point2 q) { return 0.6 + 0.05 * std::fabs(q.x - 5); });
+  auto T = refined(p, f, 1.0, 30);
+  // Distances of the vertex pairs within 1 of each other that are not mesh neighbours.
+  auto hidden_pairs = [&](const mesh::Triangulation& M) {
+    std::set<std::pair<Index, Index>> edges;
+    for (TriangleId t = 0; t < M.num_slots(); ++t)
+      if (!M.dead(t))
+        for (int k = 0; k < 3; ++k) {
+          const Index a = M.tv[3 * t + k], b = M.tv[3 * t + (k + 1) % 3];
+          edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    std::map<std::pair<Index, Index>, double> d;
+    for (Index a = 0; a < M.pts.size(); ++a)
+      for (Index b = a + 1; b < M.pts.size(); ++b)
+        if (M.vhe[a] != kNoId && M.vhe[b] != kNoId && M.vkind[a] != mesh::VertexKind::kSuper &&
+            M.vkind[b] != mesh::VertexKind::kSuper && dist(M.pts[a], M.pts[b]) < 1 && !edges.count({a, b}))
+          d[{a, b}] = dist(M.pts[a], M.pts[b]);
+    return d;
+  };
+  const auto before = hidden_pairs(T);
+  refine::SmoothOptions so;
+  so.min_angle_deg = 30;
+  const refine::SmoothStats st = refine::smooth(T, f, so);
+  EXPECT_GT(st.segment_moves, 0u);
+  const auto after = hidden_pairs(T);
+  ASSERT_FALSE(before.empty());
+  // Pairs across the strip, hidden before and after: nearer only while at least f/2 apart (f >= 0.6).
+  for (const auto& [ab, d1] : after) {
+    const auto it = before.find(ab);
+    if (it != before.end() && d1 < it->second - 1e-12) EXPECT_GE(d1, 0.5 * 0.6 * (1 - 1e-9)) << ab.first << " " << ab.second;
+  }
+  auto r = mesh::check_all(T);
+  EXPECT_TRUE(r.ok());
 }
