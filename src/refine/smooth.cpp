@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
 #include <exception>
 #include <stdexcept>
@@ -56,9 +55,9 @@ struct Shared {
   double floor_key = 0;              // min_angle_key of --min-angle
   std::vector<std::uint32_t> block;  // per vertex
   std::vector<char> dirty;           // per vertex
-  // Per segment vertex, the vertices within f of it that are not mesh neighbours (across a
-  // constraint: the other side of a thin strip of land, of a breakline): hidden[hidden_at[v] ..
-  // hidden_at[v + 1]). Empty when no vertex has any.
+  // Pairs of vertices across a constraint (the other side of a thin strip of land, of a
+  // breakline): a segment vertex and a vertex within f of it that is not its mesh neighbour, both
+  // ways; v's partners are hidden[hidden_at[v] .. hidden_at[v + 1]). Empty when there are none.
   std::vector<std::uint32_t> hidden_at;
   std::vector<Index> hidden;
 };
