@@ -13,7 +13,7 @@ pkgs=(build-essential cmake ninja-build pkg-config git
       libcgal-dev libgmp-dev libmpfr-dev libboost-dev
       libgdal-dev gdal-bin libsqlite3-dev libproj-dev proj-bin libgeographiclib-dev
       libgtest-dev libgmock-dev libbenchmark-dev
-      libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev
+      libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev libjemalloc-dev
       gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4 python3-pytest
       python3-dev python3-pybind11 pybind11-dev)
 [ "$want_qgis" = 1 ] && pkgs+=(qgis python3-qgis)

@@ -1,11 +1,15 @@
 // fdrmesh: Functional Delaunay Refinement mesher for coastlines and terrain.
 #include "cli/cli.hpp"
-#ifdef __GLIBC__
+#if defined(__GLIBC__) && !defined(FDR_JEMALLOC)
 #include <malloc.h>
 #endif
 
+// FDR_JEMALLOC: the program links jemalloc (src/cli/CMakeLists.txt; README "Allocator"); its
+// defaults stay, and the pipeline makes it purge freed pages at once from the triangulation on
+// (base/memory.hpp). MALLOC_CONF tunes it as usual.
+
 int main(int argc, char** argv) {
-#ifdef __GLIBC__
+#if defined(__GLIBC__) && !defined(FDR_JEMALLOC)
   // One malloc arena for every thread: the report's second thread and the concurrent writers then
   // reuse the memory the refinement freed instead of growing arenas of their own (+6 MiB of peak
   // at 1 M triangles; README "Benchmark"). Their few large allocations do not contend.

@@ -4,6 +4,7 @@
 #include <chrono>
 #include "api/stages.hpp"
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "mesh/take_view.hpp"
 #include "pipeline/gis_backend.hpp"
 #include "pipeline/gis_stage.hpp"
@@ -41,6 +42,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   }
   result.f = in.f;
   report_progress(0.05, "cdt");
+  release_freed_memory_at_once();  // the mesh stages: few large arrays (base/memory.hpp)
   clock.restart();
 
   TriangulateFigures fig;

@@ -30,6 +30,10 @@ expect_loaded("${log}" "libproj" NO)
 if(NOT EXISTS ${OUT}/r.json)
   message(FATAL_ERROR "no report written")
 endif()
+# Built with jemalloc (src/cli/CMakeLists.txt): the program's allocator is loaded from the start.
+if(JEMALLOC)
+  expect_loaded("${log}" "libjemalloc" YES)
+endif()
 # An output mesh needs the writers: the module, from EXPECT_DIR.
 fdrmesh_run(0 log ${BIN} mesh ${TESTDATA}/poly/square10.poly --spacing 1 -q -o ${OUT}/s.2dm)
 expect_loaded("${log}" "${EXPECT_DIR}/fdrmesh_gis.so" YES)
