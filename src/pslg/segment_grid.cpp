@@ -8,6 +8,9 @@ namespace fdr::pslg {
 using predicates::orient2d;
 
 bool in_interior(Point2 a, Point2 b, Point2 p) {
+  // Outside the segment's box (exact comparisons): not inside it, whatever the orientation.
+  if (p.x < std::min(a.x, b.x) || p.x > std::max(a.x, b.x) || p.y < std::min(a.y, b.y) || p.y > std::max(a.y, b.y))
+    return false;
   if (orient2d(a, b, p) != 0) return false;
   // Collinear: compare along an axis on which the segment is not degenerate (exact comparisons).
   if (a.x != b.x) return (a.x < p.x && p.x < b.x) || (b.x < p.x && p.x < a.x);
@@ -19,6 +22,18 @@ Contact classify(Point2 a, Point2 b, Point2 c, Point2 d) {
   if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) ||
       std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
     return Contact::kNone;
+  // Segments sharing one endpoint s (neighbours along a chain, the common case): s-u and s-v
+  // overlap when collinear and u, v lie on the same side of s, and merely meet otherwise. One
+  // orientation decides, and never the degenerate orient2d(a, b, b) that the filter cannot.
+  if (a != b && c != d && !((a == c && b == d) || (a == d && b == c))) {
+    const bool ac = a == c, ad = a == d, bc = b == c, bd = b == d;
+    if (ac || ad || bc || bd) {
+      const Point2 s = ac || ad ? a : b, u = ac || ad ? b : a, v = ac || bc ? d : c;
+      if (orient2d(s, u, v) != 0) return Contact::kEndpoint;
+      const bool same = u.x != s.x ? ((u.x > s.x) == (v.x > s.x)) : ((u.y > s.y) == (v.y > s.y));
+      return same ? Contact::kOverlap : Contact::kEndpoint;
+    }
+  }
   const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d);
   if (o1 == 0 && o2 == 0) {
     // Collinear: identical, or one endpoint strictly inside the other means a shared stretch.

@@ -90,8 +90,31 @@ Contacts find_contacts(const std::vector<Point2>& points, const std::vector<Segm
     uniq.segment_pairs.push_back(out.segment_pairs[k]);
     uniq.kinds.push_back(out.kinds[k]);
   }
-  // Vertices in segment interiors: a point on a segment lies in a cell listing that segment.
+  // Vertices in segment interiors. An endpoint of a listed segment s inside segment t makes the
+  // pair (s, t) touch or overlap, so it is among the pairs found above: only those are checked.
+  // Other points (on no listed segment) are looked up in their cell, which lists every segment
+  // through it.
+  std::vector<char> on_segment(points.size(), 0);
+  for (Index i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    if (s.a == s.b || points[s.a] == points[s.b]) continue;
+    on_segment[s.a] = on_segment[s.b] = 1;
+  }
+  for (std::size_t k = 0; k < uniq.segment_pairs.size(); ++k) {
+    if (uniq.kinds[k] != Contact::kTouch && uniq.kinds[k] != Contact::kOverlap) continue;
+    const auto [i, j] = uniq.segment_pairs[k];
+    for (const auto& [s, t] : {std::pair{i, j}, std::pair{j, i}}) {
+      const Segment& st = segments[s];
+      const Segment& tt = segments[t];
+      for (const Index p : {st.a, st.b}) {
+        if (point_alive && !(*point_alive)[p]) continue;
+        if (tt.a == p || tt.b == p) continue;
+        if (in_interior(points[tt.a], points[tt.b], points[p])) uniq.vertex_on_segment.emplace_back(p, t);
+      }
+    }
+  }
   for (Index p = 0; p < points.size(); ++p) {
+    if (on_segment[p]) continue;
     if (point_alive && !(*point_alive)[p]) continue;
     const Point2 q = points[p];
     if (!box.contains(q)) continue;

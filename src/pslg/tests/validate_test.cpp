@@ -4,6 +4,7 @@
 #include <random>
 #include "pslg/poly_io.hpp"
 #include "predicates/predicates.hpp"
+#include "pslg/segment_grid.hpp"
 #include "pslg/validate.hpp"
 #include "test_util.hpp"
 
@@ -137,4 +138,104 @@ TEST(Validate, HundredThousandSegmentsIsFast) {
   g.segments.push_back({0, static_cast<Index>(n * n - 1), 1, 0});
   const auto c = find_crossings(g);
   EXPECT_GT(c.size(), static_cast<std::size_t>(n));
+}
+
+// classify() against a reference written from the definitions (four orientations, then the
+// collinear cases), on a 4 x 4 lattice where shared endpoints, collinear and touching pairs
+// abound: the shortcut for segments sharing one endpoint must give the same answers.
+namespace {
+Contact reference_contact(Point2 a, Point2 b, Point2 c, Point2 d) {
+  using predicates::orient2d;
+  auto inside = [](Point2 p, Point2 q, Point2 r) {  // r in the open segment pq
+    if (orient2d(p, q, r) != 0) return false;
+    return p.x != q.x ? (std::min(p.x, q.x) < r.x && r.x < std::max(p.x, q.x))
+                      : (std::min(p.y, q.y) < r.y && r.y < std::max(p.y, q.y));
+  };
+  const int o1 = orient2d(a, b, c), o2 = orient2d(a, b, d), o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+  const bool shared = a == c || a == d || b == c || b == d;
+  if (o1 == 0 && o2 == 0) {
+    if ((a == c && b == d) || (a == d && b == c)) return Contact::kOverlap;
+    if (inside(a, b, c) || inside(a, b, d) || inside(c, d, a) || inside(c, d, b)) return Contact::kOverlap;
+    return shared ? Contact::kEndpoint : Contact::kNone;
+  }
+  if (o1 * o2 > 0 || o3 * o4 > 0) return Contact::kNone;
+  if (o1 != 0 && o2 != 0 && o3 != 0 && o4 != 0) return Contact::kProper;
+  return shared ? Contact::kEndpoint : Contact::kTouch;
+}
+}  // namespace
+
+TEST(Classify, SameAsTheDefinitionsOnALattice) {
+  std::vector<Point2> lat;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) lat.push_back({0.5 * i, 0.25 * j});
+  std::size_t shared = 0, overlaps = 0;
+  for (const Point2 a : lat)
+    for (const Point2 b : lat) {
+      if (a == b) continue;
+      for (const Point2 c : lat)
+        for (const Point2 d : lat) {
+          if (c == d) continue;
+          const Contact want = reference_contact(a, b, c, d);
+          ASSERT_EQ(static_cast<int>(classify(a, b, c, d)), static_cast<int>(want))
+              << "(" << a.x << "," << a.y << ")-(" << b.x << "," << b.y << ") vs (" << c.x << "," << c.y << ")-(" << d.x << "," << d.y << ")";
+          shared += (a == c || a == d || b == c || b == d);
+          overlaps += want == Contact::kOverlap;
+        }
+    }
+  EXPECT_GT(shared, 10000u);
+  EXPECT_GT(overlaps, 1000u);
+}
+
+TEST(InInterior, OnlyTheOpenSegment) {
+  EXPECT_TRUE(in_interior({0, 0}, {2, 2}, {1, 1}));
+  EXPECT_FALSE(in_interior({0, 0}, {2, 2}, {2, 2}));
+  EXPECT_FALSE(in_interior({0, 0}, {2, 2}, {3, 3}));   // on the line, beyond the end
+  EXPECT_FALSE(in_interior({0, 0}, {0, 2}, {0, -1}));  // vertical, below
+  EXPECT_TRUE(in_interior({0, 2}, {0, 0}, {0, 1}));
+  EXPECT_FALSE(in_interior({0, 0}, {2, 2}, {1, 1.0000000000000002}));
+}
+
+// find_contacts against brute force on random lattice PSLGs (chains, isolated points, zero-length
+// segments, an alive mask): the same pairs with the same kinds and the same vertices on segments.
+TEST(FindContacts, SameAsBruteForceOnRandomLatticeGraphs) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(0, 7), pick(0, 1 << 20);
+  for (int round = 0; round < 300; ++round) {
+    std::vector<Point2> pts;
+    const int np = 6 + round % 30;
+    for (int i = 0; i < np; ++i) pts.push_back({0.5 * coord(rng), 0.25 * coord(rng)});
+    std::vector<Segment> segs;
+    const int ns = 3 + round % 25;
+    for (int k = 0; k < ns; ++k) {
+      const Index a = static_cast<Index>(pick(rng) % np);
+      const Index b = k % 3 == 0 && !segs.empty() ? segs.back().b : static_cast<Index>(pick(rng) % np);  // chains
+      segs.push_back({a, b, 1, 0});
+    }
+    std::vector<char> alive(pts.size());
+    for (auto& v : alive) v = static_cast<char>(pick(rng) % 4 != 0);
+    const std::vector<char>* mask = round % 2 ? &alive : nullptr;
+    const Contacts got = find_contacts(pts, segs, mask);
+    std::vector<std::pair<Index, Index>> want_pairs;
+    std::vector<Contact> want_kinds;
+    std::vector<std::pair<Index, Index>> want_on;
+    auto ok = [&](const Segment& s) { return s.a != s.b && !(pts[s.a] == pts[s.b]); };
+    for (Index i = 0; i < segs.size(); ++i)
+      for (Index j = i + 1; j < segs.size(); ++j) {
+        if (!ok(segs[i]) || !ok(segs[j])) continue;
+        const Contact k = classify(pts[segs[i].a], pts[segs[i].b], pts[segs[j].a], pts[segs[j].b]);
+        if (k == Contact::kNone || k == Contact::kEndpoint) continue;
+        want_pairs.emplace_back(i, j);
+        want_kinds.push_back(k);
+      }
+    for (Index p = 0; p < pts.size(); ++p) {
+      if (mask && !(*mask)[p]) continue;
+      for (Index s = 0; s < segs.size(); ++s) {
+        if (!ok(segs[s]) || segs[s].a == p || segs[s].b == p) continue;
+        if (in_interior(pts[segs[s].a], pts[segs[s].b], pts[p])) want_on.emplace_back(p, s);
+      }
+    }
+    ASSERT_EQ(got.segment_pairs, want_pairs) << "round " << round;
+    ASSERT_EQ(got.kinds, want_kinds) << "round " << round;
+    ASSERT_EQ(got.vertex_on_segment, want_on) << "round " << round;
+  }
 }
