@@ -1,41 +1,67 @@
-// release_free_memory: jemalloc's "arena.<all>.purge" through a weak reference, so that the
-// library needs no allocator of its own and stays a no-op in hosts that use glibc's malloc.
+// jemalloc's controls through a weak reference to mallctl, so that the library needs no allocator
+// of its own and does nothing in hosts that use glibc's malloc.
 #include "base/memory.hpp"
 #include <cstddef>
 #include <string>
-#include <sys/types.h>
 
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp,
                        std::size_t newlen) __attribute__((weak));
 
 namespace fdr {
+namespace {
+
+// Reads the ssize_t control `name` into *old and writes v; false if jemalloc refuses.
+bool swap_ssize(const std::string& name, ssize_t* old, ssize_t v) {
+  std::size_t len = sizeof *old;
+  return mallctl(name.c_str(), old, &len, &v, sizeof v) == 0;
+}
+
+unsigned arena_count() {
+  unsigned n = 0;
+  std::size_t len = sizeof n;
+  return mallctl("arenas.narenas", &n, &len, nullptr, 0) == 0 ? n : 0;
+}
+
+}  // namespace
 
 void release_free_memory() {
   // 4096 = MALLCTL_ARENAS_ALL (jemalloc 5): every arena.
   if (mallctl) mallctl("arena.4096.purge", nullptr, nullptr, nullptr, 0);
 }
 
-void release_freed_memory_at_once() {
+EagerMemoryRelease::EagerMemoryRelease() {
   if (!mallctl) return;
-  ssize_t zero = 0;
-  for (const char* name : {"arenas.dirty_decay_ms", "arenas.muzzy_decay_ms"})  // arenas made later
-    mallctl(name, nullptr, nullptr, &zero, sizeof zero);
-  unsigned n = 0;
-  std::size_t len = sizeof n;
-  if (mallctl("arenas.narenas", &n, &len, nullptr, 0) != 0) return;
-  for (unsigned i = 0; i < n; ++i)
-    for (const char* what : {"dirty_decay_ms", "muzzy_decay_ms"}) {
-      const std::string name = "arena." + std::to_string(i) + "." + what;
-      mallctl(name.c_str(), nullptr, nullptr, &zero, sizeof zero);
-    }
-  mallctl("arena.4096.purge", nullptr, nullptr, nullptr, 0);
+  if (!swap_ssize("arenas.dirty_decay_ms", &default_dirty_, 0)) return;
+  if (!swap_ssize("arenas.muzzy_decay_ms", &default_muzzy_, 0)) {
+    swap_ssize("arenas.dirty_decay_ms", &default_dirty_, default_dirty_);
+    return;
+  }
+  active_ = true;
+  const unsigned n = arena_count();
+  dirty_.assign(n, -2);  // -2: not changed (an arena not initialised yet)
+  muzzy_.assign(n, -2);
+  for (unsigned i = 0; i < n; ++i) {
+    const std::string a = "arena." + std::to_string(i) + ".";
+    ssize_t old = 0;
+    if (swap_ssize(a + "dirty_decay_ms", &old, 0)) dirty_[i] = old;
+    if (swap_ssize(a + "muzzy_decay_ms", &old, 0)) muzzy_[i] = old;
+  }
+  release_free_memory();
 }
 
-bool allocator_is_jemalloc() {
-  if (!mallctl) return false;
-  const char* v = nullptr;
-  std::size_t n = sizeof v;
-  return mallctl("version", &v, &n, nullptr, 0) == 0 && v != nullptr;
+EagerMemoryRelease::~EagerMemoryRelease() {
+  if (!active_) return;
+  ssize_t old = 0;
+  swap_ssize("arenas.dirty_decay_ms", &old, default_dirty_);
+  swap_ssize("arenas.muzzy_decay_ms", &old, default_muzzy_);
+  const unsigned n = arena_count();
+  for (unsigned i = 0; i < n; ++i) {  // arenas made meanwhile took 0: they get the default
+    const std::string a = "arena." + std::to_string(i) + ".";
+    const ssize_t d = i < dirty_.size() && dirty_[i] != -2 ? dirty_[i] : default_dirty_;
+    const ssize_t m = i < muzzy_.size() && muzzy_[i] != -2 ? muzzy_[i] : default_muzzy_;
+    swap_ssize(a + "dirty_decay_ms", &old, d);
+    swap_ssize(a + "muzzy_decay_ms", &old, m);
+  }
 }
 
 }  // namespace fdr

@@ -42,7 +42,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   }
   result.f = in.f;
   report_progress(0.05, "cdt");
-  release_freed_memory_at_once();  // the mesh stages: few large arrays (base/memory.hpp)
+  const EagerMemoryRelease eager;  // the mesh stages: few large arrays (base/memory.hpp)
   clock.restart();
 
   TriangulateFigures fig;

@@ -36,3 +36,11 @@ TEST(Base, TermProgressPrintsGdalPattern) {
   EXPECT_EQ(std::string(buf),
             "0...10...20...30...40...50...60...70...80...90...100 - done.\n");
 }
+
+// Under glibc's malloc (this test binary does not link jemalloc) the allocator controls do nothing.
+#include "base/memory.hpp"
+TEST(Memory, NoOpWithoutJemalloc) {
+  fdr::EagerMemoryRelease eager;
+  EXPECT_FALSE(eager.active());
+  fdr::release_free_memory();
+}
