@@ -230,6 +230,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     pslg::ResampleOptions ro;
     ro.spacing = [f](Point2 p) { return (*f)(p); };
     ro.tolerance_factor = opt.coast_tol;
+    ro.domain_by_parity = true;  // as the CDT decides the GIS domain
     pslg::ResampleStats rs;
     if (const char* dbg = std::getenv("FDR_DEBUG_PSLG")) pslg::write_poly(g.pslg, std::string(dbg) + ".before.poly");
     g.pslg = pslg::resample(g.pslg, ro, &rs);

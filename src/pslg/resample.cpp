@@ -413,6 +413,7 @@ class Resampler {
     out.points = in_.points;
     if (!in_.point_markers.empty()) out.point_markers = in_.point_markers;
     seg_piece_.clear();
+    seg_chain_.clear();
     flat_.clear();
     pt_piece_.assign(in_.points.size(), kNoPiece);
     for (std::size_t c = 0; c < chains_.size(); ++c) {
@@ -441,6 +442,7 @@ class Resampler {
         for (std::size_t i = 0; i + 1 < seq.size(); ++i) {
           out.segments.push_back({seq[i], seq[i + 1], ch.marker, ch.part});
           seg_piece_.push_back(p.restored ? kNoPiece : q);
+          seg_chain_.push_back(c);
         }
       }
     }
@@ -522,6 +524,9 @@ class Resampler {
           if (wedge >= kSharp) continue;
           const std::size_t q1 = seg_piece_[s1], q2 = seg_piece_[s2];
           if (q1 == kNoPiece && q2 == kNoPiece) continue;
+          // A wedge outside the domain (the tip of a needle of land) needs no small elements:
+          // the water around it spans the rest of the turn.
+          if (o_.domain_by_parity && !wedge_is_inside(out, static_cast<Index>(v), s1, s2)) continue;
           const double ref = std::min(q1 == kNoPiece ? kPi : piece_min_angle(q1), q2 == kNoPiece ? kPi : piece_min_angle(q2));
           if (wedge < 0.7 * ref) {
             restore(q1);
@@ -565,6 +570,96 @@ class Resampler {
         }
       }
     return !bad->empty();
+  }
+
+  // Whether the wedge at v from segment s1 counter-clockwise to s2 (consecutive around v) lies
+  // inside the domain (parity of the boundary segments). It lies left of the ray from v along
+  // s1 (and right of the one along s2): a breakline has the domain on both sides; a boundary
+  // segment's side is its chain's, which resampling does not change.
+  bool wedge_is_inside(const Pslg& out, Index v, std::size_t s1, std::size_t s2) {
+    for (std::size_t s : {s1, s2}) {
+      const auto& sg = out.segments[s];
+      if (!sg.is_boundary()) continue;
+      const bool forward = sg.a == v;  // the ray from v runs along the chain
+      const bool left = chain_left_inside(seg_chain_[s]);
+      return s == s1 ? (left == forward) : (left != forward);
+    }
+    return true;
+  }
+
+  // Whether the domain lies left of chain c (from v[0] towards v[1]); constant along a chain,
+  // whose inner vertices touch no other segment. Exact: a ray from the midpoint m of the chain's
+  // first input segment (a, b), counting the boundary segments it crosses (half-open in y); m
+  // off the segment by rounding counts the segment too, m on it does not, and then the count is
+  // that of the point just beside m in the ray's direction. A horizontal (a, b) uses the
+  // mirrored plane (x <-> y), which turns left into right.
+  bool chain_left_inside(std::size_t c) {
+    if (chain_side_.empty()) chain_side_.assign(chains_.size(), -1);
+    if (chain_side_[c] >= 0) return chain_side_[c] == 1;
+    const Index ia = chains_[c].v[0], ib = chains_[c].v[1];
+    const bool mirror = in_.points[ia].y == in_.points[ib].y;
+    auto pt = [&](Index i) { const Point2 q = in_.points[i]; return mirror ? Point2{q.y, q.x} : q; };
+    const Point2 a = pt(ia), b = pt(ib);
+    const Point2 m{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+    const int o = predicates::orient2d(a, b, m);
+    std::size_t count = 0;
+    const auto [first, last] = band_segments(mirror, m.y);
+    for (const std::uint32_t* it = first; it != last; ++it) {
+      const auto& t = in_.segments[*it];
+      if (o == 0 && ((t.a == ia && t.b == ib) || (t.a == ib && t.b == ia))) continue;
+      Point2 lo = pt(t.a), hi = pt(t.b);
+      if ((lo.y > m.y) == (hi.y > m.y)) continue;
+      if (lo.y > hi.y) std::swap(lo, hi);
+      if (predicates::orient2d(lo, hi, m) > 0) ++count;  // the segment passes right of m
+    }
+    const bool in_at = count % 2 == 1;  // m, or (o == 0) the point just right of m
+    // Whether that point lies left of (a, b): by o, or for o == 0 (m + (e, 0) left iff b.y < a.y).
+    const bool point_left = o != 0 ? o > 0 : b.y < a.y;
+    bool left = point_left ? in_at : !in_at;
+    if (mirror) left = !left;
+    chain_side_[c] = left ? 1 : 0;
+    return left;
+  }
+
+  // The boundary segments whose y-range (x-range when mirrored) meets the horizontal band of y:
+  // every segment a ray at height y can cross. Built on first use, about 32 segments a band.
+  std::pair<const std::uint32_t*, const std::uint32_t*> band_segments(bool mirror, double y) {
+    Bands& b = bands_[mirror ? 1 : 0];
+    auto coord = [&](Index i) { return mirror ? in_.points[i].x : in_.points[i].y; };
+    if (b.start.empty()) {
+      b.lo = 1e300;
+      double hi = -1e300;
+      std::vector<std::uint32_t> segs;
+      for (std::size_t k = 0; k < in_.segments.size(); ++k) {
+        const auto& t = in_.segments[k];
+        if (!t.is_boundary() || t.a == t.b) continue;
+        segs.push_back(static_cast<std::uint32_t>(k));
+        b.lo = std::min({b.lo, coord(t.a), coord(t.b)});
+        hi = std::max({hi, coord(t.a), coord(t.b)});
+      }
+      const std::size_t nb = std::max<std::size_t>(1, segs.size() / 32);
+      b.step = hi > b.lo ? (hi - b.lo) / static_cast<double>(nb) : 1.0;
+      b.start.assign(nb + 1, 0);
+      auto range = [&](std::uint32_t k) {
+        const auto& t = in_.segments[k];
+        const double y0 = std::min(coord(t.a), coord(t.b)), y1 = std::max(coord(t.a), coord(t.b));
+        return std::pair<std::size_t, std::size_t>{b.band(y0, nb), b.band(y1, nb)};
+      };
+      for (std::uint32_t k : segs) {
+        const auto [i0, i1] = range(k);
+        for (std::size_t i = i0; i <= i1; ++i) ++b.start[i + 1];
+      }
+      for (std::size_t i = 0; i < nb; ++i) b.start[i + 1] += b.start[i];
+      b.items.resize(b.start[nb]);
+      std::vector<std::size_t> fill(b.start.begin(), b.start.end() - 1);
+      for (std::uint32_t k : segs) {
+        const auto [i0, i1] = range(k);
+        for (std::size_t i = i0; i <= i1; ++i) b.items[fill[i]++] = k;
+      }
+    }
+    const std::size_t nb = b.start.size() - 1;
+    const std::size_t i = b.band(y, nb);
+    return {b.items.data() + b.start[i], b.items.data() + b.start[i + 1]};
   }
 
   // Smallest wedge angle at the input vertices v[k0..k1] of a (flat) piece, between the
@@ -631,7 +726,20 @@ class Resampler {
   std::vector<std::vector<Piece>> chain_pieces_;
   struct Flat { std::size_t chain, k0, k1; };
   std::vector<Flat> flat_;  // pieces of the last assembly, in order
-  std::vector<std::size_t> seg_piece_, pt_piece_;
+  std::vector<std::size_t> seg_piece_, pt_piece_, seg_chain_;
+  std::vector<signed char> chain_side_;
+  struct Bands {
+    double lo = 0, step = 1;
+    std::vector<std::size_t> start;
+    std::vector<std::uint32_t> items;
+    // Band of coordinate y, clamped (a y outside every segment's range meets none of them).
+    std::size_t band(double y, std::size_t nb) const {
+      const double t = (y - lo) / step;
+      if (!(t > 0)) return 0;
+      return std::min(nb - 1, static_cast<std::size_t>(t));
+    }
+  };
+  Bands bands_[2];  // per chain: 1 domain on its left, 0 right, -1 unknown
 };
 
 }  // namespace

@@ -29,6 +29,9 @@ struct ResampleOptions {
   double spacing_factor = 1.3;            // target distance between boundary vertices / f
   double tolerance_factor = 0.25;         // max distance input vertex - new chain / f
   std::size_t max_rounds = 100;           // conflict rounds before whole chains are put back
+  // The domain is the parity of the boundary segments (GIS inputs): a sharp wedge that resampling
+  // makes outside it (a needle of land) is allowed; otherwise every side is checked.
+  bool domain_by_parity = false;
 };
 
 struct ResampleStats {

@@ -218,5 +218,62 @@ TEST(Resample, TinyRingKeepsThreeVertices) {
   EXPECT_EQ(r.segments.size(), r.points.size());
 }
 
+// A needle 3 km long, 400 m wide at its base and 40 m at its blunt tip (two vertices 40 m apart),
+// digitised every 50 m along its sides, pointing along +x to (0, 0).
+std::vector<Point2> needle() {
+  std::vector<Point2> p;
+  for (int i = 0; i <= 60; ++i) p.push_back({-3000.0 + 50.0 * i, 200.0 - 3.0 * i});   // top, to (0, 20)
+  for (int i = 0; i <= 60; ++i) p.push_back({-50.0 * i, -20.0 - 3.0 * i});           // bottom, from (0, -20)
+  return p;
+}
+
+double shortest_segment(const Pslg& g) {
+  double m = 1e300;
+  for (const auto& s : g.segments) m = std::min(m, dist(g.points[s.a], g.points[s.b]));
+  return m;
+}
+
+// A needle of land (an island ring inside the water) may become one sharp tip: the wedge it makes
+// lies outside the domain, where no element goes. The two tip vertices 40 m apart would make the
+// mesh refine to 40 m around the tip (f = 500 m).
+TEST(Resample, NeedleOfLandMayGetSharperWhenTheDomainIsByParity) {
+  Pslg g;
+  add_ring(g, {{-6000, -6000}, {6000, -6000}, {6000, 6000}, {-6000, 6000}}, 1, 0);
+  add_ring(g, needle(), 2, 1);
+  ResampleOptions o = opts(500);
+  o.domain_by_parity = true;
+  const Pslg r = resample(g, o);
+  validate(r, "resampled");
+  EXPECT_GT(shortest_segment(r), 300.0);
+  // Without knowing the domain's side the tip keeps both vertices (the wedge check).
+  const Pslg k = resample(g, opts(500));
+  validate(k, "resampled");
+  EXPECT_LT(shortest_segment(k), 41.0);
+}
+
+// The same needle as a wedge of water (the domain is the needle: an inlet's end) keeps its blunt
+// tip: a sharp wedge of water would need elements as narrow as itself.
+TEST(Resample, NeedleOfWaterKeepsItsBluntTip) {
+  for (bool mirrored : {false, true}) {  // mirrored: x <-> y, the horizontal-segment branch
+    Pslg g;
+    auto p = needle();
+    if (mirrored)
+      for (auto& q : p) std::swap(q.x, q.y);
+    add_ring(g, p, 1, 0);
+    ResampleOptions o = opts(500);
+    o.domain_by_parity = true;
+    const Pslg r = resample(g, o);
+    validate(r, "resampled");
+    EXPECT_LT(shortest_segment(r), 41.0) << mirrored;
+    // As a hole in a water box (a needle of land), mirrored or not, the tip merges.
+    Pslg h;
+    add_ring(h, {{-6000, -6000}, {6000, -6000}, {6000, 6000}, {-6000, 6000}}, 1, 0);
+    add_ring(h, p, 2, 1);
+    const Pslg rh = resample(h, o);
+    validate(rh, "resampled");
+    EXPECT_GT(shortest_segment(rh), 300.0) << mirrored;
+  }
+}
+
 }  // namespace
 }  // namespace fdr::pslg
