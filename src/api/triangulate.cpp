@@ -148,6 +148,7 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
   refine::RefineOptions ro;
   ro.bound = opt.bound;
   ro.min_angle_deg = opt.min_angle_deg;
+  ro.angle_split_min_f = opt.angle_split_min_f;
   ro.max_steiner = opt.max_steiner;
   ro.region_max_area = opt.region_max_area;
   ro.expected_steiner = expected / 2;

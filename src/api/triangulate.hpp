@@ -37,6 +37,9 @@ using quality::QualityReport;
 struct TriangulateOptions {
   double bound = 1.0;                    // B: a triangle is bad when R / f(c) > B (--bound)
   double min_angle_deg = 0.0;            // extra minimum-angle bound, [0, 60) (--min-angle)
+  // Subsegment splits asked for by the angle bound alone: only into halves >= this * f (0: always,
+  // as Triangle; GIS inputs: 0.5). See refine::RefineOptions::angle_split_min_f.
+  double angle_split_min_f = 0.0;
   int smooth_passes = 0;                 // quality smoothing sweeps after refinement, [0, 100] (--smooth)
   std::uint64_t max_steiner = 20'000'000;  // Steiner point cap; reaching it is Error(kWorkLimit)
   bool check = false;                    // verify the invariants, Error(kCheckFailed) if one fails (--check)

@@ -71,6 +71,7 @@ Plan plan_run(const Options& opt) {
   TriangulateOptions& t = p.triangulate;
   t.bound = opt.bound;
   t.min_angle_deg = opt.min_angle_deg >= 0 ? opt.min_angle_deg : (p.gis ? 30.0 : 0.0);
+  t.angle_split_min_f = p.gis ? 0.5 : 0.0;
   t.smooth_passes = opt.smooth_passes >= 0 ? opt.smooth_passes : (p.gis ? 4 : 0);
   t.max_steiner = opt.max_steiner;
   t.check = opt.check;

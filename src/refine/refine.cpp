@@ -75,6 +75,7 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
     const double s = std::sin(opt_.min_angle_deg * kPi / 180.0);
     rho2_inv_ = 4.0 * s * s;  // R/l > 1/(2 sin theta)  <=>  (R^2/l^2) * 4 sin^2 > 1
+    off_cot_ = 1.0 / std::tan(0.5 * opt_.min_angle_deg * kPi / 180.0);
   }
 }
 
@@ -315,10 +316,44 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
   return true;
 }
 
+// Where a bad triangle is split. R/f(c)-bad (the FDR rule) or over its region's area: its
+// circumcenter. Bad only by the --min-angle bound: Ungor's off-center when it is nearer than the
+// circumcenter, the point on the shortest edge's bisector from which that edge is seen at a little
+// more than the bound angle (the new triangle on that edge is then good). Why: the circumcenter of
+// a skinny triangle lies far beyond its short edge, often across a narrow channel next to the
+// other bank, where it encroaches and splits bank segments; the off-center refines only as far as
+// the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
+// R/f(c)-bad triangle is split anywhere but at its circumcenter.
+bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
+  if (!(rho2_inv_ > 0) || !opt_.region_max_area.empty()) return false;
+  double r2;
+  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+  const double fc = f_(cc);
+  return fc > 0 && std::isfinite(fc) && !(r2 / (fc * fc) * b2_inv_ > 1);
+}
+
+Point2 Refiner::steiner_point(TriangleId t, Point2 a, Point2 b, Point2 c) const {
+  double r2;
+  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+  if (!(rho2_inv_ > 0) || !opt_.off_centers || !opt_.region_max_area.empty()) return cc;
+  (void)t;
+  const double fc = f_(cc);
+  if (!(fc > 0) || !std::isfinite(fc) || r2 / (fc * fc) * b2_inv_ > 1) return cc;
+  Point2 p = a, q = b;
+  double l2 = norm2(b - a);
+  if (norm2(c - b) < l2) { l2 = norm2(c - b); p = b; q = c; }
+  if (norm2(a - c) < l2) { l2 = norm2(a - c); p = c; q = a; }
+  const Point2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
+  const double dm = dist(m, cc);
+  const double h = kOffCenter * 0.5 * std::sqrt(l2) * off_cot_;
+  if (!(dm > h)) return cc;
+  return m + (h / dm) * (cc - m);
+}
+
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
   const Point2 a = T.pts[T.tv[3 * e.t]], b = T.pts[T.tv[3 * e.t + 1]], c = T.pts[e.c];
-  const Point2 cc = predicates::circumcenter(a, b, c);
+  const Point2 cc = steiner_point(e.t, a, b, c);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
   seg_tmp_.clear();
   if (loc.kind == cdt::LocateKind::kBlocked) {
@@ -345,6 +380,18 @@ void Refiner::split_triangle(const BadEntry& e) {
   }
   // Rejected: split the encroached subsegments instead, then retry the triangle.
   ++stats_.rejected_circumcenters;
+  // Angle-only splits yield to the spacing at the boundary (RefineOptions::angle_split_min_f).
+  if (opt_.angle_split_min_f > 0 && angle_only(a, b, c)) {
+    for (const auto& [p, q] : seg_tmp_) {
+      Index apex;
+      int ex;
+      const Point2 m = split_point(p, q, &apex, &ex);
+      if (std::min(dist(T.pts[p], m), dist(m, T.pts[q])) < opt_.angle_split_min_f * f_(m)) {
+        ++stats_.exempt_small_angle;
+        return;
+      }
+    }
+  }
   if (!may_split_for(e, seg_tmp_)) {
     ++stats_.exempt_small_angle;
     return;

@@ -16,6 +16,15 @@ namespace fdr::refine {
 struct RefineOptions {
   double bound = 1.0;          // B: a triangle is bad when R / f(c) > B
   double min_angle_deg = 0.0;  // optional extra bound (like Triangle -q); 0 disables
+  // Triangles bad only by min_angle_deg split at Ungor's off-center when it is nearer than the
+  // circumcenter (as Triangle does); false: always the circumcenter.
+  bool off_centers = true;
+  // A triangle bad only by min_angle_deg whose split point encroaches a subsegment splits it only
+  // if both halves are at least angle_split_min_f times f at the split point; else it is left
+  // (counted as exempt). 0: always split (Triangle's -q). Why: near narrow water the angle bound
+  // alone would split the banks to a fraction of f, and the smallest element sets a model's time
+  // step; the GIS pipeline uses 0.5 (README, Model-ready meshes). R/f(c)-bad triangles always split.
+  double angle_split_min_f = 0.0;
   // Cap on inserted Steiner points; reaching it ends in Error(kWorkLimit). Documented default.
   std::uint64_t max_steiner = 20'000'000;
   // Triangle .poly area constraints: per Pslg::regions index the largest triangle area (<= 0:
@@ -79,6 +88,11 @@ class Refiner {
   void check_encroached_edges(TriangleId t);
   void split_subsegment(Index a, Index b);
   void split_triangle(const BadEntry& e);
+  Point2 steiner_point(TriangleId t, Point2 a, Point2 b, Point2 c) const;
+  bool angle_only(Point2 a, Point2 b, Point2 c) const;
+  // Off-center distance from the short edge, as a fraction of the one at which that edge is seen
+  // at exactly the bound angle (a margin so that the new triangle is not bad by rounding).
+  static constexpr double kOffCenter = 0.95;
   bool shell_apex_equal(Index p, Index q) const;
   bool same_cluster(Index v, Index a, Index b) const;
   bool cluster_pair(Index s1, Index s2) const;
@@ -92,7 +106,7 @@ class Refiner {
   RefineOptions opt_;
   RefineStats stats_;
   cdt::Inserter ins_;
-  double b2_inv_ = 1, rho2_inv_ = 0;
+  double b2_inv_ = 1, rho2_inv_ = 0, off_cot_ = 0;
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
   std::vector<std::vector<BadEntry>> buckets_;
   int top_ = -1;

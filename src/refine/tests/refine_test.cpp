@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <cmath>
 #include <functional>
+#include <random>
 #include "base/error.hpp"
 #include "cdt/cdt.hpp"
 #include "cdt/tests/test_inputs.hpp"
@@ -168,6 +169,82 @@ TEST(Refine, MinAngleThirtyTerminatesWithExemptions) {
   auto T2 = refine_pslg(w, f, o, &st);
   auto r = mesh::check_all(T2);
   EXPECT_TRUE(r.ok());
+}
+
+// A channel 300 wide and 6000 long, its banks' vertices `lo`-`hi` apart at random, f = 500.
+pslg::Pslg channel(std::uint32_t seed, double lo, double hi) {
+  pslg::Pslg p;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> step(lo, hi);
+  std::vector<double> xs[2];
+  for (int side = 0; side < 2; ++side) {
+    xs[side].push_back(0);
+    for (double x = step(rng); x < 6000 - lo; x += step(rng)) xs[side].push_back(x);
+    xs[side].push_back(6000);
+  }
+  for (double x : xs[0]) p.points.push_back({x, 0});
+  for (std::size_t i = xs[1].size(); i-- > 0;) p.points.push_back({xs[1][i], 300});
+  const std::size_t n = p.points.size();
+  for (std::size_t i = 0; i < n; ++i) p.segments.push_back({static_cast<Index>(i), static_cast<Index>((i + 1) % n), 1, 0});
+  return p;
+}
+
+double shortest_edge(const mesh::Triangulation& T, bool constrained_only) {
+  double m = 1e300;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    for (int k = 0; k < 3; ++k)
+      if (!constrained_only || T.constrained(3 * t + k))
+        m = std::min(m, dist(T.pts[T.tv[3 * t + k]], T.pts[T.tv[3 * t + (k + 1) % 3]]));
+  }
+  return m;
+}
+
+// Skinny triangles (bank vertices 20-700 apart across 300): off-centers split them near their
+// short edge instead of at the far bank, so fewer Steiner points; both keep every invariant and
+// the angle bound.
+TEST(Refine, OffCentersRefineANarrowChannelLess) {
+  std::size_t steiner[2] = {0, 0};
+  FnField f([](Point2) { return 500.0; });
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const pslg::Pslg p = channel(seed, 20, 700);
+    for (int oc = 0; oc < 2; ++oc) {
+      refine::RefineOptions o;
+      o.min_angle_deg = 30;
+      o.off_centers = oc == 1;
+      refine::RefineStats st;
+      auto T = refine_pslg(p, f, o, &st);
+      expect_fdr_invariants(T, f, 1, 6000.0 * 300.0, "channel");
+      EXPECT_GE(min_angle_deg(T), 30.0 - 1e-9) << seed << " " << oc;
+      steiner[oc] += st.segment_splits + st.circumcenters;
+    }
+  }
+  EXPECT_LT(steiner[1], steiner[0]);
+}
+
+// Bank vertices 300-700 apart, f = 1000: with angle_split_min_f = 0.5 no split asked for by the
+// angle bound alone cuts a bank edge, all of which are shorter than f (the R/f(c) bound still holds
+// everywhere); with 0 (Triangle's rule) the banks are split finer than the input.
+TEST(Refine, AngleOnlySplitsKeepBankEdgesAboveHalfF) {
+  FnField f([](Point2) { return 1000.0; });
+  double shortest[2] = {1e300, 1e300};
+  std::uint64_t exempt = 0;
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const pslg::Pslg p = channel(seed, 300, 700);
+    for (int k = 0; k < 2; ++k) {
+      refine::RefineOptions o;
+      o.min_angle_deg = 30;
+      o.angle_split_min_f = k == 1 ? 0.5 : 0.0;
+      refine::RefineStats st;
+      auto T = refine_pslg(p, f, o, &st);
+      expect_fdr_invariants(T, f, 1, 6000.0 * 300.0, "channel");
+      shortest[k] = std::min(shortest[k], shortest_edge(T, true));
+      if (k == 1) exempt += st.exempt_small_angle;
+    }
+  }
+  EXPECT_GE(shortest[1], 300.0);
+  EXPECT_LT(shortest[0], 300.0);
+  EXPECT_GT(exempt, 0u);
 }
 
 TEST(Refine, SteinerCapEndsInError) {
