@@ -306,6 +306,7 @@ class Smoother {
     before_sum_ = star_sum_;
     before_angle_ = star_angle_;
     before_len2_ = star_len2_;
+    before_lens_.assign(star_lens_.begin(), star_lens_.end());
     t_.pts[v] = p;
     moved_ = v;
     moved_from_ = p0;
@@ -356,18 +357,21 @@ class Smoother {
     // stamp array, whose random accesses missed the cache.
     if (std::find(touched_.begin(), touched_.end(), t) != touched_.end()) return;
     touched_.push_back(t);
-    add_before(t, before_min_, before_sum_, before_angle_, before_len2_);
+    add_before(t, before_min_, before_sum_, before_angle_, before_len2_, &before_lens_);
   }
 
   // Adds triangle t (as it is now) to the worst quality, summed quality, smallest angle key and
   // shortest squared edge of the triangles before a move.
-  void add_before(TriangleId t, double& qmin, double& qsum, double& angle, double& len2) const {
+  void add_before(TriangleId t, double& qmin, double& qsum, double& angle, double& len2,
+                  std::vector<double>* lens) const {
     const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
     const double q = tri_quality(a, b, c);
     qmin = std::min(qmin, q);
     qsum += q;
     angle = std::min(angle, min_angle_key(a, b, c));
-    len2 = std::min({len2, norm2(b - a), norm2(c - b), norm2(a - c)});
+    const double l0 = norm2(b - a), l1 = norm2(c - b), l2 = norm2(a - c);
+    len2 = std::min({len2, l0, l1, l2});
+    lens->insert(lens->end(), {l0, l1, l2});
   }
 
   // The star's triangles before any move, once per star (an attempt used to measure them again:
@@ -377,7 +381,8 @@ class Smoother {
     star_sum_ = 0;
     star_angle_ = 1e300;
     star_len2_ = 1e300;
-    for (HalfEdge h : hs_) add_before(mesh::tri_of(h), star_min_, star_sum_, star_angle_, star_len2_);
+    star_lens_.clear();
+    for (HalfEdge h : hs_) add_before(mesh::tri_of(h), star_min_, star_sum_, star_angle_, star_len2_, &star_lens_);
   }
 
   // The touched triangles after the move: valid, R/f(c) <= B, no encroached subsegment, worst
@@ -402,10 +407,22 @@ class Smoother {
     if (!(nmin >= std::min(before_min_, 0.8) && nsum > before_sum_)) return false;
     // Nor may the shortest touched edge get shorter, unless it stays above f/2 at the moved
     // vertex: a short edge sets the model's time step.
+    // Nor may more touched edges be shorter than f/2 than before (each counted once per touched
+    // triangle; the touched region's outline does not change): else a move could shorten a second
+    // edge below f/2 next to one that already was.
     double fp = -1;  // f(p) at the moved vertex p once needed
     if (nlen2 < before_len2_) {
       fp = f_(t_.pts[moved_]);
       if (!(nlen2 >= 0.25 * fp * fp)) return false;
+    } else if (nlen2 < 0.25 * (fp = f_(t_.pts[moved_])) * fp) {
+      const double thr = 0.25 * fp * fp;
+      std::size_t nb = 0, na = 0;
+      for (double l : before_lens_) nb += l < thr;
+      for (TriangleId t : touched_) {
+        const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+        na += (norm2(b - a) < thr) + (norm2(c - b) < thr) + (norm2(a - c) < thr);
+      }
+      if (na > nb) return false;
     }
     const Point2 p = t_.pts[moved_];
     // Nor may it come nearer to a vertex across a constraint (Shared::hidden), unless it stays
@@ -508,6 +525,7 @@ class Smoother {
   std::vector<TriangleId> touched_;
   double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
   double star_min_ = 0, star_sum_ = 0, star_angle_ = 0, star_len2_ = 0;  // the same over the star (star_before)
+  std::vector<double> before_lens_, star_lens_;  // squared edge lengths of the touched / star triangles
   double floor_key_ = 0;  // min_angle_key of --min-angle
   double lipschitz_ = -1;  // of f, when known (else negative)
   Index moved_ = 0;  // the vertex of the current attempt

@@ -81,6 +81,38 @@ TEST(Smooth, RandomPslgsKeepEveryInvariant) {
   EXPECT_GT(deferred, 100u);  // and vertices whose star or flips cross blocks
 }
 
+std::size_t edges_shorter_than(const mesh::Triangulation& T, double l) {
+  std::set<std::pair<Index, Index>> e;
+  for (TriangleId t = 0; t < T.num_slots(); ++t) {
+    if (T.dead(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index a = T.tv[3 * t + k], b = T.tv[3 * t + (k + 1) % 3];
+      if (dist(T.pts[a], T.pts[b]) < l) e.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return e.size();
+}
+
+// A short edge sets a model's time step: smoothing never adds an edge shorter than f/2 (constant
+// f here, so the count over the mesh can only fall), also beside one that already was.
+TEST(Smooth, NoNewEdgesUnderHalfF) {
+  std::size_t before_total = 0;
+  for (unsigned seed = 0; seed < 40; ++seed) {
+    const auto p = fdr::testing::random_pslg(seed, 5 + seed % 40, static_cast<int>(seed % 12));
+    const double h = 0.2 + 0.1 * (seed % 5);
+    FnField f([h](Point2) { return h; });
+    auto T = refined(p, f, 1.0, 30.0);
+    const std::size_t before = edges_shorter_than(T, 0.5 * h);
+    before_total += before;
+    refine::SmoothOptions so;
+    so.passes = 4;
+    so.min_angle_deg = 30;
+    refine::smooth(T, f, so);
+    EXPECT_LE(edges_shorter_than(T, 0.5 * h), before) << seed;
+  }
+  EXPECT_GT(before_total, 100u);  // the inputs' small features make short edges to begin with
+}
+
 TEST(Smooth, Deterministic) {
   const auto p = fdr::testing::random_pslg(11, 40, 6);
   FnField f([](Point2 q) { return 0.25 * (1 + 0.1 * q.x); });
