@@ -23,6 +23,7 @@ struct Chain {
   // Per input segment: how many times a piece over it conflicted; the tolerance there is
   // halved each time, and at kMaxLevel the input vertices are kept.
   std::vector<std::uint8_t> level;
+  Index first_a = 0, first_b = 0;  // the chain's first input segment (its side: chain_left_inside)
 };
 
 constexpr std::uint8_t kMaxLevel = 6;
@@ -52,6 +53,7 @@ class Resampler {
   }
 
   Pslg run(ResampleStats* st) {
+    pts_ = in_.points;
     build_chains();
     chain_pieces_.resize(chains_.size());
     for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
@@ -109,7 +111,10 @@ class Resampler {
                                                  std::to_string(in_.origin.y + p.y) + ") must be finite and > 0");
     return v;
   }
-  Point2 P(std::size_t c, std::size_t k) const { return in_.points[chains_[c].v[k]]; }
+  Point2 P(std::size_t c, std::size_t k) const { return pts_[chains_[c].v[k]]; }
+  // A point added on an input segment (the midpoint of a short piece, merge_short_pieces): a
+  // candidate key, never kept as an input vertex.
+  bool is_virtual(Index v) const { return v >= in_.points.size(); }
 
   void build_chains() {
     const std::size_t n = in_.points.size();
@@ -159,6 +164,8 @@ class Resampler {
       }
       c.closed = c.v.front() == c.v.back();
       c.level.assign(c.v.size() - 1, 0);
+      c.first_a = c.v[0];
+      c.first_b = c.v[1];
       return c;
     };
     for (std::size_t v = 0; v < n; ++v) {
@@ -182,6 +189,8 @@ class Resampler {
         std::rotate(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(best), r.end());
         r.push_back(r.front());
         c.v = std::move(r);
+        c.first_a = c.v[0];
+        c.first_b = c.v[1];
       }
       chains_.push_back(std::move(c));
     }
@@ -236,18 +245,19 @@ class Resampler {
         else prev = k;
       }
     }
-    merge_short_pieces(c, key);
+    merge_short_pieces(c, key);  // may add midpoints to the chain
+    const std::size_t m2 = ch.v.size() - 1;
     // A ring keeps at least three pieces (a non-degenerate polygon): add keys at a third and two
     // thirds of its length.
     if (ch.closed) {
       std::size_t nkeys = static_cast<std::size_t>(std::count(key.begin(), key.end(), 1)) - 1;
-      if (nkeys < 3 && m >= 3) {
-        std::vector<double> cum(m + 1, 0);
-        for (std::size_t k = 0; k < m; ++k) cum[k + 1] = cum[k] + dist(P(c, k), P(c, k + 1));
+      if (nkeys < 3 && m2 >= 3) {
+        std::vector<double> cum(m2 + 1, 0);
+        for (std::size_t k = 0; k < m2; ++k) cum[k + 1] = cum[k] + dist(P(c, k), P(c, k + 1));
         for (double frac : {1.0 / 3.0, 2.0 / 3.0}) {
-          const auto it = std::lower_bound(cum.begin(), cum.end(), frac * cum[m]);
+          const auto it = std::lower_bound(cum.begin(), cum.end(), frac * cum[m2]);
           std::size_t k = static_cast<std::size_t>(it - cum.begin());
-          k = std::clamp<std::size_t>(k, 1, m - 1);
+          k = std::clamp<std::size_t>(k, 1, m2 - 1);
           key[k] = 1;
         }
       }
@@ -255,7 +265,7 @@ class Resampler {
     auto& pieces = chain_pieces_[c];
     pieces.clear();
     std::size_t k0 = 0;
-    for (std::size_t k = 1; k <= m; ++k) {
+    for (std::size_t k = 1; k <= m2; ++k) {
       if (!key[k]) continue;
       Piece p;
       p.chain = c;
@@ -268,7 +278,7 @@ class Resampler {
       k0 = k;
     }
     // A closed chain of two pieces would be two segments between the same two vertices.
-    if (ch.closed && m >= 3) {
+    if (ch.closed && m2 >= 3) {
       std::size_t pts = 0;
       for (const auto& p : pieces) pts += 1 + (p.restored ? p.k1 - p.k0 - 1 : p.inner.size());
       if (pts < 3)
@@ -310,19 +320,32 @@ class Resampler {
       if (!(len < kShortPiece * std::min(f(P(c, a)), f(P(c, b))))) { ++i; continue; }
       slack = len < kTinyPiece * std::min(f(P(c, a)), f(P(c, b))) ? len : 0.0;
       const bool a_free = i > 0, b_free = i + 2 < ks.size();
-      const std::size_t pa = a_free ? ks[i - 1] : a, nb = b_free ? ks[i + 2] : b;
+      std::size_t b_now = b;
+      // A piece that is one input segment between two corners (a small headland's blunt tip, a
+      // notch): its midpoint is a candidate too, which moves the coast by at most half the piece.
+      if (a_free && b_free && b == a + 1 && !is_virtual(chains_[c].v[a]) && !is_virtual(chains_[c].v[b])) {
+        Chain& ch = chains_[c];
+        const Index mid = static_cast<Index>(pts_.size());
+        pts_.push_back(0.5 * (P(c, a) + P(c, b)));
+        ch.v.insert(ch.v.begin() + static_cast<std::ptrdiff_t>(b), mid);
+        ch.level.insert(ch.level.begin() + static_cast<std::ptrdiff_t>(a), ch.level[a]);
+        key.insert(key.begin() + static_cast<std::ptrdiff_t>(b), 0);
+        for (std::size_t j = i + 1; j < ks.size(); ++j) ++ks[j];
+        b_now = b + 1;
+      }
+      const std::size_t pa = a_free ? ks[i - 1] : a, nb = b_free ? ks[i + 2] : b_now;
       // Candidates: one input vertex k in [a, b] replaces both keys (k == a: b dropped, k == b:
       // a dropped); the one with the smallest deviation wins (ties: the first).
       double best = -1;
       std::size_t bk = 0;
-      for (std::size_t k = a; k <= b; ++k) {
-        if ((k != a && !a_free) || (k != b && !b_free)) continue;
+      for (std::size_t k = a; k <= b_now; ++k) {
+        if ((k != a && !a_free) || (k != b_now && !b_free)) continue;
         if (!ok(pa, k) || !ok(k, nb)) continue;
         const double d = std::max(chord_deviation(c, pa, k), chord_deviation(c, k, nb));
         if (best < 0 || d < best) { best = d; bk = k; }
       }
       if (best < 0) { ++i; continue; }
-      key[a] = key[b] = 0;
+      key[a] = key[b_now] = 0;
       key[bk] = 1;
       ks.erase(ks.begin() + static_cast<std::ptrdiff_t>(i), ks.begin() + static_cast<std::ptrdiff_t>(i + 2));
       ks.insert(ks.begin() + static_cast<std::ptrdiff_t>(i), bk);
@@ -410,12 +433,12 @@ class Resampler {
     out.origin = in_.origin;
     out.holes = in_.holes;
     out.regions = in_.regions;
-    out.points = in_.points;
+    out.points = pts_;  // input points, then the midpoints added (dropped below unless used)
     if (!in_.point_markers.empty()) out.point_markers = in_.point_markers;
     seg_piece_.clear();
     seg_chain_.clear();
     flat_.clear();
-    pt_piece_.assign(in_.points.size(), kNoPiece);
+    pt_piece_.assign(pts_.size(), kNoPiece);
     for (std::size_t c = 0; c < chains_.size(); ++c) {
       const Chain& ch = chains_[c];
       for (const Piece& p : chain_pieces_[c]) {
@@ -424,7 +447,8 @@ class Resampler {
         std::vector<Index> seq;
         seq.push_back(ch.v[p.k0]);
         if (p.restored) {
-          for (std::size_t k = p.k0 + 1; k < p.k1; ++k) seq.push_back(ch.v[k]);
+          for (std::size_t k = p.k0 + 1; k < p.k1; ++k)
+            if (!is_virtual(ch.v[k])) seq.push_back(ch.v[k]);
         } else {
           for (std::size_t i = 0; i < p.inner.size(); ++i) {
             if (p.inner_id[i] != kNoId) {
@@ -596,7 +620,7 @@ class Resampler {
   bool chain_left_inside(std::size_t c) {
     if (chain_side_.empty()) chain_side_.assign(chains_.size(), -1);
     if (chain_side_[c] >= 0) return chain_side_[c] == 1;
-    const Index ia = chains_[c].v[0], ib = chains_[c].v[1];
+    const Index ia = chains_[c].first_a, ib = chains_[c].first_b;
     const bool mirror = in_.points[ia].y == in_.points[ib].y;
     auto pt = [&](Index i) { const Point2 q = in_.points[i]; return mirror ? Point2{q.y, q.x} : q; };
     const Point2 a = pt(ia), b = pt(ib);
@@ -671,6 +695,7 @@ class Resampler {
     return m;
   }
   double input_wedge(Index v) {
+    if (is_virtual(v)) return kPi;  // on an input segment
     if (wedge_.empty()) {
       // Smallest angle between consecutive input segments around every input vertex.
       const std::size_t n = in_.points.size();
@@ -721,6 +746,7 @@ class Resampler {
   static constexpr double kShortPiece = 0.6;      // pieces shorter than this * f lose a key if they can
   std::vector<double> wedge_;
   const Pslg& in_;
+  std::vector<Point2> pts_;  // in_.points, then the midpoints merge_short_pieces adds
   ResampleOptions o_;
   std::vector<Chain> chains_;
   std::vector<std::vector<Piece>> chain_pieces_;

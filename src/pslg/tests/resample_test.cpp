@@ -275,5 +275,26 @@ TEST(Resample, NeedleOfWaterKeepsItsBluntTip) {
   }
 }
 
+// A tongue of land 1200 m wide at its base, 200 m at its square tip (f = 500, tolerance 125 m): neither tip corner can
+// stand for the other (each is 200 m from the chord through the other), but the tip's midpoint
+// serves both within 100 m, so the 200 m tip segment goes and no segment is shorter than f/2.
+TEST(Resample, SquareTipOfLandBecomesItsMidpoint) {
+  Pslg g;
+  add_ring(g, {{-6000, -6000}, {6000, -6000}, {6000, 6000}, {-6000, 6000}}, 1, 0);
+  std::vector<Point2> tongue;
+  for (int i = 0; i <= 60; ++i) tongue.push_back({-3000.0 + 50.0 * i, 600.0 - 500.0 * i / 60.0});
+  for (int i = 0; i <= 60; ++i) tongue.push_back({-50.0 * i, -100.0 - 500.0 * i / 60.0});
+  add_ring(g, tongue, 2, 1);
+  ResampleOptions o = opts(500);
+  o.domain_by_parity = true;
+  const Pslg r = resample(g, o);
+  validate(r, "resampled");
+  EXPECT_GT(shortest_segment(r), 250.0);
+  bool mid = false;
+  for (const auto& q : r.points) mid = mid || (q.x == 0 && q.y == 0);
+  EXPECT_TRUE(mid);
+  for (const auto& q : tongue) EXPECT_LE(dist_to_chain(q, r, 1), 125.0 + 1e-9);
+}
+
 }  // namespace
 }  // namespace fdr::pslg
