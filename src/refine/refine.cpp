@@ -324,6 +324,16 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
 // other bank, where it encroaches and splits bank segments; the off-center refines only as far as
 // the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
 // R/f(c)-bad triangle is split anywhere but at its circumcenter.
+// Whether the smallest angle of (a, b, c) is below angle_split_floor_deg: sin(theta) = l / (2R).
+bool Refiner::below_floor(Point2 a, Point2 b, Point2 c) const {
+  if (!(opt_.angle_split_floor_deg > 0)) return false;
+  double r2;
+  predicates::circumcenter(a, b, c, &r2);
+  const double l2 = std::min({norm2(b - a), norm2(c - b), norm2(a - c)});
+  const double s = std::sin(opt_.angle_split_floor_deg * kPi / 180.0);
+  return l2 < 4.0 * s * s * r2;
+}
+
 bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
   if (!(rho2_inv_ > 0) || !opt_.region_max_area.empty()) return false;
   double r2;
@@ -381,7 +391,7 @@ void Refiner::split_triangle(const BadEntry& e) {
   // Rejected: split the encroached subsegments instead, then retry the triangle.
   ++stats_.rejected_circumcenters;
   // Angle-only splits yield to the spacing at the boundary (RefineOptions::angle_split_min_f).
-  if (opt_.angle_split_min_f > 0 && angle_only(a, b, c)) {
+  if (opt_.angle_split_min_f > 0 && angle_only(a, b, c) && !below_floor(a, b, c)) {
     for (const auto& [p, q] : seg_tmp_) {
       Index apex;
       int ex;

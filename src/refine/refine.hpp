@@ -25,6 +25,9 @@ struct RefineOptions {
   // alone would split the banks to a fraction of f, and the smallest element sets a model's time
   // step; the GIS pipeline uses 0.5 (README, Model-ready meshes). R/f(c)-bad triangles always split.
   double angle_split_min_f = 0.0;
+  // ... except for triangles with an angle under this (they split as Triangle would): the rule
+  // trades angles between this and min_angle_deg for edges, never worse ones.
+  double angle_split_floor_deg = 20.0;
   // Cap on inserted Steiner points; reaching it ends in Error(kWorkLimit). Documented default.
   std::uint64_t max_steiner = 20'000'000;
   // Triangle .poly area constraints: per Pslg::regions index the largest triangle area (<= 0:
@@ -90,6 +93,7 @@ class Refiner {
   void split_triangle(const BadEntry& e);
   Point2 steiner_point(TriangleId t, Point2 a, Point2 b, Point2 c) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
+  bool below_floor(Point2 a, Point2 b, Point2 c) const;
   // Off-center distance from the short edge, as a fraction of the one at which that edge is seen
   // at exactly the bound angle (a margin so that the new triangle is not bad by rounding).
   static constexpr double kOffCenter = 0.95;

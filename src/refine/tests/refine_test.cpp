@@ -240,11 +240,35 @@ TEST(Refine, AngleOnlySplitsKeepBankEdgesAboveHalfF) {
       expect_fdr_invariants(T, f, 1, 6000.0 * 300.0, "channel");
       shortest[k] = std::min(shortest[k], shortest_edge(T, true));
       if (k == 1) exempt += st.exempt_small_angle;
+      // Triangles under angle_split_floor_deg (20) are split as before: the trade is only ever
+      // between 20 and 30 degrees.
+      EXPECT_GE(min_angle_deg(T), k == 1 ? 20.0 - 1e-9 : 30.0 - 1e-9) << seed;
     }
   }
   EXPECT_GE(shortest[1], 300.0);
   EXPECT_LT(shortest[0], 300.0);
   EXPECT_GT(exempt, 0u);
+}
+
+// The trade stops at angle_split_floor_deg: with bank vertices 60-900 apart some triangles are
+// skinnier than 20 degrees; they split whatever edges that makes (floor 0 leaves some).
+TEST(Refine, AngleOnlySplitsBelowTheFloorAlwaysHappen) {
+  FnField f([](Point2) { return 1000.0; });
+  double worst[2] = {90, 90};
+  for (std::uint32_t seed = 1; seed <= 12; ++seed) {
+    const pslg::Pslg p = channel(seed, 60, 900);
+    for (int k = 0; k < 2; ++k) {
+      refine::RefineOptions o;
+      o.min_angle_deg = 30;
+      o.angle_split_min_f = 0.5;
+      o.angle_split_floor_deg = k == 1 ? 20.0 : 0.0;
+      auto T = refine_pslg(p, f, o);
+      expect_fdr_invariants(T, f, 1, 6000.0 * 300.0, "channel");
+      worst[k] = std::min(worst[k], min_angle_deg(T));
+    }
+  }
+  EXPECT_GE(worst[1], 20.0 - 1e-9);
+  EXPECT_LT(worst[0], 20.0);
 }
 
 TEST(Refine, SteinerCapEndsInError) {
