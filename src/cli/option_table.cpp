@@ -162,7 +162,7 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--simplify", "simplify", field<&MeshOptions::simplify>, "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
       {"mesh", "--bound", "bound", field<&MeshOptions::bound>, "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},
-      {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q); 0 turns it off"},
+      {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q; GIS inputs: above 20 deg it gives way where a split would cut a boundary segment under f/2); 0 turns it off"},
       {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
       {"mesh", "--max-steiner", "max-steiner", set_max_steiner, "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
       {"mesh", "--check", "check", field<&MeshOptions::check>, "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails)"},
