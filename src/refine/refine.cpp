@@ -316,14 +316,6 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
   return true;
 }
 
-// Where a bad triangle is split. R/f(c)-bad (the FDR rule) or over its region's area: its
-// circumcenter. Bad only by the --min-angle bound: Ungor's off-center when it is nearer than the
-// circumcenter, the point on the shortest edge's bisector from which that edge is seen at a little
-// more than the bound angle (the new triangle on that edge is then good). Why: the circumcenter of
-// a skinny triangle lies far beyond its short edge, often across a narrow channel next to the
-// other bank, where it encroaches and splits bank segments; the off-center refines only as far as
-// the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
-// R/f(c)-bad triangle is split anywhere but at its circumcenter.
 // Whether the smallest angle of (a, b, c) is below angle_split_floor_deg: sin(theta) = l / (2R).
 bool Refiner::below_floor(Point2 a, Point2 b, Point2 c) const {
   if (!(opt_.angle_split_floor_deg > 0)) return false;
@@ -334,6 +326,7 @@ bool Refiner::below_floor(Point2 a, Point2 b, Point2 c) const {
   return l2 < 4.0 * s * s * r2;
 }
 
+// Whether (a, b, c) is bad only by the angle bound (not R/f(c)-bad, no area constraints).
 bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
   if (!(rho2_inv_ > 0) || !opt_.region_max_area.empty()) return false;
   double r2;
@@ -342,11 +335,18 @@ bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
   return fc > 0 && std::isfinite(fc) && !(r2 / (fc * fc) * b2_inv_ > 1);
 }
 
-Point2 Refiner::steiner_point(TriangleId t, Point2 a, Point2 b, Point2 c) const {
+// Where a bad triangle is split. R/f(c)-bad (the FDR rule) or over its region's area: its
+// circumcenter. Bad only by the --min-angle bound: Ungor's off-center when it is nearer than the
+// circumcenter, the point on the shortest edge's bisector from which that edge is seen at a little
+// more than the bound angle (the new triangle on that edge is then good). Why: the circumcenter of
+// a skinny triangle lies far beyond its short edge, often across a narrow channel next to the
+// other bank, where it encroaches and splits bank segments; the off-center refines only as far as
+// the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
+// R/f(c)-bad triangle is split anywhere but at its circumcenter.
+Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c) const {
   double r2;
   const Point2 cc = predicates::circumcenter(a, b, c, &r2);
   if (!(rho2_inv_ > 0) || !opt_.off_centers || !opt_.region_max_area.empty()) return cc;
-  (void)t;
   const double fc = f_(cc);
   if (!(fc > 0) || !std::isfinite(fc) || r2 / (fc * fc) * b2_inv_ > 1) return cc;
   Point2 p = a, q = b;
@@ -363,7 +363,7 @@ Point2 Refiner::steiner_point(TriangleId t, Point2 a, Point2 b, Point2 c) const 
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
   const Point2 a = T.pts[T.tv[3 * e.t]], b = T.pts[T.tv[3 * e.t + 1]], c = T.pts[e.c];
-  const Point2 cc = steiner_point(e.t, a, b, c);
+  const Point2 cc = steiner_point(a, b, c);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
   seg_tmp_.clear();
   if (loc.kind == cdt::LocateKind::kBlocked) {
