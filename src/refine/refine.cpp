@@ -343,12 +343,9 @@ bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
 // other bank, where it encroaches and splits bank segments; the off-center refines only as far as
 // the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
 // R/f(c)-bad triangle is split anywhere but at its circumcenter.
-Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c) const {
-  double r2;
-  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
-  if (!(rho2_inv_ > 0) || !opt_.off_centers || !opt_.region_max_area.empty()) return cc;
-  const double fc = f_(cc);
-  if (!(fc > 0) || !std::isfinite(fc) || r2 / (fc * fc) * b2_inv_ > 1) return cc;
+Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const {
+  const Point2 cc = predicates::circumcenter(a, b, c);
+  if (!angle_bad_only || !opt_.off_centers) return cc;
   Point2 p = a, q = b;
   double l2 = norm2(b - a);
   if (norm2(c - b) < l2) { l2 = norm2(c - b); p = b; q = c; }
@@ -363,7 +360,8 @@ Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c) const {
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
   const Point2 a = T.pts[T.tv[3 * e.t]], b = T.pts[T.tv[3 * e.t + 1]], c = T.pts[e.c];
-  const Point2 cc = steiner_point(a, b, c);
+  const bool angle = angle_only(a, b, c);  // bad only by the angle bound
+  const Point2 cc = steiner_point(a, b, c, angle);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
   seg_tmp_.clear();
   if (loc.kind == cdt::LocateKind::kBlocked) {
@@ -391,7 +389,7 @@ void Refiner::split_triangle(const BadEntry& e) {
   // Rejected: split the encroached subsegments instead, then retry the triangle.
   ++stats_.rejected_circumcenters;
   // Angle-only splits yield to the spacing at the boundary (RefineOptions::angle_split_min_f).
-  if (opt_.angle_split_min_f > 0 && angle_only(a, b, c) && !below_floor(a, b, c)) {
+  if (opt_.angle_split_min_f > 0 && angle && !below_floor(a, b, c)) {
     for (const auto& [p, q] : seg_tmp_) {
       Index apex;
       int ex;

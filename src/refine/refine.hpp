@@ -91,7 +91,7 @@ class Refiner {
   void check_encroached_edges(TriangleId t);
   void split_subsegment(Index a, Index b);
   void split_triangle(const BadEntry& e);
-  Point2 steiner_point(Point2 a, Point2 b, Point2 c) const;
+  Point2 steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
   bool below_floor(Point2 a, Point2 b, Point2 c) const;
   // Off-center distance from the short edge, as a fraction of the one at which that edge is seen

@@ -414,15 +414,18 @@ class Smoother {
     if (nlen2 < before_len2_) {
       fp = f_(t_.pts[moved_]);
       if (!(nlen2 >= 0.25 * fp * fp)) return false;
-    } else if (nlen2 < 0.25 * (fp = f_(t_.pts[moved_])) * fp) {
+    } else {
+      fp = f_(t_.pts[moved_]);
       const double thr = 0.25 * fp * fp;
-      std::size_t nb = 0, na = 0;
-      for (double l : before_lens_) nb += l < thr;
-      for (TriangleId t : touched_) {
-        const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
-        na += (norm2(b - a) < thr) + (norm2(c - b) < thr) + (norm2(a - c) < thr);
+      if (nlen2 < thr) {
+        std::size_t nb = 0, na = 0;
+        for (double l : before_lens_) nb += l < thr;
+        for (TriangleId t : touched_) {
+          const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+          na += (norm2(b - a) < thr) + (norm2(c - b) < thr) + (norm2(a - c) < thr);
+        }
+        if (na > nb) return false;
       }
-      if (na > nb) return false;
     }
     const Point2 p = t_.pts[moved_];
     // Nor may it come nearer to a vertex across a constraint (Shared::hidden), unless it stays
