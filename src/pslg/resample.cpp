@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -24,6 +25,7 @@ struct Chain {
   // halved each time, and at kMaxLevel the input vertices are kept.
   std::vector<std::uint8_t> level;
   Index first_a = 0, first_b = 0;  // the chain's first input segment (its side: chain_left_inside)
+  bool free_seam = false;          // a ring without anchors: its seam may move (small_ring)
 };
 
 constexpr std::uint8_t kMaxLevel = 6;
@@ -191,6 +193,7 @@ class Resampler {
         c.v = std::move(r);
         c.first_a = c.v[0];
         c.first_b = c.v[1];
+        c.free_seam = true;
       }
       chains_.push_back(std::move(c));
     }
@@ -283,6 +286,156 @@ class Resampler {
       for (const auto& p : pieces) pts += 1 + (p.restored ? p.k1 - p.k0 - 1 : p.inner.size());
       if (pts < 3)
         for (auto& p : pieces) p.restored = true;
+    }
+    if (ch.free_seam && o_.small_rings) small_ring(c);
+  }
+
+  // Shortest segment of chain c's planned pieces over f (at the nearer end's smaller f).
+  double planned_min_ratio(std::size_t c) const {
+    double r = std::numeric_limits<double>::infinity();
+    for (const Piece& p : chain_pieces_[c]) {
+      std::vector<Point2> seq{P(c, p.k0)};
+      if (p.restored) {
+        for (std::size_t k = p.k0 + 1; k < p.k1; ++k) seq.push_back(P(c, k));
+      } else {
+        seq.insert(seq.end(), p.inner.begin(), p.inner.end());
+      }
+      seq.push_back(P(c, p.k1));
+      for (std::size_t i = 0; i + 1 < seq.size(); ++i)
+        r = std::min(r, dist(seq[i], seq[i + 1]) / std::min(f(seq[i]), f(seq[i + 1])));
+    }
+    return r;
+  }
+
+  // Small rings (islands a few elements round): Douglas-Peucker keeps the corners the tolerance
+  // needs, and two of them often end up a fraction of f apart (the blunt end of a small
+  // island), so the mesh refines to their distance all around it. A ring of at most
+  // kSmallRing steps of ds / (spacing_factor f) whose plan has a piece under kShortPiece * f is
+  // planned again as n points at equal steps along it, n near its step count, from the
+  // starting point (on the input line) that makes the shortest chord longest while every input
+  // vertex stays within the tolerance; the seam moves to the first of them. Only when no
+  // conflict was found on the ring yet (every level 0), and only when it gains.
+  void small_ring(std::size_t c) {
+    Chain& ch = chains_[c];
+    const std::size_t m = ch.v.size() - 1;
+    if (m < 3 || m > kSmallRingVertices) return;
+    for (auto L : ch.level)
+      if (L != 0) return;
+    const double old = planned_min_ratio(c);
+    if (!(old < kShortPiece)) return;
+    // lambda at every vertex: integral ds / (spacing_factor f) along the ring
+    std::vector<double> lam(m + 1, 0.0), seg_f(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const Point2 a = P(c, k), b = P(c, k + 1);
+      seg_f[k] = f(0.5 * (a + b));
+      lam[k + 1] = lam[k] + dist(a, b) / (o_.spacing_factor * seg_f[k]);
+    }
+    const double total = lam[m];
+    if (!(total > 0) || total > kSmallRing) return;
+    const long n0 = std::max(3L, std::lround(total));
+    struct Cand { double score = -1, dev = 0; long n = 0; double off = 0; };
+    Cand best;
+    std::vector<std::size_t> qk(16);  // segment of each new point
+    std::vector<double> qt(16);
+    std::vector<Point2> q(16);
+    auto point_at = [&](double L, std::size_t* k, double* t) {
+      while (L >= total) L -= total;
+      std::size_t j = static_cast<std::size_t>(std::upper_bound(lam.begin(), lam.end(), L) - lam.begin());
+      j = std::clamp<std::size_t>(j, 1, m) - 1;
+      const double span = lam[j + 1] - lam[j];
+      double w = span > 0 ? (L - lam[j]) / span : 0.0;
+      w = std::clamp(w, 0.0, 1.0);
+      if (w >= 1.0) { j = (j + 1) % m; w = 0.0; }
+      *k = j;
+      *t = w;
+      const Point2 a = P(c, j), b = P(c, j + 1);
+      return w == 0.0 ? a : a + w * (b - a);
+    };
+    std::vector<double> offs;
+    for (long n = std::max(3L, n0 - 1); n <= n0 + 1; ++n) {
+      if (n > 16) break;
+      const double step = total / static_cast<double>(n);
+      offs.clear();
+      for (int i = 0; i < kSmallRingOffsets; ++i) offs.push_back(step * i / kSmallRingOffsets);
+      for (std::size_t k = 0; k < m; ++k) offs.push_back(std::fmod(lam[k], step));
+      for (double off : offs) {
+        for (long i = 0; i < n; ++i) q[i] = point_at(off + step * static_cast<double>(i), &qk[i], &qt[i]);
+        double score = std::numeric_limits<double>::infinity(), dev = 0;
+        bool ok = true;
+        for (long i = 0; i < n && ok; ++i) {
+          const long i2 = (i + 1) % n;
+          const Point2 a = q[i], b = q[i2];
+          const double fa = f(a), fb = f(b);
+          score = std::min(score, dist(a, b) / std::min(fa, fb));
+          const double tl = o_.tolerance_factor * std::min(fa, fb);
+          // input vertices strictly after point i and up to before point i2 along the ring
+          std::size_t k = (qk[i] + 1) % m;
+          const std::size_t kend = qt[i2] > 0 ? (qk[i2] + 1) % m : qk[i2];
+          for (std::size_t guard = 0; k != kend && guard < m; k = (k + 1) % m, ++guard) {
+            const double d = dist_to_segment(P(c, k), a, b);
+            dev = std::max(dev, d);
+            if (d > tl) { ok = false; break; }
+          }
+        }
+        if (!ok) continue;
+        if (score > best.score + 1e-12 || (std::fabs(score - best.score) <= 1e-12 && dev < best.dev)) best = {score, dev, n, off};
+      }
+    }
+    if (best.n == 0 || !(best.score > old + kSmallRingGain)) return;
+    // Rebuild the ring: the new points as vertices of the chain (virtual ones inside input
+    // segments), the first of them as the seam.
+    const long n = best.n;
+    const double step = total / static_cast<double>(n);
+    std::vector<Index> ring(ch.v.begin(), ch.v.end() - 1);
+    std::vector<std::uint8_t> lev(ch.level.begin(), ch.level.end());
+    std::vector<std::pair<std::size_t, double>> at;  // (segment, t) of each new point
+    for (long i = 0; i < n; ++i) {
+      std::size_t k;
+      double t;
+      point_at(best.off + step * static_cast<double>(i), &k, &t);
+      at.push_back({k, t});
+    }
+    std::vector<std::vector<std::pair<double, long>>> on_seg(m);
+    for (long i = 0; i < n; ++i) on_seg[at[i].first].push_back({at[i].second, i});
+    std::vector<Index> nv;
+    std::vector<std::uint8_t> nl;
+    std::vector<std::size_t> key_of(n, 0);
+    for (std::size_t k = 0; k < m; ++k) {
+      auto& os = on_seg[k];
+      std::sort(os.begin(), os.end());
+      std::size_t o = 0;
+      if (!os.empty() && os[0].first == 0.0) { key_of[os[0].second] = nv.size(); ++o; }
+      nv.push_back(ring[k]);
+      nl.push_back(lev[k]);
+      const Point2 a = pts_[ring[k]], b = pts_[ring[(k + 1) % m]];
+      for (; o < os.size(); ++o) {
+        if (os[o].first == 0.0) { key_of[os[o].second] = nv.size() - 1; continue; }
+        key_of[os[o].second] = nv.size();
+        nv.push_back(static_cast<Index>(pts_.size()));
+        pts_.push_back(a + os[o].first * (b - a));
+        nl.push_back(lev[k]);
+      }
+    }
+    const std::size_t s0 = key_of[0];
+    std::rotate(nv.begin(), nv.begin() + static_cast<std::ptrdiff_t>(s0), nv.end());
+    std::rotate(nl.begin(), nl.begin() + static_cast<std::ptrdiff_t>(s0), nl.end());
+    nv.push_back(nv.front());
+    ch.v = std::move(nv);
+    ch.level = std::move(nl);
+    const std::size_t m2 = ch.v.size() - 1;
+    std::vector<std::size_t> keys;
+    for (long i = 0; i < n; ++i) keys.push_back((key_of[i] + m2 - s0) % m2);
+    keys.push_back(m2);
+    std::sort(keys.begin(), keys.end());
+    auto& pieces = chain_pieces_[c];
+    pieces.clear();
+    for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+      Piece p;
+      p.chain = c;
+      p.k0 = keys[i];
+      p.k1 = keys[i + 1];
+      place(p, 1.0);
+      pieces.push_back(std::move(p));
     }
   }
 
@@ -743,7 +896,12 @@ class Resampler {
   static constexpr double kSharp = kPi / 6;  // wedges under 30 degrees are checked
   static constexpr double kCornerTurn = kPi / 9;  // a key turning less than 20 degrees is no corner
   static constexpr double kTinyPiece = 0.05;      // ... and below this * f, by their own length beyond the tolerance
-  static constexpr double kShortPiece = 0.6;      // pieces shorter than this * f lose a key if they can
+  static constexpr double kShortPiece = 0.6;
+  static constexpr double kSmallRing = 12;              // small_ring: at most this many steps round
+  static constexpr std::size_t kSmallRingVertices = 4000;
+  static constexpr int kSmallRingOffsets = 48;
+  static constexpr double kSmallRingGain = 0.02;
+  std::size_t small_rings_planned_ = 0;      // pieces shorter than this * f lose a key if they can
   std::vector<double> wedge_;
   const Pslg& in_;
   std::vector<Point2> pts_;  // in_.points, then the midpoints merge_short_pieces adds

@@ -12,7 +12,9 @@
 //      tolerance cannot remove;
 //   2. between consecutive key vertices, points on the input polyline at equal steps of
 //      integral ds / (spacing_factor * f), so spacing follows f;
-//   3. a piece whose chord strays more than tol from an input vertex gets that vertex back.
+//   3. a piece whose chord strays more than tol from an input vertex gets that vertex back;
+//   4. a small ring (an island a few f round) whose plan has a piece under 0.6 f: n points at
+//      equal steps along it from the start that makes the shortest chord longest within tol.
 // Then, with exact predicates, every piece that crosses or touches another segment, or whose
 // swept region (between the new chord and the input polyline) contains any other vertex, is put
 // back to its input vertices, until none is left (rings are never merged, split or crossed).
@@ -32,6 +34,9 @@ struct ResampleOptions {
   // The domain is the parity of the boundary segments (GIS inputs): a sharp wedge that resampling
   // makes outside it (a needle of land) is allowed; otherwise every side is checked.
   bool domain_by_parity = false;
+  // A ring without anchors at most 12 steps round whose plan has a piece under 0.6 f is planned
+  // again as points at equal steps from the best start (resample.cpp, small_ring).
+  bool small_rings = true;
 };
 
 struct ResampleStats {

@@ -335,6 +335,30 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_EQ(r0.islands_removed, 2u);
 }
 
+// An islet whose triangle (side 70 m, hmin 100) leaves 45 m of water to the next land: room
+// enough to place it (35 m beyond its corners), but narrower than --widen-width (60 m). The
+// triangle goes in after the widening, so the widening does not eat into it: it keeps its side.
+TEST(FeatureFilter, IsletTriangleNextToNarrowWaterKeepsItsSide) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
+  const Rings land = rect(2090, 1500, 3000, 2500);
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  const FeatureFilterResult r = filter_features({{sea[0], islet[0], land[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  ASSERT_EQ(r.islets_replaced, 1u);
+  double tri = -1;
+  for (std::size_t k = 1; k < r.polygons[0].size(); ++k) {
+    const Polygons one{{r.polygons[0][k]}};
+    const double a = area(one);
+    if (a < 1e4) tri = a;
+  }
+  EXPECT_NEAR(tri, std::sqrt(3.0) / 4 * 70 * 70, 0.08 * std::sqrt(3.0) / 4 * 70 * 70);  // the closing rounds its corners (-6 %)
+  EXPECT_FALSE(water_at(r, {2010, 2010}));
+  EXPECT_GE(r.widened, 1u);  // the water beside it was narrow all the same
+}
+
 TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};

@@ -296,5 +296,58 @@ TEST(Resample, SquareTipOfLandBecomesItsMidpoint) {
   for (const auto& q : tongue) EXPECT_LE(dist_to_chain(q, r, 1), 125.0 + 1e-9);
 }
 
+// Small rocky islands (4-7 corners 100-700 m from their centre, f = 500 m, digitised every 40 m): Douglas-Peucker
+// keeps the corners the tolerance needs and two of them often end up a fraction of f apart. With
+// small_rings the ring is planned again at equal steps from its best start: every input vertex
+// stays within the tolerance, no island gets a shorter shortest segment, and far fewer have one
+// under f/2.
+TEST(Resample, SmallIslandsGetEqualStepsFromTheirBestStart) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  int short_on = 0, short_off = 0, better = 0;
+  for (int it = 0; it < 150; ++it) {
+    // k corners at increasing angles, radii in [0.4 R, R], straight sides digitised every 40 m
+    const double R = 250 + 450 * u(rng);
+    const int k = 4 + static_cast<int>(4 * u(rng));
+    std::vector<Point2> cs;
+    for (int i = 0; i < k; ++i) {
+      const double t = 2 * kPi * (i + 0.7 * u(rng)) / k, r = R * (0.4 + 0.6 * u(rng));
+      cs.push_back({r * std::cos(t), r * std::sin(t)});
+    }
+    std::vector<Point2> isl;
+    for (int i = 0; i < k; ++i) {
+      const Point2 p = cs[i], q = cs[(i + 1) % k];
+      const int steps = std::max(1, static_cast<int>(dist(p, q) / 40));
+      for (int j = 0; j < steps; ++j) isl.push_back(p + (static_cast<double>(j) / steps) * (q - p));
+    }
+    Pslg g;
+    add_ring(g, {{-6000, -6000}, {6000, -6000}, {6000, 6000}, {-6000, 6000}}, 1, 0);
+    add_ring(g, isl, 2, 1);
+    ResampleOptions o = opts(500);
+    o.domain_by_parity = true;
+    const Pslg on = resample(g, o);
+    o.small_rings = false;
+    const Pslg off = resample(g, o);
+    validate(on, "resampled");
+    auto shortest_island = [](const Pslg& r) {
+      double m = 1e300;
+      for (const auto& s : r.segments)
+        if (s.part == 1) m = std::min(m, dist(r.points[s.a], r.points[s.b]));
+      return m;
+    };
+    const double son = shortest_island(on), soff = shortest_island(off);
+    EXPECT_GE(son, soff - 1e-9) << it;
+    short_on += son < 250;
+    short_off += soff < 250;
+    better += son > soff + 1e-9;
+    for (const auto& q : isl) EXPECT_LE(dist_to_chain(q, on, 1), 125.0 + 1e-9) << it;
+    std::size_t ring = 0;
+    for (const auto& s : on.segments) ring += s.part == 1;
+    EXPECT_GE(ring, 3u);
+  }
+  EXPECT_GT(better, 10);
+  EXPECT_LT(2 * short_on, short_off) << short_on << " vs " << short_off;
+}
+
 }  // namespace
 }  // namespace fdr::pslg
