@@ -35,6 +35,7 @@ struct FeatureFilterOptions {
                                // widened to about this width (m); 0: not widened
   double islet_side = 0;       // an island below min_island_area with no other land within this of
                                // its replacement becomes a triangle of this side (m); 0: removed
+  double islet_shift = 0;      // no room at its centroid: the triangle may move up to this far from it
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
 };

@@ -93,6 +93,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     // end (README, "Tips of land").
     fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.5) * hmin;
     fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // README: islets
+    fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
     return fo;

@@ -335,6 +335,37 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_EQ(r0.islands_removed, 2u);
 }
 
+// The same islet 30 m from the big island (its centroid 40 m away, 75 m needed) with
+// islet_shift 40: its triangle moves 40 m east, away from the island, instead of being removed.
+TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
+  const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  o.islet_shift = 40;
+  const FeatureFilterResult r = filter_features({{sea[0], big[0], near_islet[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_FALSE(water_at(r, {1580, 1010}));  // the triangle's centre
+  EXPECT_TRUE(water_at(r, {1540, 1010}));   // where the islet was
+  bool said = false;
+  for (const auto& x : r.repairs)
+    if (x.kind == "islet_simplified") {
+      EXPECT_NEAR(x.where.x, 1580, 1e-9);
+      EXPECT_NEAR(x.where.y, 1010, 1e-9);
+      said = x.reason.find("40 m from its centroid") != std::string::npos;
+    }
+  EXPECT_TRUE(said);
+  // Shifts too small for the room it needs: removed, as without islet_shift.
+  o.islet_shift = 20;
+  const FeatureFilterResult r2 = filter_features({{sea[0], big[0], near_islet[0]}}, o);
+  EXPECT_EQ(r2.islets_replaced, 0u);
+  EXPECT_EQ(r2.islands_removed, 1u);
+}
+
 // An islet whose triangle (side 70 m, hmin 100) leaves 45 m of water to the next land: room
 // enough to place it (35 m beyond its corners), but narrower than --widen-width (60 m). The
 // triangle goes in after the widening, so the widening does not eat into it: it keeps its side.
