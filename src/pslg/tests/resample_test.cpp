@@ -349,5 +349,42 @@ TEST(Resample, SmallIslandsGetEqualStepsFromTheirBestStart) {
   EXPECT_LT(2 * short_on, short_off) << short_on << " vs " << short_off;
 }
 
+// Clusters of small rocky islands 40-150 m apart (f = 500 m): the re-planned rings must neither
+// cross nor touch each other (the conflict rounds put back what would), and keep the tolerance.
+TEST(Resample, SmallIslandClustersDoNotCross) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int it = 0; it < 30; ++it) {
+    Pslg g;
+    add_ring(g, {{-6000, -6000}, {6000, -6000}, {6000, 6000}, {-6000, 6000}}, 1, 0);
+    std::vector<std::vector<Point2>> isl;
+    double x = -2500;
+    for (int i = 0; i < 5; ++i) {
+      const double R = 150 + 350 * u(rng);
+      x += (i ? R : 0);
+      std::vector<Point2> cs, ring;
+      const int k = 4 + static_cast<int>(4 * u(rng));
+      for (int j = 0; j < k; ++j) {
+        const double t = 2 * kPi * (j + 0.7 * u(rng)) / k, r = R * (0.5 + 0.5 * u(rng));
+        cs.push_back({x + r * std::cos(t), r * std::sin(t)});
+      }
+      for (int j = 0; j < k; ++j) {
+        const Point2 p = cs[j], q = cs[(j + 1) % k];
+        const int steps = std::max(1, static_cast<int>(dist(p, q) / 40));
+        for (int m = 0; m < steps; ++m) ring.push_back(p + (static_cast<double>(m) / steps) * (q - p));
+      }
+      add_ring(g, ring, 2, 1 + i);
+      isl.push_back(ring);
+      x += R + 40 + 110 * u(rng);
+    }
+    ResampleOptions o = opts(500);
+    o.domain_by_parity = true;
+    const Pslg r = resample(g, o);
+    validate(r, "resampled");  // throws on crossings, touching or duplicate segments
+    for (std::size_t i = 0; i < isl.size(); ++i)
+      for (const auto& q : isl[i]) EXPECT_LE(dist_to_chain(q, r, static_cast<std::int32_t>(1 + i)), 125.0 + 1e-9) << it;
+  }
+}
+
 }  // namespace
 }  // namespace fdr::pslg
