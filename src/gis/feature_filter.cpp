@@ -190,7 +190,13 @@ GeomPtr with_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, std::vector<std
 // are united first and overlaid with it once. Pieces are grouped when their envelopes, grown by
 // `hair`, meet and the pieces (the smaller one grown by `hair`) intersect; the result equals the
 // union of all pieces.
-GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, const char* what) {
+// `family` (optional, one label per piece): pieces with the same label have disjoint interiors
+// (the polygons of one valid multipolygon); the others of a group that all share one label are
+// overlaid with the big one as they are, without a cascaded union among themselves (the widened
+// water: ten thousand grown pieces that never overlap each other, 2.6 s of union for nothing on
+// a GSHHG-h basin).
+GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, const char* what,
+                     const std::vector<int>* family = nullptr) {
   const std::size_t n = ps.size();
   if (n <= 1) return GeomPtr(multi(ps).release());
   std::vector<OGREnvelope> env(n);
@@ -242,8 +248,16 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
     for (std::size_t k : g)
       if (npts[k] > npts[big]) big = k;
     std::vector<std::unique_ptr<OGRPolygon>> rest;
+    bool one_family = family != nullptr;
+    int label = -1;
     for (std::size_t k : g)
-      if (k != big) rest.push_back(std::move(ps[k]));
+      if (k != big) {
+        if (one_family) {
+          if (label < 0) label = (*family)[k];
+          one_family = (*family)[k] == label;
+        }
+        rest.push_back(std::move(ps[k]));
+      }
     std::vector<OGREnvelope> touch;
     for (const auto& r : rest) {
       touch.emplace_back();
@@ -252,7 +266,7 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
     std::sort(touch.begin(), touch.end(), [](const OGREnvelope& a, const OGREnvelope& b) { return a.MinX < b.MinX; });
     auto far = detach_far_holes(*ps[big], touch, hair + 1e-9 * (1 + std::fabs(env[big].MaxX) + std::fabs(env[big].MaxY)));
     auto rm = multi(rest);
-    GeomPtr ru = rm->getNumGeometries() > 1 ? checked(rm->UnionCascaded(), what) : GeomPtr(rm.release());
+    GeomPtr ru = rm->getNumGeometries() > 1 && !one_family ? checked(rm->UnionCascaded(), what) : GeomPtr(rm.release());
     GeomPtr u = checked(ps[big]->Union(ru.get()), what);
     std::vector<std::unique_ptr<OGRPolygon>> ups;
     polygons_of(u.get(), ups);
@@ -1532,7 +1546,11 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   polygons_of(&W, wps);
   polygons_of(D.get(), dps);
   std::vector<std::unique_ptr<OGRPolygon>> pieces;
-  for (auto& p : wps) pieces.emplace_back(p->clone());
+  std::vector<int> family;  // 0: the water bodies, 1: the grown pieces (each set disjoint)
+  for (auto& p : wps) {
+    pieces.emplace_back(p->clone());
+    family.push_back(0);
+  }
   // Tested grown by the close width: land thinner than that between a piece and another water
   // body would be removed by the closing below and join them all the same.
   Meets bodies(wps, 2 * s, true);
@@ -1555,10 +1573,11 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
                                  num(rw - 2 * s) + " m into the land); the widened part covers " + num(a) + " m^2",
                              -1});
     pieces.push_back(std::move(d));
+    family.push_back(1);
   }
   lap("pieces");
   const double hair = 1e-6 * rw;
-  GeomPtr out = union_pieces(pieces, hair, "union of the widened water");
+  GeomPtr out = union_pieces(pieces, hair, "union of the widened water", &family);
   lap("union");
   const double added = area_of(out.get()) - area_of(&W);
   if (added > 0) res.widened_area += added;
