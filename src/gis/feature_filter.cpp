@@ -1189,6 +1189,51 @@ class CoastRestorer {
   std::unique_ptr<pslg::SegmentGrid> grid_;
 };
 
+// Removed water (input minus result, `gone`), listed piece by piece above list_area; pieces
+// thinner than `hair` (the snapping distance) are rounding, not features; a piece holding a
+// water body listed as removed (listed_at) is not listed again.
+RemovedWater list_removed_water(GeomPtr gone_all, const std::vector<Point2>& listed_at, double hair, double list_area,
+                                double close_width) {
+  RemovedWater out;
+  std::vector<std::unique_ptr<OGRPolygon>> gone;
+  polygons_of(gone_all.get(), gone);
+  gone_all.reset();
+  for (const auto& g : gone) {
+    const double a = g->get_Area();
+    double per = g->getExteriorRing()->get_Length();
+    for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
+    if (!(a > 0) || 2 * a <= hair * per) continue;
+    bool listed = false;  // a cut-off water body already listed
+    OGREnvelope ge;
+    g->getEnvelope(&ge);
+    for (const Point2 w : listed_at) {
+      if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
+      OGRPoint pt(w.x, w.y);
+      if (g->Intersects(&pt)) { listed = true; break; }
+    }
+    if (listed) continue;
+    out.areas.push_back(a);
+    if (a < list_area) {
+      ++out.corner_pieces;
+      continue;
+    }
+    ++out.closed;
+    out.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
+                           "dead-end water narrower than the resolution (" + num(close_width) +
+                               " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
+                           -1});
+  }
+  return out;
+}
+
+// Adds a listing to the result (areas one by one, in order: the same sum as before the listing
+// could be deferred).
+void add_removed(FeatureFilterResult& res, RemovedWater w) {
+  for (const double a : w.areas) res.closed_area += a;
+  res.corner_pieces += w.corner_pieces;
+  res.closed += w.closed;
+  for (auto& r : w.repairs) res.repairs.push_back(std::move(r));
+}
 }  // namespace
 
 // Step timings on stderr when FDR_DEBUG_FILTER is set (developer aid): lap("x") prints the time
@@ -1582,6 +1627,15 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   const double added = area_of(out.get()) - area_of(&W);
   if (added > 0) res.widened_area += added;
   return out;
+}
+
+std::vector<pslg::Repair> finish_removed(FeatureFilterResult& res) {
+  if (!res.removed_pending || !res.removed_pending->job.valid()) return {};
+  RemovedWater w = res.removed_pending->job.get();
+  res.removed_pending.reset();
+  const std::size_t first = res.repairs.size();
+  add_removed(res, std::move(w));
+  return {res.repairs.begin() + static_cast<std::ptrdiff_t>(first), res.repairs.end()};
 }
 
 Polygons offset_polygons(const Polygons& input, double d) {
@@ -2267,44 +2321,23 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     res.polygons.push_back(std::move(rings));
   }
   if (o.close_width > 0) {
-    const double hair = 0.05 * o.close_width;
-    // Removed water (input minus result), listed piece by piece above list_area; pieces thinner
-    // than the snapping distance are rounding, not features.
-    (void)dropped;
-    std::vector<std::unique_ptr<OGRPolygon>> gone;
-    {
-      GeomPtr g_all = gone_job.get();
-      polygons_of(g_all.get(), gone);
-    }
     // The places of the water bodies already listed as removed (collected once: the repairs list
     // holds thousands of entries, the removed pieces are thousands too).
     std::vector<Point2> listed_at;
     for (const auto& r : res.repairs)
       if (r.kind == "cut_off_water_removed" || r.kind == "water_body_removed") listed_at.push_back(r.where);
-    for (const auto& g : gone) {
-      const double a = g->get_Area();
-      double per = g->getExteriorRing()->get_Length();
-      for (int k = 0; k < g->getNumInteriorRings(); ++k) per += g->getInteriorRing(k)->get_Length();
-      if (!(a > 0) || 2 * a <= hair * per) continue;
-      bool listed = false;  // a cut-off water body already listed
-      OGREnvelope ge;
-      g->getEnvelope(&ge);
-      for (const Point2 w : listed_at) {
-        if (!(ge.MinX <= w.x && w.x <= ge.MaxX && ge.MinY <= w.y && w.y <= ge.MaxY)) continue;
-        OGRPoint pt(w.x, w.y);
-        if (g->Intersects(&pt)) { listed = true; break; }
-      }
-      if (listed) continue;
-      res.closed_area += a;
-      if (a < o.list_area) {
-        ++res.corner_pieces;
-        continue;
-      }
-      ++res.closed;
-      res.repairs.push_back({"narrow_water_closed", inside_point(g.get()), a,
-                             "dead-end water narrower than the resolution (" + num(o.close_width) +
-                                 " m, --close-width) removed: " + num(a) + " m^2 (inlet, gap or sliver)",
-                             -1});
+    auto listing = [gone = std::move(gone_job), listed_at = std::move(listed_at), hair = 0.05 * o.close_width,
+                    list_area = o.list_area, close_width = o.close_width]() mutable {
+      GdalQuiet q2;
+      return list_removed_water(gone.get(), listed_at, hair, list_area, close_width);
+    };
+    if (o.defer_removed) {
+      // On the other core while the caller goes on (resampling); finish_removed() takes it.
+      res.removed_pending = std::make_shared<PendingRemoved>();
+      res.removed_pending->job =
+          std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(listing));
+    } else {
+      add_removed(res, listing());
     }
   }
   lap("removed");

@@ -14,6 +14,8 @@
 // a dead end (closed). Result R = O1 + kept pieces; W - R is listed as repairs.
 #pragma once
 #include <cstddef>
+#include <future>
+#include <memory>
 #include <vector>
 #include "base/types.hpp"
 #include "pslg/clean.hpp"
@@ -38,6 +40,19 @@ struct FeatureFilterOptions {
   double islet_shift = 0;      // no room at its centroid: the triangle may move up to this far from it
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
+  bool defer_removed = false;  // the listing of removed water (input minus result: thousands of
+                               // pieces, seconds on an ocean basin) goes on on another thread after
+                               // filter_features returns; finish_removed() adds it to the result
+};
+
+// The listing of removed water: its repairs (narrow_water_closed) and figures.
+struct RemovedWater {
+  std::vector<pslg::Repair> repairs;
+  std::vector<double> areas;      // every removed piece counted, in order (added to closed_area)
+  std::size_t closed = 0, corner_pieces = 0;
+};
+struct PendingRemoved {
+  std::future<RemovedWater> job;
 };
 
 struct FeatureFilterResult {
@@ -64,10 +79,17 @@ struct FeatureFilterResult {
   double islands_area = 0;
   double input_area = 0, output_area = 0;
   double close_width = 0;            // the close width used (0: no opening)
+  // With FeatureFilterOptions::defer_removed: the removed-water listing still running (null
+  // without); closed, closed_area, corner_pieces and repairs lack it until finish_removed().
+  std::shared_ptr<PendingRemoved> removed_pending;
 };
 
 // Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
+
+// Waits for a deferred removed-water listing and adds it to res (repairs appended); returns the
+// repairs it added (none when nothing was pending). Rethrows the listing's error.
+std::vector<pslg::Repair> finish_removed(FeatureFilterResult& res);
 
 // The polygons grown (d > 0) or shrunk (d < 0) by |d| (GEOS buffer, ring by ring).
 Polygons offset_polygons(const Polygons& input, double d);

@@ -615,6 +615,24 @@ std::unique_ptr<OGRMultiPolygon> local_domain_geometry(const std::vector<std::ve
 
 }  // namespace
 
+void finish_features(GisInput& in) {
+  std::vector<pslg::Repair> reps = finish_removed(in.features);
+  if (reps.empty()) return;
+  std::vector<RepairRecord> recs;
+  for (auto& rep : reps) {
+    RepairRecord rec;
+    rec.lonlat = in.frame.to_lonlat(rep.where);
+    rec.repair = std::move(rep);
+    rec.repair.where = in.frame.to_world(rec.repair.where);
+    recs.push_back(std::move(rec));
+  }
+  // in.repairs starts with the filter's repairs (read_domain, clean_domain).
+  const auto at = static_cast<std::ptrdiff_t>(std::min(in.feature_repairs.size(), in.repairs.size()));
+  in.repairs.insert(in.repairs.begin() + at, recs.begin(), recs.end());
+  in.feature_repairs.insert(in.feature_repairs.end(), recs.begin(), recs.end());
+  in.counts.repairs = in.repairs.size();
+}
+
 void clean_domain(GisInput& in, const pslg::CleanOptions& options) {
   std::vector<pslg::Repair> reps;
   in.pslg = pslg::clean(in.raw, options, &reps);

@@ -115,4 +115,9 @@ GisInput read_domain(const DomainOptions& options);
 // Runs pslg::clean on in.raw with `options` and replaces in.pslg / in.repairs.
 void clean_domain(GisInput& in, const pslg::CleanOptions& options);
 
+// Adds the resolution filter's deferred removed-water listing (FeatureFilterOptions::defer_removed)
+// to in.features, in.feature_repairs and in.repairs (after the filter's other repairs, where
+// they were listed before the listing could be deferred); nothing when none is pending.
+void finish_features(GisInput& in);
+
 }  // namespace fdr::gis

@@ -94,6 +94,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.5) * hmin;
     fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // README: islets
     fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
+    fo.defer_removed = true;  // listed while the coast is cleaned and resampled (finish_features)
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
     return fo;
@@ -246,6 +247,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     coast_figures.push_back({"resample_pieces_restored", static_cast<double>(rs.pieces_restored)});
     clock.lap("resample");
   }
+  gis::finish_features(g);  // the filter's removed-water listing, done beside the stages above
   {
     const auto& ff = g.features;
     coast_figures.push_back({"input_pieces", static_cast<double>(ff.input_pieces)});

@@ -76,6 +76,40 @@ TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
     }
 }
 
+// The removed-water listing deferred to another thread (defer_removed, as the pipeline runs it)
+// gives the same repairs, in the same order, and the same figures once finish_removed() took it;
+// before that it is missing (so the test sees a listing that was really deferred).
+TEST(FeatureFilter, DeferredRemovedListingEqualsTheDirectOne) {
+  Polygons in = basin_with_inlet(10);
+  in.push_back(rect(2000, 0, 2300, 8));  // a water body nowhere min_feature wide
+  in[0].push_back({{200, 200}, {200, 203}, {260, 203}, {260, 200}});  // a thin island (cut)
+  for (const int threads : {1, 2}) {
+    ThreadsEnv env(threads);
+    FeatureFilterOptions o = opts(100);
+    const FeatureFilterResult direct = filter_features(in, o);
+    o.defer_removed = true;
+    FeatureFilterResult later = filter_features(in, o);
+    ASSERT_TRUE(later.removed_pending != nullptr);
+    EXPECT_EQ(count(later, "narrow_water_closed"), 0u);
+    const std::vector<pslg::Repair> added = finish_removed(later);
+    EXPECT_EQ(later.removed_pending, nullptr);
+    EXPECT_TRUE(finish_removed(later).empty());  // taken once
+    ASSERT_EQ(count(direct, "narrow_water_closed"), 1u);
+    EXPECT_EQ(added.size(), 1u);
+    ASSERT_EQ(later.repairs.size(), direct.repairs.size());
+    for (std::size_t i = 0; i < direct.repairs.size(); ++i) {
+      EXPECT_EQ(later.repairs[i].kind, direct.repairs[i].kind);
+      EXPECT_EQ(later.repairs[i].where, direct.repairs[i].where);
+      EXPECT_EQ(later.repairs[i].size, direct.repairs[i].size);
+      EXPECT_EQ(later.repairs[i].reason, direct.repairs[i].reason);
+    }
+    EXPECT_EQ(later.closed, direct.closed);
+    EXPECT_EQ(later.closed_area, direct.closed_area);  // bit for bit: the same sums in the same order
+    EXPECT_EQ(later.corner_pieces, direct.corner_pieces);
+    EXPECT_EQ(later.polygons, direct.polygons);
+  }
+}
+
 TEST(FeatureFilter, InletWiderThanCloseWidthIsKeptAsDrawn) {
   const Polygons in = basin_with_inlet(40);  // 40 m > 25 m
   const FeatureFilterResult r = filter_features(in, opts(100));
