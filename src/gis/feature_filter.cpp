@@ -1449,12 +1449,7 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
     for (std::size_t i : r.tips) ps.emplace_back(pieces[i]->clone());
     if (!r.outer) polygons_of(r.base.get(), ps);
     GeomPtr u = union_pieces(ps, hair, "kept tips");
-    // The kept tips are pieces of base - ring, so their arcs are base's own segments bit for bit:
-    // the difference by faces nodes only the rest (a GSHHG-h basin: 1 622 lines, against GEOS's
-    // overlay of the whole closed coast with its snapping fallback, 1.1 s).
-    if (!r.outer) return u;
-    return std::getenv("FDR_DIFF_OVERLAY") ? checked(r.base->Difference(u.get()), "closed water without kept tips")
-                                           : difference_by_faces(r.base.get(), u.get(), "closed water without kept tips");
+    return r.outer ? checked(r.base->Difference(u.get()), "closed water without kept tips") : std::move(u);
   };
   std::vector<std::unique_ptr<OGRPolygon>> out;
   const bool two = max_threads() >= 2;

@@ -224,39 +224,6 @@ TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   EXPECT_EQ(r0.tips_kept, 0u);
 }
 
-bool water_at(const FeatureFilterResult& r, Point2 q);
-
-// Tips of the outer ring's land (spits from the shore): the closed water without its kept tips
-// comes from the faces of the segments the tips do not share with the closing (the tips are
-// pieces of it); the same water as GEOS's overlay (FDR_DIFF_OVERLAY), with the tip's own input
-// vertices.
-TEST(FeatureFilter, ShoreSpitsKeptOrCutTheSameByFacesAsByOverlay) {
-  // hmin 100: close_width 25 m; two spits 10 m wide and 1500 m long from the south shore, one
-  // into open water, one pointing at an island 40 m beyond its end.
-  const Rings sea{{{0, 0}, {995, 0}, {995, 1500}, {1005, 1500}, {1005, 0}, {2995, 0}, {2995, 1500}, {3005, 1500},
-                   {3005, 0}, {4000, 0}, {4000, 4000}, {0, 4000}}};
-  const Rings island{{{2800, 1540}, {2800, 1900}, {3200, 1900}, {3200, 1540}}};
-  const Polygons in{{sea[0], island[0]}};
-  FeatureFilterOptions o = opts(100);
-  o.tip_clearance = 80;
-  const FeatureFilterResult faces = filter_features(in, o);
-  FeatureFilterResult overlay;
-  {
-    ScopedEnv env("FDR_DIFF_OVERLAY", "1");
-    overlay = filter_features(in, o);
-  }
-  const FeatureFilterResult* both[] = {&faces, &overlay};
-  for (const FeatureFilterResult* r : both) {
-    EXPECT_TRUE(has_vertex(*r, {995, 1500}) && has_vertex(*r, {1005, 1500})) << "the spit in open water keeps its tip";
-    EXPECT_FALSE(has_vertex(*r, {3005, 1500})) << "the spit pointing 40 m from the island is cut";
-    EXPECT_EQ(r->tips_kept, 1u);
-    EXPECT_FALSE(water_at(*r, {1000, 1000}));  // on the kept spit
-    EXPECT_TRUE(water_at(*r, {3000, 1000}));   // where the cut spit was
-  }
-  EXPECT_NEAR(area(faces.polygons), area(overlay.polygons), 1e-9 * area(overlay.polygons));
-  EXPECT_EQ(faces.repairs.size(), overlay.repairs.size());
-}
-
 TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
   // Islands 400 m long and 20 m wide (thinner than close_width everywhere): one in open water,
   // one 50 m from the coast.
