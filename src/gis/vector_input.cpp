@@ -615,17 +615,22 @@ std::unique_ptr<OGRMultiPolygon> local_domain_geometry(const std::vector<std::ve
 
 }  // namespace
 
+namespace {
+// A repair in the local frame as a record: world coordinates and lon/lat.
+RepairRecord repair_record(const Frame& frame, pslg::Repair rep) {
+  RepairRecord rec;
+  rec.lonlat = frame.to_lonlat(rep.where);
+  rec.repair = std::move(rep);
+  rec.repair.where = frame.to_world(rec.repair.where);
+  return rec;
+}
+}  // namespace
+
 void finish_features(GisInput& in) {
   std::vector<pslg::Repair> reps = finish_removed(in.features);
   if (reps.empty()) return;
   std::vector<RepairRecord> recs;
-  for (auto& rep : reps) {
-    RepairRecord rec;
-    rec.lonlat = in.frame.to_lonlat(rep.where);
-    rec.repair = std::move(rep);
-    rec.repair.where = in.frame.to_world(rec.repair.where);
-    recs.push_back(std::move(rec));
-  }
+  for (auto& rep : reps) recs.push_back(repair_record(in.frame, std::move(rep)));
   // in.repairs starts with the filter's repairs (read_domain, clean_domain).
   const auto at = static_cast<std::ptrdiff_t>(std::min(in.feature_repairs.size(), in.repairs.size()));
   in.repairs.insert(in.repairs.begin() + at, recs.begin(), recs.end());
@@ -638,13 +643,7 @@ void clean_domain(GisInput& in, const pslg::CleanOptions& options) {
   in.pslg = pslg::clean(in.raw, options, &reps);
   in.pslg.origin = in.frame.origin();
   in.repairs = in.feature_repairs;
-  for (auto& r : reps) {
-    RepairRecord rec;
-    rec.lonlat = in.frame.to_lonlat(r.where);
-    rec.repair = std::move(r);
-    rec.repair.where = in.frame.to_world(rec.repair.where);
-    in.repairs.push_back(std::move(rec));
-  }
+  for (auto& r : reps) in.repairs.push_back(repair_record(in.frame, std::move(r)));
   in.counts.repairs = in.repairs.size();
 }
 
@@ -738,13 +737,7 @@ GisInput read_domain(const DomainOptions& o) {
     rings = std::move(out_rings);
     in.domain_polygons = fr.polygons;
     in.domain_area_m2 = fr.output_area;
-    for (auto& rep : fr.repairs) {
-      RepairRecord rec;
-      rec.lonlat = frame.to_lonlat(rep.where);
-      rec.repair = std::move(rep);
-      rec.repair.where = frame.to_world(rec.repair.where);
-      in.feature_repairs.push_back(std::move(rec));
-    }
+    for (auto& rep : fr.repairs) in.feature_repairs.push_back(repair_record(frame, std::move(rep)));
     fr.repairs.clear();
     fr.polygons.clear();
     in.features = std::move(fr);
