@@ -1733,98 +1733,124 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //     a dropped island near the coast moves the coastline the model sees by its whole distance.
   std::vector<Point2> placed;  // centres of the islets kept as triangles (step 2c keeps them)
   auto islet_tris = std::make_unique<OGRMultiPolygon>();
+  // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
+  // equilateral triangle of side islet_side around its centroid instead of water. Why: a dropped
+  // islet moves the coast the model sees by its distance to the next coast (its vertices are
+  // input coast too), a kept one forces elements as small as itself; the triangle keeps it within
+  // about islet_side / 2 with elements near hmin. Other land (every ring but its own, and the
+  // triangles placed before it) must be farther than islet_side / 2 beyond the triangle's corners.
+  // Step 1b judges room on the land after the union (later steps only take land away, so room
+  // there is room later too); step 2c on the land as it is then.
+  const double tri_r = o.islet_side / std::sqrt(3.0);  // circumradius
+  // Land as segments of the water's rings (every ring but the islet's own counts as other land).
+  struct LandIndex {
+    std::unique_ptr<pslg::SegmentGrid> grid;
+    std::vector<std::pair<Point2, Point2>> seg;
+    std::vector<int> ring;                                // ring id of each segment
+    int rings = 0;
+    std::unordered_map<const OGRLinearRing*, int> id_of;  // valid while the rings are
+  };
+  auto build_land = [&](const std::vector<std::unique_ptr<OGRPolygon>>& ps, LandIndex& L) {
+    Box2 box;
+    for (const auto& p : ps)
+      for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+        const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
+        const int id = L.rings++;
+        L.id_of[r] = id;
+        for (int i = 0; i + 1 < r->getNumPoints(); ++i) {
+          L.seg.push_back({{r->getX(i), r->getY(i)}, {r->getX(i + 1), r->getY(i + 1)}});
+          L.ring.push_back(id);
+          box.add(L.seg.back().first);
+        }
+      }
+    if (L.seg.empty()) return;
+    L.grid = std::make_unique<pslg::SegmentGrid>(box, L.seg.size(), o.islet_side);
+    for (std::size_t k = 0; k < L.seg.size(); ++k) L.grid->add_segment(static_cast<Index>(k), L.seg[k].first, L.seg[k].second);
+  };
+  LandIndex land;
+  std::vector<Index> near;
+  // A moved triangle keeps a little more room (0.55 islet_side beyond its corners instead of
+  // 0.5): with 0.5 the moved triangles added 21 edges under hmin/2 on the Gulf of Maine (290 ->
+  // 311, input->mesh p99 0.86 hmin), with 0.55 none (289, p99 0.89), 0.6: 287, p99 0.96.
+  const double shifted_cl = 0.55;
+  auto islet_room = [&](const LandIndex& L, int own, Point2 c, double clf = 0.5) {
+    const double lim = tri_r + clf * o.islet_side;
+    for (const Point2& q : placed)
+      if (dist(q, c) < lim + tri_r) return false;
+    Box2 qb;
+    qb.add({c.x - lim, c.y - lim});
+    qb.add({c.x + lim, c.y + lim});
+    L.grid->segments_near(qb, &near);
+    for (Index k : near)
+      if (L.ring[k] != own && dist_to_segment(c, L.seg[k].first, L.seg[k].second) < lim) return false;
+    return true;
+  };
+  // The islet of ring `own` (area a) as a triangle around cen or, with no room there, around the
+  // first of 24 points near it (8 directions at a third, two thirds and all of islet_shift) that
+  // has room; added to `into`. Why the shifts: most islets that were dropped lie within hmin of
+  // other land, and the coast the model saw moved by that distance (Gulf of Maine input->mesh
+  // p99 1.36 hmin); moved by at most islet_shift they stay.
+  auto place_islet = [&](const LandIndex& L, int own, Point2 cen, double a, const std::string& what,
+                         OGRMultiPolygon* into) {
+    Point2 c = cen;
+    bool room = islet_room(L, own, c);
+    for (int step = 1; !room && step <= 3 && o.islet_shift > 0; ++step)
+      for (int d = 0; d < 8 && !room; ++d) {
+        const double t = o.islet_shift * step / 3.0, ang = 0.7853981633974483 * d;
+        const Point2 q{cen.x + t * std::cos(ang), cen.y + t * std::sin(ang)};
+        if (islet_room(L, own, q, shifted_cl)) { c = q; room = true; }
+      }
+    if (!room) return false;
+    placed.push_back(c);
+    OGRLinearRing tr;
+    for (int k = 0; k < 3; ++k) {
+      const double t = 1.5707963267948966 - 2.0943951023931957 * k;  // clockwise, apex up
+      tr.addPoint(c.x + tri_r * std::cos(t), c.y + tri_r * std::sin(t));
+    }
+    tr.closeRings();
+    auto tp = std::make_unique<OGRPolygon>();
+    tp->addRing(&tr);
+    const double ta = tp->get_Area();
+    const double moved = dist(c, cen);
+    ++res.islets_replaced;
+    res.repairs.push_back({"islet_simplified", c, a,
+                           what + " is smaller than " + num(o.min_island_area) +
+                               " m^2 (--min-island); kept as a triangle of side " + num(o.islet_side) + " m (" +
+                               num(ta) + " m^2) " +
+                               (moved > 0 ? "around a point " + num(moved) +
+                                                " m from its centroid (other land too near the centroid)"
+                                          : std::string("around its centroid")),
+                           -1});
+    into->addGeometryDirectly(tp.release());
+    return true;
+  };
   {
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W.get(), wps);
     auto grown = std::make_unique<OGRMultiPolygon>();
-    // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
-    // equilateral triangle of side islet_side around its centroid instead of water. Why: a dropped
-    // islet moves the coast the model sees by its distance to the next coast (its vertices are
-    // input coast too), a kept one forces elements as small as itself; the triangle keeps it within
-    // about islet_side / 2 with elements near hmin. Other land (every ring but its own, and the
-    // triangles placed before it) must be farther than islet_side / 2 beyond the triangle's corners.
-    const double tri_r = o.islet_side / std::sqrt(3.0);  // circumradius
-    std::unique_ptr<pslg::SegmentGrid> land;
-    std::vector<std::pair<Point2, Point2>> land_seg;
-    std::vector<const OGRLinearRing*> land_ring;
-    std::vector<Index> near;
-    if (o.islet_side > 0 && o.min_island_area > 0) {
-      Box2 box;
-      for (const auto& p : wps)
-        for (int k = -1; k < p->getNumInteriorRings(); ++k) {
-          const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
-          for (int i = 0; i + 1 < r->getNumPoints(); ++i) {
-            land_seg.push_back({{r->getX(i), r->getY(i)}, {r->getX(i + 1), r->getY(i + 1)}});
-            land_ring.push_back(r);
-            box.add(land_seg.back().first);
-          }
-        }
-      if (!land_seg.empty()) {
-        land = std::make_unique<pslg::SegmentGrid>(box, land_seg.size(), o.islet_side);
-        for (std::size_t k = 0; k < land_seg.size(); ++k)
-          land->add_segment(static_cast<Index>(k), land_seg[k].first, land_seg[k].second);
-      }
-    }
-    // A moved triangle keeps a little more room (0.55 islet_side beyond its corners instead of
-    // 0.5): with 0.5 the moved triangles added 21 edges under hmin/2 on the Gulf of Maine (290 ->
-    // 311, input->mesh p99 0.86 hmin), with 0.55 none (289, p99 0.89), 0.6: 287, p99 0.96.
-    const double shifted_cl = 0.55;
-    auto islet_room = [&](const OGRLinearRing* h, Point2 c, double clf = 0.5) {
-      const double lim = tri_r + clf * o.islet_side;
-      for (const Point2& q : placed)
-        if (dist(q, c) < lim + tri_r) return false;
-      Box2 qb;
-      qb.add({c.x - lim, c.y - lim});
-      qb.add({c.x + lim, c.y + lim});
-      land->segments_near(qb, &near);
-      for (Index k : near)
-        if (land_ring[k] != h && dist_to_segment(c, land_seg[k].first, land_seg[k].second) < lim) return false;
-      return true;
-    };
+    if (o.islet_side > 0 && o.min_island_area > 0) build_land(wps, land);
     const bool changed = filter_holes(wps, [&](const OGRLinearRing* h, double a) {
       OGRPolygon hp;
       hp.addRing(const_cast<OGRLinearRing*>(h));
-      if (a < o.min_island_area && land) {
-        OGRPoint cen;
-        if (hp.Centroid(&cen) == OGRERR_NONE) {
-          Point2 c{cen.getX(), cen.getY()};
-          bool room = islet_room(h, c);
-          // No room at the centroid: the first of 24 points around it (8 directions at a third,
-          // two thirds and all of islet_shift) that has room. Why: most islets that were dropped
-          // lie within hmin of other land, and the coast the model saw moved by that distance
-          // (Gulf of Maine input->mesh p99 1.36 hmin); moved by at most islet_shift they stay.
-          for (int step = 1; !room && step <= 3 && o.islet_shift > 0; ++step)
-            for (int d = 0; d < 8 && !room; ++d) {
-              const double t = o.islet_shift * step / 3.0, ang = 0.7853981633974483 * d;
-              const Point2 q{cen.getX() + t * std::cos(ang), cen.getY() + t * std::sin(ang)};
-              if (islet_room(h, q, shifted_cl)) { c = q; room = true; }
-            }
-          if (room) {
-            placed.push_back(c);
-            OGRLinearRing tr;
-            for (int k = 0; k < 3; ++k) {
-              const double t = 1.5707963267948966 - 2.0943951023931957 * k;  // clockwise, apex up
-              tr.addPoint(c.x + tri_r * std::cos(t), c.y + tri_r * std::sin(t));
-            }
-            tr.closeRings();
-            auto tp = std::make_unique<OGRPolygon>();
-            tp->addRing(&tr);
-            const double ta = tp->get_Area();
-            const double moved = dist(c, {cen.getX(), cen.getY()});
-            ++res.islets_replaced;
-            res.repairs.push_back({"islet_simplified", c, a,
-                                   "island of " + num(a) + " m^2 is smaller than " + num(o.min_island_area) +
-                                       " m^2 (--min-island); kept as a triangle of side " + num(o.islet_side) +
-                                       " m (" + num(ta) + " m^2) " +
-                                       (moved > 0 ? "around a point " + num(moved) +
-                                                        " m from its centroid (other land too near the centroid)"
-                                                  : std::string("around its centroid")),
-                                   -1});
-            islet_tris->addGeometryDirectly(tp.release());
-            return false;
-          }
-        }
+      // An island above --min-island whose parts wider than close_width (what the closing leaves)
+      // are below it is an islet too: removed as a remnant after the closing (step 2c), its
+      // vertices were 43 of the 193 islets the Gulf of Maine lost, up to 2.5 hmin from the mesh.
+      double a_wide = a;
+      if (land.grid && !(a < o.min_island_area) && a < 4 * o.min_island_area && o.close_width > 0) {
+        GeomPtr op = opening(hp, 0.5 * o.close_width);
+        a_wide = area_of(op.get());
       }
+      const bool thin = !(a < o.min_island_area) && a_wide < o.min_island_area;
+      const std::string what = thin ? "island of " + num(a) + " m^2 (" + num(a_wide) + " m^2 of it wider than " +
+                                          num(o.close_width) + " m)"
+                                    : "island of " + num(a) + " m^2";
+      const int own = land.grid ? land.id_of.at(h) : -1;
+      if (a_wide < o.min_island_area && land.grid) {
+        OGRPoint cen;
+        if (hp.Centroid(&cen) == OGRERR_NONE && place_islet(land, own, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
+          return false;
+      }
+      if (thin) return true;  // the closing and step 2c judge it
       if (a < o.min_island_area) {
         ++res.islands_removed;
         res.islands_area += a;
@@ -2102,6 +2128,11 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   if (o.min_island_area > 0) {
     std::vector<std::unique_ptr<OGRPolygon>> rps;
     polygons_of(R.get(), rps);
+    auto remnant_tris = std::make_unique<OGRMultiPolygon>();
+    // Room for a remnant's triangle is judged on the land as it is now (the remnant's own island
+    // may have left other, larger parts).
+    LandIndex now;
+    if (o.islet_side > 0) build_land(rps, now);
     const bool changed = filter_holes(rps, [&](const OGRLinearRing* h, double a) {
       if (!(a < o.min_island_area)) return true;
       OGRPolygon hp;
@@ -2112,16 +2143,23 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           for (const Point2& q : placed)
             if (dist(q, {cen.getX(), cen.getY()}) < 0.1 * o.islet_side) return true;
       }
+      const std::string what = "island remnant of " + num(a) + " m^2 (land thinner than " + num(o.close_width) +
+                               " m became water)";
+      if (now.grid) {  // a triangle where there is room, as for the islets of step 1b
+        OGRPoint cen;
+        if (hp.Centroid(&cen) == OGRERR_NONE &&
+            place_islet(now, now.id_of.at(h), {cen.getX(), cen.getY()}, a, what, remnant_tris.get()))
+          return false;
+      }
       ++res.islands_removed;
       res.islands_area += a;
       res.repairs.push_back({"island_removed", inside_point(&hp), a,
-                             "island remnant of " + num(a) + " m^2 (land thinner than " + num(o.close_width) +
-                                 " m became water) is smaller than " + num(o.min_island_area) +
-                                 " m^2 (--min-island); it became water",
+                             what + " is smaller than " + num(o.min_island_area) + " m^2 (--min-island); it became water",
                              -1});
       return false;
     });
     if (changed) R = multi(rps);
+    if (!remnant_tris->IsEmpty()) R = minus_disjoint(std::move(R), *remnant_tris, "water minus remnants' triangles");
   }
 
   // 3. Back to the input's coordinates: buffers return the unchanged coast only up to rounding

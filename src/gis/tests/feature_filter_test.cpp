@@ -369,6 +369,54 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_EQ(r0.islands_removed, 2u);
 }
 
+// An island above --min-island (4000 m^2 > 3000) but thinner than --close-width (10 m < 15)
+// everywhere: the closing would leave nothing of it, so it is an islet and becomes a triangle.
+TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings thin = rect(2000, 2000, 2400, 2010);
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  const FeatureFilterResult r = filter_features({{sea[0], thin[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 2u);  // sea and the triangle
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_FALSE(water_at(r, {2200, 2005}));  // the triangle around the centroid
+  bool said = false;
+  for (const auto& x : r.repairs)
+    if (x.kind == "islet_simplified") said = x.reason.find("0 m^2 of it wider than 15 m") != std::string::npos;
+  EXPECT_TRUE(said);
+  EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - std::sqrt(3.0) / 4 * 70 * 70, 300.0);
+}
+
+// An island of 12500 m^2 (a 50 m square with a 10 m wide tail 1 km long) is judged after the
+// closing: the tail goes, the square's 2500 m^2 remnant is below --min-island (3000) and becomes
+// a triangle where it was instead of water.
+TEST(FeatureFilter, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings isl{{{2000, 2000}, {2050, 2000}, {2050, 2020}, {3050, 2020}, {3050, 2030}, {2050, 2030}, {2050, 2050}, {2000, 2050}}};
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  const FeatureFilterResult r = filter_features({{sea[0], isl[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].size(), 2u);
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_FALSE(water_at(r, {2025, 2025}));
+  EXPECT_TRUE(water_at(r, {2800, 2025}));  // the tail became water
+  bool said = false;
+  for (const auto& x : r.repairs)
+    if (x.kind == "islet_simplified") said = x.reason.find("island remnant of") != std::string::npos;
+  EXPECT_TRUE(said);
+  // Without islet_side the remnant is removed, as before.
+  o.islet_side = 0;
+  const FeatureFilterResult r0 = filter_features({{sea[0], isl[0]}}, o);
+  EXPECT_EQ(r0.polygons[0].size(), 1u);
+  EXPECT_EQ(r0.islands_removed, 1u);
+}
+
 // The same islet 30 m from the big island (its centroid 40 m away, 75 m needed) with
 // islet_shift 40: its triangle moves 40 m east, away from the island, instead of being removed.
 TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
