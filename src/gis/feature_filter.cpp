@@ -1841,13 +1841,13 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         a_wide = area_of(op.get());
       }
       const bool thin = !(a < o.min_island_area) && a_wide < o.min_island_area;
-      const std::string what = thin ? "island of " + num(a) + " m^2 (" + num(a_wide) + " m^2 of it wider than " +
-                                          num(o.close_width) + " m)"
-                                    : "island of " + num(a) + " m^2";
-      const int own = land.grid ? land.id_of.at(h) : -1;
       if (a_wide < o.min_island_area && land.grid) {
+        const std::string what = thin ? "island of " + num(a) + " m^2 (" + num(a_wide) + " m^2 of it wider than " +
+                                            num(o.close_width) + " m)"
+                                      : "island of " + num(a) + " m^2";
         OGRPoint cen;
-        if (hp.Centroid(&cen) == OGRERR_NONE && place_islet(land, own, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
+        if (hp.Centroid(&cen) == OGRERR_NONE &&
+            place_islet(land, land.id_of.at(h), {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
           return false;
       }
       if (thin) return true;  // the closing and step 2c judge it
