@@ -85,7 +85,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     gis::FeatureFilterOptions fo;
     fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);  // README: why 0.15
     fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
-    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.6 * hmin);  // README: why 0.6  // README: why 0.6
+    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.65 * hmin);  // README: why 0.65
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;

@@ -42,9 +42,9 @@ struct Options {
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
   // Model-ready coast (GIS runs; gis/feature_filter.hpp, pslg/resample.hpp).
   bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)
-  double coast_tol = 0.25;               // resampling tolerance, fraction of the local f
+  double coast_tol = 0.35;               // resampling tolerance, fraction of the local f
   std::optional<double> close_width;     // dead-end water narrower than this is closed (default 0.15 hmin)
-  std::optional<double> widen_width;     // narrower water is widened to about this (default 0.6 hmin)
+  std::optional<double> widen_width;     // narrower water is widened to about this (default 0.65 hmin)
   std::optional<double> min_feature;     // connections narrower than this are closed (default hmin/10)
   std::optional<double> min_island_factor;  // islands with area < factor * hmin^2 removed (default 0.1)
   double min_depth_m = 1.0;              // depth clamp for the gravity-wave time step in the report
