@@ -376,6 +376,12 @@ struct Part {
   bool ccw = true;
 };
 
+constexpr std::size_t kSumChunk = 4096;  // triangles per chunk (sums; the threads' work units)
+struct ChunkSums {
+  CompensatedSum area, r_over_f;
+  std::size_t count = 0;
+};
+
 // The report's single pass over the triangles and their interior edges (every metric that does
 // not need f), with the adjacency `nb`; on the calling thread also the area and R/f(c) sums,
 // which must be added in triangle order (evaluate() does them for triangles measured elsewhere).
@@ -391,10 +397,11 @@ struct Pass {
   const double* fv;
   std::vector<double>& nn2;  // per vertex: shortest mesh edge, squared
   std::vector<Index>& tov;   // per vertex: a triangle with that corner (keep_corner)
-  // The calling thread's sums (triangle order).
-  CompensatedSum area, r_over_f_sum;
-  std::size_t r_over_f_count = 0;
-  QualityReport* r = nullptr;  // max_R_over_f, bad_triangles, spacing_invalid
+  // Area and R/f(c) sums per chunk of kSumChunk triangles (each in triangle order; the chunks
+  // are added in order at the end, so the sums do not depend on which thread measured what).
+  ChunkSums* sums = nullptr;
+  std::size_t spacing_invalid = 0, bad = 0;
+  std::optional<double> max_rf;
 
   std::optional<double> el_f_max;  // el(p)/f(p) over the calling thread's triangles
   void el_over_f(const std::array<Index, 3>& tr, double lmax) {
@@ -405,7 +412,8 @@ struct Pass {
   }
 
   void add_f(std::size_t t, double cr, double radius, Point2 center) {
-    area.add(0.5 * cr);
+    ChunkSums& cs = sums[t / kSumChunk];
+    cs.area.add(0.5 * cr);
     if (per_triangle) per_triangle->area[t] = 0.5 * cr;
     if (!f) return;
     double ratio = kInf;
@@ -413,15 +421,15 @@ struct Pass {
       const double fc = (*f)(center);
       if (per_triangle) per_triangle->r_over_f[t] = radius / fc;
       if (!usable_spacing(fc)) {
-        ++r->spacing_invalid;
+        ++spacing_invalid;
         return;
       }
       ratio = radius / fc;
     }
-    update_max(r->max_R_over_f, ratio);
-    r_over_f_sum.add(ratio);
-    ++r_over_f_count;
-    if (ratio > bound_B) ++*r->bad_triangles;
+    update_max(max_rf, ratio);
+    cs.r_over_f.add(ratio);
+    ++cs.count;
+    if (ratio > bound_B) ++bad;
   }
 
   // Everything for the triangles [lo, hi); with_f on the calling thread when no triangle before lo
@@ -679,7 +687,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   prep.nn2.assign(nv, kInf);
   if (walk) prep.tri_of_vertex.assign(nv, kNoId);
   // Each thread has its own batch buffers.
-  auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}, {}});
+  auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
   Pass& pass = *pass_mine;
 
   // The triangles in chunks: the calling thread takes them from the front (with f), a second
@@ -690,9 +698,15 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   const std::size_t top_k = 3 * nt / 200 + 4;
   Part mine(r, top_k);
   const bool two = max_threads() > 1 && nt >= 16384;
-  constexpr std::size_t kChunk = 4096;
-  const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
-  auto chunk = [&](std::size_t c) { return std::pair{c * kChunk, std::min(nt, (c + 1) * kChunk)}; };
+  const std::size_t nchunks = (nt + kSumChunk - 1) / kSumChunk;
+  auto chunk = [&](std::size_t c) { return std::pair{c * kSumChunk, std::min(nt, (c + 1) * kSumChunk)}; };
+  std::vector<ChunkSums> chunk_sums(nchunks);
+  pass.sums = chunk_sums.data();
+  // A thread-safe f is evaluated by the thread that measures the triangle; another one only on
+  // the calling thread (evaluate(), after the second thread's chunks are measured).
+  const bool f_shared = f && f->thread_safe();
+  std::size_t other_invalid = 0, other_bad = 0;
+  std::optional<double> other_max_rf, other_el_f;
   std::optional<Part> theirs;
   // The nearest-neighbour search over the mesher's mesh, in vertex chunks claimed by both threads.
   std::optional<MeshNearestNeighbours> search;
@@ -713,9 +727,16 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     // no atomic update per edge.
     std::vector<double> nn2_other(nv, kInf);
     auto other_pass = std::make_unique<Pass>(
-        Pass{m, nb, f, bound_B, per_triangle, walk, fv, nn2_other, prep.tri_of_vertex, {}, {}, 0, &r, {}, {}, {}});
+        Pass{m, nb, f, bound_B, per_triangle, walk, fv, nn2_other, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
+    other_pass->sums = chunk_sums.data();
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
+    // The second thread reads f at the vertices when it evaluates f itself: filled first.
+    bool filled = false;
+    if (f_shared && fill) {
+      for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
+      filled = true;
+    }
     // The second thread, done with its chunks, builds the search (once the calling thread is done
     // with its chunks: every triangle measured) while the calling thread evaluates f on the second
     // thread's chunks; then both search.
@@ -727,7 +748,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
         for (std::size_t c = nchunks; c-- > 0;) {
           if (claimed[c].exchange(1)) break;  // met the calling thread
           const auto [lo, hi] = chunk(c);
-          other_pass->measure<true>(lo, hi, *theirs, false);
+          other_pass->measure<true>(lo, hi, *theirs, f_shared);
         }
         mine_done.wait();  // every triangle measured
         for (std::size_t v = 0; v < nv; ++v) prep.nn2[v] = std::min(prep.nn2[v], nn2_other[v]);
@@ -756,7 +777,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
         if (t.joinable()) t.join();
       }
     } join{other, mine_done};
-    if (f && fill)
+    if (f && fill && !filled)
       for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
     std::size_t c = 0;
     for (; c < nchunks && !claimed[c].exchange(1); ++c) {
@@ -764,13 +785,17 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
       pass.measure<true>(lo, hi, mine, true);
     }
     join.count();
-    if (c < nchunks) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
+    if (c < nchunks && !f_shared) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
     if (walk) {
       search_built.wait();
       if (search && search->usable()) search_chunks();
     }
     other.join();
     if (error) std::rethrow_exception(error);
+    other_invalid = other_pass->spacing_invalid;
+    other_bad = other_pass->bad;
+    other_max_rf = other_pass->max_rf;
+    other_el_f = other_pass->el_f_max;
   } else {
     if (f && fill)
       for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
@@ -783,8 +808,24 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   if (f && fill) f_at_vertices = fill;
   merge(r, mine, mine);
   if (theirs) merge(r, mine, *theirs);
-  r.area = pass.area.value();
-  if (pass.r_over_f_count > 0) r.mean_R_over_f = pass.r_over_f_sum.value() / static_cast<double>(pass.r_over_f_count);
+  {
+    CompensatedSum area, rf;
+    std::size_t count = 0;
+    for (const ChunkSums& cs : chunk_sums) {
+      area.add(cs.area.sum);
+      area.add(cs.area.c);
+      rf.add(cs.r_over_f.sum);
+      rf.add(cs.r_over_f.c);
+      count += cs.count;
+    }
+    r.area = area.value();
+    if (count > 0) r.mean_R_over_f = rf.value() / static_cast<double>(count);
+    r.spacing_invalid += pass.spacing_invalid + other_invalid;
+    if (f) *r.bad_triangles += pass.bad + other_bad;
+    if (pass.max_rf) update_max(r.max_R_over_f, *pass.max_rf);
+    if (other_max_rf) update_max(r.max_R_over_f, *other_max_rf);
+  }
+  release_vector(chunk_sums);
   OrthogonalityStats& s = r.orthogonality;
   s.interior_edges = mine.interior;
   if (mine.interior > 0) {
@@ -823,6 +864,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
   r.el_over_f_max = pass.el_f_max;  // el(p) is defined at corners only
+  if (other_el_f) update_max(r.el_over_f_max, *other_el_f);
 
   // Conformity nn(p)/f(p): with f at the vertices in an array, two halves of the vertices at once (merged in order; the compensated sum runs over every vertex in order on
   // this thread). p05 from the smallest 5 % (as negated largest values): no copy of every value.

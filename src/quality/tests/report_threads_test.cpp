@@ -127,6 +127,27 @@ TEST(ReportThreads, SameFiguresForEveryThreadCountWithTheMesherAdjacency) {
   for (unsigned seed : {1u, 2u}) check(jittered_grid(170, seed, true), &f, seed == 2);
 }
 
+// A thread-safe f is evaluated by the thread that measures the triangle (area and R/f(c) summed
+// per chunk of triangles, the chunks added in order); the figures are those of the calling
+// thread's evaluation bit for bit, for every thread count.
+class SharedWaveField : public WaveField {
+ public:
+  bool thread_safe() const override { return true; }
+};
+
+TEST(ReportThreads, SameFiguresWhenBothThreadsEvaluateTheSpacing) {
+  const SharedWaveField shared;
+  const WaveField calling;
+  const mesh::MeshView m = jittered_grid(170, 5, true);
+  check(m, &shared, true);
+  for (const char* t : {"1", "2", "3"}) {
+    const Measured a = measure(m, &shared, t, true), b = measure(m, &calling, t, true);
+    EXPECT_EQ(a.json, b.json) << "FDR_THREADS=" << t;
+    EXPECT_EQ(a.tv.r_over_f, b.tv.r_over_f);
+    EXPECT_EQ(*a.r.bad_triangles, *b.r.bad_triangles);
+  }
+}
+
 TEST(ReportThreads, SameFiguresWithoutAdjacencyAndWithPerVertexSpacing) {
   mesh::MeshView m = jittered_grid(165, 3, false);
   for (const Point2 p : m.vertices) m.f.push_back(0.01 + 0.02 * p.x);
