@@ -383,8 +383,9 @@ struct ChunkSums {
 };
 
 // The report's single pass over the triangles and their interior edges (every metric that does
-// not need f), with the adjacency `nb`; on the calling thread also the area and R/f(c) sums,
-// which must be added in triangle order (evaluate() does them for triangles measured elsewhere).
+// not need f), with the adjacency `nb`; also the area and R/f(c) sums of its triangles, on the
+// thread that measures them when f is thread-safe, else on the calling thread (evaluate() does
+// them for the triangles measured elsewhere).
 struct Pass {
   const mesh::MeshView& m;
   const std::vector<Index>& nb;
@@ -403,7 +404,7 @@ struct Pass {
   std::size_t spacing_invalid = 0, bad = 0;
   std::optional<double> max_rf;
 
-  std::optional<double> el_f_max;  // el(p)/f(p) over the calling thread's triangles
+  std::optional<double> el_f_max;  // el(p)/f(p) over this pass's triangles (with f)
   void el_over_f(const std::array<Index, 3>& tr, double lmax) {
     if (!fv) return;
     const double l = std::max(0.0, lmax);  // el starts at 0 (a NaN length counts as 0)
@@ -432,8 +433,8 @@ struct Pass {
     if (ratio > bound_B) ++bad;
   }
 
-  // Everything for the triangles [lo, hi); with_f on the calling thread when no triangle before lo
-  // is left for evaluate(). In batches: the scattered loads first, then each computation in its
+  // Everything for the triangles [lo, hi); with_f: also the area, R/f(c) and el/f (the calling
+  // thread always; the second one when f is thread-safe, else evaluate() does them). In batches: the scattered loads first, then each computation in its
   // own short loop over the batch, so that the divisions and square roots of different triangles
   // overlap (the same operations on the same values as one triangle at a time).
   template <bool kShared>
