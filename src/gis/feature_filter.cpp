@@ -809,16 +809,29 @@ class CoastRestorer {
     polygons_of(g.get(), ps);
     bool any = false;
     for (auto& p : ps) {
-      std::vector<Plan> plans;
-      std::size_t nruns = 0;
+      std::vector<Plan> plans(static_cast<std::size_t>(p->getNumInteriorRings() + 1));
+      std::size_t points = 0;
       for (int k = -1; k < p->getNumInteriorRings(); ++k) {
         const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
-        Plan pl;
+        Plan& pl = plans[static_cast<std::size_t>(k + 1)];
+        pl.v.reserve(static_cast<std::size_t>(std::max(0, r->getNumPoints() - 1)));
         for (int i = 0; i + 1 < r->getNumPoints(); ++i) pl.v.push_back({r->getX(i), r->getY(i)});
-        plan_ring(pl);
+        points += pl.v.size();
+      }
+      // Each ring is planned on its own (plan_ring reads only the input's rings and grid): on
+      // two threads when there is enough work, rings claimed in order; the plans are the same.
+      {
+        std::atomic<std::size_t> next{0};
+        auto work = [&] {
+          for (std::size_t k; (k = next.fetch_add(1)) < plans.size();) plan_ring(plans[k]);
+        };
+        if (max_threads() >= 2 && points > 20000) run_beside(work, work);
+        else work();
+      }
+      std::size_t nruns = 0;
+      for (Plan& pl : plans) {
         pl.first_run = nruns;
         nruns += pl.runs.size();
-        plans.push_back(std::move(pl));
       }
       if (nruns == 0) continue;
       // Runs whose new segments meet anything (other than at a shared end) are given up, round
@@ -1028,7 +1041,14 @@ class CoastRestorer {
     Box2 b;
     b.add(q - Point2{hair_, hair_});
     b.add(q + Point2{hair_, hair_});
-    grid_->segments_near(b, &cand);
+    // Every segment of the cells near q, some more than once: the nearest (ties to the smaller
+    // id) does not depend on repeats, and reading the cells directly keeps locate() free of the
+    // grid's shared stamps, so rings are planned on several threads.
+    cand.clear();
+    grid_->for_box_cells(b, [&](std::size_t c) {
+      const auto& in = grid_->segments_in(c);
+      cand.insert(cand.end(), in.begin(), in.end());
+    });
     double best = hair_;
     Index best_id = 0;
     for (Index id : cand) {
@@ -1557,7 +1577,9 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   // The grown pieces are new coast: their arcs need not be finer than the resampling keeps
   // (a tenth of the move; every arc point would otherwise go through the openings below).
   C = checked(C->SimplifyPreserveTopology(0.1 * (rw - s)), "thin water core simplified");
+  lap("grown: simplify core");
   GeomPtr D = offset(*C, rw - s, 2);
+  lap("grown: offset");
   D = checked(D->SimplifyPreserveTopology(0.1 * (rw - s)), "widened water simplified");
   lap("grown");
   if (dbg) {
@@ -2123,6 +2145,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     }
     R = multi(kept);
   }
+  lap("owners");
 
   // 2c. Islands that the closing shrank below the resolution (thin islands leave small remnants).
   if (o.min_island_area > 0) {
@@ -2133,6 +2156,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     // may have left other, larger parts).
     LandIndex now;
     if (o.islet_side > 0) build_land(rps, now);
+    lap("remnants: land index");
     const bool changed = filter_holes(rps, [&](const OGRLinearRing* h, double a) {
       if (!(a < o.min_island_area)) return true;
       OGRPolygon hp;
@@ -2159,6 +2183,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       return false;
     });
     if (changed) R = multi(rps);
+    lap("remnants: holes");
     if (!remnant_tris->IsEmpty()) R = minus_disjoint(std::move(R), *remnant_tris, "water minus remnants' triangles");
   }
 
@@ -2166,7 +2191,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //    (and a vertex with a slight turn as two close arc points). Every result vertex within
   //    5 % of --close-width of an input vertex takes that vertex's exact coordinates, so coast,
   //    breaklines, open boundaries and fixed points still meet exactly where nothing was removed.
-  if (o.close_width > 0) R = CoastRestorer(W0.get(), 0.05 * o.close_width).restore(std::move(R));
+  lap("remnants");
+  if (o.close_width > 0) {
+    R = CoastRestorer(W0.get(), 0.05 * o.close_width).restore(std::move(R));
+  }
   lap("restore");
   std::future<GeomPtr> gone_job;  // W0 - result
   std::vector<std::unique_ptr<OGRPolygon>> outp;

@@ -408,8 +408,12 @@ struct Pass {
   void el_over_f(const std::array<Index, 3>& tr, double lmax) {
     if (!fv) return;
     const double l = std::max(0.0, lmax);  // el starts at 0 (a NaN length counts as 0)
+    // The largest l / f(v) over the usable corners is l / (their smallest f): a correctly
+    // rounded division is monotone in its divisor, so the value is the same, with one division.
+    double fmin = kInf;
     for (const Index v : tr)
-      if (usable_spacing(fv[v])) update_max(el_f_max, l / fv[v]);
+      if (usable_spacing(fv[v])) fmin = std::min(fmin, fv[v]);
+    if (fmin < kInf) update_max(el_f_max, l / fmin);
   }
 
   void add_f(std::size_t t, double cr, double radius, Point2 center) {
