@@ -3,6 +3,8 @@
 #include "base/memory.hpp"
 #include <cstddef>
 #include <string>
+#include <cstdint>
+#include <sys/mman.h>
 
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp,
                        std::size_t newlen) __attribute__((weak));
@@ -23,6 +25,19 @@ unsigned arena_count() {
 }
 
 }  // namespace
+
+void advise_huge_pages(const void* p, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+  const auto b = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t lo = (b + kHuge - 1) & ~(kHuge - 1), hi = (b + bytes) & ~(kHuge - 1);
+  if (p == nullptr || hi <= lo) return;
+  madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice only: errors are ignored
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
 
 void release_free_memory() {
   // 4096 = MALLCTL_ARENAS_ALL (jemalloc 5): every arena.

@@ -3,6 +3,8 @@
 
 #include <utility>
 
+#include "base/memory.hpp"
+
 namespace fdr::mesh {
 
 namespace {
@@ -16,7 +18,8 @@ MeshView take_view(Triangulation& t) {
   MeshView m;
   m.origin = t.origin;
   // Vertices in order of first use by a live triangle keeps ids stable and dense (as to_view).
-  std::vector<Index> remap(t.pts.size(), kNoId);
+  std::vector<Index> remap;
+  assign_huge(remap, t.pts.size(), kNoId);
   const std::size_t ns = t.num_slots();
   // Why the prefetches in the loops below: the corners and the neighbours of consecutive slots
   // are scattered over arrays much larger than the cache.
@@ -30,7 +33,7 @@ MeshView take_view(Triangulation& t) {
   Index n = 0;
   for (Index v = 0; v < t.pts.size(); ++v)
     if (remap[v] != kNoId) remap[v] = n++;
-  m.vertices.resize(n);
+  resize_huge(m.vertices, n);
   m.vertex_marker.assign(n, 0);
   for (Index v = 0; v < t.pts.size(); ++v) {
     if (remap[v] == kNoId) continue;
@@ -77,6 +80,7 @@ MeshView take_view(Triangulation& t) {
       if (!t.dead(s)) slot[s] = nt++;
   if (dense) nt = static_cast<Index>(t.num_slots());
   m.triangles.reserve(nt);
+  advise_huge_pages(m.triangles);
   for (TriangleId s = 0; s < t.num_slots(); ++s) {
     if (s + kAhead < ns)
       for (int k = 0; k < 3; ++k) {

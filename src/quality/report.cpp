@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/cell_centre.hpp"
@@ -676,9 +677,9 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 
   if (f) r.bad_triangles = 0;
   if (per_triangle) {
-    per_triangle->area.assign(nt, 0.0);
-    per_triangle->min_angle_deg.assign(nt, 0.0);
-    if (f) per_triangle->r_over_f.assign(nt, kInf);
+    assign_huge(per_triangle->area, nt, 0.0);
+    assign_huge(per_triangle->min_angle_deg, nt, 0.0);
+    if (f) assign_huge(per_triangle->r_over_f, nt, kInf);
     else per_triangle->r_over_f.clear();
   }
   // f at the vertices, evaluated first on this thread (when not given): el(p)/f(p) is measured
@@ -686,11 +687,11 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   std::vector<double> own_fv;
   std::vector<double>* fill = fill_f_at_vertices;
   if (f && !fill && !(f_at_vertices && f_at_vertices->size() == nv)) fill = &own_fv;
-  if (f && fill) fill->resize(nv);
+  if (f && fill) resize_huge(*fill, nv);
   const double* fv = f ? (fill ? fill->data() : f_at_vertices->data()) : m.f.size() == nv ? m.f.data() : nullptr;
   MeshWalkPrep prep;
-  prep.nn2.assign(nv, kInf);
-  if (walk) prep.tri_of_vertex.assign(nv, kNoId);
+  assign_huge(prep.nn2, nv, kInf);
+  if (walk) assign_huge(prep.tri_of_vertex, nv, kNoId);
   // Each thread has its own batch buffers.
   auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
   Pass& pass = *pass_mine;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
+#include "base/memory.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
 
@@ -159,7 +160,7 @@ void Refiner::push_bad(TriangleId t, double key2) {
   const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
   const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
   const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
-  buckets_[b].push_back({t, tri_.tv[3 * t + 2], z});
+  push_back_huge(buckets_[b], {t, tri_.tv[3 * t + 2], z});
   if (b > top_) top_ = b;
 }
 
@@ -223,6 +224,12 @@ void Refiner::reserve(double expected_triangles) {
   tri_.vkind.reserve(nv);
   tri_.vhe.reserve(nv);
   tri_.point_marker.reserve(nv);
+  advise_huge_pages(tri_.tv);
+  advise_huge_pages(tri_.twin);
+  advise_huge_pages(tri_.flags);
+  advise_huge_pages(tri_.pts);
+  advise_huge_pages(tri_.vhe);
+  advise_huge_pages(tri_.point_marker);
 }
 
 void Refiner::init() {
