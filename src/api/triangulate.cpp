@@ -1,4 +1,5 @@
 // fdrmesh core API: the CLI's .poly path (pipeline.cpp) as a library function, step by step.
+#include "base/memory.hpp"
 #include "base/path_util.hpp"
 #include "api/triangulate.hpp"
 #include "api/stages.hpp"
@@ -250,7 +251,7 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
   QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, nullptr,
                                              f_filled ? &m.f : nullptr);
-  std::vector<Index>().swap(m.neighbours);  // the report was the adjacency's last reader: the writers need less memory
+  release_huge(m.neighbours);  // the report was the adjacency's last reader: the writers need less memory
   return r;
 }
 

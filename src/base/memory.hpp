@@ -20,10 +20,27 @@ void release_free_memory();
 // costs about as much as writing the page: faults were 15 % of a 1 M-triangle run's samples.
 void advise_huge_pages(const void* p, std::size_t bytes);
 
+// Takes the advice back (MADV_NOHUGEPAGE on the same pages; pages already huge stay so until
+// freed). Call it before a buffer is freed: the range would otherwise keep the advice, and small
+// allocations the allocator later places there would each fault in a whole 2 MiB page (+15 MiB
+// of peak in bench_gis's write stage).
+void unadvise_huge_pages(const void* p, std::size_t bytes);
+
 // The same for a vector's whole capacity.
 template <class V>
 void advise_huge_pages(const V& v) {
   advise_huge_pages(static_cast<const void*>(v.data()), v.capacity() * sizeof(typename V::value_type));
+}
+template <class V>
+void unadvise_huge_pages(const V& v) {
+  unadvise_huge_pages(static_cast<const void*>(v.data()), v.capacity() * sizeof(typename V::value_type));
+}
+
+// Frees v's buffer, its advice taken back first.
+template <class V>
+void release_huge(V& v) {
+  unadvise_huge_pages(v);
+  V().swap(v);
 }
 
 // v.assign(n, x) / v.resize(n) with a new buffer advised before it is written (a buffer that
@@ -46,6 +63,7 @@ void reserve_huge(V& v, std::size_t n) {
   advise_huge_pages(w);
   w.insert(w.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
   v.swap(w);
+  unadvise_huge_pages(w);
 }
 template <class V>
 void resize_huge(V& v, std::size_t n) {
@@ -78,6 +96,28 @@ class EagerMemoryRelease {
   bool active_ = false;
   ssize_t default_dirty_ = 0, default_muzzy_ = 0;  // arenas.*_decay_ms (arenas made later)
   std::vector<ssize_t> dirty_, muzzy_;             // arena.<i>.*_decay_ms
+};
+
+// While it lives, the memory jemalloc maps for its arenas is backed by transparent huge pages
+// (every arena's extent allocation hook is wrapped to madvise MADV_HUGEPAGE what it maps; the
+// previous hooks come back when it ends, so a host program keeps its own). A no-op under any
+// other allocator, under a jemalloc other than 5.x, or while another HugePageArenas lives. The
+// pipeline holds one over the GIS input stages: GEOS's buffers and overlays allocate and walk
+// millions of small objects, and with 4 KiB pages a GSHHG-h basin's read stage spent a quarter
+// of its time on page faults and TLB misses (README "Allocator"). Not over the mesh stages: there
+// small allocations would each take a 2 MiB page, and the mesh's large arrays are advised one by
+// one (advise_huge_pages).
+class HugePageArenas {
+ public:
+  HugePageArenas();
+  ~HugePageArenas();
+  HugePageArenas(const HugePageArenas&) = delete;
+  HugePageArenas& operator=(const HugePageArenas&) = delete;
+  bool active() const { return active_; }
+
+ private:
+  bool active_ = false;
+  std::vector<void*> previous_;  // per arena: its hooks before (nullptr: not changed)
 };
 
 }  // namespace fdr

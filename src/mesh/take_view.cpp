@@ -8,9 +8,11 @@
 namespace fdr::mesh {
 
 namespace {
+// Frees a container; a vector's huge-page advice is taken back first (base/memory.hpp).
 template <class V>
 void release(V& v) {
-  V().swap(v);
+  if constexpr (requires { v.capacity(); }) release_huge(v);
+  else V().swap(v);
 }
 }  // namespace
 
@@ -98,6 +100,7 @@ MeshView take_view(Triangulation& t) {
     }
   }
   release(slot);
+  release(remap);
   release(t.tv);
   release(t.flags);
   t.twin.resize(3 * static_cast<std::size_t>(nt));

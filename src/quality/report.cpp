@@ -687,11 +687,11 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   std::vector<double> own_fv;
   std::vector<double>* fill = fill_f_at_vertices;
   if (f && !fill && !(f_at_vertices && f_at_vertices->size() == nv)) fill = &own_fv;
-  if (f && fill) resize_huge(*fill, nv);
+  if (f && fill) fill->resize(nv);
   const double* fv = f ? (fill ? fill->data() : f_at_vertices->data()) : m.f.size() == nv ? m.f.data() : nullptr;
   MeshWalkPrep prep;
-  assign_huge(prep.nn2, nv, kInf);
-  if (walk) assign_huge(prep.tri_of_vertex, nv, kNoId);
+  prep.nn2.assign(nv, kInf);
+  if (walk) prep.tri_of_vertex.assign(nv, kNoId);
   // Each thread has its own batch buffers.
   auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
   Pass& pass = *pass_mine;

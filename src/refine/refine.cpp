@@ -152,6 +152,10 @@ std::uint32_t spread16(std::uint32_t x) {
 }
 }  // namespace
 
+Refiner::~Refiner() {
+  for (auto& b : buckets_) release_huge(b);
+}
+
 void Refiner::push_bad(TriangleId t, double key2) {
   const int b = bucket_of(key2);
   const Index a = tri_.tv[3 * t];

@@ -65,6 +65,9 @@ struct RefineLeftovers {
 class Refiner {
  public:
   Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
+  ~Refiner();  // the queue's buffers give back their huge-page advice (base/memory.hpp)
+  Refiner(const Refiner&) = delete;
+  Refiner& operator=(const Refiner&) = delete;
   // Reserves arrays for about this many triangles (from estimate_triangles), avoiding
   // reallocation peaks.
   void reserve(double expected_triangles);
