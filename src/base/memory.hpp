@@ -98,26 +98,4 @@ class EagerMemoryRelease {
   std::vector<ssize_t> dirty_, muzzy_;             // arena.<i>.*_decay_ms
 };
 
-// While it lives, the memory jemalloc maps for its arenas is backed by transparent huge pages
-// (every arena's extent allocation hook is wrapped to madvise MADV_HUGEPAGE what it maps; the
-// previous hooks come back when it ends, so a host program keeps its own). A no-op under any
-// other allocator, under a jemalloc other than 5.x, or while another HugePageArenas lives. The
-// pipeline holds one over the GIS input stages: GEOS's buffers and overlays allocate and walk
-// millions of small objects, and with 4 KiB pages a GSHHG-h basin's read stage spent a quarter
-// of its time on page faults and TLB misses (README "Allocator"). Not over the mesh stages: there
-// small allocations would each take a 2 MiB page, and the mesh's large arrays are advised one by
-// one (advise_huge_pages).
-class HugePageArenas {
- public:
-  HugePageArenas();
-  ~HugePageArenas();
-  HugePageArenas(const HugePageArenas&) = delete;
-  HugePageArenas& operator=(const HugePageArenas&) = delete;
-  bool active() const { return active_; }
-
- private:
-  bool active_ = false;
-  std::vector<void*> previous_;  // per arena: its hooks before (nullptr: not changed)
-};
-
 }  // namespace fdr

@@ -11,7 +11,6 @@
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
-#include "base/memory.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/reproject.hpp"
@@ -101,10 +100,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     return fo;
   };
   if (opt.snap) d.snap_distance_m = *opt.snap;
-  gis::GisInput g = [&d] {
-    const HugePageArenas huge;  // GEOS's small objects on huge pages while the filter runs (base/memory.hpp)
-    return gis::read_domain(d);
-  }();
+  gis::GisInput g = gis::read_domain(d);
   clock.lap("read");
   if (progress) progress(0.01, "read");
   const gis::Frame& frame = g.frame;
