@@ -26,31 +26,23 @@ unsigned arena_count() {
 
 }  // namespace
 
-void advise_huge_pages(const void* p, std::size_t bytes) {
-#ifdef MADV_HUGEPAGE
+#if defined(MADV_HUGEPAGE) && defined(MADV_NOHUGEPAGE)
+namespace {
+// madvise(advice) on the 2 MiB-aligned pages inside [p, p + bytes); advice only: errors are ignored.
+void advise_inner(const void* p, std::size_t bytes, int advice) {
   constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
   const auto b = reinterpret_cast<std::uintptr_t>(p);
   const std::uintptr_t lo = (b + kHuge - 1) & ~(kHuge - 1), hi = (b + bytes) & ~(kHuge - 1);
-  if (p == nullptr || hi <= lo) return;
-  madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice only: errors are ignored
-#else
-  (void)p;
-  (void)bytes;
-#endif
+  if (p != nullptr && hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, advice);
 }
+}  // namespace
 
-void unadvise_huge_pages(const void* p, std::size_t bytes) {
-#ifdef MADV_NOHUGEPAGE
-  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
-  const auto b = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t lo = (b + kHuge - 1) & ~(kHuge - 1), hi = (b + bytes) & ~(kHuge - 1);
-  if (p == nullptr || hi <= lo) return;
-  madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_NOHUGEPAGE);
+void advise_huge_pages(const void* p, std::size_t bytes) { advise_inner(p, bytes, MADV_HUGEPAGE); }
+void unadvise_huge_pages(const void* p, std::size_t bytes) { advise_inner(p, bytes, MADV_NOHUGEPAGE); }
 #else
-  (void)p;
-  (void)bytes;
+void advise_huge_pages(const void*, std::size_t) {}
+void unadvise_huge_pages(const void*, std::size_t) {}
 #endif
-}
 
 void release_free_memory() {
   // 4096 = MALLCTL_ARENAS_ALL (jemalloc 5): every arena.

@@ -21,9 +21,8 @@ void release_free_memory();
 void advise_huge_pages(const void* p, std::size_t bytes);
 
 // Takes the advice back (MADV_NOHUGEPAGE on the same pages; pages already huge stay so until
-// freed). Call it before a buffer is freed: the range would otherwise keep the advice, and small
-// allocations the allocator later places there would each fault in a whole 2 MiB page (+15 MiB
-// of peak in bench_gis's write stage).
+// freed). Call it before a buffer is freed: the allocator keeps the range mapped, the range would
+// keep the advice, and small allocations placed there later would each fault in 2 MiB.
 void unadvise_huge_pages(const void* p, std::size_t bytes);
 
 // The same for a vector's whole capacity.
