@@ -1812,8 +1812,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   // has room; added to `into`. Why the shifts: most islets that were dropped lie within hmin of
   // other land, and the coast the model saw moved by that distance (Gulf of Maine input->mesh
   // p99 1.36 hmin); moved by at most islet_shift they stay.
-  auto place_islet = [&](const LandIndex& L, int own, Point2 cen, double a, const std::string& what,
-                         OGRMultiPolygon* into) {
+  auto place_islet = [&](const LandIndex& L, int own, const OGRLinearRing* shape, Point2 cen, double a,
+                         const std::string& what, OGRMultiPolygon* into) {
     Point2 c = cen;
     bool room = islet_room(L, own, c);
     for (int step = 1; !room && step <= 3 && o.islet_shift > 0; ++step)
@@ -1824,10 +1824,35 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       }
     if (!room) return false;
     placed.push_back(c);
+    // The turn of the triangle: the one of 40 turns 3 degrees apart (from apex up; the first of
+    // equals) that keeps the islet's farthest vertex nearest the triangle's sides. The room test
+    // above is the same for every turn (a disk around the circumcircle). Why: with the apex always
+    // up, the ends of an islet longer than the triangle stuck out by up to 0.6 islet_side, which
+    // the model sees as coast moved by that much (Gulf of Maine: 85 of the 376 input vertices
+    // farther than hmin/2 from the mesh's coast were vertices of islets kept as triangles).
+    auto corner = [&](double t0, int k) {
+      const double t = t0 - 2.0943951023931957 * k;  // clockwise
+      return Point2{c.x + tri_r * std::cos(t), c.y + tri_r * std::sin(t)};
+    };
+    double turn = 1.5707963267948966, best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 40 && shape != nullptr; ++k) {
+      const double t0 = 1.5707963267948966 + k * (2.0943951023931957 / 40);
+      const Point2 p0 = corner(t0, 0), p1 = corner(t0, 1), p2 = corner(t0, 2);
+      double worst = 0;
+      for (int i = 0; i + 1 < shape->getNumPoints() && worst < best; ++i) {
+        const Point2 v{shape->getX(i), shape->getY(i)};
+        worst = std::max(worst, std::min({dist_to_segment(v, p0, p1), dist_to_segment(v, p1, p2),
+                                          dist_to_segment(v, p2, p0)}));
+      }
+      if (worst < best) {
+        best = worst;
+        turn = t0;
+      }
+    }
     OGRLinearRing tr;
     for (int k = 0; k < 3; ++k) {
-      const double t = 1.5707963267948966 - 2.0943951023931957 * k;  // clockwise, apex up
-      tr.addPoint(c.x + tri_r * std::cos(t), c.y + tri_r * std::sin(t));
+      const Point2 q = corner(turn, k);
+      tr.addPoint(q.x, q.y);
     }
     tr.closeRings();
     auto tp = std::make_unique<OGRPolygon>();
@@ -1869,7 +1894,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                       : "island of " + num(a) + " m^2";
         OGRPoint cen;
         if (hp.Centroid(&cen) == OGRERR_NONE &&
-            place_islet(land, land.id_of.at(h), {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
+            place_islet(land, land.id_of.at(h), h, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
           return false;
       }
       if (thin) return true;  // the closing and step 2c judge it
@@ -2172,7 +2197,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       if (now.grid) {  // a triangle where there is room, as for the islets of step 1b
         OGRPoint cen;
         if (hp.Centroid(&cen) == OGRERR_NONE &&
-            place_islet(now, now.id_of.at(h), {cen.getX(), cen.getY()}, a, what, remnant_tris.get()))
+            place_islet(now, now.id_of.at(h), h, {cen.getX(), cen.getY()}, a, what, remnant_tris.get()))
           return false;
       }
       ++res.islands_removed;
