@@ -393,6 +393,37 @@ TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
   EXPECT_LT(worst, 23.0);
 }
 
+// A long islet in open water gets a larger triangle (side 90 m for 150 m, up to 1.6 x 70), which
+// keeps its ends within 40 m; the side is in the repair.
+TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const std::vector<Point2> islet{{1925.0, 2000.0}, {2000.0, 2006.0}, {2075.0, 2000.0}};  // 450 m^2
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  const FeatureFilterResult r = filter_features({{sea[0], islet}}, o);
+  ASSERT_EQ(r.islets_replaced, 1u);
+  ASSERT_EQ(r.polygons[0].size(), 2u);
+  const auto& tri = r.polygons[0][1];
+  double worst = 0;
+  for (const Point2& v : islet) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < tri.size(); ++k) d = std::min(d, dist_to_segment(v, tri[k], tri[(k + 1) % tri.size()]));
+    worst = std::max(worst, d);
+  }
+  EXPECT_LT(worst, 41.0);
+  bool said = false;
+  for (const auto& x : r.repairs)
+    if (x.kind == "islet_simplified") said = x.reason.find("triangle of side 90") != std::string::npos;
+  EXPECT_TRUE(said);
+  // With a large island 78 m from its centroid there is room for the usual triangle only: side 70.
+  const Rings big{{{1500, 2080}, {1500, 3000}, {2500, 3000}, {2500, 2080}}};
+  const FeatureFilterResult r2 = filter_features({{sea[0], islet, big[0]}}, o);
+  EXPECT_EQ(r2.islets_replaced, 1u);
+  for (const auto& x : r2.repairs)
+    if (x.kind == "islet_simplified") EXPECT_NE(x.reason.find("triangle of side 70 m"), std::string::npos) << x.reason;
+}
+
 // An island above --min-island (4000 m^2 > 3000) but thinner than --close-width (10 m < 15)
 // everywhere: the closing would leave nothing of it, so it is an islet and becomes a triangle.
 TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
@@ -411,7 +442,8 @@ TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
   for (const auto& x : r.repairs)
     if (x.kind == "islet_simplified") said = x.reason.find("0 m^2 of it wider than 15 m") != std::string::npos;
   EXPECT_TRUE(said);
-  EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - std::sqrt(3.0) / 4 * 70 * 70, 300.0);
+  // 400 m long: the larger triangle of a long islet, at its largest side (1.6 x 70 m).
+  EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - std::sqrt(3.0) / 4 * 112 * 112, 300.0);
 }
 
 // An island of 12500 m^2 (a 50 m square with a 10 m wide tail 1 km long) is judged after the
