@@ -370,6 +370,17 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_EQ(r0.islands_removed, 2u);
 }
 
+// The largest distance from a point of pts to the boundary of ring.
+double farthest_from(const std::vector<Point2>& pts, const std::vector<Point2>& ring) {
+  double worst = 0;
+  for (const Point2& v : pts) {
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < ring.size(); ++k) d = std::min(d, dist_to_segment(v, ring[k], ring[(k + 1) % ring.size()]));
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
 // A long islet's triangle is turned to fit it: with the apex always up, the ends of an islet
 // 100 m long lying at 30 degrees stuck out 29.8 m from its triangle of side 70 (corners rounded
 // by the closing); turned, 22.8 m.
@@ -383,13 +394,7 @@ TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
   ASSERT_EQ(r.islets_replaced, 1u);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);
-  const auto& tri = r.polygons[0][1];  // the triangle, its corners rounded by the closing
-  double worst = 0;
-  for (const Point2& v : islet) {
-    double d = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < tri.size(); ++k) d = std::min(d, dist_to_segment(v, tri[k], tri[(k + 1) % tri.size()]));
-    worst = std::max(worst, d);
-  }
+  const double worst = farthest_from(islet, r.polygons[0][1]);  // the triangle, corners rounded by the closing
   EXPECT_LT(worst, 23.0);
 }
 
@@ -404,13 +409,7 @@ TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
   const FeatureFilterResult r = filter_features({{sea[0], islet}}, o);
   ASSERT_EQ(r.islets_replaced, 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);
-  const auto& tri = r.polygons[0][1];
-  double worst = 0;
-  for (const Point2& v : islet) {
-    double d = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < tri.size(); ++k) d = std::min(d, dist_to_segment(v, tri[k], tri[(k + 1) % tri.size()]));
-    worst = std::max(worst, d);
-  }
+  const double worst = farthest_from(islet, r.polygons[0][1]);
   EXPECT_LT(worst, 41.0);
   bool said = false;
   for (const auto& x : r.repairs)
