@@ -1757,7 +1757,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   std::vector<double> placed_r;  // their circumradii
   auto islet_tris = std::make_unique<OGRMultiPolygon>();
   // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
-  // equilateral triangle of side islet_side around its centroid instead of water. Why: a dropped
+  // equilateral triangle of side islet_side (larger for a long islet, up to 1.6 islet_side) around
+  // its centroid, turned to fit the islet, instead of water. Why: a dropped
   // islet moves the coast the model sees by its distance to the next coast (its vertices are
   // input coast too), a kept one forces elements as small as itself; the triangle keeps it within
   // about islet_side / 2 with elements near hmin. Other land (every ring but its own, and the
@@ -1814,19 +1815,20 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   // has room; added to `into`. Why the shifts: most islets that were dropped lie within hmin of
   // other land, and the coast the model saw moved by that distance (Gulf of Maine input->mesh
   // p99 1.36 hmin); moved by at most islet_shift they stay.
-  auto place_islet = [&](const LandIndex& L, int own, const OGRLinearRing* shape, Point2 cen, double a,
+  auto place_islet = [&](const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a,
                          const std::string& what, OGRMultiPolygon* into) {
+    const int ns = shape.getNumPoints();  // with the closing repeat
     Point2 c = cen;
     // A long islet gets a larger triangle where there is room around its centroid (side up to
     // 1.6 islet_side: the best turn of a triangle of side s leaves the ends of an islet of length
     // len about len / 2 - 0.39 s out; sized for 0.57 islet_side, 0.4 hmin). Gulf of Maine: samples
     // of kept islets beyond hmin/2 44 -> 30, 315 fewer triangles, edges under hmin/2 unchanged.
     double r = tri_r;
-    if (shape != nullptr && shape->getNumPoints() <= 64) {
+    if (ns <= 64) {
       double len = 0;
-      for (int i = 0; i + 1 < shape->getNumPoints(); ++i)
-        for (int j = i + 1; j + 1 < shape->getNumPoints(); ++j)
-          len = std::max(len, dist({shape->getX(i), shape->getY(i)}, {shape->getX(j), shape->getY(j)}));
+      for (int i = 0; i + 1 < ns; ++i)
+        for (int j = i + 1; j + 1 < ns; ++j)
+          len = std::max(len, dist({shape.getX(i), shape.getY(i)}, {shape.getX(j), shape.getY(j)}));
       const double side = std::min(1.6 * o.islet_side, (0.5 * len - 0.57 * o.islet_side) / 0.39);
       if (side > o.islet_side && islet_room(L, own, c, 0.5, side / std::sqrt(3.0))) r = side / std::sqrt(3.0);
     }
@@ -1851,12 +1853,12 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       return Point2{c.x + r * std::cos(t), c.y + r * std::sin(t)};
     };
     double turn = 1.5707963267948966, best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 40 && shape != nullptr; ++k) {
+    for (int k = 0; k < 40; ++k) {
       const double t0 = 1.5707963267948966 + k * (2.0943951023931957 / 40);
       const Point2 p0 = corner(t0, 0), p1 = corner(t0, 1), p2 = corner(t0, 2);
       double worst = 0;
-      for (int i = 0; i + 1 < shape->getNumPoints() && worst < best; ++i) {
-        const Point2 v{shape->getX(i), shape->getY(i)};
+      for (int i = 0; i + 1 < ns && worst < best; ++i) {
+        const Point2 v{shape.getX(i), shape.getY(i)};
         worst = std::max(worst, std::min({dist_to_segment(v, p0, p1), dist_to_segment(v, p1, p2),
                                           dist_to_segment(v, p2, p0)}));
       }
@@ -1910,7 +1912,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                       : "island of " + num(a) + " m^2";
         OGRPoint cen;
         if (hp.Centroid(&cen) == OGRERR_NONE &&
-            place_islet(land, land.id_of.at(h), h, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
+            place_islet(land, land.id_of.at(h), *h, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
           return false;
       }
       if (thin) return true;  // the closing and step 2c judge it
@@ -2213,7 +2215,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       if (now.grid) {  // a triangle where there is room, as for the islets of step 1b
         OGRPoint cen;
         if (hp.Centroid(&cen) == OGRERR_NONE &&
-            place_islet(now, now.id_of.at(h), h, {cen.getX(), cen.getY()}, a, what, remnant_tris.get()))
+            place_islet(now, now.id_of.at(h), *h, {cen.getX(), cen.getY()}, a, what, remnant_tris.get()))
           return false;
       }
       ++res.islands_removed;
