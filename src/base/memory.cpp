@@ -49,10 +49,10 @@ void release_free_memory() {
   if (mallctl) mallctl("arena.4096.purge", nullptr, nullptr, nullptr, 0);
 }
 
-EagerMemoryRelease::EagerMemoryRelease() {
+ArenaDecay::ArenaDecay(ssize_t ms) {
   if (!mallctl) return;
-  if (!swap_ssize("arenas.dirty_decay_ms", &default_dirty_, 0)) return;
-  if (!swap_ssize("arenas.muzzy_decay_ms", &default_muzzy_, 0)) {
+  if (!swap_ssize("arenas.dirty_decay_ms", &default_dirty_, ms)) return;
+  if (!swap_ssize("arenas.muzzy_decay_ms", &default_muzzy_, ms)) {
     swap_ssize("arenas.dirty_decay_ms", &default_dirty_, default_dirty_);
     return;
   }
@@ -63,19 +63,18 @@ EagerMemoryRelease::EagerMemoryRelease() {
   for (unsigned i = 0; i < n; ++i) {
     const std::string a = "arena." + std::to_string(i) + ".";
     ssize_t old = 0;
-    if (swap_ssize(a + "dirty_decay_ms", &old, 0)) dirty_[i] = old;
-    if (swap_ssize(a + "muzzy_decay_ms", &old, 0)) muzzy_[i] = old;
+    if (swap_ssize(a + "dirty_decay_ms", &old, ms)) dirty_[i] = old;
+    if (swap_ssize(a + "muzzy_decay_ms", &old, ms)) muzzy_[i] = old;
   }
-  release_free_memory();
 }
 
-EagerMemoryRelease::~EagerMemoryRelease() {
+ArenaDecay::~ArenaDecay() {
   if (!active_) return;
   ssize_t old = 0;
   swap_ssize("arenas.dirty_decay_ms", &old, default_dirty_);
   swap_ssize("arenas.muzzy_decay_ms", &old, default_muzzy_);
   const unsigned n = arena_count();
-  for (unsigned i = 0; i < n; ++i) {  // arenas made meanwhile took 0: they get the default
+  for (unsigned i = 0; i < n; ++i) {  // arenas made meanwhile took ms: they get the default
     const std::string a = "arena." + std::to_string(i) + ".";
     const ssize_t d = i < dirty_.size() && dirty_[i] != -2 ? dirty_[i] : default_dirty_;
     const ssize_t m = i < muzzy_.size() && muzzy_[i] != -2 ? muzzy_[i] : default_muzzy_;
@@ -83,5 +82,9 @@ EagerMemoryRelease::~EagerMemoryRelease() {
     swap_ssize(a + "muzzy_decay_ms", &old, m);
   }
 }
+
+EagerMemoryRelease::EagerMemoryRelease() : ArenaDecay(0) { release_free_memory(); }
+
+KeepFreedPages::~KeepFreedPages() { release_free_memory(); }
 
 }  // namespace fdr

@@ -76,25 +76,41 @@ void push_back_huge(V& v, const typename V::value_type& x) {
   v.push_back(x);
 }
 
-// While it lives, freed pages go back to the system at once (jemalloc: every arena's dirty and
-// muzzy decay 0; a no-op under any other allocator); the previous settings come back when it
-// ends, so a host program keeps its own. The pipeline holds one from the triangulation on: the
-// mesh's arrays are few and large, and pages kept lazily by one stage would add to the next
-// stage's peak (at 1 M triangles 76 -> 57 MiB). The GIS input stages before keep the lazy
-// default: GEOS frees millions of small objects, and purging each page at once costs system time
-// (Gulf of Maine: +1 s).
-class EagerMemoryRelease {
+// While it lives, every jemalloc arena's dirty and muzzy decay is `ms` (0: freed pages go back to
+// the system at once; -1: never, they stay for reuse); a no-op under any other allocator. The
+// previous settings come back when it ends, so a host program keeps its own.
+class ArenaDecay {
  public:
-  EagerMemoryRelease();
-  ~EagerMemoryRelease();
-  EagerMemoryRelease(const EagerMemoryRelease&) = delete;
-  EagerMemoryRelease& operator=(const EagerMemoryRelease&) = delete;
+  explicit ArenaDecay(ssize_t ms);
+  ~ArenaDecay();
+  ArenaDecay(const ArenaDecay&) = delete;
+  ArenaDecay& operator=(const ArenaDecay&) = delete;
   bool active() const { return active_; }
 
  private:
   bool active_ = false;
   ssize_t default_dirty_ = 0, default_muzzy_ = 0;  // arenas.*_decay_ms (arenas made later)
   std::vector<ssize_t> dirty_, muzzy_;             // arena.<i>.*_decay_ms
+};
+
+// Decay 0, and what was freed before goes back at once. The pipeline holds one from the
+// triangulation on: the mesh's arrays are few and large, and pages kept lazily by one stage would
+// add to the next stage's peak (at 1 M triangles 76 -> 57 MiB).
+class EagerMemoryRelease : public ArenaDecay {
+ public:
+  EagerMemoryRelease();
+};
+
+// Decay -1 while it lives (freed pages stay with the allocator and serve the next allocations),
+// and every freed page goes back to the system when it ends. The pipeline holds one over the GIS
+// input stages: GEOS allocates and frees millions of small objects, and pages purged by the
+// default 10 s decay were faulted in again (on this machine a 4 KiB fault costs about as much as
+// writing the page; GSHHG-h basin: 1.7 M minor faults, read 31 s; with this and the program's
+// single arena 0.5 M faults, read 19-20 s; README "Allocator").
+class KeepFreedPages : public ArenaDecay {
+ public:
+  KeepFreedPages() : ArenaDecay(-1) {}
+  ~KeepFreedPages();
 };
 
 }  // namespace fdr

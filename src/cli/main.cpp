@@ -4,9 +4,9 @@
 #include <malloc.h>
 #endif
 
-// FDR_JEMALLOC: the program links jemalloc (src/cli/CMakeLists.txt; README "Allocator"); its
-// defaults stay, and the pipeline makes it purge freed pages at once from the triangulation on
-// (base/memory.hpp). MALLOC_CONF tunes it as usual.
+// FDR_JEMALLOC: the program links jemalloc (src/cli/CMakeLists.txt; README "Allocator"), with one
+// arena (src/base/jemalloc_conf.cpp); the pipeline keeps freed pages for reuse in the GIS input
+// stages and purges them at once from the triangulation on (base/memory.hpp).
 
 int main(int argc, char** argv) {
 #if defined(__GLIBC__) && !defined(FDR_JEMALLOC)

@@ -2011,11 +2011,22 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     // Each opening gives the closed water's exact coast back where it runs within the snapping
     // distance of it (CoastRestorer), so O1 and O2 coincide bitwise there.
     const double hair = 0.05 * o.close_width;
-    auto o2_job = std::async(std::launch::async, [&W, r2, hair] {
+    DebugLaps l1("  O1");
+    const CoastRestorer restorer(W.get(), hair);  // read by both (restore() is const)
+    l1("restorer");
+    auto o2_job = std::async(std::launch::async, [&W, &restorer, r2] {
       GdalQuiet q2;
-      return r2 > 0 ? CoastRestorer(W.get(), hair).restore(opening(*W, r2)) : GeomPtr(W->clone());
+      DebugLaps l2("  O2");
+      GeomPtr op = r2 > 0 ? opening(*W, r2) : nullptr;
+      l2("opening");
+      GeomPtr res = r2 > 0 ? restorer.restore(std::move(op)) : GeomPtr(W->clone());
+      l2("restore");
+      return res;
     });
-    GeomPtr O1 = CoastRestorer(W.get(), hair).restore(opening(*W, r1));
+    GeomPtr op1 = opening(*W, r1);
+    l1("opening");
+    GeomPtr O1 = restorer.restore(std::move(op1));
+    l1("restore");
     GeomPtr O2 = o2_job.get();
     lap("O1+O2");
     std::vector<std::unique_ptr<OGRPolygon>> comps;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/reproject.hpp"
@@ -100,7 +101,11 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     return fo;
   };
   if (opt.snap) d.snap_distance_m = *opt.snap;
+  // Freed pages stay for reuse while the input is read and filtered: GEOS's millions of small
+  // objects (base/memory.hpp; purged when it ends).
+  std::optional<KeepFreedPages> keep(std::in_place);
   gis::GisInput g = gis::read_domain(d);
+  keep.reset();
   clock.lap("read");
   if (progress) progress(0.01, "read");
   const gis::Frame& frame = g.frame;

@@ -1,8 +1,10 @@
-// EagerMemoryRelease in a process whose allocator is jemalloc (this test links it, as the
-// fdrmesh program does): every arena's decay is 0 while it lives, the previous values after.
+// EagerMemoryRelease and KeepFreedPages in a process whose allocator is jemalloc (this test links
+// it, as the fdrmesh program does, with the same compiled-in options): every arena's decay is 0
+// (-1) while it lives, the previous values after.
 #include <gtest/gtest.h>
 #include <sys/types.h>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +13,13 @@
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp, std::size_t newlen);
 
 namespace {
+template <class T>
+T read_ctl(const std::string& name) {
+  T v{};
+  std::size_t len = sizeof v;
+  EXPECT_EQ(mallctl(name.c_str(), &v, &len, nullptr, 0), 0) << name;
+  return v;
+}
 ssize_t read_ssize(const std::string& name) {
   ssize_t v = -99;
   std::size_t len = sizeof v;
@@ -36,3 +45,32 @@ TEST(EagerMemoryRelease, DecayZeroWhileItLivesThenTheHostsSettings) {
   EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), arena0);
 }
 
+
+TEST(JemallocOptions, OneArenaForEveryThread) {  // src/base/jemalloc_conf.cpp
+  EXPECT_EQ(read_ctl<unsigned>("opt.narenas"), 1u);
+}
+
+TEST(KeepFreedPages, DecayMinusOneWhileItLivesThenPurgedAndTheHostsSettings) {
+  const ssize_t dirty0 = read_ssize("arenas.dirty_decay_ms"), arena0 = read_ssize("arena.0.dirty_decay_ms");
+  auto dirty_pages = [] {
+    std::uint64_t epoch = 1;
+    std::size_t len = sizeof epoch;
+    EXPECT_EQ(mallctl("epoch", &epoch, &len, &epoch, len), 0);
+    return read_ctl<std::size_t>("stats.arenas.4096.pdirty");  // every arena's (MALLCTL_ARENAS_ALL)
+  };
+  {
+    fdr::KeepFreedPages keep;
+    EXPECT_TRUE(keep.active());
+    EXPECT_EQ(read_ssize("arenas.dirty_decay_ms"), -1);
+    EXPECT_EQ(read_ssize("arenas.muzzy_decay_ms"), -1);
+    EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), -1);
+    std::vector<std::unique_ptr<char[]>> blocks;
+    for (int i = 0; i < 4096; ++i) blocks.emplace_back(new char[2000]);  // small objects, ~8 MiB
+    for (auto& b : blocks) b[0] = 1;
+    blocks.clear();
+    EXPECT_GT(dirty_pages(), 0u);  // kept for reuse
+  }
+  EXPECT_EQ(dirty_pages(), 0u);  // given back when it ended
+  EXPECT_EQ(read_ssize("arenas.dirty_decay_ms"), dirty0);
+  EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), arena0);
+}
