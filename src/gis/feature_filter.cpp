@@ -43,6 +43,25 @@ std::string num(double v) {
   return buf;
 }
 
+// Step timings on stderr when FDR_DEBUG_FILTER is set (developer aid): lap("x") prints the time
+// since the previous lap, prefixed.
+class DebugLaps {
+ public:
+  explicit DebugLaps(const char* prefix) : on_(std::getenv("FDR_DEBUG_FILTER") != nullptr), prefix_(prefix) {}
+  bool on() const { return on_; }
+  void operator()(const char* what) {
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "%s %s %.3f s\n", prefix_, what, std::chrono::duration<double>(now - t_).count());
+    t_ = now;
+  }
+
+ private:
+  bool on_;
+  const char* prefix_;
+  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+};
+
 GeomPtr checked(OGRGeometry* g, const char* what) {
   if (!g)
     throw Error(ExitCode::kInvalidGeometry, std::string("resolving narrow features: ") + what + " failed: " +
@@ -461,8 +480,10 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
         s.insert(key(q.r->getX(i), q.r->getY(i), q.r->getX(i + 1), q.r->getY(i + 1), q.left));
     return s;
   };
+  DebugLaps dl("  by faces");
   std::unordered_set<Key, KeyHash> ka, kb;
   run_beside([&] { ka = keys_of(ra); }, [&] { kb = keys_of(rb); });
+  dl("keys");
   // The non-shared segments, as maximal runs.
   OGRMultiLineString lines;
   auto add_runs = [&](const std::vector<Ring>& rs, const std::unordered_set<Key, KeyHash>& other) {
@@ -506,8 +527,10 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
   // Noded: the union of the lines with one of them nodes them all (OGR 3.6 has no unary union).
   std::unique_ptr<OGRGeometry> first(lines.getGeometryRef(0)->clone());
   GeomPtr noded(lines.Union(first.get()));
+  dl("noded");
   if (!noded) return fallback();
   GeomPtr faces(noded->Polygonize());
+  dl("polygonized");
   if (!faces) return fallback();
   std::vector<std::unique_ptr<OGRPolygon>> fs, out;
   polygons_of(faces.get(), fs);
@@ -517,6 +540,7 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
     const OGRPoint pt(p.x, p.y);
     if (in_a.contains(&pt) && !in_b.contains(&pt)) out.push_back(std::move(f));
   }
+  dl("faces");
   if (std::getenv("FDR_DEBUG_FILTER"))
     std::fprintf(stderr, "difference by faces: %d lines, %zu faces, %zu pieces\n", lines.getNumGeometries(), fs.size(), out.size());
   return GeomPtr(multi(out).release());
@@ -1256,24 +1280,6 @@ void add_removed(FeatureFilterResult& res, RemovedWater w) {
 }
 }  // namespace
 
-// Step timings on stderr when FDR_DEBUG_FILTER is set (developer aid): lap("x") prints the time
-// since the previous lap, prefixed.
-class DebugLaps {
- public:
-  explicit DebugLaps(const char* prefix) : on_(std::getenv("FDR_DEBUG_FILTER") != nullptr), prefix_(prefix) {}
-  bool on() const { return on_; }
-  void operator()(const char* what) {
-    if (!on_) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "%s %s %.3f s\n", prefix_, what, std::chrono::duration<double>(now - t_).count());
-    t_ = now;
-  }
-
- private:
-  bool on_;
-  const char* prefix_;
-  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
-};
 
 // Closing of W at close_width/2 (land thinner than close_width becomes water), except for tips
 // of land (the thin end of a needle, a spit or a cape), which stay land unless other land is
@@ -2449,7 +2455,12 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     auto listing = [gone = std::move(gone_job), listed_at = std::move(listed_at), hair = 0.05 * o.close_width,
                     list_area = o.list_area, close_width = o.close_width]() mutable {
       GdalQuiet q2;
-      return list_removed_water(gone.get(), listed_at, hair, list_area, close_width);
+      DebugLaps l3("  listing");
+      GeomPtr g = gone.get();
+      l3("difference");
+      RemovedWater w = list_removed_water(std::move(g), listed_at, hair, list_area, close_width);
+      l3("list");
+      return w;
     };
     if (o.defer_removed) {
       // On the other core while the caller goes on (resampling); finish_removed() takes it.
