@@ -10,6 +10,7 @@
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
 #include "base/memory.hpp"
+#include "base/threads.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
 
@@ -421,20 +422,31 @@ void Refiner::split_triangle(const BadEntry& e) {
 }
 
 RefineLeftovers Refiner::leftovers() const {
-  RefineLeftovers r;
   const auto& T = tri_;
-  for (TriangleId t = 0; t < T.num_slots(); ++t) {
-    if (T.dead(t)) continue;
-    const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
-    double r2;
-    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
-    const double fc = f_(cc);
-    const bool rf_bad = fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;
-    if (rf_bad) { ++r.r_over_f_bad; continue; }
-    if (rho2_inv_ > 0) {
-      const double l2 = std::min({norm2(b - a), norm2(c - b), norm2(a - c)});
-      if (r2 / l2 * rho2_inv_ > 1) ++r.angle_bad;
+  auto count = [&](TriangleId lo, TriangleId hi, RefineLeftovers& r) {
+    for (TriangleId t = lo; t < hi; ++t) {
+      if (T.dead(t)) continue;
+      const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+      double r2;
+      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const double fc = f_(cc);
+      const bool rf_bad = fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;
+      if (rf_bad) { ++r.r_over_f_bad; continue; }
+      if (rho2_inv_ > 0) {
+        const double l2 = std::min({norm2(b - a), norm2(c - b), norm2(a - c)});
+        if (r2 / l2 * rho2_inv_ > 1) ++r.angle_bad;
+      }
     }
+  };
+  // Two halves at once when f may be evaluated from two threads (counts: the same sums).
+  const TriangleId n = T.num_slots();
+  RefineLeftovers r, r2;
+  if (max_threads() > 1 && f_.thread_safe() && n >= 65536) {
+    run_beside([&] { count(n / 2, n, r2); }, [&] { count(0, n / 2, r); });
+    r.r_over_f_bad += r2.r_over_f_bad;
+    r.angle_bad += r2.angle_bad;
+  } else {
+    count(0, n, r);
   }
   return r;
 }
