@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <limits>
 #include <vector>
+#include "base/threads.hpp"
 #include "base/types.hpp"
 
 namespace fdr {
@@ -13,9 +14,16 @@ namespace fdr {
 // share most of it.
 class KdTree {
  public:
-  explicit KdTree(const std::vector<Point2>& p) : t_(p.size()) {
+  // threads >= 2: the two halves below the first split are built on two threads (the same tree:
+  // each range is ordered by the same nth_element calls whatever the thread).
+  explicit KdTree(const std::vector<Point2>& p, unsigned threads = 1) : t_(p.size()) {
     for (std::size_t i = 0; i < p.size(); ++i) t_[i] = {p[i], static_cast<Index>(i)};
-    build(0, t_.size(), 0);
+    if (threads >= 2 && t_.size() >= (std::size_t{1} << 16)) {
+      const std::size_t mid = split(0, t_.size(), 0);
+      run_beside([&] { build(mid + 1, t_.size(), 1); }, [&] { build(0, mid, 1); });
+    } else {
+      build(0, t_.size(), 0);
+    }
   }
   std::size_t size() const { return t_.size(); }
   Index id_at(std::size_t pos) const { return t_[pos].id; }
@@ -40,12 +48,17 @@ class KdTree {
   };
   static constexpr std::size_t kScan = 8;  // ranges this small are scanned
   static double coord(Point2 q, int axis) { return axis == 0 ? q.x : q.y; }
-  void build(std::size_t lo, std::size_t hi, int axis) {
-    if (hi - lo <= kScan) return;  // queries scan such ranges whole: no order needed inside
+  // Puts the median of [lo, hi) along `axis` at its middle, smaller ones before; returns the middle.
+  std::size_t split(std::size_t lo, std::size_t hi, int axis) {
     const std::size_t mid = lo + (hi - lo) / 2;
     std::nth_element(t_.begin() + static_cast<std::ptrdiff_t>(lo), t_.begin() + static_cast<std::ptrdiff_t>(mid),
                      t_.begin() + static_cast<std::ptrdiff_t>(hi),
                      [axis](const Node& a, const Node& b) { return coord(a.p, axis) < coord(b.p, axis); });
+    return mid;
+  }
+  void build(std::size_t lo, std::size_t hi, int axis) {
+    if (hi - lo <= kScan) return;  // queries scan such ranges whole: no order needed inside
+    const std::size_t mid = split(lo, hi, axis);
     build(lo, mid, 1 - axis);
     build(mid + 1, hi, 1 - axis);
   }

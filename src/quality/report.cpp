@@ -858,7 +858,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     // A global search (k-d tree) bounded by the mesh edges: exact, only slower.
     nn = std::move(prep.nn2);
     if (nv >= 2) {
-      const KdTree tree(m.vertices);
+      const KdTree tree(m.vertices, max_threads());
       for (std::size_t k = 0; k < tree.size(); ++k) {
         const Index i = tree.id_at(k);
         nn[i] = std::sqrt(tree.nearest_sq_at(k, nn[i]));

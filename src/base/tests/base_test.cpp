@@ -2,7 +2,12 @@
 #include <gtest/gtest.h>
 #include <cstdio>
 #include <string>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
 #include "base/error.hpp"
+#include "base/kd_tree.hpp"
 #include "base/progress.hpp"
 #include "base/types.hpp"
 
@@ -84,4 +89,30 @@ TEST(AdviseHugePages, AdvisesTheAlignedInsideOfARange) {
   std::vector<double> small(100);
   fdr::advise_huge_pages(small);  // under 2 MiB: nothing to advise, no error
   munmap(p, len);
+}
+
+// KdTree: the tree built on two threads is the same tree (same order of the points, so the same
+// answers in the same order), and its queries match brute force.
+TEST(KdTree, TwoThreadBuildIsTheSameTreeAndQueriesAreExact) {
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> u(0.0, 100.0);
+  std::vector<fdr::Point2> p(70000);
+  for (auto& q : p) q = {u(gen), std::floor(u(gen))};  // repeated y: ties in the splits
+  const fdr::KdTree one(p, 1), two(p, 2);
+  ASSERT_EQ(one.size(), p.size());
+  for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one.id_at(k), two.id_at(k)) << k;
+  for (std::size_t k = 0; k < one.size(); k += 997) {
+    const fdr::Point2 q = p[two.id_at(k)];
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (i != two.id_at(k)) best = std::min(best, fdr::norm2(p[i] - q));
+    EXPECT_EQ(two.nearest_sq_at(k), best);
+    std::vector<fdr::Index> a, b;
+    one.for_each_within(q, 4.0, [&](fdr::Index i) { a.push_back(i); });
+    two.for_each_within(q, 4.0, [&](fdr::Index i) { b.push_back(i); });
+    EXPECT_EQ(a, b);
+    std::size_t brute = 0;
+    for (const auto& r : p) brute += fdr::norm2(r - q) < 4.0;
+    EXPECT_EQ(b.size(), brute);
+  }
 }
