@@ -2,6 +2,7 @@
 // default) printing wall time and peak memory (VmHWM) per pipeline stage, and for the whole
 // process: wall clock from main() to exit and the process's VmHWM (not an increase).
 #include <chrono>
+#include <sys/resource.h>
 #include <cstdio>
 #include <sstream>
 #include <vector>
@@ -107,6 +108,14 @@ int main(int argc, char** argv) {
                 wall, refine_s > 0 ? wall / refine_s : 0.0, hwm_mb, hwm_mb * 1048576.0 / nt,
                 write ? (temp_out ? formats.c_str() : out.c_str()) : "none");
     std::printf("  (%.0f ns per triangle end to end)\n", 1e9 * wall / nt);
+    // Process CPU time (every thread, user + system) over the wall time: how much of the second
+    // core the run used.
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    const double cpu = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    std::printf("  process CPU %.3f s (user + system) = %.2f cores busy on average; %ld minor page faults\n", cpu,
+                wall > 0 ? cpu / wall : 0.0, ru.ru_minflt);
   } catch (const Error& e) {
     std::fprintf(stderr, "ERROR %d: %s\n", e.exit_code(), e.what());
     cleanup();
