@@ -102,11 +102,11 @@ class EagerMemoryRelease : public ArenaDecay {
 };
 
 // Decay -1 while it lives (freed pages stay with the allocator and serve the next allocations),
-// and every freed page goes back to the system when it ends. The pipeline holds one over the GIS
-// input stages: GEOS allocates and frees millions of small objects, and pages purged by the
-// default 10 s decay were faulted in again (on this machine a 4 KiB fault costs about as much as
-// writing the page; GSHHG-h basin: 1.7 M minor faults, read 31 s; with this and the program's
-// single arena 0.5 M faults, read 19-20 s; README "Allocator").
+// and every freed page goes back to the system when it ends. The GIS input's read and filter
+// hold one (pipeline/gis_stage.cpp): GEOS allocates and frees millions of small objects, and
+// pages purged by the default 10 s decay were faulted in again (on this machine a 4 KiB fault
+// costs about as much as writing the page; GSHHG-h basin: 1.7 M minor faults, read 31 s; with
+// this and the program's single arena 0.6 M faults, read 20-25 s; README "Allocator").
 class KeepFreedPages : public ArenaDecay {
  public:
   KeepFreedPages() : ArenaDecay(-1) {}
