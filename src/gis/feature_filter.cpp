@@ -1,6 +1,7 @@
 // Resolution filter for water polygons: union, morphological opening with kept connections,
 // island removal (GEOS through OGR). See feature_filter.hpp for the method.
 #include "gis/feature_filter.hpp"
+#include "base/step_laps.hpp"
 
 #include <algorithm>
 #include <array>
@@ -43,23 +44,10 @@ std::string num(double v) {
   return buf;
 }
 
-// Step timings on stderr when FDR_DEBUG_FILTER is set (developer aid): lap("x") prints the time
-// since the previous lap, prefixed.
-class DebugLaps {
+// The filter's step timings (FDR_DEBUG_FILTER; base/step_laps.hpp).
+class DebugLaps : public StepLaps {
  public:
-  explicit DebugLaps(const char* prefix) : on_(std::getenv("FDR_DEBUG_FILTER") != nullptr), prefix_(prefix) {}
-  bool on() const { return on_; }
-  void operator()(const char* what) {
-    if (!on_) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "%s %s %.3f s\n", prefix_, what, std::chrono::duration<double>(now - t_).count());
-    t_ = now;
-  }
-
- private:
-  bool on_;
-  const char* prefix_;
-  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+  explicit DebugLaps(const char* prefix) : StepLaps("FDR_DEBUG_FILTER", prefix) {}
 };
 
 GeomPtr checked(OGRGeometry* g, const char* what) {

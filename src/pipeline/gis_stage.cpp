@@ -101,11 +101,12 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     return fo;
   };
   if (opt.snap) d.snap_distance_m = *opt.snap;
-  // Freed pages stay for reuse while the input is read and filtered: GEOS's millions of small
-  // objects (base/memory.hpp; purged when it ends).
-  std::optional<KeepFreedPages> keep(std::in_place);
-  gis::GisInput g = gis::read_domain(d);
-  keep.reset();
+  gis::GisInput g = [&d] {
+    // Freed pages stay for reuse while the input is read and filtered: GEOS's millions of small
+    // objects (base/memory.hpp; purged when it ends).
+    const KeepFreedPages keep;
+    return gis::read_domain(d);
+  }();
   clock.lap("read");
   if (progress) progress(0.01, "read");
   const gis::Frame& frame = g.frame;

@@ -3,9 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -15,6 +13,7 @@
 #include <vector>
 
 #include "base/kd_tree.hpp"
+#include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 
@@ -544,14 +543,7 @@ class Smoother {
 
 SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
   SmoothStats st;
-  const bool dbg = std::getenv("FDR_DEBUG_SMOOTH") != nullptr;
-  auto t0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* w) {
-    if (!dbg) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "smooth %s %.3f s\n", w, std::chrono::duration<double>(now - t0).count());
-    t0 = now;
-  };
+  StepLaps lap("FDR_DEBUG_SMOOTH", "smooth");  // developer aid (base/step_laps.hpp)
   tri.rebuild_vertex_map();
   lap("vertex map");
   Shared sh{tri, f, options, 0.0, {}, {}};
@@ -731,7 +723,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
     st.moves += moved;
     ++st.passes;
     lap("serial sweep");
-    if (dbg) std::fprintf(stderr, "smooth pass %d: %zu moves\n", pass, moved);
+    if (lap.on()) std::fprintf(stderr, "smooth pass %d: %zu moves\n", pass, moved);
     if (moved * 200 < st.candidates) break;  // converged: under 0.5 % still moving
   }
   return st;
