@@ -340,6 +340,30 @@ GeomPtr minus_disjoint(GeomPtr b, const OGRGeometry& u, const char* what) {
   return b;
 }
 
+// b minus the disjoint polygons of u that touch b's boundary (islets joined to land), overlaid
+// with only the holes of b near them: the other holes are detached first and put back after
+// (detach_far_holes; GEOS places every hole of an overlay's result by a linear scan).
+GeomPtr minus_touching(GeomPtr b, const OGRGeometry& u, const char* what) {
+  std::vector<std::unique_ptr<OGRPolygon>> bps, ups;
+  polygons_of(b.get(), bps);
+  polygons_of(&u, ups);
+  std::vector<OGREnvelope> touch(ups.size());
+  for (std::size_t i = 0; i < ups.size(); ++i) ups[i]->getEnvelope(&touch[i]);
+  std::sort(touch.begin(), touch.end(), [](const OGREnvelope& x, const OGREnvelope& y) { return x.MinX < y.MinX; });
+  std::vector<std::unique_ptr<OGRLinearRing>> far;
+  for (auto& p : bps) {
+    OGREnvelope e;
+    p->getEnvelope(&e);
+    auto f = detach_far_holes(*p, touch, 1e-9 * (1 + std::fabs(e.MaxX) + std::fabs(e.MaxY)));
+    for (auto& h : f) far.push_back(std::move(h));
+  }
+  GeomPtr core = multi(bps);
+  GeomPtr d = checked(core->Difference(&u), what);
+  std::vector<std::unique_ptr<OGRPolygon>> dps;
+  polygons_of(d.get(), dps);
+  return with_holes(dps, far, what);
+}
+
 GeomPtr offset(const OGRGeometry& g, double r, int quad_segs = kQuadSegs) {
   std::vector<std::unique_ptr<OGRPolygon>> polys;
   polygons_of(&g, polys);
@@ -587,6 +611,52 @@ double signed_area(const std::vector<Point2>& r) {
     a += (p.x - r[0].x) * (q.y - r[0].y) - (q.x - r[0].x) * (p.y - r[0].y);
   }
   return 0.5 * a;
+}
+
+// Small convex-geometry helpers for joining islets to nearby land (doubles: these decide
+// where new coast goes, not the mesh; the mesher's exact predicates check the result).
+// Convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
+std::vector<Point2> convex_hull(std::vector<Point2> p) {
+  std::sort(p.begin(), p.end(), [](Point2 a, Point2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  p.erase(std::unique(p.begin(), p.end(), [](Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Point2> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && predicates::orient2d(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && predicates::orient2d(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+bool segments_meet(Point2 a, Point2 b, Point2 c, Point2 d) {
+  const int o1 = predicates::orient2d(a, b, c), o2 = predicates::orient2d(a, b, d);
+  const int o3 = predicates::orient2d(c, d, a), o4 = predicates::orient2d(c, d, b);
+  auto on = [](Point2 p, Point2 q, Point2 r) {  // r on segment pq, collinear
+    return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y && r.y <= std::max(p.y, q.y);
+  };
+  if (o1 != o2 && o3 != o4 && o1 * o2 <= 0 && o3 * o4 <= 0) return true;
+  return (o1 == 0 && on(a, b, c)) || (o2 == 0 && on(a, b, d)) || (o3 == 0 && on(c, d, a)) || (o4 == 0 && on(c, d, b));
+}
+double segment_distance(Point2 a, Point2 b, Point2 c, Point2 d) {
+  if (segments_meet(a, b, c, d)) return 0;
+  return std::min({dist_to_segment(a, c, d), dist_to_segment(b, c, d), dist_to_segment(c, a, b), dist_to_segment(d, a, b)});
+}
+bool inside_convex(Point2 p, const std::vector<Point2>& h) {  // closed
+  for (std::size_t i = 0; i < h.size(); ++i)
+    if (predicates::orient2d(h[i], h[(i + 1) % h.size()], p) < 0) return false;
+  return true;
+}
+// Distance from segment ab to the convex polygon h (0 when they meet).
+double convex_distance(Point2 a, Point2 b, const std::vector<Point2>& h) {
+  if (inside_convex(a, h) || inside_convex(b, h)) return 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < h.size(); ++i) d = std::min(d, segment_distance(a, b, h[i], h[(i + 1) % h.size()]));
+  return d;
 }
 
 std::vector<Point2> ring_points(const OGRLinearRing* r, bool ccw) {
@@ -1749,6 +1819,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //     a dropped island near the coast moves the coastline the model sees by its whole distance.
   std::vector<Point2> placed;  // centres of the islets kept as triangles (step 2c keeps them)
   std::vector<double> placed_r;  // their circumradii
+  std::vector<int> placed_ring;  // the ring each replaces (-1: several)
   auto islet_tris = std::make_unique<OGRMultiPolygon>();
   // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
   // equilateral triangle of side islet_side (larger for a long islet, up to 1.6 islet_side) around
@@ -1767,6 +1838,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     std::vector<int> ring;                                // ring id of each segment
     int rings = 0;
     std::unordered_map<const OGRLinearRing*, int> id_of;  // valid while the rings are
+    std::vector<char> gone;                               // per ring: removed, not land (empty: none)
+    std::vector<std::size_t> first;                       // per ring: its first segment (and one past the last)
   };
   auto build_land = [&](const std::vector<std::unique_ptr<OGRPolygon>>& ps, LandIndex& L) {
     Box2 box;
@@ -1775,12 +1848,14 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
         const int id = L.rings++;
         L.id_of[r] = id;
+        L.first.push_back(L.seg.size());
         for (int i = 0; i + 1 < r->getNumPoints(); ++i) {
           L.seg.push_back({{r->getX(i), r->getY(i)}, {r->getX(i + 1), r->getY(i + 1)}});
           L.ring.push_back(id);
           box.add(L.seg.back().first);
         }
       }
+    L.first.push_back(L.seg.size());
     if (L.seg.empty()) return;
     L.grid = std::make_unique<pslg::SegmentGrid>(box, L.seg.size(), o.islet_side);
     for (std::size_t k = 0; k < L.seg.size(); ++k) L.grid->add_segment(static_cast<Index>(k), L.seg[k].first, L.seg[k].second);
@@ -1801,7 +1876,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     qb.add({c.x + lim, c.y + lim});
     L.grid->segments_near(qb, &near);
     for (Index k : near)
-      if (L.ring[k] != own && dist_to_segment(c, L.seg[k].first, L.seg[k].second) < lim) return false;
+      if (L.ring[k] != own && (L.gone.empty() || !L.gone[L.ring[k]]) &&
+          dist_to_segment(c, L.seg[k].first, L.seg[k].second) < lim)
+        return false;
     return true;
   };
   // The islet of ring `own` (area a) as a triangle around cen or, with no room there, around the
@@ -1836,6 +1913,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     if (!room) return false;
     placed.push_back(c);
     placed_r.push_back(r);
+    placed_ring.push_back(own);
     // The turn of the triangle: the one of 40 turns 3 degrees apart (from apex up; the first of
     // equals) that keeps the islet's farthest vertex nearest the triangle's sides. The room test
     // above is the same for every turn (a disk around the circumcircle). Why: with the apex always
@@ -1883,10 +1961,231 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     into->addGeometryDirectly(tp.release());
     return true;
   };
+  // The convex polygon h keeps cl = islet_side / 2 from every ring of L that is land (not
+  // gone), from the placed triangles and the joined hulls, and from the input's box.
+  auto hull_clear = [&](const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox,
+                        const std::vector<std::vector<Point2>>& joined) {
+    const double cl = 0.5 * o.islet_side;
+    Box2 hb;
+    for (Point2 q : h) hb.add(q);
+    if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
+      return false;
+    if (L.grid) {
+      L.grid->segments_near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &near);
+      for (Index j : near) {
+        const int r = L.ring[j];
+        if (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)]) continue;
+        if (convex_distance(L.seg[j].first, L.seg[j].second, h) < cl) return false;
+      }
+    }
+    for (std::size_t t = 0; t < placed.size(); ++t) {
+      if (inside_convex(placed[t], h)) return false;
+      for (std::size_t i = 0; i < h.size(); ++i)
+        if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return false;
+    }
+    for (const auto& g : joined)
+      for (std::size_t i = 0; i < g.size(); ++i)
+        if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return false;
+    return true;
+  };
+  // An islet with no room for its triangle, joined to the nearest other land when that is
+  // nearer than islet_side: the convex hull of the islet and of that land's coast within
+  // rho = len / 2 + d + 0.1 islet_side of the nearest point (len: the islet's length, d: the gap)
+  // becomes land. Why: dropped, the islet moves the coast the model sees by its distance to the
+  // next coast (Gulf of Maine: most yardstick samples beyond hmin/2 were such islets, 0.1-0.6
+  // hmin from other land); joined, its outer side stays coast and the gap, narrower than an
+  // element, is no longer water. The hull must meet the land's ring along that one run of coast
+  // only (so no water is cut off: the land grows by a convex piece whose intersection with it is
+  // connected), keep islet_side / 2 from every other ring, placed triangle and earlier join, stay
+  // inside the input's box (open boundaries do not move) and hold at most 2 islet_side^2.
+  // Returns the hull (empty: not joined) and the water it takes (*taken).
+  auto join_islet = [&](const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
+                        const std::vector<std::vector<Point2>>& joined, double* taken, double* gap) {
+    std::vector<Point2> isl;
+    for (int i = 0; i + 1 < shape.getNumPoints(); ++i) isl.push_back({shape.getX(i), shape.getY(i)});
+    const std::size_t ni = isl.size();
+    if (ni < 3 || !L.grid) return std::vector<Point2>{};
+    Box2 ib;
+    for (Point2 q : isl) ib.add(q);
+    const double dmax = o.islet_side, cl = 0.25 * o.islet_side;
+    Box2 qb{{ib.lo.x - dmax, ib.lo.y - dmax}, {ib.hi.x + dmax, ib.hi.y + dmax}};
+    L.grid->segments_near(qb, &near);
+    std::sort(near.begin(), near.end());  // the first of equals, whatever the grid's order
+    double best = std::numeric_limits<double>::infinity();
+    Index kb = kNoId;
+    Point2 pb{};
+    auto closest_on = [](Point2 q, Point2 a, Point2 b) {
+      const Point2 ab = b - a;
+      const double l2 = norm2(ab);
+      const double t = l2 > 0 ? std::clamp(dot(q - a, ab) / l2, 0.0, 1.0) : 0.0;
+      return Point2{a.x + t * ab.x, a.y + t * ab.y};
+    };
+    for (Index k : near) {
+      const int r = L.ring[k];
+      if (r == own || (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)])) continue;
+      const auto [a, b] = L.seg[k];
+      for (std::size_t i = 0; i < ni; ++i) {  // islet vertices to the segment
+        const Point2 c = closest_on(isl[i], a, b);
+        if (const double d = dist(isl[i], c); d < best) { best = d; kb = k; pb = c; }
+      }
+      for (const Point2 e : {a, b})  // segment ends to the islet's sides
+        for (std::size_t i = 0; i < ni; ++i)
+          if (const double d = dist_to_segment(e, isl[i], isl[(i + 1) % ni]); d < best) { best = d; kb = k; pb = e; }
+    }
+    if (kb == kNoId || !(best > 0) || best > dmax) return std::vector<Point2>{};
+    const int ra = L.ring[kb];
+    const std::size_t f0 = L.first[static_cast<std::size_t>(ra)], f1 = L.first[static_cast<std::size_t>(ra) + 1];
+    const std::size_t nseg = f1 - f0;
+    double len = 0;
+    for (std::size_t i = 0; i < ni; ++i)
+      for (std::size_t j = i + 1; j < ni; ++j) len = std::max(len, dist(isl[i], isl[j]));
+    const double rho = 0.5 * len + best + 0.1 * o.islet_side;
+    // The run of ring ra's coast within arc length rho of pb, both ways: its vertices in ring
+    // order from the backward end e0 to the forward end e1 (on segments s0 and s1).
+    std::vector<Point2> fwd, bwd;
+    std::vector<char> in_run(nseg, 0);
+    in_run[kb - f0] = 1;
+    double acc = 0;
+    std::size_t k = kb;
+    Point2 at = pb;
+    std::size_t steps = 0;
+    Point2 e1{}, e0{};
+    std::size_t s1 = kb, s0 = kb;
+    for (;; ++steps) {
+      if (steps > nseg) return std::vector<Point2>{};  // the whole ring is that near: not a coast run
+      const Point2 b = L.seg[k].second;
+      const double l = dist(at, b);
+      if (acc + l >= rho) {
+        const double t = l > 0 ? (rho - acc) / l : 0;
+        e1 = {at.x + t * (b.x - at.x), at.y + t * (b.y - at.y)};
+        s1 = k;
+        break;
+      }
+      acc += l;
+      fwd.push_back(b);
+      at = b;
+      k = k + 1 == f1 ? f0 : k + 1;
+      if (in_run[k - f0]) return std::vector<Point2>{};
+      in_run[k - f0] = 1;
+    }
+    acc = 0;
+    k = kb;
+    at = pb;
+    for (steps = 0;; ++steps) {
+      if (steps > nseg) return std::vector<Point2>{};
+      const Point2 a = L.seg[k].first;
+      const double l = dist(at, a);
+      if (acc + l >= rho) {
+        const double t = l > 0 ? (rho - acc) / l : 0;
+        e0 = {at.x + t * (a.x - at.x), at.y + t * (a.y - at.y)};
+        s0 = k;
+        break;
+      }
+      acc += l;
+      bwd.push_back(a);
+      at = a;
+      k = k == f0 ? f1 - 1 : k - 1;
+      if (in_run[k - f0] && k != s1) return std::vector<Point2>{};
+      in_run[k - f0] = 1;
+    }
+    if (s0 == s1 && s0 != kb) return std::vector<Point2>{};  // met going round
+    std::vector<Point2> run{e0};
+    run.insert(run.end(), bwd.rbegin(), bwd.rend());
+    run.insert(run.end(), fwd.begin(), fwd.end());
+    run.push_back(e1);
+    std::vector<Point2> all = isl;
+    all.insert(all.end(), run.begin(), run.end());
+    std::vector<Point2> h = convex_hull(all);
+    if (h.size() < 3) return std::vector<Point2>{};
+    auto index_of = [&](Point2 q) {
+      for (std::size_t i = 0; i < h.size(); ++i)
+        if (h[i].x == q.x && h[i].y == q.y) return i;
+      return h.size();
+    };
+    const std::size_t i0 = index_of(e0), i1 = index_of(e1);
+    if (i0 == h.size() || i1 == h.size()) return std::vector<Point2>{};
+    Box2 hb;
+    for (Point2 q : h) hb.add(q);
+    if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
+      return std::vector<Point2>{};
+    const double harea = signed_area(h);
+    if (harea > 3 * o.islet_side * o.islet_side) return std::vector<Point2>{};
+    // The water side: the hull's chain from e1 round to e0 (counter-clockwise) or from e0 to e1,
+    // whichever holds an islet vertex; with the run it bounds the water taken (and the islet).
+    auto chain = [&](std::size_t from, std::size_t to) {
+      std::vector<Point2> c;
+      for (std::size_t i = from;; i = (i + 1) % h.size()) {
+        c.push_back(h[i]);
+        if (i == to) break;
+      }
+      return c;
+    };
+    auto holds_islet = [&](const std::vector<Point2>& c) {
+      for (std::size_t i = 1; i + 1 < c.size(); ++i)
+        for (Point2 q : isl)
+          if (q.x == c[i].x && q.y == c[i].y) return true;
+      return false;
+    };
+    std::vector<Point2> wc = chain(i1, i0), lc = chain(i0, i1);  // from e1 to e0, from e0 to e1
+    const bool w1 = holds_islet(wc), w2 = holds_islet(lc);
+    if (w1 == w2) return std::vector<Point2>{};
+    std::vector<Point2> water = w1 ? wc : lc;  // ends e1 ... e0 or e0 ... e1
+    if (!w1) std::reverse(water.begin(), water.end());  // now e1 ... e0
+    // Closed by the run from e0 forward to e1 (without the ends, which the chain has).
+    water.insert(water.end(), run.begin() + 1, run.end() - 1);
+    const double taken_area = std::fabs(signed_area(water)) - std::fabs(signed_area(isl));
+    // Room: the rings near the hull.
+    Box2 cb{{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}};
+    L.grid->segments_near(cb, &near);
+    for (Index j : near) {
+      const int r = L.ring[j];
+      if (r == own || (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)])) continue;
+      const auto [a, b] = L.seg[j];
+      if (r != ra) {
+        if (convex_distance(a, b, h) < cl) return std::vector<Point2>{};
+        continue;
+      }
+      if (j == s0 && j == s1) {  // the run lies inside one segment: the parts beyond its ends
+        if (convex_distance(a, {e0.x + 1e-6 * (a.x - e0.x), e0.y + 1e-6 * (a.y - e0.y)}, h) == 0 ||
+            convex_distance({e1.x + 1e-6 * (b.x - e1.x), e1.y + 1e-6 * (b.y - e1.y)}, b, h) == 0)
+          return std::vector<Point2>{};
+      } else if (j == s0) {  // the part before e0
+        if (convex_distance(a, {e0.x + 1e-6 * (a.x - e0.x), e0.y + 1e-6 * (a.y - e0.y)}, h) == 0) return std::vector<Point2>{};
+      } else if (j == s1) {  // the part after e1
+        if (convex_distance({e1.x + 1e-6 * (b.x - e1.x), e1.y + 1e-6 * (b.y - e1.y)}, b, h) == 0) return std::vector<Point2>{};
+      } else if (!in_run[j - f0]) {
+        if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
+      }
+    }
+    for (std::size_t t = 0; t < placed.size(); ++t)
+      if (inside_convex(placed[t], h) || [&] {
+            for (std::size_t i = 0; i < h.size(); ++i)
+              if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return true;
+            return false;
+          }())
+        return std::vector<Point2>{};
+    for (const auto& g : joined)
+      for (std::size_t i = 0; i < g.size(); ++i)
+        if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return std::vector<Point2>{};
+    *taken = std::max(0.0, taken_area);
+    *gap = best;
+    return h;
+  };
   {
     std::vector<std::unique_ptr<OGRPolygon>> wps;
     polygons_of(W.get(), wps);
     auto grown = std::make_unique<OGRMultiPolygon>();
+    struct Homeless {  // an islet with no room for its triangle among the land as it is
+      int ring;
+      OGRLinearRing shape;
+      Point2 centroid;
+      double area;
+      std::string what;
+      Point2 inside;
+    };
+    std::vector<Homeless> homeless;
+    std::vector<std::vector<Point2>> joined;  // hulls of the islets joined to land
+    auto joins = std::make_unique<OGRMultiPolygon>();
     if (o.islet_side > 0 && o.min_island_area > 0) build_land(wps, land);
     const bool changed = filter_holes(wps, [&](const OGRLinearRing* h, double a) {
       OGRPolygon hp;
@@ -1905,9 +2204,14 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                             num(o.close_width) + " m)"
                                       : "island of " + num(a) + " m^2";
         OGRPoint cen;
-        if (hp.Centroid(&cen) == OGRERR_NONE &&
-            place_islet(land, land.id_of.at(h), *h, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
-          return false;
+        if (hp.Centroid(&cen) == OGRERR_NONE) {
+          if (place_islet(land, land.id_of.at(h), *h, {cen.getX(), cen.getY()}, a, what, islet_tris.get()))
+            return false;
+          if (!thin) {  // judged again below, when every islet without room is known
+            homeless.push_back({land.id_of.at(h), *h, {cen.getX(), cen.getY()}, a, what, inside_point(&hp)});
+            return false;
+          }
+        }
       }
       if (thin) return true;  // the closing and step 2c judge it
       if (a < o.min_island_area) {
@@ -1933,8 +2237,212 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       }
       return true;
     });
+    // Islets without room next to other islets without room (ledges, clusters of rocks): each
+    // was judged with the others as land, so none got a triangle. They are all water unless
+    // placed, so they are judged again with the others left out (in input order; the triangles
+    // placed meanwhile count). Gulf of Maine (hmin 500): 87 of the 321 yardstick samples farther
+    // than hmin/2 from the mesh's coast were vertices of islets whose nearest land was such an
+    // islet.
+    if (!homeless.empty()) {
+      land.gone.assign(static_cast<std::size_t>(land.rings), 0);
+      for (const Homeless& hl : homeless) land.gone[static_cast<std::size_t>(hl.ring)] = 1;
+      std::vector<const Homeless*> still, lost;
+      for (const Homeless& hl : homeless)
+        if (!place_islet(land, hl.ring, hl.shape, hl.centroid, hl.area, hl.what, islet_tris.get())) still.push_back(&hl);
+      OGREnvelope env;
+      W->getEnvelope(&env);
+      const Box2 inbox{{env.MinX, env.MinY}, {env.MaxX, env.MaxY}};
+      for (const Homeless* hp : still) {
+        const Homeless& hl = *hp;
+        double taken = 0, gap = 0;
+        std::vector<Point2> h = o.join_islets ? join_islet(land, hl.ring, hl.shape, inbox, joined, &taken, &gap)
+                                              : std::vector<Point2>{};
+        if (!h.empty()) {
+          ++res.islets_joined;
+          res.islets_joined_area += taken;
+          res.repairs.push_back({"islet_joined", hl.inside, taken,
+                                 hl.what + " is smaller than " + num(o.min_island_area) +
+                                     " m^2 (--min-island) with no room for a triangle; joined to the land " +
+                                     num(gap) + " m away: " + num(taken) + " m^2 of water between them became land",
+                                 -1});
+          OGRLinearRing jr;
+          for (Point2 q : h) jr.addPoint(q.x, q.y);
+          jr.closeRings();
+          auto jp = std::make_unique<OGRPolygon>();
+          jp->addRing(&jr);
+          joins->addGeometryDirectly(jp.release());
+          joined.push_back(std::move(h));
+          continue;
+        }
+        lost.push_back(&hl);
+      }
+      // An islet left next to an islet's triangle (nearer than islet_side): the convex hull of
+      // the two replaces the triangle where it has room (as for a join). Why: the triangles
+      // placed take the room of the islets around them (Gulf of Maine: 13 of the 66 islets left).
+      if (o.join_islets) {
+        std::vector<const Homeless*> rest;
+        for (const Homeless* hp : lost) {
+          std::vector<Point2> isl;
+          Point2 cen{0, 0};
+          for (int k = 0; k + 1 < hp->shape.getNumPoints(); ++k) isl.push_back({hp->shape.getX(k), hp->shape.getY(k)});
+          double ext = 0;
+          for (Point2 q : isl) ext = std::max(ext, dist(q, hp->centroid));
+          std::size_t tb = placed.size();
+          double db = o.islet_side;
+          std::vector<Point2> corners_b;
+          for (std::size_t t = 0; t < placed.size() && t < static_cast<std::size_t>(islet_tris->getNumGeometries()); ++t) {
+            if (dist(placed[t], hp->centroid) > placed_r[t] + ext + o.islet_side) continue;
+            const OGRLinearRing* tr = islet_tris->getGeometryRef(static_cast<int>(t))->toPolygon()->getExteriorRing();
+            std::vector<Point2> cs;
+            for (int k = 0; k + 1 < tr->getNumPoints(); ++k) cs.push_back({tr->getX(k), tr->getY(k)});
+            double d = std::numeric_limits<double>::infinity();
+            for (std::size_t a = 0; a < isl.size(); ++a)
+              for (std::size_t b = 0; b < cs.size(); ++b)
+                d = std::min(d, segment_distance(isl[a], isl[(a + 1) % isl.size()], cs[b], cs[(b + 1) % cs.size()]));
+            if (d < db) { db = d; tb = t; corners_b = cs; }
+          }
+          bool done = false;
+          if (tb < placed.size()) {
+            std::vector<Point2> all = isl;
+            all.insert(all.end(), corners_b.begin(), corners_b.end());
+            std::vector<Point2> h = convex_hull(all);
+            const double ha = h.size() >= 3 ? signed_area(h) : 0;
+            const double ta = std::fabs(signed_area(corners_b));
+            // The triangle's own islet and the triangle itself are not in the way.
+            const int jr_ring = placed_ring[tb];
+            const Point2 pc = placed[tb];
+            const double pr = placed_r[tb];
+            placed[tb] = {std::numeric_limits<double>::infinity(), 0.0};
+            if (jr_ring >= 0) land.gone[static_cast<std::size_t>(jr_ring)] = 1;
+            const bool ok = ha > 0 && ha - ta - hp->area <= 1.5 * o.islet_side * o.islet_side && hull_clear(land, h, inbox, joined);
+            placed[tb] = pc;
+            if (ok) {
+              double rr = 0;
+              Point2 hc{0, 0};
+              for (Point2 q : h) hc = hc + q;
+              hc = (1.0 / static_cast<double>(h.size())) * hc;
+              for (Point2 q : h) rr = std::max(rr, dist(q, hc));
+              placed[tb] = hc;
+              placed_r[tb] = rr;
+              placed_ring[tb] = -1;
+              OGRLinearRing jr;
+              for (Point2 q : h) jr.addPoint(q.x, q.y);
+              jr.closeRings();
+              OGRPolygon* tp = islet_tris->getGeometryRef(static_cast<int>(tb))->toPolygon();
+              tp->empty();
+              tp->addRing(&jr);
+              ++res.islets_joined;
+              res.islets_joined_area += ha - ta - hp->area;
+              res.repairs.push_back({"islet_joined", hp->inside, ha - ta - hp->area,
+                                     hp->what + " is smaller than " + num(o.min_island_area) +
+                                         " m^2 (--min-island) with no room for a triangle; joined to the triangle of an islet " +
+                                         num(db) + " m away (their convex hull, " + num(ha) + " m^2)",
+                                     -1});
+              done = true;
+            } else if (jr_ring >= 0 && !land.gone.empty()) {
+              land.gone[static_cast<std::size_t>(jr_ring)] = 0;
+            }
+            (void)pr;
+          }
+          if (!done) rest.push_back(hp);
+        }
+        lost = std::move(rest);
+      }
+      // Clusters of the islets left (single link: nearer than islet_side to each other; ledges,
+      // chains of rocks): the convex hull of a cluster becomes one island when it is at least
+      // --min-island and has room (islet_side / 2 from other land, placed triangles and joins),
+      // else one triangle for the cluster where there is room; otherwise each becomes water.
+      const std::size_t nl = lost.size();
+      std::vector<std::size_t> up(nl);
+      for (std::size_t i = 0; i < nl; ++i) up[i] = i;
+      auto root = [&](std::size_t i) {
+        while (up[i] != i) i = up[i] = up[up[i]];
+        return i;
+      };
+      std::vector<Box2> lb(nl);
+      std::vector<std::vector<Point2>> lp(nl);
+      for (std::size_t i = 0; i < nl; ++i) {
+        const OGRLinearRing& r = lost[i]->shape;
+        for (int k = 0; k + 1 < r.getNumPoints(); ++k) {
+          lp[i].push_back({r.getX(k), r.getY(k)});
+          lb[i].add(lp[i].back());
+        }
+      }
+      const double dmax = o.islet_side;
+      if (o.join_islets)
+        for (std::size_t i = 0; i < nl; ++i)
+          for (std::size_t j = i + 1; j < nl; ++j) {
+            if (lb[j].lo.x > lb[i].hi.x + dmax || lb[i].lo.x > lb[j].hi.x + dmax || lb[j].lo.y > lb[i].hi.y + dmax ||
+                lb[i].lo.y > lb[j].hi.y + dmax)
+              continue;
+            double d = std::numeric_limits<double>::infinity();
+            for (std::size_t a = 0; a < lp[i].size(); ++a)
+              for (std::size_t b = 0; b < lp[j].size(); ++b)
+                d = std::min(d, segment_distance(lp[i][a], lp[i][(a + 1) % lp[i].size()], lp[j][b],
+                                                 lp[j][(b + 1) % lp[j].size()]));
+            if (d < dmax) up[root(i)] = root(j);
+          }
+      std::vector<std::vector<std::size_t>> members(nl);
+      for (std::size_t i = 0; i < nl; ++i) members[root(i)].push_back(i);
+      for (std::size_t c = 0; c < nl; ++c) {
+        const auto& ms = members[c];
+        if (ms.empty()) continue;
+        if (ms.size() > 1) {
+          std::vector<Point2> all;
+          double sum = 0;
+          for (std::size_t i : ms) {
+            all.insert(all.end(), lp[i].begin(), lp[i].end());
+            sum += lost[i]->area;
+          }
+          std::vector<Point2> h = convex_hull(all);
+          const double ha = h.size() >= 3 ? signed_area(h) : 0;
+          if (ha > 0 && ha - sum <= 1.5 * o.islet_side * o.islet_side * static_cast<double>(ms.size()) &&
+              hull_clear(land, h, inbox, joined)) {
+            OGRLinearRing jr;
+            for (Point2 q : h) jr.addPoint(q.x, q.y);
+            jr.closeRings();
+            const std::string what = std::to_string(ms.size()) + " islets of " + num(sum) + " m^2 in all, each nearer than " +
+                                     num(dmax) + " m to the next";
+            bool kept = false;
+            if (!(ha < o.min_island_area)) {
+              auto jp = std::make_unique<OGRPolygon>();
+              jp->addRing(&jr);
+              joins->addGeometryDirectly(jp.release());
+              joined.push_back(h);
+              ++res.islets_joined;
+              res.islets_joined_area += ha - sum;
+              res.repairs.push_back({"islet_joined", lost[ms[0]]->inside, ha - sum,
+                                     what + ", too small one by one (--min-island " + num(o.min_island_area) +
+                                         " m^2): kept as one island, their convex hull of " + num(ha) + " m^2; " +
+                                         num(ha - sum) + " m^2 of water between them became land",
+                                     -1});
+              kept = true;
+            } else {
+              Point2 cen{0, 0};
+              for (Point2 q : h) cen = cen + q;
+              cen = (1.0 / static_cast<double>(h.size())) * cen;
+              kept = place_islet(land, -1, jr, cen, sum, what + " (their convex hull: " + num(ha) + " m^2)", islet_tris.get());
+            }
+            if (kept) continue;
+          }
+        }
+        for (std::size_t i : ms) {
+          const Homeless& hl = *lost[i];
+          ++res.islands_removed;
+          res.islands_area += hl.area;
+          res.repairs.push_back({"island_removed", hl.inside, hl.area,
+                                 "island of " + num(hl.area) + " m^2 is smaller than " + num(o.min_island_area) +
+                                     " m^2 (--min-island) with no room for a triangle of side " +
+                                     num(o.islet_side) + " m; it became water",
+                                 -1});
+        }
+      }
+      land.gone.clear();
+    }
     if (changed || !grown->IsEmpty()) {
       GeomPtr w2 = multi(wps);
+      if (!joins->IsEmpty())  // disjoint hulls, islet_side / 2 apart
+        w2 = minus_touching(std::move(w2), *joins, "water minus islets joined to land");
       if (!grown->IsEmpty()) {
         GeomPtr gu = grown->getNumGeometries() > 1 ? checked(grown->UnionCascaded(), "union of grown islands")
                                                    : GeomPtr(grown.release());

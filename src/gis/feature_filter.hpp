@@ -38,6 +38,8 @@ struct FeatureFilterOptions {
   double islet_side = 0;       // an island below min_island_area with no other land within this of
                                // its replacement becomes a triangle of this side (m); 0: removed
   double islet_shift = 0;      // no room at its centroid: the triangle may move up to this far from it
+  bool join_islets = false;    // an islet with no room for its triangle is joined to land nearer
+                               // than islet_side (convex hull with that coast) instead of removed
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
   bool defer_removed = false;  // the listing of removed water (input minus result: thousands of
@@ -72,6 +74,8 @@ struct FeatureFilterResult {
   std::size_t widened = 0;           // pieces of narrow water widened
   double widened_area = 0;           // land that became water by widening (m^2)
   std::size_t islets_replaced = 0;   // islands below --min-island kept as triangles of islet_side
+  std::size_t islets_joined = 0;     // islands below --min-island joined to land nearer than islet_side
+  double islets_joined_area = 0;     // water between them that became land (m^2)
   std::size_t tips_kept = 0;         // thin land tips (and thin islands) kept instead of cut
   std::size_t islands_grown = 0;
   double islands_grown_area = 0;     // land added

@@ -95,6 +95,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.5) * hmin;
     fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // README: islets
     fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
+    fo.join_islets = !opt.keep_coast;
     fo.defer_removed = true;  // listed while the coast is cleaned and resampled (finish_features)
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
@@ -268,6 +269,8 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     coast_figures.push_back({"thin_land_removed_m2", ff.land_removed_area});
     coast_figures.push_back({"tips_kept", static_cast<double>(ff.tips_kept)});
     coast_figures.push_back({"islets_simplified", static_cast<double>(ff.islets_replaced)});
+    coast_figures.push_back({"islets_joined", static_cast<double>(ff.islets_joined)});
+    coast_figures.push_back({"islets_joined_water_m2", ff.islets_joined_area});
     coast_figures.push_back({"water_widened", static_cast<double>(ff.widened)});
     coast_figures.push_back({"water_widened_m2", ff.widened_area});
     coast_figures.push_back({"input_area_m2", ff.input_area});
@@ -275,7 +278,8 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
          " out; " + std::to_string(ff.closed) + " narrow water pieces closed (" + num(ff.closed_area / 1e6) +
          " km^2 with corner rounding), " + std::to_string(ff.channels_kept) + " narrow connections kept, " +
          std::to_string(ff.islands_removed) + " islands removed (" + num(ff.islands_area / 1e6) + " km^2), " +
-         std::to_string(ff.islets_replaced) + " islets kept as triangles, " +
+         std::to_string(ff.islets_replaced) + " islets kept as triangles, " + std::to_string(ff.islets_joined) +
+         " joined to land, " +
          num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
          " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
          num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
