@@ -378,7 +378,97 @@ double farthest_from(const std::vector<Point2>& pts, const std::vector<Point2>& 
     for (std::size_t k = 0; k < ring.size(); ++k) d = std::min(d, dist_to_segment(v, ring[k], ring[(k + 1) % ring.size()]));
     worst = std::max(worst, d);
   }
+
+
   return worst;
+}
+
+// With join_islets (the CLI's default), the islet 30 m from the big island, with no room for its
+// triangle, is joined to it: the convex hull of the islet and of the island's coast near it becomes
+// land, so the islet's outer side stays coast; nothing is removed and no water is cut off.
+TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings open_islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
+  const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
+  const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  o.join_islets = true;
+  const FeatureFilterResult r = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  ASSERT_EQ(r.polygons[0].size(), 3u);  // sea, the big island with the islet joined, the open islet's triangle
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(r.islets_joined, 1u);
+  EXPECT_EQ(count(r, "islet_joined"), 1u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_FALSE(water_at(r, {1540, 1010}));  // the islet
+  EXPECT_FALSE(water_at(r, {1515, 1010}));  // the gap between it and the island
+  EXPECT_TRUE(water_at(r, {1560, 1010}));   // beyond it
+  EXPECT_TRUE(water_at(r, {1520, 900}));    // the island's coast away from the islet is where it was
+  // The islet's outer corners are on the new coast (within the buffers' rounding).
+  const std::vector<Point2> outer{{1550, 1000}, {1550, 1020}};
+  const auto& island = r.polygons[0][1].size() > 3 ? r.polygons[0][1] : r.polygons[0][2];
+  EXPECT_LT(farthest_from(outer, island), 2.0);
+  // The water taken: the islet, its gap (30 m x 20 m) and the hull's sides; listed with its area.
+  EXPECT_GT(r.islets_joined_area, 600.0);
+  EXPECT_LT(r.islets_joined_area, 3 * 70.0 * 70.0);
+}
+
+// An islet in a channel 90 m wide, 35 m from either bank: joined to one bank where the hull keeps
+// islet_side / 4 from the other, never across the channel (the water stays one piece).
+TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
+  // Two basins joined by a channel y in [1000, 1090], x in [1000, 2000].
+  const Rings water{{{0, 0}, {1000, 0}, {1000, 1000}, {2000, 1000}, {2000, 0}, {3000, 0}, {3000, 2090}, {2000, 2090},
+                     {2000, 1090}, {1000, 1090}, {1000, 2090}, {0, 2090}}};
+  const Rings islet{{{1490, 1035}, {1490, 1055}, {1510, 1055}, {1510, 1035}}};
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  o.join_islets = true;
+  const FeatureFilterResult r = filter_features({{water[0], islet[0]}}, o);
+  EXPECT_EQ(r.output_pieces, 1u);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_TRUE(water_at(r, {500, 1000}));
+  EXPECT_TRUE(water_at(r, {2500, 1000}));
+  // A way through the channel: at x = 1500 some water between the banks.
+  bool through = false;
+  for (double y = 1001; y < 1090; y += 1) through = through || water_at(r, {1500, y});
+  EXPECT_TRUE(through);
+  EXPECT_EQ(r.islets_joined + r.islands_removed, 1u);
+}
+
+// Three islets 30 m apart in open water: judged one by one with the others as land, none had room;
+// judged again with the others left out, the first gets its triangle and the other two are joined
+// to it (the convex hull of triangle and islet): one island, nothing removed.
+TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  o.join_islets = true;
+  Polygons in{{sea[0]}};
+  std::vector<Point2> verts;
+  for (int k = 0; k < 3; ++k) {
+    const double x = 2000 + 50 * k;
+    const std::vector<Point2> h{{x, 2000}, {x, 2020}, {x + 20, 2020}, {x + 20, 2000}};
+    in[0].push_back(h);
+    verts.insert(verts.end(), h.begin(), h.end());
+  }
+  const FeatureFilterResult r = filter_features(in, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  ASSERT_EQ(r.polygons[0].size(), 2u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_EQ(r.islets_replaced, 1u);
+  EXPECT_EQ(r.islets_joined, 2u);
+  for (const double x : {2010.0, 2035.0, 2060.0, 2085.0, 2110.0}) EXPECT_FALSE(water_at(r, {x, 2010})) << x;
+  // Every islet vertex within islet_side / 2 of the island's coast (hmin 100: within hmin/2).
+  EXPECT_LT(farthest_from(verts, r.polygons[0][1]), 35.0);
+  // Without joining, the pass with the others left out still places one triangle.
+  o.join_islets = false;
+  const FeatureFilterResult r0 = filter_features(in, o);
+  EXPECT_EQ(r0.islets_replaced, 1u);
 }
 
 // A long islet's triangle is turned to fit it: with the apex always up, the ends of an islet
