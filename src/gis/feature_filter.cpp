@@ -646,6 +646,55 @@ double segment_distance(Point2 a, Point2 b, Point2 c, Point2 d) {
   if (segments_meet(a, b, c, d)) return 0;
   return std::min({dist_to_segment(a, c, d), dist_to_segment(b, c, d), dist_to_segment(c, a, b), dist_to_segment(d, a, b)});
 }
+// Disks (centre, radius) by the cells of a uniform grid their boxes cover: which of them may
+// meet a box. For the islets' triangles (thousands on an ocean basin, each placement testing
+// every one before).
+class DiskGrid {
+ public:
+  explicit DiskGrid(double cell) : cell_(cell > 0 ? cell : 1) {}
+  void add(std::uint32_t id, Point2 c, double r) {
+    cells({{c.x - r, c.y - r}, {c.x + r, c.y + r}}, [&](std::uint64_t k) {
+      m_[k].push_back(id);
+      return false;
+    });
+  }
+  // The ids of the disks whose boxes may meet b, ascending, without repeats.
+  void near(const Box2& b, std::vector<std::uint32_t>* out) const {
+    out->clear();
+    cells(b, [&](std::uint64_t k) {
+      if (auto it = m_.find(k); it != m_.end()) out->insert(out->end(), it->second.begin(), it->second.end());
+      return false;
+    });
+    std::sort(out->begin(), out->end());
+    out->erase(std::unique(out->begin(), out->end()), out->end());
+  }
+
+ private:
+  template <class F>
+  void cells(const Box2& b, F f) const {
+    const auto i0 = static_cast<std::int64_t>(std::floor(b.lo.x / cell_)), i1 = static_cast<std::int64_t>(std::floor(b.hi.x / cell_));
+    const auto j0 = static_cast<std::int64_t>(std::floor(b.lo.y / cell_)), j1 = static_cast<std::int64_t>(std::floor(b.hi.y / cell_));
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        if (f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)))) return;
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> m_;
+};
+
+Box2 box_of(const std::vector<Point2>& pts) {
+  Box2 b;
+  for (Point2 q : pts) b.add(q);
+  return b;
+}
+// p farther than r from box b (a cheap test before the exact ones).
+bool beyond(Point2 p, double r, const Box2& b) {
+  return p.x < b.lo.x - r || p.x > b.hi.x + r || p.y < b.lo.y - r || p.y > b.hi.y + r;
+}
+// Boxes a and b farther apart than r along x or y.
+bool apart(const Box2& a, const Box2& b, double r) {
+  return a.lo.x > b.hi.x + r || b.lo.x > a.hi.x + r || a.lo.y > b.hi.y + r || b.lo.y > a.hi.y + r;
+}
 bool inside_convex(Point2 p, const std::vector<Point2>& h) {  // closed
   for (std::size_t i = 0; i < h.size(); ++i)
     if (predicates::orient2d(h[i], h[(i + 1) % h.size()], p) < 0) return false;
@@ -1819,6 +1868,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   //     a dropped island near the coast moves the coastline the model sees by its whole distance.
   std::vector<Point2> placed;  // centres of the islets kept as triangles (step 2c keeps them)
   std::vector<double> placed_r;  // their circumradii
+  std::vector<Box2> joined_box;  // the boxes of the islets' hulls joined to land (below)
+  DiskGrid placed_grid(2 * o.islet_side);
+  std::vector<std::uint32_t> cand;
   std::vector<int> placed_ring;  // the ring each replaces (-1: several)
   auto islet_tris = std::make_unique<OGRMultiPolygon>();
   // Islets (README, "Islets"): an island below --min-island with no other land near becomes an
@@ -1869,7 +1921,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   auto islet_room = [&](const LandIndex& L, int own, Point2 c, double clf = 0.5, double r = 0) {
     if (r == 0) r = tri_r;
     const double lim = r + clf * o.islet_side;
-    for (std::size_t k = 0; k < placed.size(); ++k)
+    placed_grid.near({{c.x - lim, c.y - lim}, {c.x + lim, c.y + lim}}, &cand);
+    for (const std::uint32_t k : cand)
       if (dist(placed[k], c) < lim + placed_r[k]) return false;
     Box2 qb;
     qb.add({c.x - lim, c.y - lim});
@@ -1911,6 +1964,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (islet_room(L, own, q, shifted_cl)) { c = q; room = true; }
       }
     if (!room) return false;
+    placed_grid.add(static_cast<std::uint32_t>(placed.size()), c, r);
     placed.push_back(c);
     placed_r.push_back(r);
     placed_ring.push_back(own);
@@ -1978,14 +2032,19 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (convex_distance(L.seg[j].first, L.seg[j].second, h) < cl) return false;
       }
     }
-    for (std::size_t t = 0; t < placed.size(); ++t) {
+    placed_grid.near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &cand);
+    for (const std::size_t t : cand) {
+      if (beyond(placed[t], placed_r[t] + cl, hb)) continue;
       if (inside_convex(placed[t], h)) return false;
       for (std::size_t i = 0; i < h.size(); ++i)
         if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return false;
     }
-    for (const auto& g : joined)
+    for (std::size_t k = 0; k < joined.size(); ++k) {
+      if (apart(joined_box[k], hb, cl)) continue;
+      const auto& g = joined[k];
       for (std::size_t i = 0; i < g.size(); ++i)
         if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return false;
+    }
     return true;
   };
   // An islet with no room for its triangle, joined to the nearest other land when that is
@@ -2157,16 +2216,20 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
       }
     }
-    for (std::size_t t = 0; t < placed.size(); ++t)
-      if (inside_convex(placed[t], h) || [&] {
+    placed_grid.near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &cand);
+    for (const std::size_t t : cand)
+      if (!beyond(placed[t], placed_r[t] + cl, hb) && (inside_convex(placed[t], h) || [&] {
             for (std::size_t i = 0; i < h.size(); ++i)
               if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return true;
             return false;
-          }())
+          }()))
         return std::vector<Point2>{};
-    for (const auto& g : joined)
+    for (std::size_t m = 0; m < joined.size(); ++m) {
+      if (apart(joined_box[m], hb, cl)) continue;
+      const auto& g = joined[m];
       for (std::size_t i = 0; i < g.size(); ++i)
         if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return std::vector<Point2>{};
+    }
     *taken = std::max(0.0, taken_area);
     *gap = best;
     return h;
@@ -2271,6 +2334,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           auto jp = std::make_unique<OGRPolygon>();
           jp->addRing(&jr);
           joins->addGeometryDirectly(jp.release());
+          joined_box.push_back(box_of(h));
           joined.push_back(std::move(h));
           continue;
         }
@@ -2290,7 +2354,12 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           std::size_t tb = placed.size();
           double db = o.islet_side;
           std::vector<Point2> corners_b;
-          for (std::size_t t = 0; t < placed.size() && t < static_cast<std::size_t>(islet_tris->getNumGeometries()); ++t) {
+          const double reach = ext + o.islet_side;
+          placed_grid.near({{hp->centroid.x - reach, hp->centroid.y - reach}, {hp->centroid.x + reach, hp->centroid.y + reach}},
+                           &cand);
+          const std::vector<std::uint32_t> near_placed = cand;
+          for (const std::size_t t : near_placed) {
+            if (t >= static_cast<std::size_t>(islet_tris->getNumGeometries())) continue;
             if (dist(placed[t], hp->centroid) > placed_r[t] + ext + o.islet_side) continue;
             const OGRLinearRing* tr = islet_tris->getGeometryRef(static_cast<int>(t))->toPolygon()->getExteriorRing();
             std::vector<Point2> cs;
@@ -2324,6 +2393,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
               for (Point2 q : h) rr = std::max(rr, dist(q, hc));
               placed[tb] = hc;
               placed_r[tb] = rr;
+              placed_grid.add(static_cast<std::uint32_t>(tb), hc, rr);
               placed_ring[tb] = -1;
               OGRLinearRing jr;
               for (Point2 q : h) jr.addPoint(q.x, q.y);
@@ -2408,6 +2478,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
               auto jp = std::make_unique<OGRPolygon>();
               jp->addRing(&jr);
               joins->addGeometryDirectly(jp.release());
+              joined_box.push_back(box_of(h));
               joined.push_back(h);
               ++res.islets_joined;
               res.islets_joined_area += ha - sum;
