@@ -2015,16 +2015,14 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     into->addGeometryDirectly(tp.release());
     return true;
   };
-  // The convex polygon h keeps cl = islet_side / 2 from every ring of L that is land (not
-  // gone), from the placed triangles and the joined hulls, and from the input's box.
+  // The convex polygon h keeps cl from the input's box, the placed triangles and the joined
+  // hulls and, with `rings`, from every ring of L that is land (not gone).
   auto hull_clear = [&](const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox,
-                        const std::vector<std::vector<Point2>>& joined) {
-    const double cl = 0.5 * o.islet_side;
-    Box2 hb;
-    for (Point2 q : h) hb.add(q);
+                        const std::vector<std::vector<Point2>>& joined, double cl, bool rings) {
+    const Box2 hb = box_of(h);
     if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
       return false;
-    if (L.grid) {
+    if (rings && L.grid) {
       L.grid->segments_near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &near);
       for (Index j : near) {
         const int r = L.ring[j];
@@ -2055,8 +2053,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   // hmin from other land); joined, its outer side stays coast and the gap, narrower than an
   // element, is no longer water. The hull must meet the land's ring along that one run of coast
   // only (so no water is cut off: the land grows by a convex piece whose intersection with it is
-  // connected), keep islet_side / 2 from every other ring, placed triangle and earlier join, stay
-  // inside the input's box (open boundaries do not move) and hold at most 2 islet_side^2.
+  // connected), meet the coast at the run's ends only, keep islet_side / 4 from every other ring,
+  // placed triangle and earlier join, stay inside the input's box (open boundaries do not move)
+  // and hold at most 3 islet_side^2.
   // Returns the hull (empty: not joined) and the water it takes (*taken).
   auto join_islet = [&](const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
                         const std::vector<std::vector<Point2>>& joined, double* taken, double* gap) {
@@ -2100,53 +2099,37 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       for (std::size_t j = i + 1; j < ni; ++j) len = std::max(len, dist(isl[i], isl[j]));
     const double rho = 0.5 * len + best + 0.1 * o.islet_side;
     // The run of ring ra's coast within arc length rho of pb, both ways: its vertices in ring
-    // order from the backward end e0 to the forward end e1 (on segments s0 and s1).
-    std::vector<Point2> fwd, bwd;
+    // order from the backward end e0 to the forward end e1 (on segments s0 and s1). A walk that
+    // comes back to a segment already in the run (the whole ring is that near) finds no run.
     std::vector<char> in_run(nseg, 0);
     in_run[kb - f0] = 1;
-    double acc = 0;
-    std::size_t k = kb;
-    Point2 at = pb;
-    std::size_t steps = 0;
+    std::vector<Point2> fwd, bwd;
     Point2 e1{}, e0{};
     std::size_t s1 = kb, s0 = kb;
-    for (;; ++steps) {
-      if (steps > nseg) return std::vector<Point2>{};  // the whole ring is that near: not a coast run
-      const Point2 b = L.seg[k].second;
-      const double l = dist(at, b);
-      if (acc + l >= rho) {
-        const double t = l > 0 ? (rho - acc) / l : 0;
-        e1 = {at.x + t * (b.x - at.x), at.y + t * (b.y - at.y)};
-        s1 = k;
-        break;
+    auto walk = [&](bool forward, std::vector<Point2>& passed, Point2& end, std::size_t& end_seg) {
+      double acc = 0;
+      std::size_t k = kb;
+      Point2 at = pb;
+      for (std::size_t steps = 0; steps <= nseg; ++steps) {
+        const Point2 v = forward ? L.seg[k].second : L.seg[k].first;
+        const double l = dist(at, v);
+        if (acc + l >= rho) {
+          const double t = l > 0 ? (rho - acc) / l : 0;
+          end = {at.x + t * (v.x - at.x), at.y + t * (v.y - at.y)};
+          end_seg = k;
+          return true;
+        }
+        acc += l;
+        passed.push_back(v);
+        at = v;
+        k = forward ? (k + 1 == f1 ? f0 : k + 1) : (k == f0 ? f1 - 1 : k - 1);
+        // Backward, the forward walk's last segment may be met: the ends' check below rejects it.
+        if (in_run[k - f0] && (forward || k != s1)) return false;
+        in_run[k - f0] = 1;
       }
-      acc += l;
-      fwd.push_back(b);
-      at = b;
-      k = k + 1 == f1 ? f0 : k + 1;
-      if (in_run[k - f0]) return std::vector<Point2>{};
-      in_run[k - f0] = 1;
-    }
-    acc = 0;
-    k = kb;
-    at = pb;
-    for (steps = 0;; ++steps) {
-      if (steps > nseg) return std::vector<Point2>{};
-      const Point2 a = L.seg[k].first;
-      const double l = dist(at, a);
-      if (acc + l >= rho) {
-        const double t = l > 0 ? (rho - acc) / l : 0;
-        e0 = {at.x + t * (a.x - at.x), at.y + t * (a.y - at.y)};
-        s0 = k;
-        break;
-      }
-      acc += l;
-      bwd.push_back(a);
-      at = a;
-      k = k == f0 ? f1 - 1 : k - 1;
-      if (in_run[k - f0] && k != s1) return std::vector<Point2>{};
-      in_run[k - f0] = 1;
-    }
+      return false;
+    };
+    if (!walk(true, fwd, e1, s1) || !walk(false, bwd, e0, s0)) return std::vector<Point2>{};
     if (s0 == s1 && s0 != kb) return std::vector<Point2>{};  // met going round
     std::vector<Point2> run{e0};
     run.insert(run.end(), bwd.rbegin(), bwd.rend());
@@ -2163,10 +2146,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
     };
     const std::size_t i0 = index_of(e0), i1 = index_of(e1);
     if (i0 == h.size() || i1 == h.size()) return std::vector<Point2>{};
-    Box2 hb;
-    for (Point2 q : h) hb.add(q);
-    if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
-      return std::vector<Point2>{};
+    const Box2 hb = box_of(h);
     const double harea = signed_area(h);
     if (harea > 3 * o.islet_side * o.islet_side) return std::vector<Point2>{};
     // The water side: the hull's chain from e1 round to e0 (counter-clockwise) or from e0 to e1,
@@ -2223,20 +2203,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
       }
     }
-    placed_grid.near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &cand);
-    for (const std::size_t t : cand)
-      if (!beyond(placed[t], placed_r[t] + cl, hb) && (inside_convex(placed[t], h) || [&] {
-            for (std::size_t i = 0; i < h.size(); ++i)
-              if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return true;
-            return false;
-          }()))
-        return std::vector<Point2>{};
-    for (std::size_t m = 0; m < joined.size(); ++m) {
-      if (apart(joined_box[m], hb, cl)) continue;
-      const auto& g = joined[m];
-      for (std::size_t i = 0; i < g.size(); ++i)
-        if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return std::vector<Point2>{};
-    }
+    if (!hull_clear(L, h, inbox, joined, cl, false)) return std::vector<Point2>{};
     *taken = std::max(0.0, taken_area);
     *gap = best;
     return h;
@@ -2354,7 +2321,6 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         std::vector<const Homeless*> rest;
         for (const Homeless* hp : lost) {
           std::vector<Point2> isl;
-          Point2 cen{0, 0};
           for (int k = 0; k + 1 < hp->shape.getNumPoints(); ++k) isl.push_back({hp->shape.getX(k), hp->shape.getY(k)});
           double ext = 0;
           for (Point2 q : isl) ext = std::max(ext, dist(q, hp->centroid));
@@ -2390,7 +2356,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
             const double pr = placed_r[tb];
             placed[tb] = {std::numeric_limits<double>::infinity(), 0.0};
             if (jr_ring >= 0) land.gone[static_cast<std::size_t>(jr_ring)] = 1;
-            const bool ok = ha > 0 && ha - ta - hp->area <= 1.5 * o.islet_side * o.islet_side && hull_clear(land, h, inbox, joined);
+            const bool ok = ha > 0 && ha - ta - hp->area <= 1.5 * o.islet_side * o.islet_side && hull_clear(land, h, inbox, joined, 0.5 * o.islet_side, true);
             placed[tb] = pc;
             if (ok) {
               double rr = 0;
@@ -2474,7 +2440,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           std::vector<Point2> h = convex_hull(all);
           const double ha = h.size() >= 3 ? signed_area(h) : 0;
           if (ha > 0 && ha - sum <= 1.5 * o.islet_side * o.islet_side * static_cast<double>(ms.size()) &&
-              hull_clear(land, h, inbox, joined)) {
+              hull_clear(land, h, inbox, joined, 0.5 * o.islet_side, true)) {
             OGRLinearRing jr;
             for (Point2 q : h) jr.addPoint(q.x, q.y);
             jr.closeRings();

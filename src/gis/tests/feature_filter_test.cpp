@@ -344,17 +344,26 @@ TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
   EXPECT_GT(checked, 10u);
 }
 
-TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
-  // hmin 100: --min-island 0.3 hmin^2 = 3000 m^2; islets of 400 m^2, one in open water, one 30 m
-  // from a large island; triangles of side 70 m.
+// hmin 100: --min-island 0.3 hmin^2 = 3000 m^2, triangles of side 70 m.
+FeatureFilterOptions islet_opts() {
+  FeatureFilterOptions o = widen_opts();
+  o.min_island_area = 3000;
+  o.islet_side = 70;
+  return o;
+}
+
+// A sea with a large island and two islets of 400 m^2, one in open water, one 30 m from the island.
+Polygons islets_and_big_island() {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings open_islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
   const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
   const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
-  FeatureFilterOptions o = widen_opts();
-  o.min_island_area = 3000;
-  o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  return {{sea[0], open_islet[0], big[0], near_islet[0]}};
+}
+
+TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
+  FeatureFilterOptions o = islet_opts();
+  const FeatureFilterResult r = filter_features(islets_and_big_island(), o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 3u);  // sea, the big island, the open islet's triangle
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -365,7 +374,7 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - 1e6 - std::sqrt(3.0) / 4 * 70 * 70, 300.0);
   // Without islet_side: both removed.
   o.islet_side = 0;
-  const FeatureFilterResult r0 = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  const FeatureFilterResult r0 = filter_features(islets_and_big_island(), o);
   EXPECT_EQ(r0.polygons[0].size(), 2u);
   EXPECT_EQ(r0.islands_removed, 2u);
 }
@@ -387,15 +396,9 @@ double farthest_from(const std::vector<Point2>& pts, const std::vector<Point2>& 
 // triangle, is joined to it: the convex hull of the islet and of the island's coast near it becomes
 // land, so the islet's outer side stays coast; nothing is removed and no water is cut off.
 TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
-  const Rings sea = rect(0, 0, 4000, 4000);
-  const Rings open_islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
-  const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
-  const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
-  FeatureFilterOptions o = widen_opts();
-  o.min_island_area = 3000;
-  o.islet_side = 70;
+  FeatureFilterOptions o = islet_opts();
   o.join_islets = true;
-  const FeatureFilterResult r = filter_features({{sea[0], open_islet[0], big[0], near_islet[0]}}, o);
+  const FeatureFilterResult r = filter_features(islets_and_big_island(), o);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 3u);  // sea, the big island with the islet joined, the open islet's triangle
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -423,9 +426,7 @@ TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
   const Rings water{{{0, 0}, {1000, 0}, {1000, 1000}, {2000, 1000}, {2000, 0}, {3000, 0}, {3000, 2090}, {2000, 2090},
                      {2000, 1090}, {1000, 1090}, {1000, 2090}, {0, 2090}}};
   const Rings islet{{{1490, 1035}, {1490, 1055}, {1510, 1055}, {1510, 1035}}};
-  FeatureFilterOptions o = widen_opts();
-  o.min_island_area = 3000;
-  o.islet_side = 70;
+  FeatureFilterOptions o = islet_opts();
   o.join_islets = true;
   const FeatureFilterResult r = filter_features({{water[0], islet[0]}}, o);
   EXPECT_EQ(r.output_pieces, 1u);
@@ -444,9 +445,7 @@ TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
 // to it (the convex hull of triangle and islet): one island, nothing removed.
 TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
   const Rings sea = rect(0, 0, 4000, 4000);
-  FeatureFilterOptions o = widen_opts();
-  o.min_island_area = 3000;
-  o.islet_side = 70;
+  FeatureFilterOptions o = islet_opts();
   o.join_islets = true;
   Polygons in{{sea[0]}};
   std::vector<Point2> verts;

@@ -77,46 +77,36 @@ def edges_and_pieces(T):
     return key, pieces
 
 
-def input_water(path, layer, srs):
+def water_polygons(path, layer, srs):
+    """The input water polygons (OGR geometries) transformed into srs."""
     ds = ogr.Open(path)
     lyr = ds.GetLayerByName(layer)
     src = lyr.GetSpatialRef().Clone()
     src.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
     srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
     ct = osr.CoordinateTransformation(src, srs)
-    area, pieces, segs = 0.0, 0, []
     for f in lyr:
         g = f.GetGeometryRef().Clone()
         g.Transform(ct)
         polys = [g] if g.GetGeometryType() in (ogr.wkbPolygon, ogr.wkbPolygon25D) else [g.GetGeometryRef(i) for i in range(g.GetGeometryCount())]
         for p in polys:
-            pieces += 1
-            area += p.GetArea()
-            for k in range(p.GetGeometryCount()):
-                r = p.GetGeometryRef(k)
-                pts = [(r.GetX(i), r.GetY(i)) for i in range(r.GetPointCount())]
-                segs += list(zip(pts[:-1], pts[1:]))
-    return area, pieces, np.array(segs, dtype=float)
+            yield p
 
 
 def input_rings(path, layer, srs):
     """Every ring of the input water polygons (vertex arrays, closing repeat included) in srs."""
-    ds = ogr.Open(path)
-    lyr = ds.GetLayerByName(layer)
-    src = lyr.GetSpatialRef().Clone()
-    src.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-    srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-    ct = osr.CoordinateTransformation(src, srs)
-    rings = []
-    for f in lyr:
-        g = f.GetGeometryRef().Clone()
-        g.Transform(ct)
-        polys = [g] if g.GetGeometryType() in (ogr.wkbPolygon, ogr.wkbPolygon25D) else [g.GetGeometryRef(i) for i in range(g.GetGeometryCount())]
-        for p in polys:
-            for k in range(p.GetGeometryCount()):
-                r = p.GetGeometryRef(k)
-                rings.append(np.array([(r.GetX(i), r.GetY(i)) for i in range(r.GetPointCount())], dtype=float))
-    return rings
+    return [np.array([(r.GetX(i), r.GetY(i)) for i in range(r.GetPointCount())], dtype=float)
+            for p in water_polygons(path, layer, srs) for r in (p.GetGeometryRef(k) for k in range(p.GetGeometryCount()))]
+
+
+def input_water(path, layer, srs):
+    area, pieces, segs = 0.0, 0, []
+    for p in water_polygons(path, layer, srs):
+        pieces += 1
+        area += p.GetArea()
+    for r in input_rings(path, layer, srs):
+        segs += list(zip(map(tuple, r[:-1]), map(tuple, r[1:])))
+    return area, pieces, np.array(segs, dtype=float)
 
 
 def dist_points_to_segments(P, S, cell):
