@@ -419,6 +419,31 @@ TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
   EXPECT_LT(r.islets_joined_area, 3 * 70.0 * 70.0);
 }
 
+// An islet 30 m off the big island's east side, 10 m below its north-east corner: the coast near it
+// runs round the corner, and the hull has an edge along the north side (it touches the coast at the
+// corner between the run's ends). Joined all the same: refused, the islet was removed and the
+// coast the model sees moved by its distance to the island.
+TEST(FeatureFilter, IsletBesideACornerIsJoinedRoundIt) {
+  const Rings sea = rect(0, 0, 4000, 4000);
+  const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
+  const Rings islet{{{1530, 1470}, {1530, 1490}, {1550, 1490}, {1550, 1470}}};
+  FeatureFilterOptions o = islet_opts();
+  o.join_islets = true;
+  const FeatureFilterResult r = filter_features({{sea[0], big[0], islet[0]}}, o);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  ASSERT_EQ(r.polygons[0].size(), 2u);  // sea, the big island with the islet joined
+  EXPECT_EQ(r.islets_joined, 1u);
+  EXPECT_EQ(r.islands_removed, 0u);
+  EXPECT_EQ(r.output_pieces, 1u);
+  EXPECT_FALSE(water_at(r, {1540, 1480}));  // the islet
+  EXPECT_FALSE(water_at(r, {1515, 1480}));  // the gap
+  EXPECT_TRUE(water_at(r, {1560, 1480}));   // beyond it
+  EXPECT_TRUE(water_at(r, {1480, 1510}));   // north of the island, near the corner: still water
+  EXPECT_TRUE(water_at(r, {1520, 1300}));   // the east coast away from the islet
+  const std::vector<Point2> outer{{1550, 1470}, {1550, 1490}};
+  EXPECT_LT(farthest_from(outer, r.polygons[0][1]), 5.0);  // (the buffers round the corners)
+}
+
 // An islet in a channel 90 m wide, 35 m from either bank: joined to one bank where the hull keeps
 // islet_side / 4 from the other, never across the channel (the water stays one piece).
 TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
