@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <chrono>
 #include <cstdio>
@@ -2088,9 +2089,8 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   // element, is no longer water. The hull must meet the land's ring along that one run of coast
   // only (so no water is cut off: the land grows by a convex piece whose intersection with it is
   // connected; it may touch the run between its ends, round a convex corner), keep islet_side / 4
-  // from every other ring,
-  // placed triangle and earlier join, stay inside the input's box (open boundaries do not move)
-  // and hold at most 3 islet_side^2.
+  // from every other ring, placed triangle and earlier join, stay inside the input's box (open
+  // boundaries do not move) and hold at most 3 islet_side^2.
   // Returns the hull (empty: not joined) and the water it takes (*taken).
   auto join_islet = [&](const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
                         const std::vector<std::vector<Point2>>& joined, double* taken, double* gap) {
