@@ -1,6 +1,7 @@
 // PSLG cleaning for messy GIS input: snap (grid hashing), parity cancellation of boundary
 // copies, iterative splitting at crossings/overlaps, tiny-island removal, simplification.
 #include "pslg/clean.hpp"
+#include "base/step_laps.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -82,12 +83,18 @@ class Cleaner {
       : in_(in), opt_(opt), repairs_(repairs) {}
 
   Pslg run() {
+    StepLaps lap("FDR_DEBUG_CLEAN", "  clean");
     check_input();
+    lap("check");
     snap_input();
+    lap("snap");
     split_until_clean();
+    lap("split");
     if (opt_.min_island_area_factor > 0) drop_tiny_islands();
     if (opt_.simplify_factor > 0 && opt_.simplify_tolerance > 0) simplify();
-    return compact();
+    Pslg out = compact();
+    lap("compact");
+    return out;
   }
 
  private:

@@ -1,6 +1,7 @@
 // Boundary resampling to f (see resample.hpp): chains, Douglas-Peucker corners, placement by
 // integral ds / f, tolerance repair, exact conflict checks with restoration of input pieces.
 #include "pslg/resample.hpp"
+#include "base/step_laps.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -55,16 +56,22 @@ class Resampler {
   }
 
   Pslg run(ResampleStats* st) {
+    StepLaps lap("FDR_DEBUG_CLEAN", "  resample");
     pts_ = in_.points;
     build_chains();
+    lap("chains");
     chain_pieces_.resize(chains_.size());
     for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
+    lap("plan");
     Pslg out;
     std::size_t round = 0;
     for (;; ++round) {
       out = assemble();
+      lap("assemble");
       std::vector<std::size_t> bad;
-      if (!find_conflicts(out, &bad)) break;
+      const bool conflicts = find_conflicts(out, &bad);
+      lap("conflicts");
+      if (!conflicts) break;
       if (round + 1 >= o_.max_rounds) {  // give up: keep every input vertex
         for (auto& ch : chains_) std::fill(ch.level.begin(), ch.level.end(), kMaxLevel);
         for (std::size_t c = 0; c < chains_.size(); ++c) plan_chain(c);
