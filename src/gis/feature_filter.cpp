@@ -1676,7 +1676,7 @@ GeomPtr closing_keep_tips(const OGRGeometry* W, const FeatureFilterOptions& o, F
           for (const Point2& q : cut) d = std::min(d, dist(c, q));
           if (d > far) { far = d; e = c; }
         }
-        static const double kc = std::getenv("FDR_CORNER_KEEP") ? std::atof(std::getenv("FDR_CORNER_KEEP")) : 0.1;
+        static const double kc = std::getenv("FDR_CORNER_KEEP") ? std::atof(std::getenv("FDR_CORNER_KEEP")) : 0.45;
         if (!long_piece && !(far > kc * o.close_width)) continue;
         crowded = !(far > 0) || land_near(e, long_piece ? std::min(clear, 0.9 * far) : clear, own);
       }
