@@ -1,13 +1,13 @@
 // PSLG cleaning for messy GIS input: snap (grid hashing), parity cancellation of boundary
 // copies, iterative splitting at crossings/overlaps, tiny-island removal, simplification.
 #include "pslg/clean.hpp"
-#include "base/step_laps.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <unordered_map>
 #include "base/error.hpp"
+#include "base/step_laps.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/segment_grid.hpp"
 #include "pslg/validate.hpp"

@@ -1,7 +1,6 @@
 // Boundary resampling to f (see resample.hpp): chains, Douglas-Peucker corners, placement by
 // integral ds / f, tolerance repair, exact conflict checks with restoration of input pieces.
 #include "pslg/resample.hpp"
-#include "base/step_laps.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "base/step_laps.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/segment_grid.hpp"
 
