@@ -28,16 +28,18 @@ struct ContainedDifferenceStats {
 // a - b when b lies inside a. First the boundaries are made to meet exactly: a vertex of a
 // within eps of a vertex of b moves onto it, and a vertex of either within eps of a segment of
 // the other (not of its ends) is inserted into that segment; so both sets change by at most
-// eps. Then the segments the two share (with their interiors on the same side) cancel, and the
-// rest is traced into rings (at a vertex where several meet, the sharpest left turn: each ring
-// bounds one face; a walk that passes a vertex twice is split there), holes going to the
-// smallest outer ring around them; a clockwise loop with no shell as its smallest enclosing ring
-// bounds a sliver where b sticks out of a, which a - b does not hold. Every decision is exact
+// eps. Then the segments the two share (with their interiors on the same side) cancel; where a
+// segment of one still crosses or touches one of the other, the (rounded) contact point is
+// inserted into both and the round is redone, at most 4 times. The rest is traced into loops
+// (at a vertex where several meet, the sharpest left turn, or the sharpest right one beside a
+// sliver; a walk that passes a vertex twice is split there), and each loop is judged by the sum
+// of the other loops' winding numbers at one of its vertices: a counter-clockwise loop with sum
+// 0 is a piece of a - b, a clockwise one with sum 1 its hole, the others slivers where b sticks
+// out of a (not in a - b). Holes go to the smallest shell around them. Every decision is exact
 // (orient2d).
-// Returns nullopt (the caller overlays instead) when it cannot vouch for the result: remaining
-// segments that cross or touch, b beside a along a shared segment (shared in the same
-// direction), a ring that degenerates.
-// Output: shells clockwise, holes counter-clockwise (GEOS's convention), rings open.
+// Returns nullopt (the caller overlays instead) when it cannot vouch for the result, e.g. a segment
+// shared in the same direction (b beside a), crossings left after 4 rounds, a loop with every
+// vertex on other loops, a ring that degenerates.
 std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, double eps,
                                                ContainedDifferenceStats* stats = nullptr);
 
