@@ -1,9 +1,13 @@
 // jemalloc's controls through a weak reference to mallctl, so that the library needs no allocator
 // of its own and does nothing in hosts that use glibc's malloc.
 #include "base/memory.hpp"
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
-#include <string>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
 #include <sys/mman.h>
 
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp,
@@ -22,6 +26,45 @@ unsigned arena_count() {
   unsigned n = 0;
   std::size_t len = sizeof n;
   return mallctl("arenas.narenas", &n, &len, nullptr, 0) == 0 ? n : 0;
+}
+
+// jemalloc 5's extent_hooks_t (jemalloc/jemalloc.h, "arena.<i>.extent_hooks" in jemalloc(3)):
+// only `alloc` is called here, the other members are copied as they are.
+struct ExtentHooks {
+  void* (*alloc)(ExtentHooks*, void*, std::size_t, std::size_t, bool*, bool*, unsigned);
+  void* rest[8];  // dalloc, destroy, commit, decommit, purge_lazy, purge_forced, split, merge
+};
+
+constexpr unsigned kMaxArenas = 1024;
+ExtentHooks* g_previous[kMaxArenas];  // per arena: the hooks the wrapper calls
+ExtentHooks g_wrapped[kMaxArenas];    // per arena: the previous hooks with `alloc` wrapped
+std::atomic<bool> g_huge_active{false};
+// What the wrapper advised, taken back when the HugePageArenas ends (fixed storage: the hook may
+// not allocate). Past kMaxRanges nothing more is advised.
+constexpr std::size_t kMaxRanges = 1 << 14;
+struct Range {
+  void* p;
+  std::size_t size;
+};
+Range g_ranges[kMaxRanges];
+std::atomic<std::size_t> g_nranges{0};
+
+void* huge_alloc(ExtentHooks* hooks, void* new_addr, std::size_t size, std::size_t alignment, bool* zero,
+                 bool* commit, unsigned arena) {
+  ExtentHooks* prev = arena < kMaxArenas ? g_previous[arena] : nullptr;
+  if (prev == nullptr) {  // cannot happen: the wrapper is installed only where g_previous is set
+    (void)hooks;
+    return nullptr;
+  }
+  void* p = prev->alloc(prev, new_addr, size, alignment, zero, commit, arena);
+  if (p != nullptr && size >= (std::size_t{1} << 21)) {
+    const std::size_t k = g_nranges.fetch_add(1);
+    if (k < kMaxRanges) {
+      g_ranges[k] = {p, size};
+      advise_huge_pages(p, size);
+    }
+  }
+  return p;
 }
 
 }  // namespace
@@ -86,5 +129,49 @@ ArenaDecay::~ArenaDecay() {
 EagerMemoryRelease::EagerMemoryRelease() : ArenaDecay(0) { release_free_memory(); }
 
 KeepFreedPages::~KeepFreedPages() { release_free_memory(); }
+
+HugePageArenas::HugePageArenas() {
+#ifdef MADV_HUGEPAGE
+  if (!mallctl) return;
+  const char* version = nullptr;
+  std::size_t len = sizeof version;
+  if (mallctl("version", &version, &len, nullptr, 0) != 0 || version == nullptr || std::strncmp(version, "5.", 2) != 0)
+    return;
+  bool expected = false;
+  if (!g_huge_active.compare_exchange_strong(expected, true)) return;  // one at a time
+  // Every automatic arena is made now (an arena made later would take the default hooks), and
+  // the arena of allocations above opt.oversize_threshold (8 MiB) by one such allocation.
+  void* volatile oversize = std::malloc(std::size_t{16} << 20);  // volatile: the pair is not elided
+  std::free(oversize);
+  const unsigned n = std::min(arena_count(), kMaxArenas);
+  previous_.assign(n, nullptr);
+  for (unsigned i = 0; i < n; ++i) {
+    const std::string name = "arena." + std::to_string(i) + ".extent_hooks";
+    ExtentHooks* old = nullptr;
+    std::size_t olen = sizeof old;
+    if (mallctl(name.c_str(), &old, &olen, nullptr, 0) != 0 || old == nullptr || old->alloc == nullptr) continue;
+    g_previous[i] = old;
+    g_wrapped[i] = *old;
+    g_wrapped[i].alloc = huge_alloc;
+    ExtentHooks* mine = &g_wrapped[i];
+    if (mallctl(name.c_str(), nullptr, nullptr, &mine, sizeof mine) == 0) previous_[i] = old;
+  }
+  active_ = true;
+#endif
+}
+
+HugePageArenas::~HugePageArenas() {
+  if (!active_) return;
+  for (unsigned i = 0; i < previous_.size(); ++i) {
+    if (previous_[i] == nullptr) continue;
+    const std::string name = "arena." + std::to_string(i) + ".extent_hooks";
+    void* old = previous_[i];
+    mallctl(name.c_str(), nullptr, nullptr, &old, sizeof old);
+  }
+  const std::size_t n = std::min(g_nranges.load(), kMaxRanges);
+  for (std::size_t k = 0; k < n; ++k) unadvise_huge_pages(g_ranges[k].p, g_ranges[k].size);
+  g_nranges.store(0);
+  g_huge_active.store(false);
+}
 
 }  // namespace fdr

@@ -12,9 +12,7 @@ namespace fdr::pipeline {
 namespace {
 
 PreparedInput prepare_gis(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
-  gis::GisInput g = read_gis_input(opt, clock, progress, log);       // read (gis)
-  const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);   // spacing (sizing)
-  return clean_gis_input(opt, std::move(g), sp, clock, log);         // clean, resample (pslg)
+  return prepare_gis_input(opt, clock, progress, log);  // read (gis), spacing (sizing), clean, resample (pslg)
 }
 
 const gis::Frame& frame_of(const PreparedInput& in) {

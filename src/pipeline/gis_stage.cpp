@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <cmath>
 #include <map>
-#include <optional>
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
@@ -319,6 +318,13 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   std::vector<StageTime> stages;
   StageClock clock(&stages);
+  return prepare_gis_input(opt, clock, progress, log);
+}
+
+PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
+  // What the allocator maps for GEOS's objects, the spacing grids and the cleaned and resampled
+  // PSLG goes on huge pages (base/memory.hpp).
+  const HugePageArenas huge;
   gis::GisInput g = read_gis_input(opt, clock, progress, log);
   const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
   return clean_gis_input(opt, std::move(g), sp, clock, log);

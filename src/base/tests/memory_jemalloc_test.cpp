@@ -1,6 +1,7 @@
-// EagerMemoryRelease and KeepFreedPages in a process whose allocator is jemalloc (this test links
-// it, as the fdrmesh program does, with the same compiled-in options): every arena's decay is 0
-// (-1) while it lives, the previous values after.
+// EagerMemoryRelease, KeepFreedPages and HugePageArenas in a process whose allocator is jemalloc
+// (this test links it, as the fdrmesh program does, with the same compiled-in options): every
+// arena's decay is 0 (-1) while it lives, the previous values after; the extent hooks wrapped and
+// restored.
 #include <gtest/gtest.h>
 #include <sys/types.h>
 #include <cstddef>
@@ -73,4 +74,60 @@ TEST(KeepFreedPages, DecayMinusOneWhileItLivesThenPurgedAndTheHostsSettings) {
   EXPECT_EQ(dirty_pages(), 0u);  // given back when it ended
   EXPECT_EQ(read_ssize("arenas.dirty_decay_ms"), dirty0);
   EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), arena0);
+}
+
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+
+namespace {
+void* read_hooks(unsigned arena) {
+  void* h = nullptr;
+  std::size_t len = sizeof h;
+  const std::string name = "arena." + std::to_string(arena) + ".extent_hooks";
+  EXPECT_EQ(mallctl(name.c_str(), &h, &len, nullptr, 0), 0) << name;
+  return h;
+}
+
+// True when the mapping that holds p is advised for huge pages ("hg" in its VmFlags).
+bool advised_huge(const void* p) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto a = reinterpret_cast<std::uintptr_t>(p);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    std::uintptr_t lo = 0, hi = 0;
+    char dash = 0;
+    std::istringstream ls(line);
+    if (ls >> std::hex >> lo >> dash >> hi && dash == '-') {
+      inside = a >= lo && a < hi;
+      continue;
+    }
+    if (inside && line.rfind("VmFlags:", 0) == 0) return line.find(" hg") != std::string::npos;
+  }
+  return false;
+}
+}  // namespace
+
+// The hooks are wrapped while it lives (one at a time), what the arena maps then is advised, and
+// the hooks and the advice are taken back when it ends.
+TEST(HugePageArenas, WrapsEveryArenasHooksWhileItLivesThenRestoresThem) {
+  std::vector<std::unique_ptr<char[]>> keep;
+  for (int i = 0; i < 100; ++i) keep.emplace_back(new char[1000 + i]);  // arena 0 in use
+  void* const before = read_hooks(0);
+  std::unique_ptr<char[]> big;
+  {
+    fdr::HugePageArenas huge;
+    ASSERT_TRUE(huge.active());
+    EXPECT_NE(read_hooks(0), before);
+    {
+      fdr::HugePageArenas second;  // one at a time
+      EXPECT_FALSE(second.active());
+    }
+    EXPECT_NE(read_hooks(0), before);
+    // New memory the arena maps now is advised (a 256 MiB block: more than anything retained).
+    big.reset(new char[std::size_t{256} << 20]);
+    EXPECT_TRUE(advised_huge(big.get() + (std::size_t{128} << 20)));
+  }
+  EXPECT_EQ(read_hooks(0), before);
+  EXPECT_FALSE(advised_huge(big.get() + (std::size_t{128} << 20)));  // the advice taken back
 }
