@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <unordered_map>
+#include <utility>
 #include "base/error.hpp"
 #include "base/step_laps.hpp"
 #include "predicates/predicates.hpp"
@@ -17,18 +17,59 @@ namespace {
 
 using predicates::orient2d;
 
-struct PairHash {
-  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const {
-    return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ (k.second + 0x632BE59BD9B4E019ULL));
-  }
-};
-
 std::uint64_t bits(double v) {
   v += 0.0;  // -0.0 and +0.0 compare equal: give them one key
   std::uint64_t u;
   std::memcpy(&u, &v, sizeof u);
   return u;
 }
+
+// Open-addressing map from a key of two words to the head of a chain of indices (no per-key
+// allocation: the snapping registers every input vertex, half a million on an ocean basin).
+class KeyHeads {
+ public:
+  Index head(std::uint64_t k1, std::uint64_t k2) const {
+    if (slots_.empty()) return kNoId;
+    for (std::size_t i = slot_of(k1, k2);; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.head == kNoId) return kNoId;
+      if (s.k1 == k1 && s.k2 == k2) return s.head;
+    }
+  }
+  // Makes v the key's head; returns the previous head (kNoId if none).
+  Index push_front(std::uint64_t k1, std::uint64_t k2, Index v) {
+    if (2 * (used_ + 1) > slots_.size()) grow();
+    for (std::size_t i = slot_of(k1, k2);; i = (i + 1) & mask_) {
+      Slot& s = slots_[i];
+      if (s.head == kNoId) {
+        s = {k1, k2, v};
+        ++used_;
+        return kNoId;
+      }
+      if (s.k1 == k1 && s.k2 == k2) return std::exchange(s.head, v);
+    }
+  }
+
+ private:
+  struct Slot { std::uint64_t k1 = 0, k2 = 0; Index head = kNoId; };
+  std::size_t slot_of(std::uint64_t k1, std::uint64_t k2) const {
+    std::uint64_t h = k1 * 0x9E3779B97F4A7C15ULL ^ (k2 + 0x632BE59BD9B4E019ULL) * 0xC2B2AE3D27D4EB4FULL;
+    h ^= h >> 29;
+    return static_cast<std::size_t>(h) & mask_;
+  }
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(std::max<std::size_t>(64, 2 * old.size()), Slot{});
+    mask_ = slots_.size() - 1;
+    used_ = 0;
+    for (const Slot& s : old)
+      if (s.head != kNoId)
+        for (std::size_t i = slot_of(s.k1, s.k2);; i = (i + 1) & mask_)
+          if (slots_[i].head == kNoId) { slots_[i] = s; ++used_; break; }
+  }
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0, used_ = 0;
+};
 
 std::string fmt(Point2 p) {
   char buf[96];
@@ -138,27 +179,40 @@ class Cleaner {
   }
 
   // Lowest-index representative equal to p or within the snap distance of it; kNoId if none.
+  // (A representative with p's exact coordinates wins, the lowest-index one; it lies in p's own
+  // cell.)
   Index find_rep(Point2 p) const {
-    if (auto it = exact_.find({bits(p.x), bits(p.y)}); it != exact_.end()) return it->second;
-    if (opt_.snap_distance <= 0) return kNoId;
+    if (opt_.snap_distance <= 0) {
+      Index best = kNoId;
+      for (Index q = reps_.head(bits(p.x), bits(p.y)); q != kNoId; q = next_rep_[q]) best = std::min(best, q);
+      return best;
+    }
     const auto [cx, cy] = snap_cell(p);
+    Index same = kNoId;
+    for (Index q = reps_.head(static_cast<std::uint64_t>(cx), static_cast<std::uint64_t>(cy)); q != kNoId; q = next_rep_[q])
+      if (pts_[q].x == p.x && pts_[q].y == p.y) same = std::min(same, q);
+    if (same != kNoId) return same;
     Index best = kNoId;
     for (std::int64_t dy = -1; dy <= 1; ++dy)
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        auto it = cells_.find({static_cast<std::uint64_t>(cx + dx), static_cast<std::uint64_t>(cy + dy)});
-        if (it == cells_.end()) continue;
-        for (Index q : it->second)
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (Index q = reps_.head(static_cast<std::uint64_t>(cx + dx), static_cast<std::uint64_t>(cy + dy)); q != kNoId;
+             q = next_rep_[q])
           if (q < best && dist(pts_[q], p) <= opt_.snap_distance) best = q;
-      }
     return best;
   }
 
   void register_rep(Index id) {
-    exact_.emplace(std::make_pair(bits(pts_[id].x), bits(pts_[id].y)), id);
-    if (opt_.snap_distance > 0) {
+    if (next_rep_.size() <= id) next_rep_.resize(std::max<std::size_t>(id + 1, 2 * next_rep_.size()), kNoId);
+    std::uint64_t k1, k2;
+    if (opt_.snap_distance <= 0) {
+      k1 = bits(pts_[id].x);
+      k2 = bits(pts_[id].y);
+    } else {
       const auto [cx, cy] = snap_cell(pts_[id]);
-      cells_[{static_cast<std::uint64_t>(cx), static_cast<std::uint64_t>(cy)}].push_back(id);
+      k1 = static_cast<std::uint64_t>(cx);
+      k2 = static_cast<std::uint64_t>(cy);
     }
+    next_rep_[id] = reps_.push_front(k1, k2, id);
   }
 
   Index add_point(Point2 p) {
@@ -690,8 +744,10 @@ class Cleaner {
   std::vector<char> alive_, input_free_;
   std::vector<std::int32_t> markers_;
   std::vector<Segment> segs_;
-  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, Index, PairHash> exact_;
-  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, std::vector<Index>, PairHash> cells_;
+  // Representatives by key (exact coordinates without snapping, else the snap cell): the table
+  // holds each key's most recent representative, next_rep_ the chain to the earlier ones.
+  KeyHeads reps_;
+  std::vector<Index> next_rep_;
 };
 
 }  // namespace
