@@ -44,6 +44,7 @@ TEST(Base, TermProgressPrintsGdalPattern) {
 
 // Under glibc's malloc (this test binary does not link jemalloc) the allocator controls do nothing.
 #include "base/memory.hpp"
+#include "base/tests/smaps_flags.hpp"
 TEST(Memory, NoOpWithoutJemalloc) {
   fdr::EagerMemoryRelease eager;
   EXPECT_FALSE(eager.active());
@@ -53,39 +54,18 @@ TEST(Memory, NoOpWithoutJemalloc) {
 #include <sys/mman.h>
 #include <cstdint>
 #include <vector>
-#include <fstream>
-#include <sstream>
 
-namespace {
-// True when the mapping that holds p is advised for huge pages ("hg" in its VmFlags).
-bool advised_huge(const void* p) {
-  std::ifstream smaps("/proc/self/smaps");
-  const auto a = reinterpret_cast<std::uintptr_t>(p);
-  bool inside = false;
-  for (std::string line; std::getline(smaps, line);) {
-    std::uintptr_t lo = 0, hi = 0;
-    char dash = 0;
-    std::istringstream ls(line);
-    if (ls >> std::hex >> lo >> dash >> hi && dash == '-') {
-      inside = a >= lo && a < hi;
-      continue;
-    }
-    if (inside && line.rfind("VmFlags:", 0) == 0) return line.find(" hg") != std::string::npos;
-  }
-  return false;
-}
-}  // namespace
 
 TEST(AdviseHugePages, AdvisesTheAlignedInsideOfARange) {
   const std::size_t len = std::size_t{8} << 20;
   void* p = mmap(nullptr, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   ASSERT_NE(p, MAP_FAILED);
   char* c = static_cast<char*>(p);
-  EXPECT_FALSE(advised_huge(c + len / 2));
+  EXPECT_FALSE(fdr::test::advised_huge(c + len / 2));
   fdr::advise_huge_pages(c, len);
-  EXPECT_TRUE(advised_huge(c + len / 2));
+  EXPECT_TRUE(fdr::test::advised_huge(c + len / 2));
   fdr::unadvise_huge_pages(c, len);
-  EXPECT_FALSE(advised_huge(c + len / 2));
+  EXPECT_FALSE(fdr::test::advised_huge(c + len / 2));
   std::vector<double> small(100);
   fdr::advise_huge_pages(small);  // under 2 MiB: nothing to advise, no error
   munmap(p, len);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 #include "base/memory.hpp"
+#include "base/tests/smaps_flags.hpp"
 
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp, std::size_t newlen);
 
@@ -77,8 +78,6 @@ TEST(KeepFreedPages, DecayMinusOneWhileItLivesThenPurgedAndTheHostsSettings) {
 }
 
 #include <cstdint>
-#include <fstream>
-#include <sstream>
 
 namespace {
 void* read_hooks(unsigned arena) {
@@ -89,23 +88,6 @@ void* read_hooks(unsigned arena) {
   return h;
 }
 
-// True when the mapping that holds p is advised for huge pages ("hg" in its VmFlags).
-bool advised_huge(const void* p) {
-  std::ifstream smaps("/proc/self/smaps");
-  const auto a = reinterpret_cast<std::uintptr_t>(p);
-  bool inside = false;
-  for (std::string line; std::getline(smaps, line);) {
-    std::uintptr_t lo = 0, hi = 0;
-    char dash = 0;
-    std::istringstream ls(line);
-    if (ls >> std::hex >> lo >> dash >> hi && dash == '-') {
-      inside = a >= lo && a < hi;
-      continue;
-    }
-    if (inside && line.rfind("VmFlags:", 0) == 0) return line.find(" hg") != std::string::npos;
-  }
-  return false;
-}
 }  // namespace
 
 // The hooks are wrapped while it lives (one at a time), what the arena maps then is advised, and
@@ -126,8 +108,8 @@ TEST(HugePageArenas, WrapsEveryArenasHooksWhileItLivesThenRestoresThem) {
     EXPECT_NE(read_hooks(0), before);
     // New memory the arena maps now is advised (a 256 MiB block: more than anything retained).
     big.reset(new char[std::size_t{256} << 20]);
-    EXPECT_TRUE(advised_huge(big.get() + (std::size_t{128} << 20)));
+    EXPECT_TRUE(fdr::test::advised_huge(big.get() + (std::size_t{128} << 20)));
   }
   EXPECT_EQ(read_hooks(0), before);
-  EXPECT_FALSE(advised_huge(big.get() + (std::size_t{128} << 20)));  // the advice taken back
+  EXPECT_FALSE(fdr::test::advised_huge(big.get() + (std::size_t{128} << 20)));  // the advice taken back
 }
