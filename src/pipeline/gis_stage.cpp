@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"

@@ -59,8 +59,8 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
 PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& spacing, StageClock& clock,
                               const LogFn& log);
 
-// The three GIS stages above in order (for tests and callers that want the prepared input); the
-// spacing and clean stages with the allocator's new memory on huge pages (base::HugePageArenas).
+// The three GIS stages above in order (for tests and callers that want the prepared input), the
+// allocator's new memory on huge pages while they run (base::HugePageArenas).
 PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log);
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
 

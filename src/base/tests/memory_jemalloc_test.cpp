@@ -77,8 +77,6 @@ TEST(KeepFreedPages, DecayMinusOneWhileItLivesThenPurgedAndTheHostsSettings) {
   EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), arena0);
 }
 
-#include <cstdint>
-
 namespace {
 void* read_hooks(unsigned arena) {
   void* h = nullptr;
@@ -87,7 +85,6 @@ void* read_hooks(unsigned arena) {
   EXPECT_EQ(mallctl(name.c_str(), &h, &len, nullptr, 0), 0) << name;
   return h;
 }
-
 }  // namespace
 
 // The hooks are wrapped while it lives (one at a time), what the arena maps then is advised, and
