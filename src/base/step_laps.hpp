@@ -1,27 +1,42 @@
 // Step timings on stderr for developers, switched on by an environment variable.
 #pragma once
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
 namespace fdr {
 
-// When the environment variable `env` is set, lap("x") prints "<prefix> x <seconds> s" on stderr:
-// the time since the previous lap (or since construction). Otherwise it does nothing.
+// When the environment variable `env` is set, lap("x") prints "<prefix> x <seconds> s faults <n>"
+// on stderr: the time and the process's minor page faults since the previous lap (or since
+// construction). Otherwise it does nothing. Why the faults: on this project's machine a 4 KiB
+// page fault costs about 10 us, so a step's time is often its fresh memory.
 class StepLaps {
  public:
-  StepLaps(const char* env, const char* prefix) : on_(std::getenv(env) != nullptr), prefix_(prefix) {}
+  StepLaps(const char* env, const char* prefix) : on_(std::getenv(env) != nullptr), prefix_(prefix) {
+    if (on_) faults_ = minor_faults();
+  }
   bool on() const { return on_; }
   void operator()(const char* what) {
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "%s %s %.3f s\n", prefix_, what, std::chrono::duration<double>(now - t_).count());
+    const long faults = minor_faults();
+    std::fprintf(stderr, "%s %s %.3f s faults %ld\n", prefix_, what, std::chrono::duration<double>(now - t_).count(),
+                 faults - faults_);
+    faults_ = faults;
     t_ = now;
   }
 
  private:
+  static long minor_faults() {
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_minflt;
+  }
   bool on_;
   const char* prefix_;
+  long faults_ = 0;
   std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
 };
 

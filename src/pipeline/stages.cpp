@@ -7,6 +7,7 @@
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
+#include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "base/version.hpp"
 #include "pipeline/gis_backend.hpp"
@@ -127,9 +128,12 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   // writers then never evaluate f, which lets them run concurrently).
   // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,
   // which measure_mesh releases.
+  StepLaps lap("FDR_DEBUG_REPORT", "report");  // developer aid (base/step_laps.hpp)
   std::optional<quality::ModelReadiness> ready;
   if (plan.gis) ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
+  lap("model readiness");
   quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values);
+  lap("quality");
   report.model_ready = std::move(ready);
   for (const auto& r : in.repairs) report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});
   if (tin) {

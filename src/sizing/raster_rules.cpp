@@ -10,6 +10,7 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "base/step_laps.hpp"
 #include "sizing/distance_transform.hpp"
 #include "sizing/fields.hpp"
 #include "sizing/parallel_rows.hpp"
@@ -276,26 +277,32 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
     distance_bvh(out, std::move(segs));
     return out;
   }
+  StepLaps lap("FDR_DEBUG_SIZING", "  distance");  // developer aid (base/step_laps.hpp)
   // Segments by cell (compressed rows): every point of a segment lies in a cell that lists it.
+  // first[c] counts cell c's segments, then (prefix sums) where its list ends; filling the lists
+  // backwards (last segment first) leaves each cell's start there and its list in segment order,
+  // with no second array.
   const std::size_t n = out.v.size();
   std::vector<std::uint32_t> first(n + 1, 0);
-  for (const Seg& s : segs) cells_of_segment(like, s, [&](std::size_t c) { ++first[c + 1]; });
-  for (std::size_t c = 0; c < n; ++c) first[c + 1] += first[c];
+  std::vector<char> seed(n, 0);
+  for (const Seg& s : segs)
+    cells_of_segment(like, s, [&](std::size_t c) {
+      ++first[c];
+      seed[c] = 1;
+    });
+  for (std::size_t c = 1; c <= n; ++c) first[c] += first[c - 1];
   std::vector<std::uint32_t> by_cell(first[n]);
-  {
-    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    for (std::size_t k = 0; k < segs.size(); ++k)
-      cells_of_segment(like, segs[k], [&](std::size_t c) { by_cell[fill[c]++] = static_cast<std::uint32_t>(k); });
-  }
+  for (std::size_t k = segs.size(); k-- > 0;)
+    cells_of_segment(like, segs[k], [&](std::size_t c) { by_cell[--first[c]] = static_cast<std::uint32_t>(k); });
   // Chains: segment k continues segment k - 1 when they share that endpoint.
   std::vector<char> joins_prev(segs.size(), 0);
   for (std::size_t k = 1; k < segs.size(); ++k)
     joins_prev[k] = segs[k].a.x == segs[k - 1].b.x && segs[k].a.y == segs[k - 1].b.y;
-  std::vector<char> seed(n);
-  for (std::size_t c = 0; c < n; ++c) seed[c] = first[c + 1] > first[c];
   std::vector<std::uint32_t> feature;
+  lap("cells, seeds");
   nearest_seed(like.nx, like.ny, like.dx, like.dy, seed, feature);
   seed = {};
+  lap("nearest seed");
   // Per shore cell, the segment nearest to its centre goes first in its list: where the descent
   // below starts (first of the nearest in list order, so the choice is deterministic).
   parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
@@ -317,6 +324,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   // cell whose centre is within d + dx/2 (d + dy/2) of the cell centre along x (y), so when d~ is
   // at most kExactCells cells the window of cells within d~ + half a cell holds the nearest
   // segment and the minimum over it is exact.
+  lap("first per shore cell");
   const double wmax = kExactCells * std::max(like.dx, like.dy);
   const auto nx = static_cast<std::int64_t>(like.nx), ny = static_cast<std::int64_t>(like.ny);
   const std::size_t ns = segs.size();
@@ -346,6 +354,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         near[j * like.nx + i] = static_cast<std::uint32_t>(arg);
       }
   }, 8);
+  lap("phase 1");
   // Phase 2: the best of the 3 x 3 cells' phase-1 segments (one step of vector propagation: the
   // neighbour may have found a nearer coast), then the exact window near the shore. Reads phase
   // 1 only, so row bands do not interact.
@@ -388,6 +397,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
         out.at(i, j) = std::sqrt(best);
       }
   }, 8);
+  lap("phase 2");
   return out;
 }
 

@@ -110,3 +110,17 @@ TEST(HugePageArenas, WrapsEveryArenasHooksWhileItLivesThenRestoresThem) {
   EXPECT_EQ(read_hooks(0), before);
   EXPECT_FALSE(fdr::test::advised_huge(big.get() + (std::size_t{128} << 20)));  // the advice taken back
 }
+
+// The constructor makes the arena of allocations above opt.oversize_threshold with one 16 MiB
+// allocation before it wraps the hooks; the arena keeps that extent for the next large request,
+// which must be advised too (it was not: the first 16 MiB array of a run faulted in 4 KiB pages).
+TEST(HugePageArenas, AdvisesTheExtentItAllocatesBeforeWrappingTheHooks) {
+  std::unique_ptr<char[]> grid;
+  {
+    fdr::HugePageArenas huge;
+    ASSERT_TRUE(huge.active());
+    grid.reset(new char[std::size_t{16} << 20]);
+    EXPECT_TRUE(fdr::test::advised_huge(grid.get() + (std::size_t{8} << 20)));
+  }
+  EXPECT_FALSE(fdr::test::advised_huge(grid.get() + (std::size_t{8} << 20)));  // the advice taken back
+}
