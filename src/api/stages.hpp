@@ -72,8 +72,10 @@ struct RunFigures {
 // Measure stage (core): f at the vertices when the mesh does not carry it, then the quality
 // report (quality::compute_quality) against f (may be null), options.bound and the run's figures;
 // `per_triangle`, when not null, gets the per-triangle values the writers store. Releases
-// m.neighbours (the adjacency the report walks) afterwards.
+// m.neighbours (the adjacency the report walks) afterwards unless `keep_adjacency` (the outputs
+// that carry boundary lists read it: io::carries_boundaries).
 QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& options,
-                           const RunFigures& figures, quality::TriangleValues* per_triangle = nullptr);
+                           const RunFigures& figures, quality::TriangleValues* per_triangle = nullptr,
+                           bool keep_adjacency = false);
 
 }  // namespace fdr

@@ -24,20 +24,6 @@ std::vector<std::string> files_of(const std::string& path, Format f) {
   if (ext == ".node" || ext == ".ele") base = path.substr(0, path.size() - ext.size());
   return {base + ".node", base + ".ele"};
 }
-bool carries_boundaries(Format f) {
-  switch (f) {
-    case Format::k2dm:
-    case Format::kFort14:
-    case Format::kGr3:
-    case Format::kLl:
-    case Format::kSelafin:
-    case Format::kDflowfm:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // 0 for the writers that cost most per triangle (SQLite, netCDF, XML), 1 for the text formats.
 int cost_rank(Format f) {
   switch (f) {

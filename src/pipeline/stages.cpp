@@ -10,6 +10,7 @@
 #include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "base/version.hpp"
+#include "io/write_many.hpp"
 #include "pipeline/gis_backend.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/rss.hpp"
@@ -127,12 +128,13 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
   // writers then never evaluate f, which lets them run concurrently).
   // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,
-  // which measure_mesh releases.
+  // which measure_mesh releases unless an output's boundary lists read it.
   StepLaps lap("FDR_DEBUG_REPORT", "report");  // developer aid (base/step_laps.hpp)
   std::optional<quality::ModelReadiness> ready;
   if (plan.gis) ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
   lap("model readiness");
-  quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values);
+  const bool boundaries = std::any_of(plan.formats.begin(), plan.formats.end(), io::carries_boundaries);
+  quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values, boundaries);
   lap("quality");
   report.model_ready = std::move(ready);
   for (const auto& r : in.repairs) report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});

@@ -1,6 +1,7 @@
 // fdr::triangulate and fdr::Triangulator: one-shot == step-wise, refining further, errors.
 #include <gtest/gtest.h>
 #include <cmath>
+#include "api/stages.hpp"
 #include "api/triangulate.hpp"
 
 namespace {
@@ -72,3 +73,19 @@ TEST(Api, ReportJson) {
   EXPECT_NE(js.find("\"triangles\""), std::string::npos);
 }
 }  // namespace
+
+// The adjacency outlives the report when the boundary lists' writers will read it (one array
+// read per half-edge instead of regrouping every half-edge: io/boundaries.cpp).
+TEST(Api, MeasureMeshKeepsTheAdjacencyOnlyWhenAsked) {
+  const fdr::Pslg g = fdr::read_pslg(kSquare);
+  const auto f = fdr::make_spacing("1");
+  fdr::Triangulator t(g);
+  t.refine(f);
+  for (const bool keep : {true, false}) {
+    fdr::MeshView m = t.view();
+    ASSERT_EQ(m.neighbours.size(), 3 * m.triangles.size());
+    const fdr::QualityReport r = fdr::measure_mesh(m, f.get(), fdr::TriangulateOptions{}, fdr::RunFigures{}, nullptr, keep);
+    EXPECT_EQ(r.triangles, m.triangles.size());
+    EXPECT_EQ(m.neighbours.size(), keep ? 3 * m.triangles.size() : 0u) << "keep " << keep;
+  }
+}

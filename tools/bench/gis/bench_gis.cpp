@@ -90,10 +90,10 @@ int main(int argc, char** argv) {
     const pipeline::Result r = pipeline::run(o, nullptr, nullptr);
     std::printf("bench_gis: Gulf of Maine, hmin %g m, dist-grade %g, %s\n", hmin, grade, r.crs_name.c_str());
     std::printf("  vertices %zu, triangles %zu, repairs %zu\n", r.mesh.num_vertices(), r.mesh.num_triangles(), r.repairs);
-    std::printf("  %-8s %9s %12s\n", "stage", "seconds", "peak MiB");
+    std::printf("  %-8s %9s %12s %13s\n", "stage", "seconds", "peak MiB", "minor faults");
     double total = 0;
     for (const auto& s : r.stages) {
-      std::printf("  %-8s %9.3f %12.1f\n", s.name.c_str(), s.seconds, s.peak_rss_mb);
+      std::printf("  %-8s %9.3f %12.1f %13ld\n", s.name.c_str(), s.seconds, s.peak_rss_mb, s.minor_faults);
       total += s.seconds;
     }
     std::printf("  %-8s %9.3f %12.1f\n", "stages", total, r.stages.empty() ? 0.0 : r.stages.back().peak_rss_mb);
