@@ -67,16 +67,19 @@ std::uint64_t sort_key(double v) {
 // skipped). The cells move themselves between [b, e) and one buffer (24 bytes per cell extra, the
 // key computed again in each pass) instead of sorting (key, index) pairs and gathering: 32 bytes
 // less per cell at the writer's peak.
+// `buf` is the caller's, reused from call to call (grown to n cells when smaller). Why: a fresh
+// buffer per STR slice was 150 slices' worth of page faults per tree at 1 M triangles (freed
+// memory goes back to the system at once in the mesh stages: base/memory.hpp).
 template <class Key>
-void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Key key) {
+void radix_sort(std::vector<Cell>::iterator b, std::vector<Cell>::iterator e, Key key, std::vector<Cell>& buf) {
   const auto n = static_cast<std::size_t>(e - b);
   if (n < 2) return;
   Cell* src = &*b;
-  std::vector<Cell> buf(n);
+  if (buf.size() < n) buf.resize(n);
   Cell* dst = buf.data();
   // The digit counts of every pass in one read of the keys; a pass whose digit is the same for
   // every key moves nothing and is skipped.
-  std::vector<std::array<std::size_t, 257>> count(8);
+  std::array<std::array<std::size_t, 257>, 8> count;
   for (auto& c : count) c.fill(0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint64_t k = key(src[i]);
@@ -108,18 +111,19 @@ std::vector<std::size_t> str_pack(std::vector<Cell>& cells, std::size_t cap) {
   // sort by x centre of cells in id order is the sort by (x centre, id), which needs no buffer
   // of the cells' size (25 MB at 1 M triangles, held while other writers run).
   const bool ids_ascend = std::is_sorted(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.id < b.id; });
+  std::vector<Cell> buf;
   if (ids_ascend && cells.size() > 65536)
     std::sort(cells.begin(), cells.end(), [&](const Cell& a, const Cell& b) {
       const std::uint64_t ka = cx(a), kb = cx(b);
       return ka < kb || (ka == kb && a.id < b.id);
     });
   else
-    radix_sort(cells.begin(), cells.end(), cx);
+    radix_sort(cells.begin(), cells.end(), cx, buf);
   std::vector<std::size_t> out;
   out.reserve(nodes + slices);
   for (std::size_t s = 0; s < cells.size(); s += per_slice) {
     const std::size_t e = std::min(cells.size(), s + per_slice);
-    radix_sort(cells.begin() + static_cast<std::ptrdiff_t>(s), cells.begin() + static_cast<std::ptrdiff_t>(e), cy);
+    radix_sort(cells.begin() + static_cast<std::ptrdiff_t>(s), cells.begin() + static_cast<std::ptrdiff_t>(e), cy, buf);
     for (std::size_t k = s; k < e; k += cap) out.push_back(std::min(cap, e - k));
   }
   return out;

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <thread>
 
+#include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
@@ -30,6 +31,7 @@ namespace {
 constexpr std::int64_t kGpkgApplicationId = 0x47504B47;  // "GPKG"
 constexpr int kGpkgUserVersion = 10200;                  // GeoPackage 1.2
 constexpr std::int64_t kCustomSrsId = 100000;            // first id GDAL uses for a CRS without authority code
+constexpr std::size_t kLargePagesFrom = 32768;           // triangles from which the file has 64 KiB pages
 
 std::string sql_quote(std::string_view s) {
   std::string r = "'";
@@ -220,6 +222,7 @@ void register_table(SqliteDb& db, const std::string& table, const char* geom_typ
 }  // namespace
 
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  StepLaps lap("FDR_DEBUG_GPKG", "gpkg");  // developer aid (base/step_laps.hpp)
   const SrsRow srs = srs_row(m.crs_wkt, path);
   const auto srs_id = static_cast<std::int32_t>(srs.id);
 
@@ -230,6 +233,12 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   TempFile tf(path);  // declared before the database: the database closes first on failure
   tf.release_for_library();
   SqliteDb db(tf.path(), path);
+  // Pages of 64 KiB (SQLite's largest) for large meshes: the rows are appended, and per page
+  // SQLite balances the B-tree and the file takes one write, so 16x fewer of both (GPKG writes of
+  // a 1 M-triangle square: 1.54-1.82 s with 4 KiB pages, 1.29-1.52 s with 64 KiB, interleaved).
+  // R-tree nodes stay 51 cells (SQLite's cap, reached from 4 KiB pages on). Small meshes keep
+  // 4 KiB pages: every table takes at least one page.
+  if (nt >= kLargePagesFrom) db.exec("PRAGMA page_size = 65536");
   db.exec("PRAGMA application_id = " + std::to_string(kGpkgApplicationId) + "; PRAGMA user_version = " +
           std::to_string(kGpkgUserVersion) + ";");
   // The file is a private temp file renamed into place on success, so no journal and no syncs:
@@ -409,15 +418,19 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     if (index) plan_trees();
     write_rows();
   }
+  lap("rows and R-tree plans");
   if (index) {
     if (plan_error) std::rethrow_exception(plan_error);
     build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_plan));
+    lap("node rtree");
     build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_plan));
+    lap("triangle rtree");
     build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
     build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
   }
   db.exec("COMMIT");
   db.close();
+  lap("commit, close");
   tf.commit();
 }
 
