@@ -591,6 +591,8 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   {
     std::vector<Point2> pts;
     std::vector<Index> id;
+    pts.reserve(n);  // grown by doubling, every buffer faulted in afresh: twice the pages
+    id.reserve(n);
     for (Index v = 0; v < n; ++v)
       if (tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper) {
         pts.push_back(tri.pts[v]);
