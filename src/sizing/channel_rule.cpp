@@ -7,6 +7,7 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "sizing/parallel_rows.hpp"
 
 namespace fdr::sizing {
 
@@ -43,28 +44,33 @@ Grid rule_channel(const Grid& dist, const std::vector<char>& water, double n_ele
     throw Error(ExitCode::kUsage, "--channel-elements must be a number >= 1");
   if (water.size() != dist.nx * dist.ny) throw Error(ExitCode::kInternal, "rule_channel: mask of the wrong size");
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  Grid out = dist;
-  std::fill(out.v.begin(), out.v.end(), kInf);
+  Grid out;
+  out.nx = dist.nx, out.ny = dist.ny, out.x0 = dist.x0, out.y0 = dist.y0, out.dx = dist.dx, out.dy = dist.dy;
+  out.v.resize(dist.v.size());
   const long nx = static_cast<long>(dist.nx), ny = static_cast<long>(dist.ny);
   auto d = [&](long i, long j) {
     if (i < 0 || j < 0 || i >= nx || j >= ny) return -kInf;  // outside the grid: no ridge test
     return dist.v[static_cast<std::size_t>(j * nx + i)];
   };
   static const int dirs[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  for (long j = 0; j < ny; ++j)
-    for (long i = 0; i < nx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j * nx + i);
-      if (!water[k]) continue;
-      const double c = dist.v[k];
-      if (!(c > 0) || !std::isfinite(c)) continue;
-      bool ridge = false;
-      for (const auto& dd : dirs) {
-        const double p = d(i - dd[0], j - dd[1]), q = d(i + dd[0], j + dd[1]);
-        if (p == -kInf || q == -kInf) continue;
-        if (c >= p && c >= q && (c > p || c > q)) { ridge = true; break; }  // not along a plateau
+  // Row bands on both threads (every cell is decided from `dist` alone).
+  parallel_rows(dist.ny, [&](std::size_t j0, std::size_t j1) {
+    for (long j = static_cast<long>(j0); j < static_cast<long>(j1); ++j)
+      for (long i = 0; i < nx; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j * nx + i);
+        out.v[k] = kInf;
+        if (!water[k]) continue;
+        const double c = dist.v[k];
+        if (!(c > 0) || !std::isfinite(c)) continue;
+        bool ridge = false;
+        for (const auto& dd : dirs) {
+          const double p = d(i - dd[0], j - dd[1]), q = d(i + dd[0], j + dd[1]);
+          if (p == -kInf || q == -kInf) continue;
+          if (c >= p && c >= q && (c > p || c > q)) { ridge = true; break; }  // not along a plateau
+        }
+        if (ridge) out.v[k] = 2.0 * c / n_elements;
       }
-      if (ridge) out.v[k] = 2.0 * c / n_elements;
-    }
+  });
   return out;
 }
 

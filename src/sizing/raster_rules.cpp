@@ -402,12 +402,17 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
 }
 
 Grid rule_distance(const Grid& dist, double hmin, double g) {
+  Grid out = dist;
+  return rule_distance(std::move(out), hmin, g);
+}
+
+Grid rule_distance(Grid&& dist, double hmin, double g) {
   check_grid(dist, "rule_distance");
   require(hmin > 0 && std::isfinite(hmin), "distance rule: hmin must be a positive number, got " + format_number(hmin));
   require(g >= 0 && std::isfinite(g), "distance rule: growth g must be a finite number >= 0, got " + format_number(g));
-  Grid out = like_grid(dist);
+  Grid out = std::move(dist);
   for_cells(out, [&](std::size_t k) {
-    const double d = dist.v[k];
+    const double d = out.v[k];
     out.v[k] = std::isnan(d) ? kNaN : std::isinf(d) ? (g > 0 ? kInf : hmin) : hmin + g * std::max(d, 0.0);
   });
   return out;

@@ -41,6 +41,8 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
 
 // h = hmin + g * d  (hmin > 0, g >= 0): spacing growing linearly away from the shore.
 Grid rule_distance(const Grid& dist, double hmin, double g);
+// The same in place over the distance grid (no second grid of fresh pages).
+Grid rule_distance(Grid&& dist, double hmin, double g);
 
 // OceanMesh2D slope rule, depth positive down: h = (2 pi / slp) * depth / |grad depth|,
 // i.e. about slp elements per "slope length" depth/|grad depth|. Land (depth <= 0) and flat

@@ -23,16 +23,21 @@ RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {
   Grid dist;
   const bool have_shore = in.shore && !in.shore->empty();
   if (have_shore && (r.dist_grade || !r.any() || r.channel_elements)) dist = distance_to_shore(like, *in.shore);
+  // Channels: N elements across narrow water (its medial ridge of the distance to shore). Made
+  // first, so the distance rule then takes the distance grid over in place; listed second (the
+  // minimum does not depend on the order).
+  Grid channel;
+  const bool channels = r.channel_elements && have_shore && in.boundary && !in.boundary->empty();
+  if (channels) channel = rule_channel(dist, inside_mask(like, *in.boundary), *r.channel_elements);
   if (r.dist_grade || !r.any()) {
     const double grade = r.dist_grade.value_or(0.1);
     if (have_shore) {
-      rules.push_back(rule_distance(dist, r.hmin, grade));
+      rules.push_back(rule_distance(std::move(dist), r.hmin, grade));
       names.push_back("distance (hmin + " + num(grade) + " d)");
     }
   }
-  // Channels: N elements across narrow water (its medial ridge of the distance to shore).
-  if (r.channel_elements && have_shore && in.boundary && !in.boundary->empty()) {
-    rules.push_back(rule_channel(dist, inside_mask(like, *in.boundary), *r.channel_elements));
+  if (channels) {
+    rules.push_back(std::move(channel));
     names.push_back("channel (" + num(*r.channel_elements) + " elements across)");
   }
   // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
