@@ -139,7 +139,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " + num(hmax) + ")");
   sizing::SizingPtr f_ground;
   std::shared_ptr<sizing::Grid> zgrid;
-  std::shared_ptr<sizing::Grid> fgrid;
+  std::shared_ptr<const sizing::Grid> fgrid;
   const bool want_grid = !opt.raster.empty() || any_rule || opt.spacing.empty();
   if (want_grid) {
     const double native = !opt.raster.empty() ? gis::grid_cell_size_hint(opt.raster, frame, box) : 0;
@@ -187,9 +187,13 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     sizing::limit_gradient(rg.h, opt.gradation);
     clock.lap("limit");
     const std::string desc = sizing::describe_rules(rg, rules, opt.gradation);
-    fgrid = std::make_shared<sizing::Grid>(rg.h);
     info("spacing: " + desc);
-    f_ground = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
+    auto field = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
+    // The grid --write-spacing writes is the field's own (an aliasing pointer that keeps the field
+    // alive), not a copy: a copy held a second grid of fresh pages to the end of the run (32 MiB
+    // at 4 M cells).
+    fgrid = std::shared_ptr<const sizing::Grid>(field, &field->grid());
+    f_ground = std::move(field);
   }
   if (!opt.spacing.empty()) {
     sizing::SizingPtr e = std::make_shared<ShiftedField>(sizing::make_spacing(opt.spacing), frame.origin());
