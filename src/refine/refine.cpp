@@ -3,6 +3,7 @@
 // rule 3 (B-bad triangles by R/f(c), split at circumcenters unless that encroaches a subsegment).
 #include "refine/refine.hpp"
 #include <algorithm>
+#include <type_traits>
 #include <utility>
 #include <cmath>
 #include <cstdlib>
@@ -153,8 +154,28 @@ std::uint32_t spread16(std::uint32_t x) {
 }
 }  // namespace
 
-Refiner::~Refiner() {
-  for (auto& b : buckets_) release_huge(b);
+Refiner::~Refiner() = default;
+
+void Refiner::push_entry(Bucket& b, const BadEntry& e) {
+  if (b.n == b.chunks.size() << kChunkShift) {
+    if (free_chunks_.empty()) {
+      chunk_store_.emplace_back(new BadEntry[kChunkEntries]);
+      free_chunks_.push_back(chunk_store_.back().get());
+    }
+    b.chunks.push_back(free_chunks_.back());
+    free_chunks_.pop_back();
+  }
+  b[b.n++] = e;
+}
+
+void Refiner::pop_entry(Bucket& b) {
+  --b.n;
+  // A chunk goes back once the bucket is a whole chunk below it (one chunk of slack: a bucket
+  // that grows and shrinks across a chunk boundary does not trade it every time).
+  if (b.chunks.size() >= 2 && b.n + 2 * kChunkEntries <= b.chunks.size() << kChunkShift) {
+    free_chunks_.push_back(b.chunks.back());
+    b.chunks.pop_back();
+  }
 }
 
 void Refiner::push_bad(TriangleId t, double key2) {
@@ -165,7 +186,7 @@ void Refiner::push_bad(TriangleId t, double key2) {
   const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
   const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
   const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
-  push_back_huge(buckets_[b], {t, tri_.tv[3 * t + 2], z});
+  push_entry(buckets_[b], {t, tri_.tv[3 * t + 2], z});
   if (b > top_) top_ = b;
 }
 
@@ -457,19 +478,24 @@ RefineLeftovers Refiner::leftovers() const {
 // into the same bucket are taken first (newest first), while they are still in cache. In place:
 // no second buffer at the memory peak.
 namespace {
-// In-place MSD radix sort by descending z (American flag sort, 8 bits a level; small ranges by
-// std::sort). Deterministic: the same input always gives the same order.
-template <class E>
-void radix_desc(E* first, E* last, int shift) {
-  const std::size_t n = static_cast<std::size_t>(last - first);
-  if (n < 64 || shift < 0) {
-    std::sort(first, last, [](const E& x, const E& y) { return x.z > y.z; });
+// In-place MSD radix sort by descending z of the bucket's entries [lo, hi) (American flag sort, 8
+// bits a level; ranges under 64 entries by std::sort). Deterministic: the same input always gives
+// the same order (the order the same sort over one array gave).
+template <class B>
+void radix_desc(B& b, std::size_t lo, std::size_t hi, int shift) {
+  using E = std::remove_reference_t<decltype(b[lo])>;
+  const std::size_t n = hi - lo;
+  if (n < 64) {  // (shift stays >= 0: the recursion ends with the last byte)
+    E tmp[64];
+    for (std::size_t i = 0; i < n; ++i) tmp[i] = b[lo + i];
+    std::sort(tmp, tmp + n, [](const E& x, const E& y) { return x.z > y.z; });
+    for (std::size_t i = 0; i < n; ++i) b[lo + i] = tmp[i];
     return;
   }
   std::size_t count[256] = {}, start[256], next[256];
   auto digit = [shift](const E& e) { return 255u - ((e.z >> shift) & 255u); };
-  for (E* p = first; p != last; ++p) ++count[digit(*p)];
-  std::size_t sum = 0;
+  for (std::size_t p = lo; p != hi; ++p) ++count[digit(b[p])];
+  std::size_t sum = lo;
   for (int d = 0; d < 256; ++d) {
     start[d] = next[d] = sum;
     sum += count[d];
@@ -477,22 +503,22 @@ void radix_desc(E* first, E* last, int shift) {
   for (int d = 0; d < 256; ++d) {
     const std::size_t end = start[d] + count[d];
     while (next[d] < end) {
-      E e = first[next[d]];
+      E e = b[next[d]];
       unsigned g = digit(e);
       while (g != static_cast<unsigned>(d)) {  // each swap puts one entry in its final bin
-        std::swap(e, first[next[g]++]);
+        std::swap(e, b[next[g]++]);
         g = digit(e);
       }
-      first[next[d]++] = e;
+      b[next[d]++] = e;
     }
   }
   if (shift == 0) return;
   for (int d = 0; d < 256; ++d)
-    if (count[d] > 1) radix_desc(first + start[d], first + start[d] + count[d], shift - 8);
+    if (count[d] > 1) radix_desc(b, start[d], start[d] + count[d], shift - 8);
 }
 }  // namespace
 
-void Refiner::sort_spatially(std::vector<BadEntry>& bk) { radix_desc(bk.data(), bk.data() + bk.size(), 24); }
+void Refiner::sort_spatially(Bucket& bk) { radix_desc(bk, 0, bk.size(), 24); }
 
 bool Refiner::step() {
   if (stats_.steiner() >= opt_.max_steiner)
@@ -524,8 +550,8 @@ bool Refiner::step() {
       }
       sort_next_ = false;
     }
-    const BadEntry e = bk.back();
-    bk.pop_back();
+    const BadEntry e = bk[bk.size() - 1];
+    pop_entry(bk);
     {
       std::size_t& ns = sorted_[static_cast<std::size_t>(top_)];
       if (ns > bk.size()) ns = bk.size();

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 #include "base/progress.hpp"
@@ -88,7 +89,23 @@ class Refiner {
  private:
   // t: slot, c: its third corner when queued (identifies the triangle), z: Morton code of corner 0.
   struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
-  void sort_spatially(std::vector<BadEntry>& bk);
+  // A bucket of the queue: its entries in chunks of kChunkEntries taken from the refiner's pool
+  // and given back when the bucket shrinks. Why: grown by doubling, every bucket copied its entries
+  // into fresh pages and freed the old ones (at 1 M triangles 6.5 k of the run's 17.5 k page
+  // faults, about 10 us each on this machine); a chunk another bucket gave back has its pages.
+  static constexpr std::size_t kChunkShift = 10;  // 1 024 entries, 12 KiB
+  static constexpr std::size_t kChunkEntries = std::size_t{1} << kChunkShift;
+  struct Bucket {
+    std::vector<BadEntry*> chunks;
+    std::size_t n = 0;
+    BadEntry& operator[](std::size_t i) { return chunks[i >> kChunkShift][i & (kChunkEntries - 1)]; }
+    const BadEntry& operator[](std::size_t i) const { return chunks[i >> kChunkShift][i & (kChunkEntries - 1)]; }
+    std::size_t size() const { return n; }
+    bool empty() const { return n == 0; }
+  };
+  void push_entry(Bucket& b, const BadEntry& e);
+  void pop_entry(Bucket& b);
+  void sort_spatially(Bucket& bk);
   void evaluate(TriangleId t);
   void push_bad(TriangleId t, double key2);
   void check_encroached_edges(TriangleId t);
@@ -115,7 +132,9 @@ class Refiner {
   cdt::Inserter ins_;
   double b2_inv_ = 1, rho2_inv_ = 0, off_cot_ = 0;
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
-  std::vector<std::vector<BadEntry>> buckets_;
+  std::vector<Bucket> buckets_;
+  std::vector<std::unique_ptr<BadEntry[]>> chunk_store_;  // every chunk made (freed with the refiner)
+  std::vector<BadEntry*> free_chunks_;                    // chunks no bucket holds
   int top_ = -1;
   bool sort_next_ = false;
   bool conforming_done_ = false;
