@@ -69,12 +69,6 @@ void resize_huge(V& v, std::size_t n) {
   reserve_huge(v, n);
   v.resize(n);
 }
-// v.push_back(x), growing v by doubling into advised buffers.
-template <class V>
-void push_back_huge(V& v, const typename V::value_type& x) {
-  if (v.size() == v.capacity()) reserve_huge(v, v.capacity() < 32 ? 64 : 2 * v.capacity());
-  v.push_back(x);
-}
 
 // While it lives, every jemalloc arena's dirty and muzzy decay is `ms` (0: freed pages go back to
 // the system at once; -1: never, they stay for reuse); a no-op under any other allocator. The
