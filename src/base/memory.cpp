@@ -49,6 +49,15 @@ struct Range {
 Range g_ranges[kMaxRanges];
 std::atomic<std::size_t> g_nranges{0};
 
+// Advises [p, p + size) and records it for the HugePageArenas' end (nothing past kMaxRanges).
+void advise_and_record(void* p, std::size_t size) {
+  const std::size_t k = g_nranges.fetch_add(1);
+  if (k < kMaxRanges) {
+    g_ranges[k] = {p, size};
+    advise_huge_pages(p, size);
+  }
+}
+
 void* huge_alloc(ExtentHooks* hooks, void* new_addr, std::size_t size, std::size_t alignment, bool* zero,
                  bool* commit, unsigned arena) {
   ExtentHooks* prev = arena < kMaxArenas ? g_previous[arena] : nullptr;
@@ -57,13 +66,7 @@ void* huge_alloc(ExtentHooks* hooks, void* new_addr, std::size_t size, std::size
     return nullptr;
   }
   void* p = prev->alloc(prev, new_addr, size, alignment, zero, commit, arena);
-  if (p != nullptr && size >= (std::size_t{1} << 21)) {
-    const std::size_t k = g_nranges.fetch_add(1);
-    if (k < kMaxRanges) {
-      g_ranges[k] = {p, size};
-      advise_huge_pages(p, size);
-    }
-  }
+  if (p != nullptr && size >= (std::size_t{1} << 21)) advise_and_record(p, size);
   return p;
 }
 
@@ -146,13 +149,7 @@ HugePageArenas::HugePageArenas() {
   // 16 MiB array of a run faulted in 4 KiB pages: 4 096 faults, 40 ms on this machine).
   constexpr std::size_t kOversize = std::size_t{16} << 20;
   void* volatile oversize = std::malloc(kOversize);  // volatile: the pair is not elided
-  if (oversize != nullptr) {
-    const std::size_t k = g_nranges.fetch_add(1);
-    if (k < kMaxRanges) {
-      g_ranges[k] = {oversize, kOversize};
-      advise_huge_pages(oversize, kOversize);
-    }
-  }
+  if (oversize != nullptr) advise_and_record(oversize, kOversize);
   std::free(oversize);
   const unsigned n = std::min(arena_count(), kMaxArenas);
   previous_.assign(n, nullptr);

@@ -46,7 +46,7 @@ Grid rule_channel(const Grid& dist, const std::vector<char>& water, double n_ele
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Grid out;
   out.nx = dist.nx, out.ny = dist.ny, out.x0 = dist.x0, out.y0 = dist.y0, out.dx = dist.dx, out.dy = dist.dy;
-  out.v.resize(dist.v.size());
+  out.v.assign(dist.v.size(), kInf);
   const long nx = static_cast<long>(dist.nx), ny = static_cast<long>(dist.ny);
   auto d = [&](long i, long j) {
     if (i < 0 || j < 0 || i >= nx || j >= ny) return -kInf;  // outside the grid: no ridge test
@@ -58,7 +58,6 @@ Grid rule_channel(const Grid& dist, const std::vector<char>& water, double n_ele
     for (long j = static_cast<long>(j0); j < static_cast<long>(j1); ++j)
       for (long i = 0; i < nx; ++i) {
         const std::size_t k = static_cast<std::size_t>(j * nx + i);
-        out.v[k] = kInf;
         if (!water[k]) continue;
         const double c = dist.v[k];
         if (!(c > 0) || !std::isfinite(c)) continue;
