@@ -8,6 +8,13 @@
 
 namespace fdr {
 
+// The process's minor page faults so far (every thread; getrusage).
+inline long minor_page_faults() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_minflt;
+}
+
 // When the environment variable `env` is set, lap("x") prints "<prefix> x <seconds> s faults <n>"
 // on stderr: the time and the process's minor page faults since the previous lap (or since
 // construction). Otherwise it does nothing. Why the faults: on this project's machine a 4 KiB
@@ -15,13 +22,13 @@ namespace fdr {
 class StepLaps {
  public:
   StepLaps(const char* env, const char* prefix) : on_(std::getenv(env) != nullptr), prefix_(prefix) {
-    if (on_) faults_ = minor_faults();
+    if (on_) faults_ = minor_page_faults();
   }
   bool on() const { return on_; }
   void operator()(const char* what) {
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
-    const long faults = minor_faults();
+    const long faults = minor_page_faults();
     std::fprintf(stderr, "%s %s %.3f s faults %ld\n", prefix_, what, std::chrono::duration<double>(now - t_).count(),
                  faults - faults_);
     faults_ = faults;
@@ -29,11 +36,6 @@ class StepLaps {
   }
 
  private:
-  static long minor_faults() {
-    rusage ru{};
-    getrusage(RUSAGE_SELF, &ru);
-    return ru.ru_minflt;
-  }
   bool on_;
   const char* prefix_;
   long faults_ = 0;

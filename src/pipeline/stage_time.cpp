@@ -1,31 +1,23 @@
 // StageClock: wall time and VmHWM per pipeline stage.
 #include "pipeline/stage_time.hpp"
 
-#include <sys/resource.h>
 #include "base/memory.hpp"
+#include "base/step_laps.hpp"
 #include "quality/rss.hpp"
 
 namespace fdr::pipeline {
-
-namespace {
-long minor_faults() {
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_minflt;
-}
-}  // namespace
 
 StageClock::StageClock(std::vector<StageTime>* out) : out_(out) { restart(); }
 
 void StageClock::restart() {
   t_ = std::chrono::steady_clock::now();
-  faults_ = minor_faults();
+  faults_ = minor_page_faults();
 }
 
 double StageClock::lap(const std::string& name) {
   const auto now = std::chrono::steady_clock::now();
   const double s = std::chrono::duration<double>(now - t_).count();
-  if (out_) out_->push_back({name, s, quality::peak_rss_mb_value().value_or(0.0), minor_faults() - faults_});
+  if (out_) out_->push_back({name, s, quality::peak_rss_mb_value().value_or(0.0), minor_page_faults() - faults_});
   release_free_memory();  // the stage's garbage does not stay resident beside the next stage
   restart();
   return s;
