@@ -35,17 +35,21 @@ MeshView take_view(Triangulation& t) {
   Index n = 0;
   for (Index v = 0; v < t.pts.size(); ++v)
     if (remap[v] != kNoId) remap[v] = n++;
-  resize_huge(m.vertices, n);
-  m.vertex_marker.assign(n, 0);
+  // The vertices and their markers compacted in place (remap[v] <= v: a write never overwrites
+  // a vertex still to be read) and moved into the view: no second array of fresh pages (8 MiB of
+  // positions at 0.5 M vertices, faulted in while the triangulation is still there).
+  t.point_marker.resize(t.pts.size(), 0);
   for (Index v = 0; v < t.pts.size(); ++v) {
-    if (remap[v] == kNoId) continue;
-    m.vertices[remap[v]] = t.pts[v];
-    m.vertex_marker[remap[v]] = t.point_marker[v];
+    if (remap[v] == kNoId || remap[v] == v) continue;
+    t.pts[remap[v]] = t.pts[v];
+    t.point_marker[remap[v]] = t.point_marker[v];
   }
-  release(t.pts);
+  t.pts.resize(n);
+  t.point_marker.resize(n);
+  m.vertices = std::move(t.pts);
+  m.vertex_marker = std::move(t.point_marker);
   release(t.vkind);
   release(t.vhe);
-  release(t.point_marker);
   // Constrained edges, each once, in slot order (as to_view); vertices on a marked segment inherit
   // its marker when they have none.
   for (TriangleId s = 0; s < t.num_slots(); ++s) {

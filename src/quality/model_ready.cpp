@@ -20,6 +20,7 @@
 
 #include "base/error.hpp"
 #include "base/threads.hpp"
+#include "base/step_laps.hpp"
 
 namespace fdr::quality {
 namespace {
@@ -30,6 +31,17 @@ const double kCos20 = std::cos(20.0 * 3.14159265358979323846 / 180.0);
 const double kCos30 = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 const double kFourSqrt3 = 4.0 * std::sqrt(3.0);
 constexpr std::size_t kMaxSamples = 4'000'000;      // cap on coast-deviation samples per direction
+
+// Twice the signed area of triangle p[0] p[1] p[2], and its quality 4 sqrt(3) area / sum of
+// squared edges from the edge lengths `len`: one definition for every path (the sums must agree
+// bit for bit).
+inline double cross2(const Point2 (&p)[3]) {
+  return (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
+}
+inline double quality_of(const double (&len)[3], double cr) {
+  const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
+  return sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
+}
 
 
 // Uniform grid over segments for nearest-segment distance queries. Each segment is cut into
@@ -325,10 +337,9 @@ ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const Mode
     const Point2 p[3] = {m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]]};
     // len[k]: edge k from corner k to corner k+1
     const double len[3] = {dist(p[0], p[1]), dist(p[1], p[2]), dist(p[2], p[0])};
-    const double cr = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
+    const double cr = cross2(p);
     area.add(0.5 * cr);
-    const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
-    const double q = sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
+    const double q = quality_of(len, cr);
     qsum.add(q);
     if (!r.min_quality || q < *r.min_quality) r.min_quality = q;
     // The smallest angle is at the corner opposite the shortest edge; it is acute, so comparing
@@ -374,6 +385,7 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     for (Index v : m.triangles[t])
       if (v >= nv) return compute_model_readiness_plain(m, in);  // which throws the error
   ModelReadiness r = readiness_from_inputs(in);
+  StepLaps L("FDR_DEBUG_REPORT", "  model readiness");  // developer aid (base/step_laps.hpp)
   const double hmin = r.hmin_m.value_or(0.0);
   r.triangles = nt;
 
@@ -384,7 +396,12 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   const double min_depth = in.min_depth_m > 0 ? in.min_depth_m : 0.0;
   const double half = 0.5 * hmin, tenth = 0.1 * hmin;
   using Key = std::pair<Index, Index>;
-  std::vector<double> q(nt), a(nt);  // per triangle: quality, signed area (summed in order below)
+  // The area and quality sums run over the triangles in order (compensated sums depend on the
+  // order): the calling thread adds its front range as it measures it, then the back range's
+  // values, computed again from the mesh (sums below, the same operations) while the second thread
+  // measures. Before, two per-triangle arrays (16 MiB at 1 M triangles, all of it
+  // faulted in afresh) held them for a pass in order at the end.
+  CompensatedSum area, qsum;
   struct Part {
     std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
     double shortest = kInf;
@@ -393,7 +410,7 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     std::optional<TimeStep> step;
     std::vector<Key> boundary;  // the boundary edges
   };
-  auto measure = [&](std::size_t lo, std::size_t hi, Part& p) {
+  auto measure = [&](std::size_t lo, std::size_t hi, Part& p, bool sum) {
     // The accumulators in locals (the per-triangle stores below could alias them), written back.
     std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
     double shortest = p.shortest, min_q = p.min_q.value_or(kInf), best_dt = p.step ? p.step->dt_s : kInf;
@@ -422,11 +439,12 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
         below_half += len[k] < half;
         below_tenth += len[k] < tenth;
       }
-      const double cr = (pt[1].x - pt[0].x) * (pt[2].y - pt[0].y) - (pt[1].y - pt[0].y) * (pt[2].x - pt[0].x);
-      a[t] = 0.5 * cr;
-      const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
-      const double qt = sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
-      q[t] = qt;
+      const double cr = cross2(pt);
+      const double qt = quality_of(len, cr);
+      if (sum) {
+        area.add(0.5 * cr);
+        qsum.add(qt);
+      }
       if (qt < min_q) min_q = qt;  // qt is finite (the mesher's coordinates)
       const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
       const int apex = (ks + 2) % 3;
@@ -499,40 +517,46 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     }
     return n;
   };
-  CompensatedSum area, qsum;
-  auto sums = [&] {
-    for (std::size_t t = 0; t < nt; ++t) {
-      area.add(a[t]);
-      qsum.add(q[t]);
+  // The sums over [lo, hi), measured on the other thread: the values measure() computes.
+  auto sums = [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = lo; t < hi; ++t) {
+      if (t + 16 < hi)
+        for (const Index v : T[t + 16]) __builtin_prefetch(&V[v]);
+      const auto& tri = T[t];
+      const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
+      const double len[3] = {dist(pt[0], pt[1]), dist(pt[1], pt[2]), dist(pt[2], pt[0])};
+      const double cr = cross2(pt);
+      area.add(0.5 * cr);
+      qsum.add(quality_of(len, cr));
     }
   };
   if (two) {
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
-    std::size_t split = nt;  // first triangle of the back range
     run_beside(
         [&] {
+          // The pieces first (they read only the adjacency): the calling thread meanwhile
+          // measures from the front, and the chunks left when they are counted are shared.
+          pieces = count_pieces();
           std::size_t lo = nt;
           for (std::size_t c = nchunks; c-- > 0;) {
             if (claimed[c].exchange(1)) break;
             const std::size_t clo = c * kChunk;
-            measure(clo, lo, back);
+            measure(clo, lo, back, false);
             lo = clo;
           }
-          split = lo;
-          pieces = count_pieces();
         },
         [&] {
-          for (std::size_t c = 0; c < nchunks && !claimed[c].exchange(1); ++c)
-            measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front);
+          std::size_t c = 0;
+          for (; c < nchunks && !claimed[c].exchange(1); ++c)
+            measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front, true);
+          sums(std::min(nt, c * kChunk), nt);  // the back range [split, nt), in order
         });
-    (void)split;
-    sums();
   } else {
-    measure(0, nt, front);
+    measure(0, nt, front, true);
     pieces = count_pieces();
-    sums();
   }
+  L("measure");
   // Merge: the front range comes first in triangle order.
   r.edges = front.edges + back.edges;
   r.edges_below_half_hmin = front.below_half + back.below_half;
@@ -553,8 +577,6 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   r.mean_quality = qsum.value() / static_cast<double>(nt);
   r.mesh_area_m2 = area.value();
   r.mesh_pieces = pieces;
-  std::vector<double>().swap(q);
-  std::vector<double>().swap(a);
   // The boundary in the plain path's order: by (smaller id, larger id), from the smaller.
   std::vector<Key>& keys = front.boundary;
   keys.insert(keys.end(), back.boundary.begin(), back.boundary.end());
@@ -562,7 +584,9 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   std::vector<std::pair<Point2, Point2>> boundary(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) boundary[i] = {V[keys[i].first], V[keys[i].second]};
   r.mesh_boundary_edges = boundary.size();
+  L("boundary");
   coast_deviation(r, boundary, in, hmin, m.origin);
+  L("deviation");
   return r;
 }
 
