@@ -737,10 +737,15 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     other_pass->sums = chunk_sums.data();
     std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
-    // The second thread reads f at the vertices when it evaluates f itself: filled first.
+    // The second thread reads f at the vertices when it evaluates f itself: filled first, in two
+    // halves at once (a raster spacing costs ~60 ns per evaluation: 35 ms at 0.56 M vertices on
+    // one thread while the other waited).
     bool filled = false;
     if (f_shared && fill) {
-      for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
+      auto fill_range = [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t i = lo; i < hi; ++i) (*fill)[i] = (*f)(m.vertices[i]);
+      };
+      run_beside([&] { fill_range(nv / 2, nv); }, [&] { fill_range(0, nv / 2); });
       filled = true;
     }
     // The second thread, done with its chunks, builds the search (once the calling thread is done
