@@ -3,6 +3,7 @@
 #include "base/path_util.hpp"
 #include "api/triangulate.hpp"
 #include "api/stages.hpp"
+#include <optional>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -174,9 +175,11 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
     done("smooth");
   }
 
+  std::optional<refine::RefineLeftovers> left;  // counted once
   if (opt.check) {
     mesh::CheckResult cr = mesh::check_all(tri);
-    const std::size_t bad = refiner.leftovers().r_over_f_bad;
+    left = refiner.leftovers();
+    const std::size_t bad = left->r_over_f_bad;
     if (bad) cr.add(std::to_string(bad) + " triangles have R/f(c) > B");
     if (!cr.ok()) {
       std::string msg = "--check failed: " + std::to_string(cr.count) + " violations";
@@ -188,7 +191,7 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
   }
   out.stats = refiner.stats();
   // leftovers() re-measures every triangle; without a min angle its angle count is 0 by definition.
-  out.angle_exempt = opt.min_angle_deg > 0 ? refiner.leftovers().angle_bad : 0;
+  if (opt.min_angle_deg > 0) out.angle_exempt = left ? left->angle_bad : refiner.leftovers(false).angle_bad;
   return out;
 }
 

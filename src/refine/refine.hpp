@@ -80,7 +80,9 @@ class Refiner {
   // Runs to completion; throws Error(kWorkLimit) at the Steiner cap, kCancelled on cancel.
   void run();
   const RefineStats& stats() const { return stats_; }
-  RefineLeftovers leftovers() const;
+  // with_r_over_f false: r_over_f_bad is not counted, and f is evaluated only at the triangles
+  // bad by angle (angle_bad is the same count).
+  RefineLeftovers leftovers(bool with_r_over_f = true) const;
   // Bad-triangle test as used by the queue: returns the squared priority key (> 1 means bad,
   // 0 when good); exempt is set when the triangle is bad only by angle and the small angle is
   // forced by the input.
