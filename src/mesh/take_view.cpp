@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "base/memory.hpp"
+#include "base/threads.hpp"
 
 namespace fdr::mesh {
 
@@ -51,25 +52,39 @@ MeshView take_view(Triangulation& t) {
   release(t.vkind);
   release(t.vhe);
   // Constrained edges, each once, in slot order (as to_view); vertices on a marked segment inherit
-  // its marker when they have none.
-  for (TriangleId s = 0; s < t.num_slots(); ++s) {
-    if (t.dead(s)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdge h = 3 * s + k;
-      if (!t.constrained(h)) continue;
-      if (t.twin[h] != kNoId && t.twin[h] < h) continue;
-      MeshEdge e;
-      e.a = remap[t.org(h)];
-      e.b = remap[t.dst(h)];
-      auto it = t.seg_of.find(edge_key(t.org(h), t.dst(h)));
-      if (it != t.seg_of.end() && it->second < t.input_segments.size()) {
-        e.marker = t.input_segments[it->second].marker;
-        e.part = t.input_segments[it->second].part;
+  // its marker when they have none. The slots in two halves at once (the input segment of each
+  // edge is a hash lookup that misses the cache: 20 ms for the 63 k coast edges of a 1 M-triangle
+  // GIS mesh), the markers then in slot order.
+  auto collect = [&t, &remap](TriangleId lo, TriangleId hi, std::vector<MeshEdge>& out) {
+    for (TriangleId s = lo; s < hi; ++s) {
+      if (t.dead(s)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const HalfEdge h = 3 * s + k;
+        if (!t.constrained(h)) continue;
+        if (t.twin[h] != kNoId && t.twin[h] < h) continue;
+        MeshEdge e;
+        e.a = remap[t.org(h)];
+        e.b = remap[t.dst(h)];
+        auto it = t.seg_of.find(edge_key(t.org(h), t.dst(h)));
+        if (it != t.seg_of.end() && it->second < t.input_segments.size()) {
+          e.marker = t.input_segments[it->second].marker;
+          e.part = t.input_segments[it->second].part;
+        }
+        out.push_back(e);
       }
-      m.edges.push_back(e);
-      if (m.vertex_marker[e.a] == 0) m.vertex_marker[e.a] = e.marker;
-      if (m.vertex_marker[e.b] == 0) m.vertex_marker[e.b] = e.marker;
     }
+  };
+  const TriangleId nslots = static_cast<TriangleId>(t.num_slots());
+  if (max_threads() > 1 && nslots >= 65536) {
+    std::vector<MeshEdge> back;
+    run_beside([&] { collect(nslots / 2, nslots, back); }, [&] { collect(0, nslots / 2, m.edges); });
+    m.edges.insert(m.edges.end(), back.begin(), back.end());
+  } else {
+    collect(0, nslots, m.edges);
+  }
+  for (const MeshEdge& e : m.edges) {
+    if (m.vertex_marker[e.a] == 0) m.vertex_marker[e.a] = e.marker;
+    if (m.vertex_marker[e.b] == 0) m.vertex_marker[e.b] = e.marker;
   }
   release(t.seg_of);
   release(t.input_segments);
