@@ -453,7 +453,7 @@ RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
       const Point2 cc = predicates::circumcenter(a, b, c, &r2);
       // Bad by R/f(c) first (those are not counted as bad by angle); without that count, f only
       // where the angle test holds (a GIS run's raster spacing at every circumcentre: 55-75 ms of
-      // 1 M triangles, for a count that is nearly always 0).
+      // 1 M triangles, for a count of a few dozen).
       const auto rf_bad = [&] {
         const double fc = f_(cc);
         return fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;

@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <exception>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "base/point_cells.hpp"
 #include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
@@ -76,70 +76,6 @@ std::uint64_t morton(std::uint32_t x, std::uint32_t y) {
   };
   return spread(x) | (spread(y) << 1);
 }
-
-// Points (those with keep(i)) in the cells of a uniform grid, in compressed rows: for_each_within
-// calls f(i) for every kept point strictly nearer than sqrt(r2) to q, by the same test a k-d tree
-// makes (norm2(p_i - q) < r2), so the same points. Why not the k-d tree: the smoothing queries
-// only the segment vertices, and ordering every vertex for it (nth_element over copies of all
-// of them) cost 50 ms at 0.56 M vertices; counting them into cells costs two passes.
-class PointCells {
- public:
-  template <class Keep>
-  PointCells(const std::vector<Point2>& p, Keep&& keep, const Box2& box, double cell) : p_(p) {
-    std::size_t n = 0;
-    for (Index i = 0; i < p.size(); ++i) n += keep(i) ? 1 : 0;
-    const double span = std::max(box.width(), box.height());
-    if (n == 0 || box.empty() || !(span < std::numeric_limits<double>::infinity())) return;
-    if (!(cell > 0) || !std::isfinite(cell)) cell = span;
-    cell = std::max(cell, span * 1e-6);
-    // At most as many cells as points (a cell as long as f holds a few near the coast).
-    for (int guard = 0; guard < 64 && (box.width() / cell + 1) * (box.height() / cell + 1) > static_cast<double>(n) + 64;
-         ++guard)
-      cell *= 1.5;
-    lo_ = box.lo;
-    inv_ = 1 / cell;
-    nx_ = static_cast<std::size_t>(box.width() * inv_) + 1;
-    ny_ = static_cast<std::size_t>(box.height() * inv_) + 1;
-    start_.assign(nx_ * ny_ + 1, 0);
-    for (Index i = 0; i < p.size(); ++i)
-      if (keep(i)) ++start_[cell_of(p[i]) + 1];
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
-    items_.resize(n);
-    std::vector<std::uint32_t> cursor(start_.begin(), start_.end() - 1);
-    for (Index i = 0; i < p.size(); ++i)
-      if (keep(i)) items_[cursor[cell_of(p[i])]++] = i;
-  }
-  template <class F>
-  void for_each_within(Point2 q, double r2, F&& f) const {
-    if (items_.empty() || !(r2 > 0)) return;
-    const double r = std::sqrt(r2);
-    if (!std::isfinite(r)) {  // every point
-      for (const Index i : items_)
-        if (norm2(p_[i] - q) < r2) f(i);
-      return;
-    }
-    // One cell more on each side: the cells of q -/+ r as rounded cannot miss a point within r.
-    const std::size_t i0 = ix(q.x - r, lo_.x, nx_), i1 = ix(q.x + r, lo_.x, nx_);
-    const std::size_t j0 = ix(q.y - r, lo_.y, ny_), j1 = ix(q.y + r, lo_.y, ny_);
-    for (std::size_t j = j0 == 0 ? 0 : j0 - 1; j <= std::min(j1 + 1, ny_ - 1); ++j)
-      for (std::size_t c = j * nx_ + (i0 == 0 ? 0 : i0 - 1), ce = j * nx_ + std::min(i1 + 1, nx_ - 1); c <= ce; ++c)
-        for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k)
-          if (norm2(p_[items_[k]] - q) < r2) f(items_[k]);
-  }
-
- private:
-  // The cell along one axis of n cells: the floor of (v - origin) / cell, clamped (NaN: 0).
-  std::size_t ix(double v, double origin, std::size_t n) const {
-    const double c = (v - origin) * inv_;
-    return !(c > 0) ? 0 : c >= static_cast<double>(n - 1) ? n - 1 : static_cast<std::size_t>(c);
-  }
-  std::size_t cell_of(Point2 q) const { return ix(q.y, lo_.y, ny_) * nx_ + ix(q.x, lo_.x, nx_); }
-  const std::vector<Point2>& p_;
-  Point2 lo_{0, 0};
-  double inv_ = 0;
-  std::size_t nx_ = 0, ny_ = 0;
-  std::vector<std::uint32_t> start_, items_;
-};
 
 // One thread's state: tries vertices of one block (or, in the serial phase, any vertex).
 class Smoother {
@@ -657,8 +593,10 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
     std::vector<std::pair<Index, double>> seg;
     for (Index v = 0; v < n; ++v)
       if (tri.vhe[v] != kNoId && tri.vkind[v] == mesh::VertexKind::kSegment) seg.push_back({v, f(tri.pts[v])});
-    std::vector<double> fs(seg.size());
-    for (std::size_t k = 0; k < seg.size(); ++k) fs[k] = seg[k].second;
+    std::vector<double> fs;  // the usable values (NaN has no order)
+    fs.reserve(seg.size());
+    for (const auto& sv : seg)
+      if (sv.second > 0 && std::isfinite(sv.second)) fs.push_back(sv.second);
     const auto mid = fs.begin() + static_cast<std::ptrdiff_t>(fs.size() / 2);
     if (!fs.empty()) std::nth_element(fs.begin(), mid, fs.end());
     const PointCells cells(

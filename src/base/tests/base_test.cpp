@@ -1,5 +1,6 @@
 // Tests for base: boxes, error codes, GDAL-style progress text.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <vector>
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
+#include "base/point_cells.hpp"
 #include "base/progress.hpp"
 #include "base/types.hpp"
 
@@ -69,6 +71,57 @@ TEST(AdviseHugePages, AdvisesTheAlignedInsideOfARange) {
   std::vector<double> small(100);
   fdr::advise_huge_pages(small);  // under 2 MiB: nothing to advise, no error
   munmap(p, len);
+}
+
+// PointCells: the same points as brute force (and as KdTree) for every radius, the kept points
+// only; clustered points (a coast), duplicates, points outside the given box, one-point and
+// one-place sets, and radii 0, NaN and infinite.
+TEST(PointCells, WithinEqualsBruteForce) {
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> u(0.0, 1000.0), w(0.0, 1.0);
+  std::vector<fdr::Point2> p;
+  for (int i = 0; i < 20000; ++i) p.push_back({u(gen), u(gen)});
+  for (int i = 0; i < 20000; ++i) {  // a dense band along y = 500 (a coast)
+    const double x = u(gen);
+    p.push_back({x, 500 + 3 * w(gen)});
+  }
+  for (int i = 0; i < 100; ++i) p.push_back(p[static_cast<std::size_t>(i) * 7]);  // duplicates
+  auto keep = [](fdr::Index i) { return i % 5 != 3; };
+  fdr::Box2 box;
+  for (fdr::Index i = 0; i < p.size(); ++i)
+    if (keep(i)) box.add(p[i]);
+  auto brute = [&](fdr::Point2 q, double r2) {
+    std::vector<fdr::Index> out;
+    for (fdr::Index i = 0; i < p.size(); ++i)
+      if (keep(i) && fdr::norm2(p[i] - q) < r2) out.push_back(i);
+    return out;
+  };
+  auto within = [&](const fdr::PointCells& c, fdr::Point2 q, double r2) {
+    std::vector<fdr::Index> out;
+    c.for_each_within(q, r2, [&](fdr::Index i) { out.push_back(i); });
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  for (const double cell : {0.5, 3.0, 40.0, 0.0, -1.0, std::nan("")}) {
+    const fdr::PointCells c(p, keep, box, cell);
+    for (int k = 0; k < 300; ++k) {
+      const fdr::Point2 q = k % 3 == 0 ? p[static_cast<std::size_t>(k) * 131] : fdr::Point2{u(gen) * 1.2 - 100, u(gen)};
+      const double r = k % 4 == 0 ? 0.7 : k % 4 == 1 ? 5.0 : k % 4 == 2 ? 60.0 : 1500.0;
+      ASSERT_EQ(within(c, q, r * r), brute(q, r * r)) << "cell " << cell << " query " << k;
+    }
+    EXPECT_TRUE(within(c, p[0], 0.0).empty());
+    EXPECT_TRUE(within(c, p[0], std::nan("")).empty());
+    EXPECT_EQ(within(c, p[0], std::numeric_limits<double>::infinity()).size(), brute(p[0], 1e300).size());
+  }
+  const fdr::PointCells outside(p, keep, fdr::Box2{{400, 400}, {600, 600}}, 10.0);  // points beyond the box
+  EXPECT_EQ(within(outside, {950, 20}, 2500.0), brute({950, 20}, 2500.0));
+  const std::vector<fdr::Point2> same(50, fdr::Point2{3, 4});  // one place: a box of zero size
+  fdr::Box2 b1;
+  b1.add(same[0]);
+  const fdr::PointCells one(same, [](fdr::Index) { return true; }, b1, 0.0);
+  std::size_t n = 0;
+  one.for_each_within({3, 4.5}, 1.0, [&](fdr::Index) { ++n; });
+  EXPECT_EQ(n, 50u);
 }
 
 // KdTree: the tree built on two threads is the same tree (same order of the points, so the same
