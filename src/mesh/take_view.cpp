@@ -102,39 +102,21 @@ MeshView take_view(Triangulation& t) {
   if (dense) nt = static_cast<Index>(t.num_slots());
   m.triangles.reserve(nt);
   advise_huge_pages(m.triangles);
-  // The triangles' corners (renumbered vertices, into the view) and the twins (renumbered in
-  // place) are independent: on two threads when they both have work (without dead slots only the
-  // corners change).
-  auto corners = [&] {
-    for (TriangleId s = 0; s < ns; ++s) {
-      if (s + kAhead < ns)
-        for (int k = 0; k < 3; ++k) __builtin_prefetch(&remap[t.tv[3 * (s + kAhead) + k]]);
-      if (t.dead(s)) continue;
-      m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
-    }
-  };
-  auto twins = [&] {
-    for (TriangleId s = 0; s < ns; ++s) {
-      if (s + kAhead < ns)
-        for (int k = 0; k < 3; ++k) {
-          const HalfEdge tw = t.twin[3 * (s + kAhead) + k];
-          if (tw != kNoId) __builtin_prefetch(&slot[tri_of(tw)]);
-        }
-      if (t.dead(s)) continue;
-      const Index i = slot[s];
+  for (TriangleId s = 0; s < t.num_slots(); ++s) {
+    if (s + kAhead < ns)
       for (int k = 0; k < 3; ++k) {
-        const HalfEdge tw = t.twin[3 * s + k];
-        t.twin[3 * i + k] = tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3;
+        __builtin_prefetch(&remap[t.tv[3 * (s + kAhead) + k]]);
+        const HalfEdge tw = t.twin[3 * (s + kAhead) + k];
+        if (!dense && tw != kNoId) __builtin_prefetch(&slot[tri_of(tw)]);
       }
+    if (t.dead(s)) continue;
+    m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
+    if (dense) continue;
+    const Index i = slot[s];
+    for (int k = 0; k < 3; ++k) {
+      const HalfEdge tw = t.twin[3 * s + k];
+      t.twin[3 * i + k] = tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3;
     }
-  };
-  if (dense) {
-    corners();
-  } else if (max_threads() > 1 && ns >= 65536) {
-    run_beside(twins, corners);
-  } else {
-    corners();
-    twins();
   }
   release(slot);
   release(remap);
