@@ -28,9 +28,8 @@ class PointCells {
     cell = std::max(cell, span * 1e-6);
     if (!(cell > 0)) cell = 1;  // every point at one place
     // At most about as many cells as points.
-    for (int guard = 0; guard < 64 && (box.width() / cell + 1) * (box.height() / cell + 1) > static_cast<double>(n) + 64;
-         ++guard)
-      cell *= 1.5;
+    auto cells = [&] { return (box.width() / cell + 1) * (box.height() / cell + 1); };
+    for (int guard = 0; guard < 64 && cells() > static_cast<double>(n) + 64; ++guard) cell *= 1.5;
     lo_ = box.lo;
     inv_ = 1 / cell;
     nx_ = static_cast<std::size_t>(box.width() * inv_) + 1;

@@ -23,7 +23,9 @@ double StageClock::lap(const std::string& name) {
   const long faults = minor_page_faults() - faults_;
   if (out_) out_->push_back({name, s, quality::peak_rss_mb_value().value_or(0.0), faults});
   static const bool print = std::getenv("FDR_DEBUG_STAGES") != nullptr;  // developer aid: every stage on stderr
-  if (print) std::fprintf(stderr, "stage %-8s %.3f s faults %ld peak %.1f MB\n", name.c_str(), s, faults, quality::peak_rss_mb_value().value_or(0.0));
+  if (print)
+    std::fprintf(stderr, "stage %-8s %.3f s faults %ld peak %.1f MB\n", name.c_str(), s, faults,
+                 quality::peak_rss_mb_value().value_or(0.0));
   release_free_memory();  // the stage's garbage does not stay resident beside the next stage
   restart();
   return s;

@@ -550,7 +550,7 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
           std::size_t c = 0;
           for (; c < nchunks && !claimed[c].exchange(1); ++c)
             measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front, true);
-          sums(std::min(nt, c * kChunk), nt);  // the back range [split, nt), in order
+          sums(std::min(nt, c * kChunk), nt);  // the back range (the chunks not claimed here), in order
         });
   } else {
     measure(0, nt, front, true);
