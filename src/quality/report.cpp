@@ -25,6 +25,7 @@
 
 #include "base/error.hpp"
 #include "base/memory.hpp"
+#include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/cell_centre.hpp"
@@ -651,6 +652,7 @@ void merge(QualityReport& r, Part& all, Part& p) {
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
                               const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
+  StepLaps QL("FDR_DEBUG_REPORT", "  quality");  // developer aid (base/step_laps.hpp)
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();
@@ -687,11 +689,11 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   std::vector<double> own_fv;
   std::vector<double>* fill = fill_f_at_vertices;
   if (f && !fill && !(f_at_vertices && f_at_vertices->size() == nv)) fill = &own_fv;
-  if (f && fill) fill->resize(nv);
+  if (f && fill) resize_huge(*fill, nv);
   const double* fv = f ? (fill ? fill->data() : f_at_vertices->data()) : m.f.size() == nv ? m.f.data() : nullptr;
   MeshWalkPrep prep;
-  prep.nn2.assign(nv, kInf);
-  if (walk) prep.tri_of_vertex.assign(nv, kNoId);
+  assign_huge(prep.nn2, nv, kInf);
+  if (walk) assign_huge(prep.tri_of_vertex, nv, kNoId);
   // Each thread has its own batch buffers.
   auto pass_mine = std::make_unique<Pass>(Pass{m, nb, f, bound_B, per_triangle, walk, fv, prep.nn2, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
   Pass& pass = *pass_mine;
@@ -731,7 +733,8 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     theirs.emplace(r, top_k);
     // The second thread keeps its own shortest edges (merged by the minimum once both are done):
     // no atomic update per edge.
-    std::vector<double> nn2_other(nv, kInf);
+    std::vector<double> nn2_other;
+    assign_huge(nn2_other, nv, kInf);
     auto other_pass = std::make_unique<Pass>(
         Pass{m, nb, f, bound_B, per_triangle, walk, fv, nn2_other, prep.tri_of_vertex, nullptr, 0, 0, {}, {}, {}, {}});
     other_pass->sums = chunk_sums.data();
@@ -790,18 +793,23 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     } join{other, mine_done};
     if (f && fill && !filled)
       for (std::size_t i = 0; i < nv; ++i) (*fill)[i] = (*f)(m.vertices[i]);
+    QL("setup+fill");
     std::size_t c = 0;
     for (; c < nchunks && !claimed[c].exchange(1); ++c) {
       const auto [lo, hi] = chunk(c);
       pass.measure<true>(lo, hi, mine, true);
     }
     join.count();
+    QL("my chunks");
     if (c < nchunks && !f_shared) pass.evaluate(chunk(c).first, nt);  // the other thread's chunks
+    QL("evaluate");
     if (walk) {
       search_built.wait();
+      QL("wait build");
       if (search && search->usable()) search_chunks();
     }
     other.join();
+    QL("search");
     if (error) std::rethrow_exception(error);
     other_invalid = other_pass->spacing_invalid;
     other_bad = other_pass->bad;
@@ -871,6 +879,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     }
   }
   release_vector(prep.tri_of_vertex);
+  QL("merge+p99+take");
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
   if (!have_vertex_f || nv < 2) return r;
@@ -937,6 +946,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
     r.conformity_p05 = -*at;
     r.conformity_min = conf_min;
   }
+  QL("conformity");
 
   return r;
 }
