@@ -55,7 +55,10 @@ struct Shared {
   const sizing::SizingField& f;
   SmoothOptions o;
   double floor_key = 0;              // min_angle_key of --min-angle
-  std::vector<std::uint32_t> block;  // per vertex
+  // Per vertex, its block in each of the two blockings (the second shifted by half a block
+  // along the Morton order: the vertices deferred at the edges of the first mostly lie inside one
+  // of the second).
+  std::vector<std::uint32_t> block, block2;
   std::vector<char> dirty;           // per vertex
   // Pairs of vertices across a constraint (the other side of a thin strip of land, of a
   // breakline): a segment vertex and a vertex within f of it that is not its mesh neighbour, both
@@ -90,8 +93,9 @@ class Smoother {
   // and the result is kDeferred. Triangles with vertices of two blocks are then never changed,
   // and a vertex whose star has one never moves, so what a block does depends on nothing another
   // block does at the same time.
-  Result try_move(Index v, std::uint32_t block) {
+  Result try_move(Index v, std::uint32_t block, const std::vector<std::uint32_t>* blocks = nullptr) {
     block_ = block;
+    blocks_ = blocks ? blocks : &sh_.block;
     deferred_ = false;
     const bool ok = try_vertex(v);
     if (deferred_) return Result::kDeferred;
@@ -140,14 +144,14 @@ class Smoother {
   bool in_block(const std::vector<HalfEdge>& hs) const {
     if (block_ == kAnyBlock) return true;
     for (HalfEdge h : hs)
-      if (sh_.block[t_.dst(h)] != block_ || sh_.block[t_.apex(h)] != block_) {
+      if ((*blocks_)[t_.dst(h)] != block_ || (*blocks_)[t_.apex(h)] != block_) {
         deferred_ = true;
         return false;
       }
     if (!sh_.hidden_at.empty() && !hs.empty()) {  // their positions are read by improved()
       const Index v = t_.org(hs[0]);
       for (std::uint32_t k = sh_.hidden_at[v]; k < sh_.hidden_at[v + 1]; ++k)
-        if (sh_.block[sh_.hidden[k]] != block_) {
+        if ((*blocks_)[sh_.hidden[k]] != block_) {
           deferred_ = true;
           return false;
         }
@@ -327,7 +331,7 @@ class Smoother {
       const Point2 a = t_.pts[t_.org(e)], b = t_.pts[t_.dst(e)], c = t_.pts[t_.apex(e)], d = t_.pts[t_.apex(g)];
       if (predicates::incircle(a, b, c, d) <= 0) continue;
       if (predicates::orient2d(c, a, d) <= 0 || predicates::orient2d(d, b, c) <= 0) { ok = false; break; }
-      if (block_ != kAnyBlock && sh_.block[t_.apex(g)] != block_) {  // the flip leaves the block
+      if (block_ != kAnyBlock && (*blocks_)[t_.apex(g)] != block_) {  // the flip leaves the block
         ok = false;
         deferred_ = true;
         break;
@@ -536,6 +540,7 @@ class Smoother {
   Index moved_ = 0;  // the vertex of the current attempt
   Point2 moved_from_{0, 0};  // its position before
   std::uint32_t block_ = kAnyBlock;  // the block of the current try
+  const std::vector<std::uint32_t>* blocks_ = nullptr;  // the blocking it belongs to (Shared::block or block2)
   mutable bool deferred_ = false;  // the current try needs a triangle outside block_
 };
 
@@ -546,7 +551,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   StepLaps lap("FDR_DEBUG_SMOOTH", "smooth");  // developer aid (base/step_laps.hpp)
   tri.rebuild_vertex_map();
   lap("vertex map");
-  Shared sh{tri, f, options, 0.0, {}, {}};
+  Shared sh{tri, f, options, 0.0, {}, {}, {}, {}, {}};
   const double sn = std::sin(std::clamp(options.min_angle_deg, 0.0, 60.0) * 0.017453292519943295);
   sh.floor_key = sn * sn;
   const std::size_t n = tri.pts.size();
@@ -571,6 +576,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   }
   std::sort(order.begin(), order.end());
   sh.block.assign(n, kNoBlock);
+  sh.block2.assign(n, kNoBlock);
   const std::size_t nblocks = (order.size() + kBlock - 1) / kBlock;
   std::vector<std::vector<Index>> free(nblocks);  // movable vertices of each block, Morton order
   for (std::size_t r = 0; r < order.size(); ++r) {
@@ -581,6 +587,20 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
       ++st.candidates;
     }
   }
+  // The second blocking: the same cut of the Morton order of the positions shifted by S =
+  // 0x55555555 (on a grid of half the resolution, so that no coordinate overflows). Blocks of
+  // either order are cells of a quadtree, or runs of them; S mod 2^k is a third or two thirds of
+  // 2^k at every level k, so a cell edge of the second lies well inside the cells of the first
+  // (shifting the cut along the first order would leave every edge between blocks that are far
+  // apart in that order where it is).
+  for (auto& [key, v] : order) {
+    const double x = std::clamp((tri.pts[v].x - box.lo.x) * sx * 0.5, 0.0, 2147483647.0);
+    const double y = std::clamp((tri.pts[v].y - box.lo.y) * sy * 0.5, 0.0, 2147483647.0);
+    key = morton(static_cast<std::uint32_t>(x) + 0x55555555u, static_cast<std::uint32_t>(y) + 0x55555555u);
+  }
+  std::sort(order.begin(), order.end());
+  for (std::size_t r = 0; r < order.size(); ++r) sh.block2[order[r].second] = static_cast<std::uint32_t>(r / kBlock);
+  const std::size_t nblocks2 = std::max<std::size_t>(1, nblocks);
   order = {};
   lap("blocks");
   // Segment vertices: the vertices within f of them that are not mesh neighbours (Shared::hidden).
@@ -652,24 +672,29 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   sh.dirty.assign(n, 1);
 
   // Each sweep: first every block on its own (concurrently when f may be evaluated from several
-  // threads), each trying its vertices whose star and flips stay inside it; then, on one thread,
-  // the vertices deferred because they did not, in block order. Same result for any thread count.
+  // threads), each trying its vertices whose star and flips stay inside it; then the vertices
+  // deferred because they did not, in the blocks of the second blocking (shifted by half a
+  // block: most of them lie inside one), again concurrently; then, on one thread, those deferred
+  // again, in block order. Same result for any thread count.
   const std::size_t threads =
       f.thread_safe() ? std::max<std::size_t>(1, std::min<std::size_t>(max_threads(), nblocks)) : 1;
   std::vector<Smoother> workers;
   for (std::size_t k = 0; k < threads; ++k) workers.emplace_back(sh);
-  std::vector<std::vector<Index>> deferred(nblocks);
-  std::vector<std::size_t> moved_in(nblocks), seg_moved_in(nblocks);
-  auto sweep_block = [&](Smoother& w, std::size_t b) {
-    deferred[b].clear();
+  std::vector<std::vector<Index>> deferred(nblocks), todo2(nblocks2), deferred2(nblocks2);
+  std::vector<std::size_t> moved_in(nblocks2), seg_moved_in(nblocks2);
+  // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred
+  // ones listed in `out`.
+  auto sweep_list = [&](Smoother& w, const std::vector<Index>& list, std::size_t b,
+                        const std::vector<std::uint32_t>& blocks, std::vector<Index>& out) {
+    out.clear();
     moved_in[b] = seg_moved_in[b] = 0;
-    for (Index v : free[b]) {
+    for (Index v : list) {
       if (!sh.dirty[v]) continue;
       sh.dirty[v] = 0;
-      const Smoother::Result r = w.try_move(v, static_cast<std::uint32_t>(b));
+      const Smoother::Result r = w.try_move(v, static_cast<std::uint32_t>(b), &blocks);
       if (r == Smoother::Result::kDeferred) {
         sh.dirty[v] = 1;
-        deferred[b].push_back(v);
+        out.push_back(v);
       } else if (r == Smoother::Result::kKept) {
         ++moved_in[b];
         if (tri.vkind[v] == mesh::VertexKind::kSegment) ++seg_moved_in[b];
@@ -678,42 +703,59 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
       }
     }
   };
-  for (int pass = 0; pass < options.passes; ++pass) {
+  // Runs sweep(worker, b) for the blocks [0, count), concurrently when threads allow.
+  auto run_blocks = [&](std::size_t count, const auto& sweep) {
     if (threads <= 1) {
-      for (std::size_t b = 0; b < nblocks; ++b) sweep_block(workers[0], b);
-    } else {
-      std::atomic<std::size_t> next{0};
-      std::vector<std::exception_ptr> errors(threads);
-      std::vector<predicates::Counters> calls(threads);  // the helper threads' predicate counts
-      auto work = [&](std::size_t k) {
-        try {
-          for (std::size_t b; (b = next.fetch_add(1)) < nblocks;) sweep_block(workers[k], b);
-        } catch (...) {
-          errors[k] = std::current_exception();
-        }
-        if (k > 0) calls[k] = predicates::counters();
-      };
-      std::vector<std::thread> pool;
-      for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
-      work(0);
-      for (auto& th : pool) th.join();
-      // Counted on this thread as if it had made every call: the report's predicate counts do
-      // not depend on the thread count either.
-      for (std::size_t k = 1; k < threads; ++k) {
-        predicates::counters().filtered += calls[k].filtered;
-        predicates::counters().exact += calls[k].exact;
-      }
-      for (auto& e : errors)
-        if (e) std::rethrow_exception(e);
+      for (std::size_t b = 0; b < count; ++b) sweep(workers[0], b);
+      return;
     }
-    lap("parallel sweep");
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> errors(threads);
+    std::vector<predicates::Counters> calls(threads);  // the helper threads' predicate counts
+    auto work = [&](std::size_t k) {
+      try {
+        for (std::size_t b; (b = next.fetch_add(1)) < count;) sweep(workers[k], b);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+      if (k > 0) {
+        calls[k] = predicates::counters();
+        predicates::counters() = {};
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
+    work(0);
+    for (auto& th : pool) th.join();
+    // Counted on this thread as if it had made every call: the report's predicate counts do
+    // not depend on the thread count either.
+    for (std::size_t k = 1; k < threads; ++k) {
+      predicates::counters().filtered += calls[k].filtered;
+      predicates::counters().exact += calls[k].exact;
+    }
+    for (auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  };
+  auto tally = [&](std::size_t count) {
     std::size_t moved = 0;
-    for (std::size_t b = 0; b < nblocks; ++b) {
+    for (std::size_t b = 0; b < count; ++b) {
       moved += moved_in[b];
       st.segment_moves += seg_moved_in[b];
     }
+    return moved;
+  };
+  for (int pass = 0; pass < options.passes; ++pass) {
+    run_blocks(nblocks, [&](Smoother& w, std::size_t b) { sweep_list(w, free[b], b, sh.block, deferred[b]); });
+    std::size_t moved = tally(nblocks);
+    lap("parallel sweep");
+    for (auto& l : todo2) l.clear();
     for (std::size_t b = 0; b < nblocks; ++b)
-      for (Index v : deferred[b]) {
+      for (Index v : deferred[b]) todo2[sh.block2[v]].push_back(v);
+    run_blocks(nblocks2, [&](Smoother& w, std::size_t b) { sweep_list(w, todo2[b], b, sh.block2, deferred2[b]); });
+    moved += tally(nblocks2);
+    lap("shifted sweep");
+    for (std::size_t b = 0; b < nblocks2; ++b)
+      for (Index v : deferred2[b]) {
         if (!sh.dirty[v]) continue;
         sh.dirty[v] = 0;
         ++st.deferred;

@@ -10,7 +10,8 @@
 // and the FDR bound stay exactly as refinement left them. Vertices are cut into blocks of
 // Morton-consecutive vertices; each sweep moves the blocks independently (concurrently when
 // f.thread_safe()), each only where a move's triangles lie inside the block, then the deferred
-// vertices on one thread: the result is deterministic and the same for every thread count.
+// vertices in the blocks of a second, shifted blocking (concurrently too), then those deferred
+// again on one thread: the result is deterministic and the same for every thread count.
 #pragma once
 #include <cstddef>
 #include "mesh/triangulation.hpp"
@@ -29,7 +30,7 @@ struct SmoothStats {
   std::size_t candidates = 0;   // free vertices
   std::size_t moves = 0;        // accepted moves, all passes
   std::size_t segment_moves = 0;  // of which slides of segment vertices along their segment
-  std::size_t deferred = 0;     // tries left to the serial phase of a sweep (star or flips across blocks)
+  std::size_t deferred = 0;     // tries left to the serial phase of a sweep (star or flips across blocks of both blockings)
   int passes = 0;
 };
 

@@ -210,7 +210,9 @@ TEST(Smooth, NoVertexComesNearerAcrossAThinStripOfLand) {
   // Pairs across the strip, hidden before and after: nearer only while at least f/2 apart (f >= 0.6).
   for (const auto& [ab, d1] : after) {
     const auto it = before.find(ab);
-    if (it != before.end() && d1 < it->second - 1e-12) EXPECT_GE(d1, 0.5 * 0.6 * (1 - 1e-9)) << ab.first << " " << ab.second;
+    if (it != before.end() && d1 < it->second - 1e-12) {
+      EXPECT_GE(d1, 0.5 * 0.6 * (1 - 1e-9)) << ab.first << " " << ab.second;
+    }
   }
   auto r = mesh::check_all(T);
   EXPECT_TRUE(r.ok());
