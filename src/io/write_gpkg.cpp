@@ -229,6 +229,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   // Per-vertex f (from the mesh, else from the sizing field) and conformity.
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
   std::vector<double> nn = nearest_neighbour_distance(m);
+  lap("srs, nearest neighbours");
 
   TempFile tf(path);  // declared before the database: the database closes first on failure
   tf.release_for_library();
