@@ -170,8 +170,9 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
     const refine::SmoothStats ss = refine::smooth(tri, f, so);
     info(opt.log, "smoothing: " + std::to_string(ss.moves) + " moves (" + std::to_string(ss.segment_moves) +
                       " along segments) of " + std::to_string(ss.candidates) + " Steiner vertices in " +
-                      std::to_string(ss.passes) + " passes (" + std::to_string(ss.deferred) +
-                      " tries across blocks, on one thread)");
+                      std::to_string(ss.passes) + " passes (" + std::to_string(ss.shifted) +
+                      " tries across blocks in shifted blocks, " + std::to_string(ss.deferred) +
+                      " across both, on one thread)");
     done("smooth");
   }
 

@@ -749,8 +749,10 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
     std::size_t moved = tally(nblocks);
     lap("parallel sweep");
     for (auto& l : todo2) l.clear();
-    for (std::size_t b = 0; b < nblocks; ++b)
+    for (std::size_t b = 0; b < nblocks; ++b) {
       for (Index v : deferred[b]) todo2[sh.block2[v]].push_back(v);
+      st.shifted += deferred[b].size();  // each still dirty: tried there
+    }
     run_blocks(nblocks2, [&](Smoother& w, std::size_t b) { sweep_list(w, todo2[b], b, sh.block2, deferred2[b]); });
     moved += tally(nblocks2);
     lap("shifted sweep");

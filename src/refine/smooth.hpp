@@ -30,6 +30,7 @@ struct SmoothStats {
   std::size_t candidates = 0;   // free vertices
   std::size_t moves = 0;        // accepted moves, all passes
   std::size_t segment_moves = 0;  // of which slides of segment vertices along their segment
+  std::size_t shifted = 0;      // tries in the second blocking (vertices the first deferred)
   std::size_t deferred = 0;     // tries left to the serial phase of a sweep (star or flips across blocks of both blockings)
   int passes = 0;
 };

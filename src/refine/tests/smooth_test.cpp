@@ -129,7 +129,8 @@ TEST(Smooth, Deterministic) {
   for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i], b.vertices[i]);
 }
 
-// The blocks are swept concurrently, the vertices across blocks afterwards on one thread: the
+// The blocks are swept concurrently, the vertices across blocks in a second, shifted blocking
+// (concurrently too), those across blocks of both afterwards on one thread: the
 // mesh is the same bit for bit for every thread count (FDR_THREADS) and block size is what
 // decides it, on a mesh of many blocks (about 20 000 vertices, blocks of 512 and the default).
 TEST(Smooth, SameMeshForEveryThreadCount) {
@@ -150,6 +151,7 @@ TEST(Smooth, SameMeshForEveryThreadCount) {
       const auto st = refine::smooth(T, f, so);
       calls.push_back(predicates::counters().filtered + predicates::counters().exact);  // all threads'
       EXPECT_GT(st.moves, 1000u);
+      EXPECT_GT(st.shifted, st.deferred);  // the second blocking takes most of them
       EXPECT_GT(st.deferred, 0u);
       const auto r = mesh::check_all(T);
       ASSERT_TRUE(r.ok()) << (r.problems.empty() ? "" : r.problems[0]);
