@@ -23,7 +23,7 @@ struct SmoothOptions {
   int passes = 4;               // sweeps over the free vertices
   double bound = 1.0;           // B: every moved triangle keeps R/f(c) <= B
   double min_angle_deg = 0.0;   // a move may not make a star's min angle drop below this
-  std::size_t block_vertices = 4096;  // vertices per block of the concurrent sweeps (tests use small ones)
+  std::size_t block_vertices = 8192;  // vertices per block of the concurrent sweeps (tests use small ones)
 };
 
 struct SmoothStats {

@@ -132,13 +132,13 @@ TEST(Smooth, Deterministic) {
 // The blocks are swept concurrently, the vertices across blocks in a second, shifted blocking
 // (concurrently too), those across blocks of both afterwards on one thread: the
 // mesh is the same bit for bit for every thread count (FDR_THREADS) and block size is what
-// decides it, on a mesh of many blocks (about 20 000 vertices, blocks of 512 and the default).
+// decides it, on a mesh of many blocks (about 20 000 vertices, blocks of 512, 4096 and the default).
 TEST(Smooth, SameMeshForEveryThreadCount) {
   const auto p = fdr::testing::random_pslg(5, 60, 8);
   FnField f([](Point2 q) { return 0.03 * (1 + 0.15 * q.x + 0.05 * std::sin(2 * q.y)); });
   const auto base = refined(p, f, 1.0, 30.0);
   ASSERT_GT(base.pts.size(), 10000u);
-  for (std::size_t block : {std::size_t{512}, std::size_t{4096}}) {
+  for (std::size_t block : {std::size_t{512}, std::size_t{4096}, refine::SmoothOptions{}.block_vertices}) {
     std::vector<mesh::MeshView> views;
     std::vector<std::size_t> moves, calls;
     for (int threads : {1, 2, 3, 4}) {
