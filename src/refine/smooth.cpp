@@ -55,9 +55,9 @@ struct Shared {
   const sizing::SizingField& f;
   SmoothOptions o;
   double floor_key = 0;              // min_angle_key of --min-angle
-  // Per vertex, its block in each of the two blockings (the second shifted by half a block
-  // along the Morton order: the vertices deferred at the edges of the first mostly lie inside one
-  // of the second).
+  // Per vertex, its block in each of the two blockings (see smooth(): the edges of the second lie
+  // inside the blocks of the first, so the vertices the first defers mostly lie inside one of the
+  // second).
   std::vector<std::uint32_t> block, block2;
   std::vector<char> dirty;           // per vertex
   // Pairs of vertices across a constraint (the other side of a thin strip of land, of a
@@ -560,9 +560,9 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   // traffic: Morton order alone made the sweeps 1.4x faster than index order on the Gulf of
   // Maine), about kBlock live vertices each, in two blockings. Each cuts a Morton order of the
   // vertices at whole cells of a quadtree level (at least half as many cells as vertices, at most
-  // 2^10 a side): a vertex's block is the number of live vertices in the cells before its own divided by
-  // kBlock, so a block is a run of cells (a cell of more than kBlock vertices is a block of its
-  // own), found by counting, without a sort. The second blocking takes the cells of the level
+  // 2^10 a side): a vertex's block is the number of live vertices in the cells before its own
+  // divided by kBlock, so a block is a run of cells (a cell of more than kBlock vertices is a
+  // block of its own), found by counting, without a sort. The second blocking takes the cells of the level
   // above of the positions shifted by S = 0b0101...01: blocks of either are runs of quadtree cells,
   // and S mod 2^k is about a third or two thirds of 2^k at every level k, so the edges of the
   // second lie well inside the blocks of the first (shifting the cut along the first order would
@@ -690,15 +690,15 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
 
   // Each sweep: first every block on its own (concurrently when f may be evaluated from several
   // threads), each trying its vertices whose star and flips stay inside it; then the vertices
-  // deferred because they did not, in the blocks of the second blocking (shifted by half a
-  // block: most of them lie inside one), again concurrently; then, on one thread, those deferred
-  // again, in block order. Same result for any thread count.
+  // deferred because they did not, in the blocks of the second blocking (most of them lie inside
+  // one), again concurrently; then, on one thread, those deferred again, in block order. Same
+  // result for any thread count.
   const std::size_t threads =
       f.thread_safe() ? std::max<std::size_t>(1, std::min<std::size_t>(max_threads(), nblocks)) : 1;
   std::vector<Smoother> workers;
   for (std::size_t k = 0; k < threads; ++k) workers.emplace_back(sh);
   std::vector<std::vector<Index>> deferred(nblocks), todo2(nblocks2), deferred2(nblocks2);
-  std::vector<std::size_t> moved_in(nblocks2), seg_moved_in(nblocks2);
+  std::vector<std::size_t> moved_in(std::max(nblocks, nblocks2)), seg_moved_in(moved_in.size());
   // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred
   // ones listed in `out`.
   auto sweep_list = [&](Smoother& w, const std::vector<Index>& list, std::size_t b,
