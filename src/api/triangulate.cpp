@@ -171,8 +171,8 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
     info(opt.log, "smoothing: " + std::to_string(ss.moves) + " moves (" + std::to_string(ss.segment_moves) +
                       " along segments) of " + std::to_string(ss.candidates) + " Steiner vertices in " +
                       std::to_string(ss.passes) + " passes (" + std::to_string(ss.shifted) +
-                      " tries across blocks in shifted blocks, " + std::to_string(ss.deferred) +
-                      " across both, on one thread)");
+                      " tries across blocks, in the second blocking; " + std::to_string(ss.deferred) +
+                      " across blocks of both, on one thread)");
     done("smooth");
   }
 

@@ -697,7 +697,9 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
       f.thread_safe() ? std::max<std::size_t>(1, std::min<std::size_t>(max_threads(), nblocks)) : 1;
   std::vector<Smoother> workers;
   for (std::size_t k = 0; k < threads; ++k) workers.emplace_back(sh);
-  std::vector<std::vector<Index>> deferred(nblocks), todo2(nblocks2), deferred2(nblocks2);
+  // Per block: the vertices deferred by the first blocking, those of them (grouped by their block
+  // of the second) tried there, and those deferred again.
+  std::vector<std::vector<Index>> deferred(nblocks), in_block2(nblocks2), deferred2(nblocks2);
   std::vector<std::size_t> moved_in(std::max(nblocks, nblocks2)), seg_moved_in(moved_in.size());
   // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred
   // ones listed in `out`.
@@ -735,10 +737,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
       } catch (...) {
         errors[k] = std::current_exception();
       }
-      if (k > 0) {
-        calls[k] = predicates::counters();
-        predicates::counters() = {};
-      }
+      if (k > 0) calls[k] = predicates::counters();
     };
     std::vector<std::thread> pool;
     for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
@@ -765,12 +764,12 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
     run_blocks(nblocks, [&](Smoother& w, std::size_t b) { sweep_list(w, free[b], b, sh.block, deferred[b]); });
     std::size_t moved = tally(nblocks);
     lap("parallel sweep");
-    for (auto& l : todo2) l.clear();
+    for (auto& l : in_block2) l.clear();
     for (std::size_t b = 0; b < nblocks; ++b) {
-      for (Index v : deferred[b]) todo2[sh.block2[v]].push_back(v);
+      for (Index v : deferred[b]) in_block2[sh.block2[v]].push_back(v);
       st.shifted += deferred[b].size();  // each still dirty: tried there
     }
-    run_blocks(nblocks2, [&](Smoother& w, std::size_t b) { sweep_list(w, todo2[b], b, sh.block2, deferred2[b]); });
+    run_blocks(nblocks2, [&](Smoother& w, std::size_t b) { sweep_list(w, in_block2[b], b, sh.block2, deferred2[b]); });
     moved += tally(nblocks2);
     lap("shifted sweep");
     for (std::size_t b = 0; b < nblocks2; ++b)
