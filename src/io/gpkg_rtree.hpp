@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "io/sqlite_bulk.hpp"
 #include "io/sqlite_db.hpp"
 
 namespace fdr::io::detail {
@@ -41,5 +42,28 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
 // The same from a plan (made again here if its cap differs from the table's).
 void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
                       RtreePlan plan);
+
+// An R-tree whose shadow tables are filled by write_bulk_tables (sqlite_bulk.hpp) instead of
+// SQL inserts: create_gpkg_rtree makes it with empty shadow tables (the virtual table, the
+// triggers, the gpkg_extensions row) inside the current transaction; set_plan then takes the
+// packed tree, whose ids must be 1..n (every row of the table indexed); add_tables describes
+// the rows of _node, _parent and _rowid, as SQL inserts would have written them.
+struct RtreeRows {
+  std::string name;  // rtree_<table>_<geom>
+  std::size_t node_size = 0;
+  std::int64_t root_node = 0, root_parent = 0, root_rowid = 0;  // root pages of the shadow tables
+  RtreePlan plan;
+  struct NodeRef {
+    std::uint32_t depth;       // level in the plan
+    std::size_t first, count;  // its cells in plan.levels[depth]
+  };
+  std::vector<NodeRef> nodes;           // by node number - 1
+  std::vector<std::int64_t> parent_of;  // by node number (0: the root)
+  std::vector<std::uint32_t> leaf_of;   // by row id
+
+  void set_plan(RtreePlan plan, const std::string& path_for_errors);  // re-packed if made for another cap
+  void add_tables(std::vector<BulkTable>& out) const;                 // *this must outlive their use
+};
+RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col);
 
 }  // namespace fdr::io::detail

@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
 #include "io/gpkg_rtree.hpp"
+#include "io/sqlite_bulk.hpp"
 #include "io/sqlite_db.hpp"
 
 namespace fdr::io::detail {
@@ -89,6 +91,7 @@ SrsRow srs_row(const std::string& wkt, const std::string& path) {
 class GeomBlob {
  public:
   explicit GeomBlob(std::int32_t srs) : srs_(srs) {}
+  void set_srs(std::int32_t srs) { srs_ = srs; }
   const std::string& point(double x, double y) {
     const bool empty = !(std::isfinite(x) && std::isfinite(y));
     header(empty ? 0x11 : 0x01);
@@ -219,6 +222,58 @@ void register_table(SqliteDb& db, const std::string& table, const char* geom_typ
             std::to_string(srs_id) + ",0,0)");
 }
 
+// The rows of the nodes and triangles tables, for BatchInsert (SQL inserts) and Record (pages
+// written by sqlite_bulk.cpp) alike: the same values in the same column order.
+struct RowValues {
+  const mesh::MeshView& m;
+  const WriteOptions& o;
+  const std::vector<double>& nn;  // nearest-neighbour distance per vertex
+
+  // geom, id, z, f, conformity, marker
+  template <class Sink>
+  void node(Sink& s, GeomBlob& gb, std::size_t v) const {
+    const Point2 p = m.world(static_cast<Index>(v));
+    double f = std::nan("");
+    if (!m.f.empty()) f = m.f[v];
+    else if (o.f) f = (*o.f)(m.vertices[v]);
+    double c = std::nan("");
+    if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
+    const std::string& g = gb.point(p.x, p.y);
+    s.add_blob(g.data(), g.size()).add_int(static_cast<std::int64_t>(v + 1));
+    if (m.z.empty()) s.add_null();
+    else s.add_real_or_null(m.z[v]);
+    s.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
+    s.end_row();
+  }
+  // geom, id, n1, n2, n3, area, min_angle, R_over_f, quality
+  template <class Sink>
+  void triangle(Sink& s, GeomBlob& gb, std::size_t t) const {
+    const auto& tr = m.triangles[t];
+    Point2 w[3];
+    for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
+    const std::string& g = gb.polygon(w, 3);
+    s.add_blob(g.data(), g.size()).add_int(static_cast<std::int64_t>(t + 1));
+    for (int k = 0; k < 3; ++k) s.add_int(static_cast<std::int64_t>(tr[k]) + 1);
+    s.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
+    s.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
+    if (o.f || o.triangle_r_over_f) {
+      double r;
+      if (o.triangle_r_over_f) {
+        r = (*o.triangle_r_over_f)[t];
+      } else {
+        Point2 c;
+        r = circumradius(m, t, c) / (*o.f)(c);
+      }
+      s.add_real_or_null(r);
+      if (o.bound_B > 0) s.add_real_or_null(r / o.bound_B);
+      else s.add_null();
+    } else {
+      s.add_null().add_null();
+    }
+    s.end_row();
+  }
+};
+
 }  // namespace
 
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
@@ -296,63 +351,43 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   GeomBlob gb(srs_id);
   Extent mesh_ext, repair_ext;
 
-  // The rows of nodes and triangles are built on one thread and bound and stepped by another
-  // (BatchInsert async) when threads allow.
+  // The rows of nodes and triangles, and the shadow tables of their R-trees, are written as
+  // B-tree pages after SQLite has made everything else (sqlite_bulk.cpp: SQLite inserts about
+  // 1 M rows/s on one thread). FDR_GPKG_SQL_ROWS: SQLite inserts them (the tests' reference);
+  // then they are built on one thread and bound and stepped by another (BatchInsert async)
+  // when threads allow.
+  const bool bulk = std::getenv("FDR_GPKG_SQL_ROWS") == nullptr;
   const bool async = max_threads() > 1;
+  const RowValues values{m, o, nn};
   auto write_rows = [&] {
     // Rows are written in fid order without naming the fid: SQLite then appends each row (fid =
     // previous + 1, as the ids below assume) instead of searching the B-tree for it.
-    {
-      BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256, async);
+    if (bulk) {
+      // The rows are written as pages once SQLite is done (below); the extent now, and the
+      // AUTOINCREMENT counters SQLite would have set (in the same order).
       for (std::size_t v = 0; v < nv; ++v) {
         const Point2 p = m.world(static_cast<Index>(v));
-        double f = std::nan("");
-        if (!m.f.empty()) f = m.f[v];
-        else if (o.f) f = (*o.f)(m.vertices[v]);
-        double c = std::nan("");
-        if (f > 0 && std::isfinite(nn[v]) && nn[v] > 0) c = std::min(nn[v] / f, f / nn[v]);
-        const std::string& g = gb.point(p.x, p.y);
-        const auto fid = static_cast<std::int64_t>(v + 1);
-        ins.add_blob(g.data(), g.size()).add_int(fid);
-        if (m.z.empty()) ins.add_null();
-        else ins.add_real_or_null(m.z[v]);
-        ins.add_real_or_null(f).add_real_or_null(c).add_int(m.vertex_marker.empty() ? 0 : m.vertex_marker[v]);
-        ins.end_row();
         mesh_ext.add(p.x, p.x, p.y, p.y);
       }
-      ins.finish();
-    }
-    std::vector<double>().swap(nn);
-    {
-      BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
-                      128, async);
-      Point2 w[3];
-      for (std::size_t t = 0; t < nt; ++t) {
-        const auto& tr = m.triangles[t];
-        for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
-        const std::string& g = gb.polygon(w, 3);
-        const auto fid = static_cast<std::int64_t>(t + 1);
-        ins.add_blob(g.data(), g.size()).add_int(fid);
-        for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
-        ins.add_real_or_null(o.triangle_area ? (*o.triangle_area)[t] : triangle_area(m, t));
-        ins.add_real_or_null(o.triangle_min_angle ? (*o.triangle_min_angle)[t] : triangle_min_angle_deg(m, t));
-        if (o.f || o.triangle_r_over_f) {
-          double r;
-          if (o.triangle_r_over_f) {
-            r = (*o.triangle_r_over_f)[t];
-          } else {
-            Point2 c;
-            r = circumradius(m, t, c) / (*o.f)(c);
-          }
-          ins.add_real_or_null(r);
-          if (o.bound_B > 0) ins.add_real_or_null(r / o.bound_B);
-          else ins.add_null();
-        } else {
-          ins.add_null().add_null();
+      if (nv > 0) db.exec("INSERT INTO sqlite_sequence (name, seq) VALUES ('nodes', " + std::to_string(nv) + ")");
+      if (nt > 0) db.exec("INSERT INTO sqlite_sequence (name, seq) VALUES ('triangles', " + std::to_string(nt) + ")");
+    } else {
+      {
+        BatchInsert ins(db, "nodes", {"geom", "id", "z", "f", "conformity", "marker"}, 256, async);
+        for (std::size_t v = 0; v < nv; ++v) {
+          values.node(ins, gb, v);
+          const Point2 p = m.world(static_cast<Index>(v));
+          mesh_ext.add(p.x, p.x, p.y, p.y);
         }
-        ins.end_row();
+        ins.finish();
       }
-      ins.finish();
+      std::vector<double>().swap(nn);
+      {
+        BatchInsert ins(db, "triangles", {"geom", "id", "n1", "n2", "n3", "area", "min_angle", "R_over_f", "quality"},
+                        128, async);
+        for (std::size_t t = 0; t < nt; ++t) values.triangle(ins, gb, t);
+        ins.finish();
+      }
     }
     {
       const std::vector<Chain> chains = build_chains(m);
@@ -411,27 +446,87 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     register_table(db, "repairs", "POINT", srs.id, repair_ext);
     register_table(db, "metadata", nullptr, 0, {});
   };
-  // Two threads when allowed: the rows go in on a helper thread while this one plans the
-  // R-trees (the plans' large arrays then come from this thread's heap, as without threads).
+  if (!bulk) {
+    // Two threads when allowed: the rows go in on a helper thread while this one plans the
+    // R-trees (the plans' large arrays then come from this thread's heap, as without threads).
+    if (index && max_threads() > 1) {
+      run_beside([&] { write_rows(); }, [&] { plan_trees(); });
+    } else {
+      if (index) plan_trees();
+      write_rows();
+    }
+    lap("rows and R-tree plans");
+    if (index) {
+      if (plan_error) std::rethrow_exception(plan_error);
+      build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_plan));
+      lap("node rtree");
+      build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_plan));
+      lap("triangle rtree");
+      build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
+      build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
+    }
+    db.exec("COMMIT");
+    db.close();
+    lap("commit, close");
+    tf.commit();
+    return;
+  }
+  // SQLite makes the small tables and the frames of the R-trees of nodes and triangles (empty
+  // shadow tables), then the nodes and triangles go in as pages, while a helper thread plans the
+  // R-trees; their shadow tables go in last, as pages too.
+  RtreeRows node_tree, tri_tree;
+  auto tables_and_rows = [&] {
+    write_rows();
+    if (index) {
+      node_tree = create_gpkg_rtree(db, "nodes", "geom", "fid");
+      tri_tree = create_gpkg_rtree(db, "triangles", "geom", "fid");
+      build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
+      build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
+    }
+    auto root_of = [&](const char* name) {
+      const std::int64_t p =
+          db.query_int(std::string("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '") + name + "'");
+      if (p <= 1) fail_output(path, std::string("cannot find the root page of table '") + name + "'");
+      return p;
+    };
+    std::vector<BulkTable> tables;
+    tables.push_back({"nodes", root_of("nodes"), nv, [&values, srs_id](std::size_t v, Record& r) {
+                        thread_local GeomBlob gb(0);
+                        gb.set_srs(srs_id);
+                        r.clear(static_cast<std::int64_t>(v + 1));
+                        r.add_null();  // fid: the rowid
+                        values.node(r, gb, v);
+                      }});
+    tables.push_back({"triangles", root_of("triangles"), nt, [&values, srs_id](std::size_t t, Record& r) {
+                        thread_local GeomBlob gb(0);
+                        gb.set_srs(srs_id);
+                        r.clear(static_cast<std::int64_t>(t + 1));
+                        r.add_null();
+                        values.triangle(r, gb, t);
+                      }});
+    db.exec("COMMIT");
+    db.close();
+    lap("tables");
+    write_bulk_tables(tf.path(), path, tables);
+    lap("node and triangle pages");
+  };
   if (index && max_threads() > 1) {
-    run_beside([&] { write_rows(); }, [&] { plan_trees(); });
+    run_beside([&] { plan_trees(); }, tables_and_rows);
   } else {
     if (index) plan_trees();
-    write_rows();
+    tables_and_rows();
   }
-  lap("rows and R-tree plans");
   if (index) {
     if (plan_error) std::rethrow_exception(plan_error);
-    build_gpkg_rtree(db, "nodes", "geom", "fid", std::move(node_plan));
-    lap("node rtree");
-    build_gpkg_rtree(db, "triangles", "geom", "fid", std::move(tri_plan));
-    lap("triangle rtree");
-    build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
-    build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
+    lap("R-tree plans");
+    node_tree.set_plan(std::move(node_plan), path);
+    tri_tree.set_plan(std::move(tri_plan), path);
+    std::vector<BulkTable> tables;
+    node_tree.add_tables(tables);
+    tri_tree.add_tables(tables);
+    write_bulk_tables(tf.path(), path, tables);
+    lap("R-tree pages");
   }
-  db.exec("COMMIT");
-  db.close();
-  lap("commit, close");
   tf.commit();
 }
 
