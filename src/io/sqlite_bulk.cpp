@@ -30,6 +30,7 @@
 #include <exception>
 #include <mutex>
 
+#include "base/error.hpp"
 #include "base/threads.hpp"
 #include "io/detail.hpp"
 
@@ -83,40 +84,46 @@ std::uint64_t get_be(const unsigned char* p, int bytes) {
 }
 
 // Header size of a record with these serial types (the size's own varint included).
-std::size_t header_size(const std::vector<std::uint64_t>& types) {
+std::size_t header_size(const std::uint64_t* types, int n) {
   std::size_t h = 0;
-  for (const std::uint64_t t : types) h += static_cast<std::size_t>(varint_len(t));
-  std::size_t n = 1;
-  while (static_cast<std::size_t>(varint_len(h + n)) > n) ++n;
-  return h + n;
+  for (int i = 0; i < n; ++i) h += static_cast<std::size_t>(varint_len(types[i]));
+  std::size_t k = 1;
+  while (static_cast<std::size_t>(varint_len(h + k)) > k) ++k;
+  return h + k;
 }
 
 }  // namespace
 
+Record& Record::type(std::uint64_t t) {
+  if (ntypes_ == kMaxColumns) throw Error(ExitCode::kInternal, "SQLite record with more than 32 columns");
+  types_[ntypes_++] = t;
+  return *this;
+}
+
 Record& Record::add_int(std::int64_t v) {
-  if (v == 0 || v == 1) {  // serial types 8 and 9 (schema format 4, which SQLite writes since 3.7.10)
-    types_.push_back(v == 0 ? 8 : 9);
-    return *this;
-  }
+  if (v == 0 || v == 1) return type(v == 0 ? 8 : 9);  // serial types 8 and 9 (schema format 4)
   const std::uint64_t u = v < 0 ? ~static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
-  int type, bytes;
-  if (u <= 127) type = 1, bytes = 1;
-  else if (u <= 32767) type = 2, bytes = 2;
-  else if (u <= 8388607) type = 3, bytes = 3;
-  else if (u <= 2147483647) type = 4, bytes = 4;
-  else if (u <= 0x7FFFFFFFFFFFull) type = 5, bytes = 6;
-  else type = 6, bytes = 8;
-  types_.push_back(static_cast<std::uint64_t>(type));
+  int t, bytes;
+  if (u <= 127) t = 1, bytes = 1;
+  else if (u <= 32767) t = 2, bytes = 2;
+  else if (u <= 8388607) t = 3, bytes = 3;
+  else if (u <= 2147483647) t = 4, bytes = 4;
+  else if (u <= 0x7FFFFFFFFFFFull) t = 5, bytes = 6;
+  else t = 6, bytes = 8;
+  type(static_cast<std::uint64_t>(t));
+  // The low `bytes` bytes of v, most significant first.
+  const std::uint64_t be = __builtin_bswap64(static_cast<std::uint64_t>(v) << (64 - 8 * bytes));
   char b[8];
-  put_be(b, static_cast<std::uint64_t>(v), bytes);
+  std::memcpy(b, &be, 8);
   body_.append(b, static_cast<std::size_t>(bytes));
   return *this;
 }
 
 Record& Record::add_real(double v) {
-  types_.push_back(7);
+  type(7);
+  const std::uint64_t be = __builtin_bswap64(std::bit_cast<std::uint64_t>(v));
   char b[8];
-  put_be(b, std::bit_cast<std::uint64_t>(v), 8);
+  std::memcpy(b, &be, 8);
   body_.append(b, 8);
   return *this;
 }
@@ -124,18 +131,18 @@ Record& Record::add_real(double v) {
 Record& Record::add_real_or_null(double v) { return std::isfinite(v) ? add_real(v) : add_null(); }
 
 Record& Record::add_blob(const void* data, std::size_t n) {
-  types_.push_back(12 + 2 * static_cast<std::uint64_t>(n));
+  type(12 + 2 * static_cast<std::uint64_t>(n));
   body_.append(static_cast<const char*>(data), n);
   return *this;
 }
 
 Record& Record::add_text(std::string_view s) {
-  types_.push_back(13 + 2 * static_cast<std::uint64_t>(s.size()));
+  type(13 + 2 * static_cast<std::uint64_t>(s.size()));
   body_.append(s);
   return *this;
 }
 
-std::size_t Record::payload_size() const { return header_size(types_) + body_.size(); }
+std::size_t Record::payload_size() const { return header_size(types_, ntypes_) + body_.size(); }
 
 std::size_t Record::cell_size() const {
   const std::size_t p = payload_size();
@@ -143,11 +150,11 @@ std::size_t Record::cell_size() const {
 }
 
 char* Record::write_cell(char* o) const {
-  const std::size_t hs = header_size(types_);
+  const std::size_t hs = header_size(types_, ntypes_);
   o = put_varint(o, hs + body_.size());
   o = put_varint(o, static_cast<std::uint64_t>(rowid_));
   o = put_varint(o, hs);
-  for (const std::uint64_t t : types_) o = put_varint(o, t);
+  for (int i = 0; i < ntypes_; ++i) o = put_varint(o, types_[i]);
   std::memcpy(o, body_.data(), body_.size());
   return o + body_.size();
 }

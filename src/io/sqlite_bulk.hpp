@@ -18,18 +18,16 @@ namespace fdr::io::detail {
 // floats (SQLite may store an integral real as an integer: the value read back is the same).
 class Record {
  public:
+  static constexpr int kMaxColumns = 32;
   void clear(std::int64_t rowid) {
     rowid_ = rowid;
-    types_.clear();
+    ntypes_ = 0;
     body_.clear();
   }
   Record& add_int(std::int64_t v);
   Record& add_real(double v);
   Record& add_real_or_null(double v);  // NULL for NaN/inf (as BatchInsert)
-  Record& add_null() {
-    types_.push_back(0);
-    return *this;
-  }
+  Record& add_null() { return type(0); }
   Record& add_blob(const void* data, std::size_t n);
   Record& add_text(std::string_view s);
   void end_row() {}
@@ -41,8 +39,10 @@ class Record {
   char* write_cell(char* out) const;  // returns the end
 
  private:
+  Record& type(std::uint64_t t);
   std::int64_t rowid_ = 0;
-  std::vector<std::uint64_t> types_;
+  int ntypes_ = 0;
+  std::uint64_t types_[kMaxColumns];
   std::string body_;
 };
 
