@@ -376,11 +376,13 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
   add_triggers(db, table, geom_col, fid_col, rt);
 }
 
-RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col) {
+RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
+                            bool filled) {
   RtreeRows r;
   r.name = "rtree_" + table + "_" + geom_col;
   r.node_size = create_rtree_table(db, table, r.name);
-  db.exec("DELETE FROM " + quoted(r.name + "_node"));  // its empty root: every row comes from the plan
+  // Its empty root goes when the plan will bring every node (an empty table keeps it).
+  if (filled) db.exec("DELETE FROM " + quoted(r.name + "_node"));
   auto root_of = [&](const std::string& name) {
     const std::int64_t p = db.query_int("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '" + name + "'");
     if (p <= 1) fail_output(db.path(), "cannot find the root page of table '" + name + "'");
@@ -423,7 +425,7 @@ void RtreeRows::set_plan(RtreePlan p, const std::string& path) {
 void RtreeRows::add_tables(std::vector<BulkTable>& out) const {
   if (nodes.empty()) return;
   // _node(nodeno INTEGER PRIMARY KEY, data): the rowid column is stored as NULL in the record.
-  out.push_back({name + "_node", root_node, nodes.size(), [this](std::size_t i, Record& r) {
+  out.push_back({name + "_node", root_node, nodes.size(), true, [this](std::size_t i, Record& r) {
                    thread_local std::string blob;
                    const NodeRef& n = nodes[i];
                    node_blob(blob, plan.levels[n.depth].data() + n.first, n.count, i == 0 ? static_cast<int>(n.depth) : 0,
@@ -432,12 +434,12 @@ void RtreeRows::add_tables(std::vector<BulkTable>& out) const {
                    r.add_null().add_blob(blob.data(), blob.size());
                  }});
   // _parent(nodeno INTEGER PRIMARY KEY, parentnode): every node but the root (2, 3, ...).
-  out.push_back({name + "_parent", root_parent, nodes.size() - 1, [this](std::size_t i, Record& r) {
+  out.push_back({name + "_parent", root_parent, nodes.size() - 1, true, [this](std::size_t i, Record& r) {
                    r.clear(static_cast<std::int64_t>(i + 2));
                    r.add_null().add_int(parent_of[i + 2]);
                  }});
   // _rowid(rowid INTEGER PRIMARY KEY, nodeno).
-  out.push_back({name + "_rowid", root_rowid, leaf_of.size() - 1, [this](std::size_t i, Record& r) {
+  out.push_back({name + "_rowid", root_rowid, leaf_of.size() - 1, true, [this](std::size_t i, Record& r) {
                    r.clear(static_cast<std::int64_t>(i + 1));
                    r.add_null().add_int(leaf_of[i + 1]);
                  }});

@@ -64,6 +64,9 @@ struct RtreeRows {
   void set_plan(RtreePlan plan, const std::string& path_for_errors);  // re-packed if made for another cap
   void add_tables(std::vector<BulkTable>& out) const;                 // *this must outlive their use
 };
-RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col);
+// `filled`: the table has rows (set_plan will be called with their boxes); else the R-tree keeps
+// the empty root node SQLite made.
+RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string& geom_col, const std::string& fid_col,
+                            bool filled);
 
 }  // namespace fdr::io::detail

@@ -222,12 +222,12 @@ class File {
 // Runs work(slot, i) for i in [0, n) in increasing order of claims, on two threads when
 // allowed (slot 0: the calling thread, 1: the other).
 template <class Work>
-void claim_all(std::size_t n, Work work) {
+void claim_all(std::size_t n, bool two, Work work) {
   std::atomic<std::size_t> next{0};
   auto loop = [&](int slot) {
     for (std::size_t i; (i = next.fetch_add(1)) < n;) work(slot, i);
   };
-  if (max_threads() > 1 && n > 1) run_beside([&] { loop(1); }, [&] { loop(0); });
+  if (two && max_threads() > 1 && n > 1) run_beside([&] { loop(1); }, [&] { loop(0); });
   else loop(0);
 }
 
@@ -289,7 +289,9 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
   };
   std::string bufs[2];
   Record recs[2];
-  claim_all(chunks.size(), [&](int slot, std::size_t c) {
+  bool two = true;
+  for (const BulkTable& t : tables) two = two && t.thread_safe;
+  claim_all(chunks.size(), two, [&](int slot, std::size_t c) {
     Chunk& ch = chunks[c];
     const BulkTable& t = tables[ch.table];
     std::string& buf = bufs[slot];

@@ -47,12 +47,12 @@ class Record {
 };
 
 // A table to fill: `row(i, r)` builds row i of `rows` into r (r.clear(rowid) first); rowids
-// must ascend. Rows are built twice (once to pack the pages, once to write them), possibly on
-// another thread than the caller's, so `row` must be safe to call from two threads at once.
+// must ascend. Rows are built on two threads at once unless a table says it cannot be.
 struct BulkTable {
   std::string name;        // for messages
   std::int64_t root = 0;   // root page (an empty table leaf, as CREATE TABLE leaves it)
   std::size_t rows = 0;
+  bool thread_safe = true;  // false: every row built on one thread (then every table's are)
   std::function<void(std::size_t, Record&)> row;
 };
 
