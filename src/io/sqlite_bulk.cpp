@@ -287,7 +287,9 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
     else
       for (Leaf& l : ch.leaves) l.page = new_page();
   };
+  // Both threads' page buffers from this thread's heap (which may hold pages freed before).
   std::string bufs[2];
+  for (std::string& b : bufs) b.reserve(kChunkBytes + kChunkBytes / 4 + 2 * page_size);
   Record recs[2];
   bool two = true;
   for (const BulkTable& t : tables) two = two && t.thread_safe;

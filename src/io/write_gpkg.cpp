@@ -509,19 +509,19 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
                       }});
     db.exec("COMMIT");
     db.close();
-    lap("tables");
     write_bulk_tables(tf.path(), path, tables);
-    lap("node and triangle pages");
   };
+  // The plans on this thread (their large arrays then reuse the pages this thread's heap freed
+  // in the stages before: 15-20 MiB less at the process's peak than on a fresh thread).
   if (index && max_threads() > 1) {
-    run_beside([&] { plan_trees(); }, tables_and_rows);
+    run_beside(tables_and_rows, [&] { plan_trees(); });
   } else {
     if (index) plan_trees();
     tables_and_rows();
   }
+  lap("tables and node and triangle pages, R-tree plans beside");
   if (index) {
     if (plan_error) std::rethrow_exception(plan_error);
-    lap("R-tree plans");
     node_tree.set_plan(std::move(node_plan), path);
     tri_tree.set_plan(std::move(tri_plan), path);
     std::vector<BulkTable> tables;
