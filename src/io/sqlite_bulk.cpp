@@ -83,21 +83,20 @@ std::uint64_t get_be(const unsigned char* p, int bytes) {
   return v;
 }
 
-// Header size of a record with these serial types (the size's own varint included).
-std::size_t header_size(const std::uint64_t* types, int n) {
-  std::size_t h = 0;
-  for (int i = 0; i < n; ++i) h += static_cast<std::size_t>(varint_len(types[i]));
-  std::size_t k = 1;
-  while (static_cast<std::size_t>(varint_len(h + k)) > k) ++k;
-  return h + k;
-}
-
 }  // namespace
 
 Record& Record::type(std::uint64_t t) {
   if (ntypes_ == kMaxColumns) throw Error(ExitCode::kInternal, "SQLite record with more than 32 columns");
   types_[ntypes_++] = t;
+  type_bytes_ += static_cast<std::size_t>(varint_len(t));
   return *this;
+}
+
+// The record header's size: the serial types' varints and its own size's varint.
+std::size_t Record::header_size() const {
+  std::size_t k = 1;
+  while (static_cast<std::size_t>(varint_len(type_bytes_ + k)) > k) ++k;
+  return type_bytes_ + k;
 }
 
 Record& Record::add_int(std::int64_t v) {
@@ -142,7 +141,7 @@ Record& Record::add_text(std::string_view s) {
   return *this;
 }
 
-std::size_t Record::payload_size() const { return header_size(types_, ntypes_) + body_.size(); }
+std::size_t Record::payload_size() const { return header_size() + body_.size(); }
 
 std::size_t Record::cell_size() const {
   const std::size_t p = payload_size();
@@ -150,7 +149,7 @@ std::size_t Record::cell_size() const {
 }
 
 char* Record::write_cell(char* o) const {
-  const std::size_t hs = header_size(types_, ntypes_);
+  const std::size_t hs = header_size();
   o = put_varint(o, hs + body_.size());
   o = put_varint(o, static_cast<std::uint64_t>(rowid_));
   o = put_varint(o, hs);

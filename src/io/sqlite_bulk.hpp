@@ -22,6 +22,7 @@ class Record {
   void clear(std::int64_t rowid) {
     rowid_ = rowid;
     ntypes_ = 0;
+    type_bytes_ = 0;
     body_.clear();
   }
   Record& add_int(std::int64_t v);
@@ -40,8 +41,10 @@ class Record {
 
  private:
   Record& type(std::uint64_t t);
+  std::size_t header_size() const;
   std::int64_t rowid_ = 0;
   int ntypes_ = 0;
+  std::size_t type_bytes_ = 0;  // the serial types' varints
   std::uint64_t types_[kMaxColumns];
   std::string body_;
 };

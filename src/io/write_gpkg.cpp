@@ -102,14 +102,22 @@ class GeomBlob {
     return b_;
   }
   // Polygon with one ring or linestring; `closed` repeats the first point (the ring always is).
+  // The polygon's bytes are written in place into a buffer sized once (one per triangle row).
   template <class Pt>
   const std::string& polygon(const Pt* p, std::uint32_t n) {
     header(0x03);
     envelope(p, n);
-    wkb_head(3);
-    put32(1);
-    put32(n + 1);
-    for (std::uint32_t i = 0; i <= n; ++i) put(p[i % n].x), put(p[i % n].y);
+    const std::size_t at = b_.size();
+    b_.resize(at + 1 + 4 + 4 + 4 + 16 * (static_cast<std::size_t>(n) + 1));
+    char* o = b_.data() + at;
+    *o++ = 1;  // little endian
+    const std::uint32_t head[3] = {3, 1, n + 1};  // polygon, one ring, its points
+    std::memcpy(o, head, 12);
+    o += 12;
+    for (std::uint32_t i = 0; i <= n; ++i, o += 16) {
+      const double xy[2] = {p[i % n].x, p[i % n].y};
+      std::memcpy(o, xy, 16);
+    }
     return b_;
   }
   template <class Pt>
@@ -142,7 +150,8 @@ class GeomBlob {
       minx = std::min(minx, p[i].x), maxx = std::max(maxx, p[i].x);
       miny = std::min(miny, p[i].y), maxy = std::max(maxy, p[i].y);
     }
-    put(minx), put(maxx), put(miny), put(maxy);
+    const double e[4] = {minx, maxx, miny, maxy};
+    b_.append(reinterpret_cast<const char*>(e), 32);
   }
   void wkb_head(std::uint32_t type) {
     b_.push_back(1);
