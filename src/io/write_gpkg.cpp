@@ -304,6 +304,9 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   // R-tree nodes stay 51 cells (SQLite's cap, reached from 4 KiB pages on). Small meshes keep
   // 4 KiB pages: every table takes at least one page.
   if (nt >= kLargePagesFrom) db.exec("PRAGMA page_size = 65536");
+  // No auto-vacuum (the B-tree pages written by sqlite_bulk.cpp assume none; SQLite's default,
+  // unless a build changed it).
+  db.exec("PRAGMA auto_vacuum = NONE");
   db.exec("PRAGMA application_id = " + std::to_string(kGpkgApplicationId) + "; PRAGMA user_version = " +
           std::to_string(kGpkgUserVersion) + ";");
   // The file is a private temp file renamed into place on success, so no journal and no syncs:
