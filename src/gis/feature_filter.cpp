@@ -1885,8 +1885,16 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
   return out;
 }
 
+void start_removed(FeatureFilterResult& res) {
+  const std::shared_ptr<PendingRemoved> p = res.removed_pending;
+  if (!p || !p->job.valid() || p->runner.valid() || max_threads() < 2) return;
+  // wait() runs the deferred listing on the runner's thread; its result (or error) stays in job.
+  p->runner = std::async(std::launch::async, [p] { p->job.wait(); });
+}
+
 std::vector<pslg::Repair> finish_removed(FeatureFilterResult& res) {
   if (!res.removed_pending || !res.removed_pending->job.valid()) return {};
+  if (res.removed_pending->runner.valid()) res.removed_pending->runner.get();
   RemovedWater w = res.removed_pending->job.get();
   res.removed_pending.reset();
   const std::size_t first = res.repairs.size();
@@ -2939,7 +2947,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
         return std::getenv("FDR_DIFF_OVERLAY") ? checked(w0->Difference(rm.get()), "difference input - result")
                                                : difference_by_faces(w0.get(), rm.get(), "difference input - result");
       };
-      gone_job = std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(job));
+      // Deferred with the listing (defer_removed): the caller starts both where a core is free.
+      gone_job = std::async(max_threads() >= 2 && !o.defer_removed ? std::launch::async : std::launch::deferred,
+                            std::move(job));
     }
     // Whole input water bodies nowhere --min-feature wide.
     // (each result piece's inner point computed once, each input body prepared once: an ocean
@@ -3117,10 +3127,9 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
       return w;
     };
     if (o.defer_removed) {
-      // On the other core while the caller goes on (resampling); finish_removed() takes it.
+      // Started by the caller (start_removed) where a core is free; finish_removed() takes it.
       res.removed_pending = std::make_shared<PendingRemoved>();
-      res.removed_pending->job =
-          std::async(max_threads() >= 2 ? std::launch::async : std::launch::deferred, std::move(listing));
+      res.removed_pending->job = std::async(std::launch::deferred, std::move(listing));
     } else {
       add_removed(res, listing());
     }

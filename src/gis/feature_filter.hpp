@@ -54,7 +54,8 @@ struct RemovedWater {
   std::size_t closed = 0, corner_pieces = 0;
 };
 struct PendingRemoved {
-  std::future<RemovedWater> job;
+  std::future<RemovedWater> job;  // deferred: run by `runner` (start_removed) or by finish_removed
+  std::future<void> runner;
 };
 
 struct FeatureFilterResult {
@@ -90,6 +91,10 @@ struct FeatureFilterResult {
 
 // Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
+
+// Starts a deferred removed-water listing on a thread of its own (with two threads allowed), so
+// that it runs beside what the caller does next; finish_removed then only waits.
+void start_removed(FeatureFilterResult& res);
 
 // Waits for a deferred removed-water listing and adds it to res (repairs appended); returns the
 // repairs it added (none when nothing was pending). Rethrows the listing's error.

@@ -626,6 +626,8 @@ RepairRecord repair_record(const Frame& frame, pslg::Repair rep) {
 }
 }  // namespace
 
+void start_features(GisInput& in) { start_removed(in.features); }
+
 void finish_features(GisInput& in) {
   std::vector<pslg::Repair> reps = finish_removed(in.features);
   if (reps.empty()) return;

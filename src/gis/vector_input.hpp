@@ -115,6 +115,10 @@ GisInput read_domain(const DomainOptions& options);
 // Runs pslg::clean on in.raw with `options` and replaces in.pslg / in.repairs.
 void clean_domain(GisInput& in, const pslg::CleanOptions& options);
 
+// Starts the resolution filter's deferred removed-water listing beside the caller (see
+// start_removed); finish_features takes it.
+void start_features(GisInput& in);
+
 // Adds the resolution filter's deferred removed-water listing (FeatureFilterOptions::defer_removed)
 // to in.features, in.feature_repairs and in.repairs (after the filter's other repairs, where
 // they were listed before the listing could be deferred); nothing when none is pending.

@@ -12,7 +12,9 @@ namespace fdr::pipeline {
 namespace {
 
 PreparedInput prepare_gis(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
-  return prepare_gis_input(opt, clock, progress, log);  // read (gis), spacing (sizing), clean, resample (pslg)
+  // read (gis), spacing (sizing), clean, resample (pslg); the removed-water listing completes
+  // after the refinement (pipeline.cpp: complete_input)
+  return prepare_gis_input(opt, clock, progress, log, true);
 }
 
 const gis::Frame& frame_of(const PreparedInput& in) {

@@ -208,7 +208,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
 }
 
 PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& sp, StageClock& clock,
-                              const LogFn& log) {
+                              const LogFn& log, bool defer_listing) {
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   const gis::Frame& frame = g.frame;
   const sizing::SizingPtr& f = sp.f;
@@ -258,42 +258,6 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     coast_figures.push_back({"resample_pieces_restored", static_cast<double>(rs.pieces_restored)});
     clock.lap("resample");
   }
-  gis::finish_features(g);  // the filter's removed-water listing, done beside the stages above
-  {
-    const auto& ff = g.features;
-    coast_figures.push_back({"input_pieces", static_cast<double>(ff.input_pieces)});
-    coast_figures.push_back({"filtered_pieces", static_cast<double>(ff.output_pieces)});
-    coast_figures.push_back({"polygons_united", static_cast<double>(ff.united)});
-    coast_figures.push_back({"narrow_water_closed", static_cast<double>(ff.closed)});
-    coast_figures.push_back({"water_removed_m2", ff.closed_area});
-    coast_figures.push_back({"corner_pieces_removed", static_cast<double>(ff.corner_pieces)});
-    coast_figures.push_back({"channels_kept", static_cast<double>(ff.channels_kept)});
-    coast_figures.push_back({"islands_removed", static_cast<double>(ff.islands_removed)});
-    coast_figures.push_back({"islands_removed_m2", ff.islands_area});
-    coast_figures.push_back({"thin_land_removed_m2", ff.land_removed_area});
-    coast_figures.push_back({"tips_kept", static_cast<double>(ff.tips_kept)});
-    coast_figures.push_back({"islets_simplified", static_cast<double>(ff.islets_replaced)});
-    coast_figures.push_back({"islets_joined", static_cast<double>(ff.islets_joined)});
-    coast_figures.push_back({"islets_joined_water_m2", ff.islets_joined_area});
-    coast_figures.push_back({"water_widened", static_cast<double>(ff.widened)});
-    coast_figures.push_back({"water_widened_m2", ff.widened_area});
-    coast_figures.push_back({"input_area_m2", ff.input_area});
-    info("features: " + std::to_string(ff.input_pieces) + " water bodies in, " + std::to_string(ff.output_pieces) +
-         " out; " + std::to_string(ff.closed) + " narrow water pieces closed (" + num(ff.closed_area / 1e6) +
-         " km^2 with corner rounding), " + std::to_string(ff.channels_kept) + " narrow connections kept, " +
-         std::to_string(ff.islands_removed) + " islands removed (" + num(ff.islands_area / 1e6) + " km^2), " +
-         std::to_string(ff.islets_replaced) + " islets kept as triangles, " + std::to_string(ff.islets_joined) +
-         " joined to land, " +
-         num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
-         " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
-         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
-  }
-  std::map<std::string, std::size_t> kinds;
-  for (const auto& r : g.repairs) ++kinds[r.repair.kind];
-  std::string rep = "repairs: " + std::to_string(g.repairs.size());
-  for (const auto& [k, n] : kinds) rep += ", " + k + " " + std::to_string(n);
-  info(rep);
-
   PreparedInput out;
   out.hmin = hmin;
   out.coast_figures = std::move(coast_figures);
@@ -303,10 +267,6 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();
-  for (const auto& r : g.repairs) {
-    const Point2 w = r.repair.where;
-    out.repairs.push_back({r.repair.kind, w.x, w.y, r.repair.size, r.repair.reason, r.repair.part});
-  }
   out.metadata.push_back({"crs_wkt", frame.wkt()});
   out.metadata.push_back({"crs_epsg", std::to_string(frame.epsg())});
   out.metadata.push_back({"local_origin", num(frame.origin().x) + "," + num(frame.origin().y)});
@@ -317,6 +277,57 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   out.frame = std::make_shared<const gis::Frame>(frame);
   out.dem = sp.dem;
   out.spacing_grid = sp.spacing_grid;
+  // The filter's removed-water listing (started beside the stages since the spacing), then the
+  // figures and repairs that need it. Deferred: run by complete_input() once the refinement is
+  // done, so that the listing has the core the refinement leaves free (and its memory does not
+  // add to the spacing stage's, the process's peak).
+  g.raw = {};
+  g.domain_polygons.clear();
+  g.input_polygons.clear();
+  auto rest = std::make_shared<gis::GisInput>(std::move(g));
+  auto complete = [rest, log](PreparedInput& in) {
+    auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
+    gis::finish_features(*rest);
+    const auto& ff = rest->features;
+    auto& cf = in.coast_figures;
+    cf.push_back({"input_pieces", static_cast<double>(ff.input_pieces)});
+    cf.push_back({"filtered_pieces", static_cast<double>(ff.output_pieces)});
+    cf.push_back({"polygons_united", static_cast<double>(ff.united)});
+    cf.push_back({"narrow_water_closed", static_cast<double>(ff.closed)});
+    cf.push_back({"water_removed_m2", ff.closed_area});
+    cf.push_back({"corner_pieces_removed", static_cast<double>(ff.corner_pieces)});
+    cf.push_back({"channels_kept", static_cast<double>(ff.channels_kept)});
+    cf.push_back({"islands_removed", static_cast<double>(ff.islands_removed)});
+    cf.push_back({"islands_removed_m2", ff.islands_area});
+    cf.push_back({"thin_land_removed_m2", ff.land_removed_area});
+    cf.push_back({"tips_kept", static_cast<double>(ff.tips_kept)});
+    cf.push_back({"islets_simplified", static_cast<double>(ff.islets_replaced)});
+    cf.push_back({"islets_joined", static_cast<double>(ff.islets_joined)});
+    cf.push_back({"islets_joined_water_m2", ff.islets_joined_area});
+    cf.push_back({"water_widened", static_cast<double>(ff.widened)});
+    cf.push_back({"water_widened_m2", ff.widened_area});
+    cf.push_back({"input_area_m2", ff.input_area});
+    info("features: " + std::to_string(ff.input_pieces) + " water bodies in, " + std::to_string(ff.output_pieces) +
+         " out; " + std::to_string(ff.closed) + " narrow water pieces closed (" + num(ff.closed_area / 1e6) +
+         " km^2 with corner rounding), " + std::to_string(ff.channels_kept) + " narrow connections kept, " +
+         std::to_string(ff.islands_removed) + " islands removed (" + num(ff.islands_area / 1e6) + " km^2), " +
+         std::to_string(ff.islets_replaced) + " islets kept as triangles, " + std::to_string(ff.islets_joined) +
+         " joined to land, " +
+         num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
+         " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
+         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
+    std::map<std::string, std::size_t> kinds;
+    for (const auto& r : rest->repairs) ++kinds[r.repair.kind];
+    std::string rep = "repairs: " + std::to_string(rest->repairs.size());
+    for (const auto& [k, n] : kinds) rep += ", " + k + " " + std::to_string(n);
+    info(rep);
+    for (const auto& r : rest->repairs) {
+      const Point2 w = r.repair.where;
+      in.repairs.push_back({r.repair.kind, w.x, w.y, r.repair.size, r.repair.reason, r.repair.part});
+    }
+  };
+  if (defer_listing) out.complete = std::move(complete);
+  else complete(out);
   return out;
 }
 
@@ -326,13 +337,18 @@ PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, 
   return prepare_gis_input(opt, clock, progress, log);
 }
 
-PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log) {
+PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log,
+                                bool defer_listing) {
   // What the allocator maps for GEOS's objects, the spacing grids and the cleaned and resampled
   // PSLG goes on huge pages (base/memory.hpp).
   const HugePageArenas huge;
   gis::GisInput g = read_gis_input(opt, clock, progress, log);
   const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
-  return clean_gis_input(opt, std::move(g), sp, clock, log);
+  // The filter's removed-water listing from here on, on the core the spacing stage no longer
+  // needs (beside it, the listing took that core from the spacing's parallel loops and its
+  // memory added to the spacing stage's, the process's peak).
+  gis::start_features(g);
+  return clean_gis_input(opt, std::move(g), sp, clock, log, defer_listing);
 }
 
 std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log) {

@@ -1,5 +1,6 @@
 // The GIS stage of the pipeline: OGR/GDAL inputs -> PSLG in a projected local frame + spacing f.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -34,7 +35,20 @@ struct PreparedInput {
   double hmin = 0;                        // metres
   std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame
   std::vector<std::pair<std::string, double>> coast_figures;  // filter/resample counts for the report
+  // GIS runs prepared with defer_listing: what completes `repairs` and `coast_figures` (the
+  // resolution filter's removed-water listing, running beside the stages meanwhile); run it with
+  // complete_input() before reading them.
+  std::function<void(PreparedInput&)> complete;
 };
+
+// Runs in.complete once (nothing when there is none). Inline: the core pipeline calls it
+// without linking the GIS side (the function it runs comes from there).
+inline void complete_input(PreparedInput& in) {
+  if (!in.complete) return;
+  auto c = std::move(in.complete);
+  in.complete = nullptr;
+  c(in);
+}
 
 // Read stage, GIS inputs: the OGR/GDAL layers named in `opt` (any non-.poly input) in a
 // projected local frame, through the resolution filter (gis::read_domain). Laps "read".
@@ -57,11 +71,13 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
 // cleaned with f known, boundaries resampled to f (pslg::resample) unless --keep-coast; the
 // PSLG and what the later stages need. Laps "repair", "resample".
 PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& spacing, StageClock& clock,
-                              const LogFn& log);
+                              const LogFn& log, bool defer_listing = false);
 
 // The three GIS stages above in order (for tests and callers that want the prepared input), the
 // allocator's new memory on huge pages while they run (base::HugePageArenas).
-PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log);
+// defer_listing: the removed-water listing is left to PreparedInput::complete (complete_input).
+PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const ProgressFn& progress, const LogFn& log,
+                                bool defer_listing = false);
 PreparedInput prepare_gis_input(const Options& opt, const ProgressFn& progress, const LogFn& log);
 
 // Read stage, .poly/.node inputs: the PSLG in its local frame and f from --spacing (default: the

@@ -33,8 +33,6 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     predicates::counters().filtered += gis_calls.filtered;
     predicates::counters().exact += gis_calls.exact;
     result.crs_name = in.crs_name;
-    result.repairs = in.repairs.size();
-    result.repair_rows = in.repairs;
   } else {
     in = prepare_poly_input(opt, log);  // read, resolve or refuse conflicts (pslg), spacing from --spacing
     result.repairs = in.repairs.size();
@@ -59,6 +57,13 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   to.log = log;
   to.stage_done = [&clock](const std::string& stage) { clock.lap(stage); };
   fig.refine = fdr::refine_stage(tri, *in.f, in.pslg.bbox(), to);  // refine, smooth, check
+  if (plan.gis) {
+    // The filter's removed-water listing ran beside the CDT and the refinement: its repairs and
+    // figures now (pipeline/gis_stage.cpp).
+    complete_input(in);
+    result.repairs = in.repairs.size();
+    result.repair_rows = in.repairs;
+  }
   report_progress(0.8, "report");
   result.alpha = fig.refine.alpha;
   result.min_angle_deg = to.min_angle_deg;
