@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 
+#include "base/error.hpp"
 #include "io/detail.hpp"
 
 namespace fdr::io::detail {
@@ -203,7 +204,9 @@ std::string quoted(const std::string& name) { return "\"" + name + "\""; }
 }  // namespace
 
 RtreeEntry RtreeEntry::of(std::int64_t id, double minx, double maxx, double miny, double maxy) {
-  return {id, {round_down(minx), round_up(maxx), round_down(miny), round_up(maxy)}};
+  if (id < 1 || id > 0xFFFFFFFFLL)
+    throw Error(ExitCode::kInternal, "R-tree entry id " + std::to_string(id) + " outside 1 .. 2^32 - 1");
+  return {static_cast<std::uint32_t>(id), {round_down(minx), round_up(maxx), round_down(miny), round_up(maxy)}};
 }
 
 std::size_t gpkg_rtree_cap(std::int64_t page_size) {
@@ -228,7 +231,7 @@ RtreePlan plan_gpkg_rtree(std::vector<RtreeEntry> entries, std::size_t cap) {
     const Cell* grp = cur.data();
     for (const std::size_t n : sizes) {
       const std::int64_t no = root ? 1 : next_no++;
-      Cell q{no, {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
+      Cell q{static_cast<std::uint32_t>(no), {grp[0].box[0], grp[0].box[1], grp[0].box[2], grp[0].box[3]}};
       for (const Cell* c = grp; c != grp + n; ++c) {
         q.box[0] = std::min(q.box[0], c->box[0]);
         q.box[1] = std::max(q.box[1], c->box[1]);
@@ -279,7 +282,7 @@ void for_each_node(const RtreePlan& plan, Fn node) {
 std::vector<std::uint32_t> leaves_of(const RtreePlan& plan) {
   std::vector<std::uint32_t> leaf_of;
   std::int64_t max_id = 0;
-  for (const Cell& c : plan.levels[0]) max_id = std::max(max_id, c.id);
+  for (const Cell& c : plan.levels[0]) max_id = std::max<std::int64_t>(max_id, c.id);
   leaf_of.assign(static_cast<std::size_t>(max_id) + 1, 0);
   for_each_node(plan, [&](std::int64_t no, std::size_t depth, std::size_t first, std::size_t n, bool) {
     if (depth == 0)
@@ -348,7 +351,7 @@ void build_gpkg_rtree(SqliteDb& db, const std::string& table, const std::string&
       const Cell* grp = plan.levels[depth].data() + first;
       if (depth > 0)
         for (const Cell* c = grp; c != grp + n; ++c) {
-          parent_rows.add_int(c->id).add_int(no);
+          parent_rows.add_int(static_cast<std::int64_t>(c->id)).add_int(no);
           parent_rows.end_row();
         }
       node_blob(blob, grp, n, root ? static_cast<int>(depth) : 0, node_size);
