@@ -107,6 +107,27 @@ class KeepFreedPages : public ArenaDecay {
   ~KeepFreedPages();
 };
 
+// A jemalloc arena of its own for work that runs beside the pipeline's stages (the GIS filter's
+// removed-water listing: GEOS's millions of small objects), whose freed pages it keeps (decay
+// -1) whatever the ArenaDecay of the stages meanwhile; bind() puts the calling thread's
+// allocations there. When it ends its pages go back to the system. Why: under the mesh stages'
+// EagerMemoryRelease (decay 0) every page GEOS freed was purged and faulted in again (GSHHG-h
+// basin: the listing beside the refinement took 4.4 s instead of 2). A no-op under any other
+// allocator.
+class OwnArena {
+ public:
+  OwnArena();
+  ~OwnArena();
+  OwnArena(const OwnArena&) = delete;
+  OwnArena& operator=(const OwnArena&) = delete;
+  void bind() const;  // the calling thread allocates from it (until it ends)
+  bool active() const { return active_; }
+
+ private:
+  bool active_ = false;
+  unsigned index_ = 0;
+};
+
 // While it lives, the memory jemalloc maps for its arenas is backed by transparent huge pages
 // (every arena's extent allocation hook is wrapped to madvise MADV_HUGEPAGE the extents of 2 MiB
 // or more that it maps; the advice is taken back and the previous hooks come back when it ends,

@@ -1889,13 +1889,20 @@ void start_removed(FeatureFilterResult& res) {
   const std::shared_ptr<PendingRemoved> p = res.removed_pending;
   if (!p || !p->job.valid() || p->runner.valid() || max_threads() < 2) return;
   // wait() runs the deferred listing on the runner's thread; its result (or error) stays in job.
-  p->runner = std::async(std::launch::async, [p] { p->job.wait(); });
+  // Its allocations in an arena of its own, which keeps its freed pages through the mesh stages'
+  // eager release.
+  p->arena = std::make_shared<OwnArena>();
+  p->runner = std::async(std::launch::async, [p] {
+    p->arena->bind();
+    p->job.wait();
+  });
 }
 
 std::vector<pslg::Repair> finish_removed(FeatureFilterResult& res) {
   if (!res.removed_pending || !res.removed_pending->job.valid()) return {};
   if (res.removed_pending->runner.valid()) res.removed_pending->runner.get();
   RemovedWater w = res.removed_pending->job.get();
+  res.removed_pending->arena.reset();  // its pages back to the system
   res.removed_pending.reset();
   const std::size_t first = res.repairs.size();
   add_removed(res, std::move(w));

@@ -13,6 +13,7 @@
 // (kept), a piece touching none is a small water body of its own (kept), a piece touching one is
 // a dead end (closed). Result R = O1 + kept pieces; W - R is listed as repairs.
 #pragma once
+#include "base/memory.hpp"
 #include <cstddef>
 #include <future>
 #include <memory>
@@ -56,6 +57,7 @@ struct RemovedWater {
 struct PendingRemoved {
   std::future<RemovedWater> job;  // deferred: run by `runner` (start_removed) or by finish_removed
   std::future<void> runner;
+  std::shared_ptr<OwnArena> arena;  // the runner's allocations (base/memory.hpp)
 };
 
 struct FeatureFilterResult {

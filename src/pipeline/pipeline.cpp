@@ -55,12 +55,20 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   for (const auto& r : in.pslg.regions) to.region_max_area.push_back(r.max_area);
   to.progress = progress;
   to.log = log;
-  to.stage_done = [&clock](const std::string& stage) { clock.lap(stage); };
+  to.stage_done = [&](const std::string& stage) {
+    clock.lap(stage);
+    // GIS runs: the filter's removed-water listing ran beside the CDT and the refinement (single
+    // threads); it is waited for before the smoothing, which takes both cores (beside it the
+    // listing slowed it by half on a GSHHG-h basin). Its repairs and figures now
+    // (pipeline/gis_stage.cpp); a wait shows as the stage "listing".
+    if (stage == "refine" && in.complete) {
+      complete_input(in);
+      clock.lap("listing");
+    }
+  };
   fig.refine = fdr::refine_stage(tri, *in.f, in.pslg.bbox(), to);  // refine, smooth, check
   if (plan.gis) {
-    // The filter's removed-water listing ran beside the CDT and the refinement: its repairs and
-    // figures now (pipeline/gis_stage.cpp).
-    complete_input(in);
+    complete_input(in);  // done after the refinement (above) unless it stopped before
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
   }
