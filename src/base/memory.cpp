@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -110,6 +111,22 @@ void unadvise_huge_pages(const void* p, std::size_t bytes) { advise_inner(p, byt
 void advise_huge_pages(const void*, std::size_t) {}
 void unadvise_huge_pages(const void*, std::size_t) {}
 #endif
+
+std::optional<ProcessMemory> process_memory() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return std::nullopt;
+  ProcessMemory m;
+  bool rss = false, peak = false;
+  char line[256];
+  while (std::fgets(line, sizeof line, f)) {
+    unsigned long long kb = 0;
+    if (std::sscanf(line, "VmRSS: %llu kB", &kb) == 1) m.rss = static_cast<std::size_t>(kb) * 1024, rss = true;
+    else if (std::sscanf(line, "VmHWM: %llu kB", &kb) == 1) m.peak = static_cast<std::size_t>(kb) * 1024, peak = true;
+  }
+  std::fclose(f);
+  if (!rss || !peak) return std::nullopt;
+  return m;
+}
 
 void release_free_memory() {
   if (!mallctl) return;

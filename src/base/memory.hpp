@@ -3,6 +3,7 @@
 #include <sys/types.h>
 #include <cstddef>
 #include <iterator>
+#include <optional>
 #include <vector>
 
 namespace fdr {
@@ -106,6 +107,13 @@ class KeepFreedPages : public ArenaDecay {
   KeepFreedPages() : ArenaDecay(-1) {}
   ~KeepFreedPages();
 };
+
+// This process's resident memory now and at its peak (Linux /proc/self/status VmRSS, VmHWM),
+// in bytes; nullopt where unavailable.
+struct ProcessMemory {
+  std::size_t rss = 0, peak = 0;
+};
+std::optional<ProcessMemory> process_memory();
 
 // A jemalloc arena of its own for work that runs beside the pipeline's stages (the GIS filter's
 // removed-water listing: GEOS's millions of small objects), whose freed pages it keeps (decay
