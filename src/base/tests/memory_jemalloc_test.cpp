@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 #include "base/memory.hpp"
 #include "base/tests/smaps_flags.hpp"
@@ -123,4 +124,43 @@ TEST(HugePageArenas, AdvisesTheExtentItAllocatesBeforeWrappingTheHooks) {
     EXPECT_TRUE(fdr::test::advised_huge(grid.get() + (std::size_t{8} << 20)));
   }
   EXPECT_FALSE(fdr::test::advised_huge(grid.get() + (std::size_t{8} << 20)));  // the advice taken back
+}
+
+// An OwnArena keeps its decay at -1 while an EagerMemoryRelease sets every other arena's to 0,
+// the bound thread allocates from it, release_free_memory() leaves its pages, and its end
+// purges them.
+TEST(OwnArena, KeepsItsPagesUnderEagerReleaseAndIsBound) {
+  fdr::OwnArena own;
+  ASSERT_TRUE(own.active());
+  unsigned mine = 0;
+  std::vector<std::unique_ptr<char[]>> blocks;
+  std::thread t([&] {
+    own.bind();
+    mine = read_ctl<unsigned>("thread.arena");
+    for (int i = 0; i < 2000; ++i) blocks.emplace_back(new char[4096]);
+  });
+  t.join();
+  ASSERT_NE(mine, 0u);
+  const std::string a = "arena." + std::to_string(mine) + ".";
+  EXPECT_EQ(read_ssize(a + "dirty_decay_ms"), -1);
+  {
+    fdr::EagerMemoryRelease eager;
+    EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), 0);
+    EXPECT_EQ(read_ssize(a + "dirty_decay_ms"), -1);  // left alone
+    blocks.clear();  // freed into the own arena: kept
+    fdr::release_free_memory();
+    std::size_t dirty = 0;
+    const std::uint64_t epoch = 1;
+    mallctl("epoch", nullptr, nullptr, const_cast<std::uint64_t*>(&epoch), sizeof epoch);
+    dirty = read_ctl<std::size_t>("stats.arenas." + std::to_string(mine) + ".pdirty");
+    EXPECT_GT(dirty, 0u);  // its freed pages stay for reuse
+  }
+  EXPECT_EQ(read_ssize(a + "dirty_decay_ms"), -1);
+}
+
+TEST(ProcessMemory, PeakAtLeastResident) {
+  const auto m = fdr::process_memory();
+  ASSERT_TRUE(m.has_value());
+  EXPECT_GT(m->rss, 0u);
+  EXPECT_GE(m->peak, m->rss);
 }
