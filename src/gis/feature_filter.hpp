@@ -46,6 +46,11 @@ struct FeatureFilterOptions {
   bool defer_removed = false;  // the listing of removed water (input minus result: thousands of
                                // pieces, seconds on an ocean basin) goes on on another thread after
                                // filter_features returns; finish_removed() adds it to the result
+  // With defer_removed: the listing starts at once (beside the rest of the read) when the process
+  // holds at least this many bytes there, a large input whose read goes on long enough to hide
+  // it and whose filter's peak dwarfs what the spacing stage adds; else the caller starts it
+  // (start_removed). 0: never at once.
+  std::size_t early_listing_rss = 0;
 };
 
 // The listing of removed water: its repairs (narrow_water_closed) and figures.
@@ -95,8 +100,9 @@ struct FeatureFilterResult {
 FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
 
 // Starts a deferred removed-water listing on a thread of its own (with two threads allowed), so
-// that it runs beside what the caller does next; finish_removed then only waits.
-void start_removed(FeatureFilterResult& res);
+// that it runs beside what the caller does next, its allocations on an arena of its own
+// (OwnArena) when `own_arena`; finish_removed then only waits. Nothing if it already runs.
+void start_removed(FeatureFilterResult& res, bool own_arena = true);
 
 // Waits for a deferred removed-water listing and adds it to res (repairs appended); returns the
 // repairs it added (none when nothing was pending). Rethrows the listing's error.

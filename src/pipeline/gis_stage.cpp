@@ -96,7 +96,11 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // README: islets
     fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
     fo.join_islets = !opt.keep_coast;
-    fo.defer_removed = true;  // listed while the coast is cleaned and resampled (finish_features)
+    fo.defer_removed = true;  // listed beside the stages that follow (start_features, finish_features)
+    // At once when the filter holds 512 MiB or more: a large input (GSHHG-h basin: 970 MB there,
+    // the listing 2.4 s, hidden by the rest of its read; the Gulf of Maine: 170 MB, 0.3 s, started
+    // after the spacing stage, whose peak it would raise by 50 MiB).
+    fo.early_listing_rss = std::size_t{512} << 20;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
     return fo;
@@ -343,20 +347,13 @@ PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const Pro
   // PSLG goes on huge pages (base/memory.hpp).
   const HugePageArenas huge;
   gis::GisInput g = read_gis_input(opt, clock, progress, log);
-  // The filter's removed-water listing runs beside the stages from here or from after the
-  // spacing stage, on an arena of its own, and is waited for after the refinement
-  // (pipeline.cpp). Beside the spacing stage it takes a core from its parallel loops and its
-  // memory adds to that stage's: Gulf of Maine, peak 197 -> 245-250 MiB and spacing 0.3 -> 0.45 s.
-  // So it starts after the spacing, unless the read's peak leaves room for both far above what
-  // the read keeps (a large input, whose listing is long too: GSHHG-h basin, 1 GB peak, 160 MB
-  // after the read, listing 3 s: started after the spacing it outlasted the refinement by 0.7 s,
-  // from here by 0.15 s).
-  constexpr std::size_t kRoom = std::size_t{256} << 20;
-  const std::optional<ProcessMemory> mem = process_memory();
-  const bool early = mem && mem->peak >= mem->rss + kRoom;
-  if (early) gis::start_features(g);
   const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
-  if (!early) gis::start_features(g);
+  // The filter's removed-water listing from here on (unless the filter started it: a large input,
+  // FeatureFilterOptions::early_listing_rss), on an arena of its own, waited for after the
+  // refinement (pipeline.cpp). Beside the spacing stage it took a core from its parallel loops
+  // and its memory added to that stage's, the process's peak (Gulf of Maine: 197 -> 245-250 MiB,
+  // spacing 0.3 -> 0.45 s).
+  gis::start_features(g);
   return clean_gis_input(opt, std::move(g), sp, clock, log, defer_listing);
 }
 
