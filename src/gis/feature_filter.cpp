@@ -2957,10 +2957,10 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
                                                : difference_by_faces(w0.get(), rm.get(), "difference input - result");
       };
       // Deferred with the listing (defer_removed): the caller starts both where a core is free,
-      // unless the input is large (early_listing_rss): then at once, on an arena of its own.
-      // (The read's arena then: its freed pages are kept and on huge pages while the read runs,
-      // and the listing of a large input is done before the mesh stages release pages eagerly;
-      // an arena of its own raised the GSHHG-h basin's peak by 100-130 MB.)
+      // unless the input is large (early_listing_rss): then at once, on the read's arena (its
+      // freed pages are kept and on huge pages while the read runs, and a large input's read
+      // goes on long enough that the listing is done before the mesh stages release pages
+      // eagerly; an arena of its own raised the GSHHG-h basin's peak by 100-130 MB).
       if (o.defer_removed && o.early_listing_rss > 0 && max_threads() >= 2) {
         const std::optional<ProcessMemory> mm = process_memory();
         early = mm && mm->rss >= o.early_listing_rss;
