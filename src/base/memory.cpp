@@ -72,24 +72,34 @@ void* huge_alloc(ExtentHooks* hooks, void* new_addr, std::size_t size, std::size
     return nullptr;
   }
   void* p = prev->alloc(prev, new_addr, size, alignment, zero, commit, arena);
-  if (p != nullptr && size >= (std::size_t{1} << 21)) advise_and_record(p, size);
+  // An OwnArena's extents are its own: advised, not recorded (a HugePageArenas ending meanwhile
+  // leaves them advised).
+  if (p != nullptr && size >= (std::size_t{1} << 21)) {
+    if (own_arena(arena)) advise_huge_pages(p, size);
+    else advise_and_record(p, size);
+  }
   return p;
 }
 
-// The extent hook of an OwnArena: its extents of 2 MiB or more advised for huge pages, not
-// recorded (the arena's own; a HugePageArenas ending meanwhile leaves them advised).
-ExtentHooks* g_own_previous[1024];
-ExtentHooks g_own_wrapped[1024];
-void* own_alloc(ExtentHooks* hooks, void* new_addr, std::size_t size, std::size_t alignment, bool* zero, bool* commit,
-                unsigned arena) {
-  ExtentHooks* prev = arena < 1024 ? g_own_previous[arena] : nullptr;
-  if (prev == nullptr) {
-    (void)hooks;
-    return nullptr;
-  }
-  void* p = prev->alloc(prev, new_addr, size, alignment, zero, commit, arena);
-  if (p != nullptr && size >= (std::size_t{1} << 21)) advise_huge_pages(p, size);
-  return p;
+bool jemalloc5() {
+  const char* version = nullptr;
+  std::size_t len = sizeof version;
+  return mallctl("version", &version, &len, nullptr, 0) == 0 && version != nullptr && std::strncmp(version, "5.", 2) == 0;
+}
+
+// Wraps arena i's extent hooks with huge_alloc; returns the hooks before (nullptr: not wrapped).
+ExtentHooks* wrap_hooks(unsigned i) {
+  if (i >= kMaxArenas) return nullptr;
+  const std::string name = "arena." + std::to_string(i) + ".extent_hooks";
+  ExtentHooks* old = nullptr;
+  std::size_t olen = sizeof old;
+  if (mallctl(name.c_str(), &old, &olen, nullptr, 0) != 0 || old == nullptr || old->alloc == nullptr) return nullptr;
+  if (old == &g_wrapped[i]) return nullptr;  // wrapped already (an ended OwnArena keeps its hooks)
+  g_previous[i] = old;
+  g_wrapped[i] = *old;
+  g_wrapped[i].alloc = huge_alloc;
+  ExtentHooks* mine = &g_wrapped[i];
+  return mallctl(name.c_str(), nullptr, nullptr, &mine, sizeof mine) == 0 ? old : nullptr;
 }
 
 }  // namespace
@@ -112,19 +122,23 @@ void advise_huge_pages(const void*, std::size_t) {}
 void unadvise_huge_pages(const void*, std::size_t) {}
 #endif
 
-std::optional<ProcessMemory> process_memory() {
-  std::FILE* f = std::fopen("/proc/self/status", "r");
+std::optional<ProcessMemory> process_memory(const std::string& status_path) {
+  std::FILE* f = std::fopen(status_path.c_str(), "r");
   if (!f) return std::nullopt;
   ProcessMemory m;
-  bool rss = false, peak = false;
+  bool peak = false;
   char line[256];
   while (std::fgets(line, sizeof line, f)) {
     unsigned long long kb = 0;
-    if (std::sscanf(line, "VmRSS: %llu kB", &kb) == 1) m.rss = static_cast<std::size_t>(kb) * 1024, rss = true;
-    else if (std::sscanf(line, "VmHWM: %llu kB", &kb) == 1) m.peak = static_cast<std::size_t>(kb) * 1024, peak = true;
+    char unit[4] = "";
+    const bool rss_line = std::sscanf(line, "VmRSS: %llu %3s", &kb, unit) == 2;
+    const bool hwm_line = !rss_line && std::sscanf(line, "VmHWM: %llu %3s", &kb, unit) == 2;
+    if (!(rss_line || hwm_line) || std::strcmp(unit, "kB") != 0) continue;
+    (rss_line ? m.rss : m.peak) = static_cast<std::size_t>(kb) * 1024;
+    peak = peak || hwm_line;
   }
   std::fclose(f);
-  if (!rss || !peak) return std::nullopt;
+  if (!peak) return std::nullopt;
   return m;
 }
 
@@ -192,20 +206,7 @@ OwnArena::OwnArena() {
   swap_ssize(a + "muzzy_decay_ms", &old, -1);
   // Its extents on huge pages (jemalloc 5 hooks, as HugePageArenas): GEOS's churn through a
   // fresh arena faulted 4 KiB pages by the hundred thousand (GSHHG-h basin: 0.29 M faults).
-  const char* version = nullptr;
-  std::size_t vlen = sizeof version;
-  if (mallctl("version", &version, &vlen, nullptr, 0) == 0 && version != nullptr && std::strncmp(version, "5.", 2) == 0) {
-    ExtentHooks* prev = nullptr;
-    std::size_t plen = sizeof prev;
-    const std::string h = a + "extent_hooks";
-    if (mallctl(h.c_str(), &prev, &plen, nullptr, 0) == 0 && prev != nullptr && prev->alloc != nullptr) {
-      g_own_previous[i] = prev;
-      g_own_wrapped[i] = *prev;
-      g_own_wrapped[i].alloc = own_alloc;
-      ExtentHooks* mine = &g_own_wrapped[i];
-      if (mallctl(h.c_str(), nullptr, nullptr, &mine, sizeof mine) != 0) g_own_previous[i] = nullptr;
-    }
-  }
+  if (jemalloc5()) wrap_hooks(i);
   index_ = i;
   active_ = true;
 }
@@ -233,11 +234,7 @@ KeepFreedPages::~KeepFreedPages() { release_free_memory(); }
 
 HugePageArenas::HugePageArenas() {
 #ifdef MADV_HUGEPAGE
-  if (!mallctl) return;
-  const char* version = nullptr;
-  std::size_t len = sizeof version;
-  if (mallctl("version", &version, &len, nullptr, 0) != 0 || version == nullptr || std::strncmp(version, "5.", 2) != 0)
-    return;
+  if (!mallctl || !jemalloc5()) return;
   bool expected = false;
   if (!g_huge_active.compare_exchange_strong(expected, true)) return;  // one at a time
   // Every automatic arena is made now (an arena made later would take the default hooks), and
@@ -251,17 +248,8 @@ HugePageArenas::HugePageArenas() {
   std::free(oversize);
   const unsigned n = std::min(arena_count(), kMaxArenas);
   previous_.assign(n, nullptr);
-  for (unsigned i = 0; i < n; ++i) {
-    const std::string name = "arena." + std::to_string(i) + ".extent_hooks";
-    ExtentHooks* old = nullptr;
-    std::size_t olen = sizeof old;
-    if (mallctl(name.c_str(), &old, &olen, nullptr, 0) != 0 || old == nullptr || old->alloc == nullptr) continue;
-    g_previous[i] = old;
-    g_wrapped[i] = *old;
-    g_wrapped[i].alloc = huge_alloc;
-    ExtentHooks* mine = &g_wrapped[i];
-    if (mallctl(name.c_str(), nullptr, nullptr, &mine, sizeof mine) == 0) previous_[i] = old;
-  }
+  for (unsigned i = 0; i < n; ++i)
+    if (!own_arena(i)) previous_[i] = wrap_hooks(i);
   active_ = true;
 #endif
 }

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <iterator>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace fdr {
@@ -108,12 +109,13 @@ class KeepFreedPages : public ArenaDecay {
   ~KeepFreedPages();
 };
 
-// This process's resident memory now and at its peak (Linux /proc/self/status VmRSS, VmHWM),
-// in bytes; nullopt where unavailable.
+// This process's resident memory now and at its peak (Linux /proc/self/status VmRSS, VmHWM, in
+// kB there), in bytes; nullopt without a VmHWM line (rss 0 without a VmRSS line). `status_path`:
+// another status file (tests).
 struct ProcessMemory {
   std::size_t rss = 0, peak = 0;
 };
-std::optional<ProcessMemory> process_memory();
+std::optional<ProcessMemory> process_memory(const std::string& status_path = "/proc/self/status");
 
 // A jemalloc arena of its own for work that runs beside the pipeline's stages (the GIS filter's
 // removed-water listing: GEOS's millions of small objects), whose freed pages it keeps (decay

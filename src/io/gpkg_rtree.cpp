@@ -386,14 +386,9 @@ RtreeRows create_gpkg_rtree(SqliteDb& db, const std::string& table, const std::s
   r.node_size = create_rtree_table(db, table, r.name);
   // Its empty root goes when the plan will bring every node (an empty table keeps it).
   if (filled) db.exec("DELETE FROM " + quoted(r.name + "_node"));
-  auto root_of = [&](const std::string& name) {
-    const std::int64_t p = db.query_int("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '" + name + "'");
-    if (p <= 1) fail_output(db.path(), "cannot find the root page of table '" + name + "'");
-    return p;
-  };
-  r.root_node = root_of(r.name + "_node");
-  r.root_parent = root_of(r.name + "_parent");
-  r.root_rowid = root_of(r.name + "_rowid");
+  r.root_node = db.root_page(r.name + "_node");
+  r.root_parent = db.root_page(r.name + "_parent");
+  r.root_rowid = db.root_page(r.name + "_rowid");
   add_triggers(db, table, geom_col, fid_col, r.name);
   return r;
 }

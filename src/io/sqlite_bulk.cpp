@@ -160,20 +160,16 @@ char* Record::write_cell(char* o) const {
 
 namespace {
 
-struct Leaf {
-  std::size_t first = 0, count = 0;  // rows
-  std::int64_t max_rowid = 0;
-  std::uint32_t page = 0;
-};
-
-struct Node {  // an interior node: children [first, first + count) of the level below
+// A page of a table's B-tree: a leaf holds rows [first, first + count), an interior node the
+// nodes [first, first + count) of the level below; max_rowid is its subtree's largest rowid.
+struct Node {
   std::size_t first = 0, count = 0;
   std::int64_t max_rowid = 0;
   std::uint32_t page = 0;
 };
 
 struct TablePlan {
-  std::vector<Leaf> leaves;
+  std::vector<Node> leaves;
   std::vector<std::vector<Node>> levels;  // interior levels, bottom up; the last has one node
 };
 
@@ -263,7 +259,7 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
   // kChunkBytes.
   struct Chunk {
     std::size_t table, first, end;
-    std::vector<Leaf> leaves;
+    std::vector<Node> leaves;
   };
   std::vector<Chunk> chunks;
   for (std::size_t k = 0; k < tables.size(); ++k) {
@@ -284,7 +280,7 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
     const bool alone = (c == 0 || chunks[c - 1].table != ch.table) && ch.end == tables[ch.table].rows;
     if (alone && ch.leaves.size() == 1) ch.leaves[0].page = static_cast<std::uint32_t>(tables[ch.table].root);
     else
-      for (Leaf& l : ch.leaves) l.page = new_page();
+      for (Node& l : ch.leaves) l.page = new_page();
   };
   // Both threads' page buffers from this thread's heap (which may hold pages freed before).
   std::string bufs[2];
@@ -351,7 +347,7 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
       if (failed) return;
     }
     // Consecutive pages in one write (a chunk's are consecutive but around the lock-byte page).
-    const std::vector<Leaf>& leaves = ch.leaves;
+    const std::vector<Node>& leaves = ch.leaves;
     for (std::size_t j = 0; j < leaves.size();) {
       std::size_t e = j + 1;
       while (e < leaves.size() && leaves[e].page == leaves[e - 1].page + 1) ++e;
@@ -374,7 +370,7 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
     if (p.leaves.size() < 2) continue;  // none, or a leaf on the root page
     // Group the children of one level under parents, as many as fit in a page each.
     std::vector<std::int64_t> keys;
-    for (const Leaf& l : p.leaves) keys.push_back(l.max_rowid);
+    for (const Node& l : p.leaves) keys.push_back(l.max_rowid);
     while (keys.size() > 1) {
       std::vector<Node> level;
       std::size_t used = usable;
@@ -414,14 +410,12 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
     for (std::size_t d = 0; d < p.levels.size(); ++d)
       for (const Node& n : p.levels[d]) {
         std::fill(page.begin(), page.end(), '\0');
-        auto child = [&](std::size_t i) -> std::pair<std::uint32_t, std::int64_t> {
-          if (d == 0) return {p.leaves[i].page, p.leaves[i].max_rowid};
-          return {p.levels[d - 1][i].page, p.levels[d - 1][i].max_rowid};
-        };
+        const std::vector<Node>& below = d == 0 ? p.leaves : p.levels[d - 1];
         std::size_t top = usable;
         const std::size_t cells = n.count - 1;
         for (std::size_t c = 0; c < cells; ++c) {
-          const auto [pg, key] = child(n.first + c);
+          const std::uint32_t pg = below[n.first + c].page;
+          const std::int64_t key = below[n.first + c].max_rowid;
           char cell[13];
           put_be(cell, pg, 4);
           const std::size_t len = static_cast<std::size_t>(put_varint(cell + 4, static_cast<std::uint64_t>(key)) - cell);
@@ -433,7 +427,7 @@ void write_bulk_tables(const std::string& file, const std::string& path, const s
         page[0] = 0x05;
         put_be(page.data() + 3, cells, 2);
         put_be(page.data() + 5, top == 65536 ? 0 : top, 2);
-        put_be(page.data() + 8, child(n.first + n.count - 1).first, 4);
+        put_be(page.data() + 8, below[n.first + n.count - 1].page, 4);
         f.write(page.data(), page_size, (n.page - 1) * page_size);
       }
   }

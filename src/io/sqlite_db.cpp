@@ -53,6 +53,14 @@ void SqliteDb::close() {
   db_ = nullptr;
 }
 
+std::int64_t SqliteDb::root_page(const std::string& table) {
+  std::string name;
+  for (char c : table) name += c == '\'' ? std::string("''") : std::string(1, c);
+  const std::int64_t p = query_int("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '" + name + "'");
+  if (p <= 1) fail_output(path_, "cannot find the root page of table '" + table + "'");
+  return p;
+}
+
 SqliteStmt::SqliteStmt(SqliteDb& db, const std::string& sql) : db_(db) {
   if (sqlite3_prepare_v2(db.get(), sql.c_str(), static_cast<int>(sql.size()), &st_, nullptr) != SQLITE_OK)
     db.fail("cannot prepare '" + sql.substr(0, 60) + "'");

@@ -27,6 +27,7 @@ class SqliteDb {
   const std::string& path() const { return path_; }
   void exec(const std::string& sql);                       // one or more statements, no results
   std::int64_t query_int(const std::string& sql);          // first column of the first row (0 if none)
+  std::int64_t root_page(const std::string& table);        // its B-tree's root page (sqlite_master); throws
   [[noreturn]] void fail(const std::string& what) const;  // adds sqlite3_errmsg
   void close();                                            // throws if closing fails
 

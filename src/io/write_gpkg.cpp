@@ -499,23 +499,17 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
       build_gpkg_rtree(db, "boundaries", "geom", "fid", std::move(chain_boxes));
       build_gpkg_rtree(db, "repairs", "geom", "fid", std::move(repair_boxes));
     }
-    auto root_of = [&](const char* name) {
-      const std::int64_t p =
-          db.query_int(std::string("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '") + name + "'");
-      if (p <= 1) fail_output(path, std::string("cannot find the root page of table '") + name + "'");
-      return p;
-    };
     // The rows are built on two threads: a sizing field that is not thread-safe keeps them on one.
     const bool f_shared = !o.f || o.f->thread_safe();
     std::vector<BulkTable> tables;
-    tables.push_back({"nodes", root_of("nodes"), nv, m.f.size() == nv || f_shared, [&values, srs_id](std::size_t v, Record& r) {
+    tables.push_back({"nodes", db.root_page("nodes"), nv, m.f.size() == nv || f_shared, [&values, srs_id](std::size_t v, Record& r) {
                         thread_local GeomBlob gb(0);
                         gb.set_srs(srs_id);
                         r.clear(static_cast<std::int64_t>(v + 1));
                         r.add_null();  // fid: the rowid
                         values.node(r, gb, v);
                       }});
-    tables.push_back({"triangles", root_of("triangles"), nt, o.triangle_r_over_f != nullptr || f_shared,
+    tables.push_back({"triangles", db.root_page("triangles"), nt, o.triangle_r_over_f != nullptr || f_shared,
                       [&values, srs_id](std::size_t t, Record& r) {
                         thread_local GeomBlob gb(0);
                         gb.set_srs(srs_id);

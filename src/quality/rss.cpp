@@ -1,27 +1,16 @@
-// Peak resident memory from /proc/self/status (VmHWM line, in kB).
+// Peak resident memory from /proc/self/status (VmHWM line, in kB; base/memory.hpp reads it).
 #include "quality/rss.hpp"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+
+#include "base/memory.hpp"
 
 namespace fdr::quality {
 
 std::optional<double> peak_rss_mb_value(const std::string& status_path) {
-  std::ifstream in(status_path);
-  if (!in) return std::nullopt;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("VmHWM:", 0) != 0) continue;
-    std::istringstream ss(line.substr(6));
-    double kb = 0;
-    std::string unit;
-    if (!(ss >> kb)) return std::nullopt;
-    ss >> unit;
-    if (!unit.empty() && unit != "kB") return std::nullopt;
-    return kb / 1024.0;
-  }
-  return std::nullopt;
+  const std::optional<ProcessMemory> m = process_memory(status_path);
+  if (!m) return std::nullopt;
+  return static_cast<double>(m->peak) / (1024.0 * 1024.0);
 }
 
 std::string peak_rss_mb() {
