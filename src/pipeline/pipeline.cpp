@@ -41,8 +41,17 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   }
   result.f = in.f;
   report_progress(0.05, "cdt");
-  std::optional<EagerMemoryRelease> eager(std::in_place);  // the mesh stages: few large arrays (base/memory.hpp)
+  // The mesh stages of .poly runs give freed pages back at once (few large arrays; base/memory.hpp).
+  // GIS runs keep them (each stage's end still gives them back: StageClock::lap): the filter's
+  // removed-water listing runs beside the CDT and the refinement on another thread, and every
+  // page given back (madvise) interrupts that thread too (a TLB shootdown, costly in a virtual
+  // machine). Gulf of Maine with 3 outputs: 6 100 madvise calls in the CDT and the refinement;
+  // kept, CDT 0.13-0.20 -> 0.09-0.12 s, process 5.42 -> 5.31 s (medians of 12 interleaved runs),
+  // peak unchanged. Not for .poly runs: no thread beside them, and no gain measured.
+  std::optional<EagerMemoryRelease> eager;
   std::optional<KeepFreedPages> keep;
+  if (plan.gis) keep.emplace();
+  else eager.emplace();
   clock.restart();
 
   TriangulateFigures fig;
@@ -76,18 +85,14 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   result.alpha = fig.refine.alpha;
   result.min_angle_deg = to.min_angle_deg;
 
-  // GIS runs, from the compaction on: freed pages are kept within a stage (each stage's end still
-  // gives them back: StageClock::lap), so the report's and the writers' temporary arrays reuse
-  // the pages of the ones freed before them instead of faulting fresh ones (on this machine a
-  // 4 KiB fault costs about 10 us). Gulf of Maine, bench_gis --formats gpkg,2dm,14, three
-  // interleaved pairs: report 0.53-0.59 -> 0.42-0.44 s, write 1.26-1.68 -> 1.10-1.32 s, minor
-  // faults of the two 46 k -> 28 k, peak 264 -> 267-273 MiB. Not for .poly runs: their peak is
-  // the refinement's, and kept pages would add to it where the compaction frees the
-  // triangulation (60 -> 69 MiB at 1 M triangles; issue 7's 64 bytes/triangle).
-  if (plan.gis) {
-    eager.reset();
-    keep.emplace();
-  }
+  // GIS runs keep freed pages from the compaction on too (within a stage), so the report's and the
+  // writers' temporary arrays reuse the pages of the ones freed before them instead of faulting
+  // fresh ones (on this machine a 4 KiB fault costs about 10 us). Gulf of Maine, bench_gis
+  // --formats gpkg,2dm,14, three interleaved pairs: report 0.53-0.59 -> 0.42-0.44 s, write
+  // 1.26-1.68 -> 1.10-1.32 s, minor faults of the two 46 k -> 28 k, peak 264 -> 267-273 MiB. Not
+  // for .poly runs: their peak is the refinement's, and kept pages would add to it where the
+  // compaction frees the triangulation (60 -> 69 MiB at 1 M triangles; issue 7's 64
+  // bytes/triangle).
   result.mesh = mesh::take_view(tri);  // the report and writers read a compact copy; frees tri
   mesh::MeshView& m = result.mesh;
   if (plan.gis) {
