@@ -45,9 +45,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // GIS runs keep them (each stage's end still gives them back: StageClock::lap): the filter's
   // removed-water listing runs beside the CDT and the refinement on another thread, and every
   // page given back (madvise) interrupts that thread too (a TLB shootdown, costly in a virtual
-  // machine). Gulf of Maine with 3 outputs: 6 100 madvise calls in the CDT and the refinement;
-  // kept, CDT 0.13-0.20 -> 0.09-0.12 s, process 5.42 -> 5.31 s (medians of 12 interleaved runs),
-  // peak unchanged. Not for .poly runs: no thread beside them, and no gain measured.
+  // machine). Gulf of Maine at hmin 120: about 6 100 madvise calls in the CDT and the refinement,
+  // 300 kept; CDT 0.12-0.19 -> 0.09-0.15 s, peak unchanged; the whole process's change is within
+  // the host's noise (README "Allocator"). Not for .poly runs: no thread beside them, no gain.
   std::optional<EagerMemoryRelease> eager;
   std::optional<KeepFreedPages> keep;
   if (plan.gis) keep.emplace();
