@@ -90,8 +90,9 @@ class ArenaDecay {
 };
 
 // Decay 0, and what was freed before goes back at once. The pipeline holds one from the
-// triangulation on: the mesh's arrays are few and large, and pages kept lazily by one stage would
-// add to the next stage's peak (at 1 M triangles 76 -> 57 MiB).
+// triangulation on in .poly runs: the mesh's arrays are few and large, and pages kept lazily by
+// one stage would add to the next stage's peak (at 1 M triangles 76 -> 57 MiB). GIS runs hold a
+// KeepFreedPages instead (pipeline::run: a thread beside the CDT and the refinement).
 class EagerMemoryRelease : public ArenaDecay {
  public:
   EagerMemoryRelease();
@@ -123,8 +124,9 @@ std::optional<ProcessMemory> process_memory(const std::string& status_path = "/p
 // and whose extents of 2 MiB or more are advised for huge pages; bind() puts the calling
 // thread's allocations there. When it ends its pages go back to the system (the arena stays:
 // objects made there may live on; a process makes at most 1 024, then it is a no-op). Why: under
-// the mesh stages' EagerMemoryRelease (decay 0) every page GEOS freed was purged and faulted in
-// again (GSHHG-h basin: 0.29 M faults, the listing beside the refinement 4 s instead of 2.35).
+// the EagerMemoryRelease (decay 0) the GIS mesh stages then held, and under the purge at every
+// stage's end, every page GEOS freed was purged and faulted in again (GSHHG-h basin: 0.29 M
+// faults, the listing beside the refinement 4 s instead of 2.35).
 // A no-op under any other allocator.
 class OwnArena {
  public:
