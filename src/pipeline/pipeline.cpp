@@ -46,8 +46,9 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // removed-water listing runs beside the CDT and the refinement on another thread, and every
   // page given back (madvise) interrupts that thread too (a TLB shootdown, costly in a virtual
   // machine). Gulf of Maine at hmin 120: about 6 100 madvise calls in the CDT and the refinement,
-  // 300 kept; CDT 0.12-0.19 -> 0.09-0.15 s, peak unchanged; the whole process's change is within
-  // the host's noise (README "Allocator"). Not for .poly runs: no thread beside them, no gain.
+  // 300 kept; CDT 0.12-0.19 -> 0.09-0.15 s, system time 1.38 -> 0.96 s, the whole process 0.37 s
+  // faster at the median of ten interleaved rounds (tools/bench/ab.py), peak unchanged (README
+  // "Allocator"). Not for .poly runs: no thread beside them, no gain.
   std::optional<EagerMemoryRelease> eager;
   std::optional<KeepFreedPages> keep;
   if (plan.gis) keep.emplace();
