@@ -2464,7 +2464,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
           for (const std::size_t t : near_placed) {
             if (t >= static_cast<std::size_t>(islet_tris->getNumGeometries())) continue;
             if (dist(placed[t], hp->centroid) > placed_r[t] + ext + o.islet_side) continue;
-            const OGRLinearRing* tr = islet_tris->getGeometryRef(static_cast<int>(t))->toPolygon()->getExteriorRing();
+            const OGRLinearRing* tr = islet_tris->getGeometryRef(static_cast<int>(t))->getExteriorRing();
             std::vector<Point2> cs;
             for (int k = 0; k + 1 < tr->getNumPoints(); ++k) cs.push_back({tr->getX(k), tr->getY(k)});
             double d = std::numeric_limits<double>::infinity();
@@ -2501,7 +2501,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
               OGRLinearRing jr;
               for (Point2 q : h) jr.addPoint(q.x, q.y);
               jr.closeRings();
-              OGRPolygon* tp = islet_tris->getGeometryRef(static_cast<int>(tb))->toPolygon();
+              OGRPolygon* tp = islet_tris->getGeometryRef(static_cast<int>(tb));
               tp->empty();
               tp->addRing(&jr);
               ++res.islets_joined;

@@ -41,7 +41,7 @@ struct RepairRow {
   double size = 0;      // size of the fix (distance moved, area dropped, ...)
   std::string reason;
   std::int32_t part = -1;  // input ring/line id, -1 unknown
-  std::vector<std::int64_t> ids;  // vertex/segment ids concerned (.poly inputs: input ids)
+  std::vector<std::int64_t> ids{};  // vertex/segment ids concerned (.poly inputs: input ids)
 };
 
 class BoundaryCache;  // io/boundaries.hpp

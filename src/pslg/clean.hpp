@@ -19,7 +19,7 @@ struct Repair {
   // Ids concerned, in the order named by `reason`: vertex ids (snap: the dropped vertex and the
   // one kept) and/or Segment::part values of the segments involved (the .poly path sets part to
   // the input segment index, see resolve.hpp).
-  std::vector<std::int64_t> ids;
+  std::vector<std::int64_t> ids{};
 };
 
 struct CleanOptions {

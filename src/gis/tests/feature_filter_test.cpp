@@ -338,7 +338,7 @@ TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
         const std::size_t n = ring.size();
         const bool corner = (!input.count({a.x, a.y}) && turn(ring[(i + n - 1) % n], a, q) > 1.05) ||
                             (!input.count({q.x, q.y}) && turn(a, q, ring[(i + 2) % n]) > 1.05);
-        if (corner) EXPECT_GE(std::hypot(a.x - q.x, a.y - q.y), o.close_width / 4) << a.x << " " << a.y;
+        if (corner) { EXPECT_GE(std::hypot(a.x - q.x, a.y - q.y), o.close_width / 4) << a.x << " " << a.y; }
         ++checked;
       }
   EXPECT_GT(checked, 10u);
@@ -534,7 +534,7 @@ TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
   const FeatureFilterResult r2 = filter_features({{sea[0], islet, big[0]}}, o);
   EXPECT_EQ(r2.islets_replaced, 1u);
   for (const auto& x : r2.repairs)
-    if (x.kind == "islet_simplified") EXPECT_NE(x.reason.find("triangle of side 70 m"), std::string::npos) << x.reason;
+    if (x.kind == "islet_simplified") { EXPECT_NE(x.reason.find("triangle of side 70 m"), std::string::npos) << x.reason; }
 }
 
 // An island above --min-island (4000 m^2 > 3000) but thinner than --close-width (10 m < 15)

@@ -448,7 +448,7 @@ TEST(PipelinePoly, MessyConstraintsResolvedAndReported) {
   EXPECT_EQ(kinds["vertex_on_segment"], 5);
   // The duplicate vertex 8 of vertex 0, named by input ids.
   for (const auto& rp : j["repairs"])
-    if (rp["kind"] == "duplicate_vertex") EXPECT_EQ(rp["ids"], nlohmann::json::array({8, 0}));
+    if (rp["kind"] == "duplicate_vertex") { EXPECT_EQ(rp["ids"], nlohmann::json::array({8, 0})); }
 
   Options s = o;
   s.strict = true;

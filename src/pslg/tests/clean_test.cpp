@@ -284,7 +284,7 @@ TEST(Clean, SimplifyRemovesShortEdgesWithinTolerance) {
   EXPECT_GT(removed, 30u);
   EXPECT_EQ(out.points.size(), g.points.size() - removed);
   for (const auto& r : rep) {
-    if (r.kind == "simplify") EXPECT_LT(r.size, 0.1);
+    if (r.kind == "simplify") { EXPECT_LT(r.size, 0.1); }
   }
   // The free point must not change side: it stays above every bottom segment covering x = 50.5.
   const Index fp = static_cast<Index>(out.points.size() - 1);

@@ -60,7 +60,7 @@ TEST(RealData, ChesapeakeRawWithTinyIslands) {
   EXPECT_NO_THROW(validate(out, "chesapeake"));
   EXPECT_GT(count_kind(rep, "tiny_island"), 0u);
   for (const auto& r : rep) {
-    if (r.kind == "tiny_island") EXPECT_LT(r.size, 40000.0);
-    if (r.kind == "simplify") EXPECT_LT(r.size, 5.0);
+    if (r.kind == "tiny_island") { EXPECT_LT(r.size, 40000.0); }
+    if (r.kind == "simplify") { EXPECT_LT(r.size, 5.0); }
   }
 }

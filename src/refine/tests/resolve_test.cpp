@@ -149,8 +149,6 @@ pslg::Pslg transform(const Case& c, double scale, Point2 offset) {
   return g;
 }
 
-std::pair<double, double> key(Point2 p) { return {p.x, p.y}; }
-
 // CGAL's subdivided constraint edges with their vertices converted to doubles.
 std::vector<std::pair<Point2, Point2>> cgal_constraint_edges(const pslg::Pslg& g) {
   XCDT cdt;
@@ -256,7 +254,7 @@ void run_case(const Case& c, double scale, Point2 offset) {
   }
   cr = mesh::check_all(tri);
   ASSERT_TRUE(cr.ok()) << what << " FDR: " << cr.problems.front();
-  if (!stopped) EXPECT_EQ(refiner.leftovers().r_over_f_bad, 0u) << what;
+  if (!stopped) { EXPECT_EQ(refiner.leftovers().r_over_f_bad, 0u) << what; }
 }
 
 class ResolveCases : public ::testing::TestWithParam<std::size_t> {};
