@@ -81,10 +81,11 @@ TEST_P(CliSpec, Runs) {
   out << o.rdbuf();
   err << e.rdbuf();
   EXPECT_EQ(WEXITSTATUS(st), s.exit_code) << "spec line " << s.line << ": " << args << "\nstderr: " << err.str();
-  if (s.expect != "-")
+  if (s.expect != "-") {
     EXPECT_TRUE(out.str().find(s.expect) != std::string::npos || err.str().find(s.expect) != std::string::npos)
         << "spec line " << s.line << ": expected '" << s.expect << "'\nstdout: " << out.str().substr(0, 2000)
         << "\nstderr: " << err.str();
+  }
   std::set<std::string> left;
   for (const auto& de : fs::directory_iterator(dir)) {
     const std::string name = de.path().filename().string();

@@ -327,7 +327,6 @@ TEST(ModelReady, AdjacencyPathEqualsPlainForEveryThreadCount) {
         m.vertices.push_back({i + (inner ? jitter(rng) : 0.0), j + (inner ? jitter(rng) : 0.0)});
         m.z.push_back(depth(rng));
       }
-    auto id = [n](int i, int j) { return Index(j * n + i); };
     for (int j = 0; j + 1 < n; ++j)
       for (int i = 0; i + 1 < n; ++i) {
         if (!keep(rng) || (i / 20 == 3 && j / 30 == 2) || j == 100) continue;  // holes, a cut across

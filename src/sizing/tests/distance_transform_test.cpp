@@ -125,7 +125,7 @@ TEST(DistanceToShore, FastPathExactNearTheShoreAndBoundedBeyond) {
         ASSERT_GE(got, want) << i << " " << j;
         ASSERT_LE(got, want + diag) << i << " " << j;
         // Guaranteed exact within (3.5 - sqrt 2) cells of the shore.
-        if (want <= (3.5 - std::sqrt(2.0)) * cell) ASSERT_EQ(got, want) << "near the shore: " << i << " " << j;
+        if (want <= (3.5 - std::sqrt(2.0)) * cell) { ASSERT_EQ(got, want) << "near the shore: " << i << " " << j; }
         differ += got != want;
       }
     EXPECT_LT(differ, like.v.size() / 10) << "dx " << dx;
