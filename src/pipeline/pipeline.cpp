@@ -45,10 +45,14 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   // GIS runs keep them (each stage's end still gives them back: StageClock::lap): the filter's
   // removed-water listing runs beside the CDT and the refinement on another thread, and every
   // page given back (madvise) interrupts that thread too (a TLB shootdown, costly in a virtual
-  // machine). Gulf of Maine at hmin 120: about 6 100 madvise calls in the CDT and the refinement,
-  // 300 kept; CDT 0.12-0.19 -> 0.09-0.15 s, system time 1.38 -> 0.96 s, the whole process 0.37 s
-  // faster at the median of ten interleaved rounds (tools/bench/ab.py), peak unchanged (README
-  // "Allocator"). Not for .poly runs: no thread beside them, no gain.
+  // machine). Gulf of Maine at hmin 120: madvise calls in the CDT and the refinement 6 100 -> 300,
+  // CDT 0.12-0.19 -> 0.09-0.15 s, system time 1.38 -> 0.96 s, the whole process 0.37 s faster at
+  // the median of ten interleaved rounds (tools/bench/ab.py), peak unchanged. Kept pages also let
+  // the report's and the writers' temporary arrays reuse the pages freed before them (report
+  // 0.53-0.59 -> 0.42-0.44 s, write 1.26-1.68 -> 1.10-1.32 s when first kept from the compaction
+  // on). README "Allocator". Not for .poly runs: no thread beside their refinement, and kept pages
+  // would add to their peak where the compaction frees the triangulation (60 -> 69 MiB at 1 M
+  // triangles; issue 7's 64 bytes/triangle).
   std::optional<EagerMemoryRelease> eager;
   std::optional<KeepFreedPages> keep;
   if (plan.gis) keep.emplace();
@@ -86,14 +90,6 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   result.alpha = fig.refine.alpha;
   result.min_angle_deg = to.min_angle_deg;
 
-  // GIS runs keep freed pages from the compaction on too (within a stage), so the report's and the
-  // writers' temporary arrays reuse the pages of the ones freed before them instead of faulting
-  // fresh ones (on this machine a 4 KiB fault costs about 10 us). Gulf of Maine, bench_gis
-  // --formats gpkg,2dm,14, three interleaved pairs: report 0.53-0.59 -> 0.42-0.44 s, write
-  // 1.26-1.68 -> 1.10-1.32 s, minor faults of the two 46 k -> 28 k, peak 264 -> 267-273 MiB. Not
-  // for .poly runs: their peak is the refinement's, and kept pages would add to it where the
-  // compaction frees the triangulation (60 -> 69 MiB at 1 M triangles; issue 7's 64
-  // bytes/triangle).
   result.mesh = mesh::take_view(tri);  // the report and writers read a compact copy; frees tri
   mesh::MeshView& m = result.mesh;
   if (plan.gis) {
