@@ -159,7 +159,8 @@ int run(int argc, char** argv) {
       std::printf("%s", app.help().c_str());
       return static_cast<int>(ExitCode::kUsage);
     }
-    const pipeline::Options o = bind_parsed(p, "mesh", cmdline).mesh;  // usage errors before any I/O
+    pipeline::Options o = bind_parsed(p, "mesh", cmdline).mesh;  // usage errors before any I/O
+    o.report_only_if_read = true;  // -q without --report: no quality report nobody reads
 
     DelayedProgress progress(o.quiet);
     auto log = [&](LogLevel lvl, std::string_view msg) {

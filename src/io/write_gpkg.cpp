@@ -534,6 +534,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
     lap("R-tree pages");
   }
   tf.commit();
+  lap("commit");
 }
 
 }  // namespace fdr::io::detail

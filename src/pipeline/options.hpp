@@ -65,6 +65,11 @@ struct Options {
   std::uint64_t max_steiner = 20'000'000;
   bool check = false;
   bool quiet = false;
+  // The command line's runs: with `quiet`, no --report and no output that stores the report (GPKG,
+  // VTU, UGRID, D-Flow FM net file), nobody reads the quality report, so it is not measured
+  // (Result::report then holds the counts, the run's figures and the timings only). Library and
+  // Python callers keep it false: they read Result::report.
+  bool report_only_if_read = false;
 
   std::string command_line;              // for provenance (metadata)
 };

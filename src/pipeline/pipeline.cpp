@@ -100,8 +100,12 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
 
   quality::TriangleValues tri_values;
   const bool want_tri_values = opt.output_crs.empty() && stores_triangle_values(plan.formats);
-  result.report = measure(m, in, opt, plan, fig, want_tri_values ? &tri_values : nullptr, log);
-  clock.lap("report");
+  if (report_is_read(opt, plan)) {
+    result.report = measure(m, in, opt, plan, fig, want_tri_values ? &tri_values : nullptr, log);
+    clock.lap("report");
+  } else {
+    result.report = unmeasured_report(m, in, opt, plan, fig);  // what the outputs read of the report
+  }
 
   report_progress(0.9, "write");
   result.written = write_outputs(result, in, opt, plan, want_tri_values ? &tri_values : nullptr, t_start,

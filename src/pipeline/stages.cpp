@@ -7,6 +7,7 @@
 #include <sstream>
 #include "api/stages.hpp"
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "base/version.hpp"
@@ -110,6 +111,42 @@ Plan plan_run(const Options& opt) {
   if (!opt.write_spacing.empty() && !spacing_grid)
     throw Error(ExitCode::kUsage, "--write-spacing needs a raster-based spacing (give --raster or a rule)");
   return p;
+}
+
+bool report_is_read(const Options& opt, const Plan& plan) {
+  if (!opt.report_only_if_read || !opt.quiet || !opt.report_json.empty()) return true;
+  return std::any_of(plan.formats.begin(), plan.formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+  });
+}
+
+quality::QualityReport unmeasured_report(mesh::MeshView& m, const PreparedInput& in, const Options& opt,
+                                         const Plan& plan, const TriangulateFigures& fig) {
+  quality::QualityReport r;
+  r.vertices = m.num_vertices();
+  r.triangles = m.num_triangles();
+  r.bound_B = opt.bound;
+  r.alpha = fig.refine.alpha;
+  const sizing::SizingField* f = in.f.get();
+  r.spacing = f ? f->describe() : "none";
+  r.run.cdt_s = fig.cdt_s;
+  r.run.refine_s = fig.refine.refine_s;
+  r.run.steiner_segment = fig.refine.stats.segment_splits;
+  r.run.steiner_interior = fig.refine.stats.circumcenters;
+  r.run.exempt_small_angle_triangles = fig.refine.angle_exempt;
+  r.run.predicate_filtered = predicates::counters().filtered;
+  r.run.predicate_exact = predicates::counters().exact;
+  r.run.input_file = plan.source;
+  r.run.spacing = r.spacing;
+  for (const auto& rp : in.repairs) r.repairs.push_back({rp.kind, rp.x, rp.y, rp.ids, rp.reason});
+  // .node files carry f at the vertices, which the report fills (the same evaluations).
+  const bool node_out = std::find(plan.formats.begin(), plan.formats.end(), io::Format::kNode) != plan.formats.end();
+  if (f && node_out && m.f.empty()) {
+    resize_huge(m.f, m.num_vertices());
+    for (std::size_t v = 0; v < m.f.size(); ++v) m.f[v] = (*f)(m.vertices[v]);
+  }
+  if (!std::any_of(plan.formats.begin(), plan.formats.end(), io::carries_boundaries)) release_huge(m.neighbours);
+  return r;
 }
 
 quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const Options& opt, const Plan& plan,

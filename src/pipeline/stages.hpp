@@ -41,6 +41,17 @@ struct TriangulateFigures {
 quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const Options& opt, const Plan& plan,
                                const TriangulateFigures& fig, quality::TriangleValues* tri_values, const LogFn& log);
 
+// Whether anything reads the quality report: always, unless Options::report_only_if_read, and then
+// when it is printed (not quiet), written (--report) or stored by an output (GPKG, VTU, UGRID,
+// D-Flow FM net file).
+bool report_is_read(const Options& opt, const Plan& plan);
+
+// Instead of measure() when nothing reads the report: the counts and the run's figures only, and
+// what the outputs would have read of the measurement (f at the vertices for .node files; the
+// adjacency released unless an output's boundary lists read it). The files are the same.
+quality::QualityReport unmeasured_report(mesh::MeshView& m, const PreparedInput& in, const Options& opt,
+                                         const Plan& plan, const TriangulateFigures& fig);
+
 // Write stage: every output of the run (meshes, --write-spacing GeoTIFF, JSON report), all or
 // nothing (files already written are removed when a later one fails). Sets the report's write
 // and total times; returns the paths written.

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 #include "cli_test_util.hpp"
 #include <sys/wait.h>
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -116,5 +119,77 @@ TEST(Determinism, ThreadCountDoesNotChangeFiles) {
   EXPECT_TRUE(r1.contains("conformity"));
   EXPECT_EQ(r1, values("2"));
   EXPECT_EQ(r1, values("3"));
+  fs::remove_all(dir);
+}
+
+// `-q` without --report and without an output that stores the report: nobody reads the quality
+// report, so it is not measured (no "report" stage), and every file is the same as when it is
+// (the .node file's f attribute, which the report fills, included; the boundary lists, which
+// read the mesher's adjacency). A .poly run and a GIS run.
+TEST(QuietRuns, UnreadReportIsNotMeasuredAndTheFilesAreTheSame) {
+  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_unread_report_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string t = FDR_TESTDATA_DIR;
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  auto capture = [](const std::string& cmd) {  // stdout and stderr of a command
+    std::string out;
+    if (FILE* p = popen((cmd + " 2>&1").c_str(), "r")) {
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+      pclose(p);
+    }
+    return out;
+  };
+  struct Case {
+    const char* name;
+    std::string input;
+    std::vector<const char*> files;  // written (the -o list is the first of each pair's stem)
+  };
+  const std::vector<Case> cases = {
+      {"poly", t + "/poly/square_with_hole.poly --spacing '0.2+0.05*x'", {"m.2dm", "m.14", "m.msh", "m.node", "m.gr3", "m.slf"}},
+      {"gis", t + "/chesapeake/chesapeake_mouth_water.geojson --open-boundary " + t +
+                  "/chesapeake/chesapeake_mouth_open_boundary.geojson --raster " + t +
+                  "/chesapeake/chesapeake_mouth_etopo5.tif --hmin 300 --hmax 5000",
+       {"m.2dm", "m.14", "m.node", "m.gr3", "m.ll", "m.slf"}}};
+  for (const Case& c : cases) {
+    std::string stages[2];
+    for (int with_report = 0; with_report < 2; ++with_report) {
+      const fs::path o = dir / c.name / (with_report ? "with" : "without");
+      fs::create_directories(o);
+      std::string cmd = std::string("FDR_DEBUG_STAGES=1 ") + FDR_BINARY + " mesh " + c.input + " -q";
+      for (const char* f : c.files) cmd += " -o " + (o / f).string();
+      if (with_report) cmd += " --report " + (o / "r.json").string();
+      const fs::path err = o / "stderr.txt";
+      cmd += " > /dev/null 2> " + err.string();
+      const int st = std::system(cmd.c_str());
+      ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
+      stages[with_report] = slurp(err);
+    }
+    EXPECT_EQ(stages[0].find("stage report"), std::string::npos) << c.name << ": " << stages[0];
+    EXPECT_NE(stages[1].find("stage report"), std::string::npos) << c.name << ": " << stages[1];
+    std::vector<std::string> files(c.files.begin(), c.files.end());
+    files.push_back("m.ele");
+    if (std::find(files.begin(), files.end(), "m.slf") != files.end()) files.push_back("m.cli");
+    for (const std::string& f : files) {
+      const std::string a = slurp(dir / c.name / "without" / f);
+      EXPECT_GT(a.size(), 100u) << c.name << " " << f;
+      EXPECT_TRUE(a == slurp(dir / c.name / "with" / f)) << c.name << " " << f << " differs without the report";
+    }
+    const std::string node = slurp(dir / c.name / "without" / "m.node");
+    const std::string header = node.substr(0, node.find('\n', node.find('\n') + 1));
+    EXPECT_NE(header.find("attributes:"), std::string::npos) << header;
+    EXPECT_NE(header.find(" f"), std::string::npos) << header;
+  }
+  // Printed (no -q) or stored by an output (GPKG): measured.
+  const std::string base = std::string("FDR_DEBUG_STAGES=1 ") + FDR_BINARY + " mesh " + t + "/poly/square_with_hole.poly --spacing 0.3";
+  std::string out = capture(base + " -o " + (dir / "p.2dm").string());
+  EXPECT_NE(out.find("stage report"), std::string::npos) << out;
+  EXPECT_NE(out.find("Mesh quality"), std::string::npos) << out;
+  out = capture(base + " -q -o " + (dir / "p.gpkg").string());
+  EXPECT_NE(out.find("stage report"), std::string::npos) << out;
   fs::remove_all(dir);
 }
