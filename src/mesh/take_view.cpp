@@ -36,6 +36,7 @@ MeshView take_view(Triangulation& t) {
   Index n = 0;
   for (Index v = 0; v < t.pts.size(); ++v)
     if (remap[v] != kNoId) remap[v] = n++;
+  const std::size_t t_num_vertices_before = t.pts.size();  // n equal to it: remap is the identity
   // The vertices and their markers compacted in place (remap[v] <= v: a write never overwrites
   // a vertex still to be read) and moved into the view: no second array of fresh pages (8 MiB of
   // positions at 0.5 M vertices, faulted in while the triangulation is still there).
@@ -100,24 +101,23 @@ MeshView take_view(Triangulation& t) {
     for (TriangleId s = 0; s < t.num_slots(); ++s)
       if (!t.dead(s)) slot[s] = nt++;
   if (dense) nt = static_cast<Index>(t.num_slots());
-  // The triangles' corners, renumbered. Without dead slots each triangle keeps its slot, so the
-  // two halves of the slots are filled at once (26 ms on one thread at 1 M triangles, 2 ms on two;
-  // plain pages: huge-page advice made the first touch stall 3-25 ms); with dead
-  // slots in slot order, the twins renumbered in place as they go.
+  // The triangles' corners, renumbered in place, and their array moved into the view: no second
+  // copy (12 MiB of fresh pages at 1 M triangles, a page fault each 4 KiB, 35-50 ms on this
+  // project's machine, and the process's peak where the compaction held both). Without dead slots
+  // (the usual end of a refinement) each triangle keeps its slot: the two halves of the slots are
+  // renumbered at once (nothing at all when no vertex was dropped); with dead slots in slot order,
+  // the twins renumbered in place as they go.
+  auto& corners = t.tv.slots();
   if (dense) {
-    m.triangles.resize(nt);
-    auto fill = [&t, &remap, &m](std::size_t lo, std::size_t hi) {
-      for (std::size_t s = lo; s < hi; ++s) {
-        if (s + kAhead < hi)
-          for (int k = 0; k < 3; ++k) __builtin_prefetch(&remap[t.tv[3 * (s + kAhead) + k]]);
-        m.triangles[s] = {remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]};
-      }
-    };
-    if (max_threads() > 1 && nt >= 65536) run_beside([&] { fill(nt / 2, nt); }, [&] { fill(0, nt / 2); });
-    else fill(0, nt);
+    if (n != t_num_vertices_before) {
+      auto renumber = [&corners, &remap](std::size_t lo, std::size_t hi) {
+        for (std::size_t s = lo; s < hi; ++s)
+          for (Index& v : corners[s]) v = remap[v];
+      };
+      if (max_threads() > 1 && nt >= 65536) run_beside([&] { renumber(nt / 2, nt); }, [&] { renumber(0, nt / 2); });
+      else renumber(0, nt);
+    }
   } else {
-    m.triangles.reserve(nt);
-    advise_huge_pages(m.triangles);
     for (TriangleId s = 0; s < t.num_slots(); ++s) {
       if (s + kAhead < ns)
         for (int k = 0; k < 3; ++k) {
@@ -126,17 +126,18 @@ MeshView take_view(Triangulation& t) {
           if (tw != kNoId) __builtin_prefetch(&slot[tri_of(tw)]);
         }
       if (t.dead(s)) continue;
-      m.triangles.push_back({remap[t.tv[3 * s]], remap[t.tv[3 * s + 1]], remap[t.tv[3 * s + 2]]});
       const Index i = slot[s];
+      corners[i] = {remap[corners[s][0]], remap[corners[s][1]], remap[corners[s][2]]};
       for (int k = 0; k < 3; ++k) {
         const HalfEdge tw = t.twin[3 * s + k];
         t.twin[3 * i + k] = tw == kNoId || slot[tri_of(tw)] == kNoId ? kNoId : 3 * slot[tri_of(tw)] + tw % 3;
       }
     }
+    corners.resize(nt);
   }
+  m.triangles = std::move(corners);
   release(slot);
   release(remap);
-  release(t.tv);
   release(t.flags);
   t.twin.resize(3 * static_cast<std::size_t>(nt));
   m.neighbours = std::move(t.twin);

@@ -242,7 +242,7 @@ void Refiner::reserve(double expected_triangles) {
   if (!(expected_triangles > 0) || expected_triangles > 4e9) return;
   // Why: growing by doubling would briefly hold old and new arrays (3x peak memory).
   const auto nt = static_cast<std::size_t>(expected_triangles * 1.1) + 64;
-  tri_.tv.reserve(3 * nt);
+  tri_.tv.slots().reserve(nt);
   tri_.twin.reserve(3 * nt);
   tri_.flags.reserve(nt);
   const std::size_t nv = nt / 2 + 64;
@@ -250,7 +250,7 @@ void Refiner::reserve(double expected_triangles) {
   tri_.vkind.reserve(nv);
   tri_.vhe.reserve(nv);
   tri_.point_marker.reserve(nv);
-  advise_huge_pages(tri_.tv);
+  advise_huge_pages(tri_.tv.slots());
   advise_huge_pages(tri_.twin);
   advise_huge_pages(tri_.flags);
   advise_huge_pages(tri_.pts);

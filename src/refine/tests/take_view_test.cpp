@@ -59,3 +59,29 @@ TEST(TakeView, SameAsToViewAfterCdtAndRefinement) {
     expect_same(want, mesh::take_view(copy));
   }
 }
+
+// A mesh large enough for the two-thread renumbering (65 536 triangles or more), with and
+// without dead slots: the same mesh as to_view's, the corners' array handed over (no copy).
+TEST(TakeView, LargeMeshSameAsToViewAndCornersHandedOver) {
+  pslg::Pslg p = fdr::testing::random_pslg(7, 40, 16);
+  mesh::Triangulation t = cdt::build_cdt(p);
+  fdr::testing::FnField f([](Point2 q) { return 0.02 + 0.004 * std::abs(q.x); });
+  refine::Refiner r(t, f, {});
+  r.init();
+  r.run();
+  ASSERT_GE(t.num_live_triangles(), 65536u);
+  for (bool with_dead : {false, true}) {
+    mesh::Triangulation copy = t;
+    if (with_dead) {  // a dead slot in the middle: the slot-order compaction
+      const TriangleId s = static_cast<TriangleId>(copy.num_slots() / 2);
+      for (int k = 0; k < 3; ++k)
+        if (copy.twin[3 * s + k] != kNoId) copy.twin[copy.twin[3 * s + k]] = kNoId;
+      copy.kill_triangle(s);
+    }
+    const mesh::MeshView want = copy.to_view();
+    const Index* corners = copy.tv.slots().data()->data();
+    const mesh::MeshView got = mesh::take_view(copy);
+    expect_same(want, got);
+    EXPECT_EQ(got.triangles.data()->data(), corners) << "with_dead " << with_dead;
+  }
+}
