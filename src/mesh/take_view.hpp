@@ -5,9 +5,10 @@
 
 namespace fdr::mesh {
 
-// Same MeshView as t.to_view() (same vertex, triangle and edge order, same markers), but each
-// array of `t` is freed as soon as it has been copied, so the peak is the triangulation plus
-// about a third of the copy instead of both whole. `t` is left empty.
+// Same MeshView as t.to_view() (same vertex, triangle and edge order, same markers), built in
+// place: the positions, the corners (Triangulation::tv) and the twins are compacted and
+// renumbered in their own arrays, which the view then takes over; the other arrays are freed.
+// No second copy of the mesh, so no fresh pages and no rise of the peak. `t` is left empty.
 MeshView take_view(Triangulation& t);
 
 }  // namespace fdr::mesh
