@@ -15,11 +15,11 @@ namespace fs = std::filesystem;
 
 using fdr::cli_test::load;
 using fdr::cli_test::run;
+using fdr::cli_test::slurp;
+using fdr::cli_test::fresh_dir;
 
 TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
-  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_quality_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("fdrmesh_quality");
   const std::string in = std::string(FDR_TESTDATA_DIR) + "/poly/square_with_hole.poly";
   ASSERT_EQ(run("mesh " + in + " --spacing '0.2+0.05*x' -q -o " + (dir / "m.2dm").string() + " -o " +
                 (dir / "m.14").string() + " -o " + (dir / "m.msh").string() + " -o " + (dir / "m.gpkg").string() +
@@ -49,14 +49,8 @@ TEST(QualityCommand, MatchesTheMeshReportForEveryFormat) {
 
 // Same input, same output, bit for bit: two runs of the whole GIS pipeline write identical files.
 TEST(Determinism, TwoRunsWriteIdenticalFiles) {
-  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_determinism_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("fdrmesh_determinism");
   const std::string t = FDR_TESTDATA_DIR;
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
   for (const char* run_name : {"a", "b"}) {
     const fs::path o = dir / run_name;
     fs::create_directories(o);
@@ -78,14 +72,8 @@ TEST(Determinism, TwoRunsWriteIdenticalFiles) {
 // The thread count (FDR_THREADS: concurrent writers, report, distance to shore) never changes
 // what is written.
 TEST(Determinism, ThreadCountDoesNotChangeFiles) {
-  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_threads_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("fdrmesh_threads");
   const std::string t = FDR_TESTDATA_DIR;
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
   for (const char* threads : {"1", "2", "3"}) {
     const fs::path o = dir / threads;
     fs::create_directories(o);
@@ -127,14 +115,8 @@ TEST(Determinism, ThreadCountDoesNotChangeFiles) {
 // (the .node file's f attribute, which the report fills, included; the boundary lists, which
 // read the mesher's adjacency). A .poly run and a GIS run.
 TEST(QuietRuns, UnreadReportIsNotMeasuredAndTheFilesAreTheSame) {
-  const fs::path dir = fs::temp_directory_path() / ("fdrmesh_unread_report_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("fdrmesh_unread_report");
   const std::string t = FDR_TESTDATA_DIR;
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
   auto capture = [](const std::string& cmd) {  // stdout and stderr of a command
     std::string out;
     if (FILE* p = popen((cmd + " 2>&1").c_str(), "r")) {
