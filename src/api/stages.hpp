@@ -69,6 +69,10 @@ struct RunFigures {
   Point2 conforming_D_at{0, 0};
 };
 
+// What the quality report states of the run (RunInfo) from its figures, the options and f (may be
+// null); the predicate counters are read now.
+quality::RunInfo run_info(const SizingField* f, const TriangulateOptions& options, const RunFigures& figures);
+
 // Measure stage (core): f at the vertices when the mesh does not carry it, then the quality
 // report (quality::compute_quality) against f (may be null), options.bound and the run's figures;
 // `per_triangle`, when not null, gets the per-triangle values the writers store. Releases

@@ -235,9 +235,7 @@ Triangulator& Triangulator::refine(SizingPtr world_f) {
 
 MeshView Triangulator::view() const { return tri_.to_view(); }
 
-QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig,
-                           quality::TriangleValues* per_triangle, bool keep_adjacency) {
-  const bool f_filled = f && m.f.empty();  // then m.f gets f at the vertices (by the report, which uses them)
+quality::RunInfo run_info(const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig) {
   quality::RunInfo ri;
   ri.cdt_s = fig.cdt_s;
   ri.refine_s = fig.refine_s;
@@ -253,7 +251,13 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   ri.input_file = opt.source;
   ri.spacing = f ? f->describe() : "none";
   if (opt.min_angle_deg > 0) ri.min_angle_option_deg = opt.min_angle_deg;
-  QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, ri, per_triangle, nullptr,
+  return ri;
+}
+
+QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateOptions& opt, const RunFigures& fig,
+                           quality::TriangleValues* per_triangle, bool keep_adjacency) {
+  const bool f_filled = f && m.f.empty();  // then m.f gets f at the vertices (by the report, which uses them)
+  QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, run_info(f, opt, fig), per_triangle, nullptr,
                                              f_filled ? &m.f : nullptr);
   // The report was the adjacency's last reader, but for the boundary lists: with it they take one
   // array read per half-edge, without it about 47 MiB of temporary arrays at 1 M triangles (and

@@ -36,7 +36,7 @@ MeshView take_view(Triangulation& t) {
   Index n = 0;
   for (Index v = 0; v < t.pts.size(); ++v)
     if (remap[v] != kNoId) remap[v] = n++;
-  const std::size_t t_num_vertices_before = t.pts.size();  // n equal to it: remap is the identity
+  const bool remap_is_identity = n == t.pts.size();  // no vertex dropped
   // The vertices and their markers compacted in place (remap[v] <= v: a write never overwrites
   // a vertex still to be read) and moved into the view: no second array of fresh pages (8 MiB of
   // positions at 0.5 M vertices, faulted in while the triangulation is still there).
@@ -109,7 +109,7 @@ MeshView take_view(Triangulation& t) {
   // the twins renumbered in place as they go.
   auto& corners = t.tv.slots();
   if (dense) {
-    if (n != t_num_vertices_before) {
+    if (!remap_is_identity) {
       auto renumber = [&corners, &remap](std::size_t lo, std::size_t hi) {
         for (std::size_t s = lo; s < hi; ++s)
           for (Index& v : corners[s]) v = remap[v];

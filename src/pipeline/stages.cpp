@@ -113,11 +113,36 @@ Plan plan_run(const Options& opt) {
   return p;
 }
 
+namespace {
+// True if one of the formats stores the run's metadata, the JSON report among it (GPKG, UGRID,
+// D-Flow FM net file).
+bool stores_metadata(const std::vector<io::Format>& formats) {
+  return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+  });
+}
+
+RunFigures run_figures(const TriangulateFigures& fig) {
+  RunFigures rf;
+  rf.cdt_s = fig.cdt_s;
+  rf.refine_s = fig.refine.refine_s;
+  rf.segment_splits = fig.refine.stats.segment_splits;
+  rf.circumcenters = fig.refine.stats.circumcenters;
+  rf.angle_exempt = fig.refine.angle_exempt;
+  rf.alpha = fig.refine.alpha;
+  rf.conforming_D = fig.refine.stats.conforming_D;
+  rf.conforming_D_at = fig.refine.stats.conforming_D_at;
+  return rf;
+}
+
+void add_repairs(quality::QualityReport& r, const PreparedInput& in) {
+  for (const auto& rp : in.repairs) r.repairs.push_back({rp.kind, rp.x, rp.y, rp.ids, rp.reason});
+}
+}  // namespace
+
 bool report_is_read(const Options& opt, const Plan& plan) {
   if (!opt.report_only_if_read || !opt.quiet || !opt.report_json.empty()) return true;
-  return std::any_of(plan.formats.begin(), plan.formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
-  });
+  return stores_triangle_values(plan.formats) || stores_metadata(plan.formats);
 }
 
 quality::QualityReport unmeasured_report(mesh::MeshView& m, const PreparedInput& in, const Options& opt,
@@ -128,17 +153,9 @@ quality::QualityReport unmeasured_report(mesh::MeshView& m, const PreparedInput&
   r.bound_B = opt.bound;
   r.alpha = fig.refine.alpha;
   const sizing::SizingField* f = in.f.get();
-  r.spacing = f ? f->describe() : "none";
-  r.run.cdt_s = fig.cdt_s;
-  r.run.refine_s = fig.refine.refine_s;
-  r.run.steiner_segment = fig.refine.stats.segment_splits;
-  r.run.steiner_interior = fig.refine.stats.circumcenters;
-  r.run.exempt_small_angle_triangles = fig.refine.angle_exempt;
-  r.run.predicate_filtered = predicates::counters().filtered;
-  r.run.predicate_exact = predicates::counters().exact;
-  r.run.input_file = plan.source;
-  r.run.spacing = r.spacing;
-  for (const auto& rp : in.repairs) r.repairs.push_back({rp.kind, rp.x, rp.y, rp.ids, rp.reason});
+  r.run = run_info(f, plan.triangulate, run_figures(fig));
+  r.spacing = r.run.spacing;
+  add_repairs(r, in);
   // .node files carry f at the vertices, which the report fills (the same evaluations).
   const bool node_out = std::find(plan.formats.begin(), plan.formats.end(), io::Format::kNode) != plan.formats.end();
   if (f && node_out && m.f.empty()) {
@@ -153,15 +170,7 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
                                const TriangulateFigures& fig, quality::TriangleValues* tri_values, const LogFn& log) {
   std::optional<std::pair<double, double>> tin;  // terrain runs: the TIN against the DEM
   if (in.dem && opt.vertical_tol) tin = gis_backend().tin_error(m, *in.dem, log);
-  RunFigures rf;
-  rf.cdt_s = fig.cdt_s;
-  rf.refine_s = fig.refine.refine_s;
-  rf.segment_splits = fig.refine.stats.segment_splits;
-  rf.circumcenters = fig.refine.stats.circumcenters;
-  rf.angle_exempt = fig.refine.angle_exempt;
-  rf.alpha = fig.refine.alpha;
-  rf.conforming_D = fig.refine.stats.conforming_D;
-  rf.conforming_D_at = fig.refine.stats.conforming_D_at;
+  const RunFigures rf = run_figures(fig);
   // Per-triangle R/f(c), angle and area for the writers that store them, measured once here (the
   // writers then never evaluate f, which lets them run concurrently).
   // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,
@@ -174,7 +183,7 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   quality::QualityReport report = measure_mesh(m, in.f.get(), plan.triangulate, rf, tri_values, boundaries);
   lap("quality");
   report.model_ready = std::move(ready);
-  for (const auto& r : in.repairs) report.repairs.push_back({r.kind, r.x, r.y, r.ids, r.reason});
+  add_repairs(report, in);
   if (tin) {
     report.vertical_error_max_m = tin->first;
     report.vertical_error_rms_m = tin->second;
@@ -196,10 +205,7 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
   wo.telemac_open_codes = plan.telemac_codes;
   // The writers' metadata, for the formats that store it (GPKG, UGRID, D-Flow FM net file); the
   // report as JSON is large with many repairs (30 MB on the Gulf of Maine).
-  const bool stores_metadata = std::any_of(plan.formats.begin(), plan.formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
-  });
-  if (stores_metadata) {
+  if (stores_metadata(plan.formats)) {
     std::ostringstream js;
     quality::write_json(result.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
