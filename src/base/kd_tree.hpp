@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <limits>
 #include <vector>
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "base/types.hpp"
 
 namespace fdr {

@@ -1,10 +1,10 @@
-// Step timings on stderr for developers, switched on by an environment variable.
+// Step timings on stderr for developers, switched on by a developer aid (base/debug.hpp).
 #pragma once
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
+#include "base/debug.hpp"
 
 namespace fdr {
 
@@ -15,13 +15,13 @@ inline long minor_page_faults() {
   return ru.ru_minflt;
 }
 
-// When the environment variable `env` is set, lap("x") prints "<prefix> x <seconds> s faults <n>"
+// When the developer aid `aid` is on, lap("x") prints "<prefix> x <seconds> s faults <n>"
 // on stderr: the time and the process's minor page faults since the previous lap (or since
 // construction). Otherwise it does nothing. Why the faults: on this project's machine a 4 KiB
 // page fault costs about 10 us, so a step's time is often its fresh memory.
 class StepLaps {
  public:
-  StepLaps(const char* env, const char* prefix) : on_(std::getenv(env) != nullptr), prefix_(prefix) {
+  StepLaps(debug::Aid aid, const char* prefix) : on_(debug::on(aid)), prefix_(prefix) {
     if (on_) faults_ = minor_page_faults();
   }
   bool on() const { return on_; }

@@ -25,7 +25,7 @@
 #include <ogr_geometry.h>
 
 #include "base/error.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "gis/gdal_util.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/contained_difference.hpp"
@@ -49,7 +49,7 @@ std::string num(double v) {
 // The filter's step timings (FDR_DEBUG_FILTER; base/step_laps.hpp).
 class DebugLaps : public StepLaps {
  public:
-  explicit DebugLaps(const char* prefix) : StepLaps("FDR_DEBUG_FILTER", prefix) {}
+  explicit DebugLaps(const char* prefix) : StepLaps(debug::Aid::kFilter, prefix) {}
 };
 
 GeomPtr checked(OGRGeometry* g, const char* what) {
@@ -570,7 +570,7 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
   add_runs(rb, ka);
   if (lines.IsEmpty()) return GeomPtr(new OGRMultiPolygon());
   auto fallback = [&] {
-    if (std::getenv("FDR_DEBUG_FILTER")) std::fprintf(stderr, "difference by faces: overlay fallback\n");
+    if (debug::value(debug::Aid::kFilter)) std::fprintf(stderr, "difference by faces: overlay fallback\n");
     return checked(a->Difference(b), what);
   };
   // Noded: the union of the lines with one of them nodes them all (OGR 3.6 has no unary union).
@@ -590,7 +590,7 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
     if (in_a.contains(&pt) && !in_b.contains(&pt)) out.push_back(std::move(f));
   }
   dl("faces");
-  if (std::getenv("FDR_DEBUG_FILTER"))
+  if (debug::value(debug::Aid::kFilter))
     std::fprintf(stderr, "difference by faces: %d lines, %zu faces, %zu pieces\n", lines.getNumGeometries(), fs.size(), out.size());
   return GeomPtr(multi(out).release());
 }
@@ -790,7 +790,7 @@ GeomPtr traced_difference(const OGRGeometry& a, const OGRGeometry& b, const char
     const auto t0 = std::chrono::steady_clock::now();
     auto r = pslg::contained_difference(std::move(pa), std::move(pb), eps, &st);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (dt > 0.05 && std::getenv("FDR_DEBUG_FILTER"))
+    if (dt > 0.05 && debug::value(debug::Aid::kFilter))
       std::fprintf(stderr, "%s: contained difference %.3f s (%zu shells out, %zu snapped, %zu inserted, %zu cut, %zu dropped)\n", what, dt,
                    r ? r->size() : 0, st.snapped, st.inserted, st.cut, st.dropped);
     if (r) {
@@ -813,7 +813,7 @@ GeomPtr traced_difference(const OGRGeometry& a, const OGRGeometry& b, const char
       }
       return GeomPtr(m.release());
     }
-    if (std::getenv("FDR_DEBUG_FILTER"))
+    if (debug::value(debug::Aid::kFilter))
       std::fprintf(stderr, "%s: not traced (%s)\n", what, st.refused ? st.refused : "?");
   }
   return nullptr;
@@ -1168,7 +1168,7 @@ class CoastRestorer {
             settled = false;
           }
       }
-      if (std::getenv("FDR_DEBUG_FILTER") && plans[0].v.size() > 5000) {
+      if (debug::value(debug::Aid::kFilter) && plans[0].v.size() > 5000) {
         std::size_t nin = 0, nout = 0, noff = 0;
         for (const auto& pl : plans) nin += pl.v.size();
         for (const auto& r : rings) nout += r.size();
@@ -1862,7 +1862,7 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Featur
     if (meets != 1) {  // would join two water bodies (or meets none: cannot happen)
       OGREnvelope e;
       d->getEnvelope(&e);
-      if (std::getenv("FDR_DEBUG_FILTER"))
+      if (debug::value(debug::Aid::kFilter))
         std::fprintf(stderr, "widen: piece of %.0f m^2 near %.1f %.1f meets %zu water bodies: not used\n",
                      d->get_Area(), 0.5 * (e.MinX + e.MaxX), 0.5 * (e.MinY + e.MaxY), meets);
       continue;
@@ -3154,7 +3154,7 @@ FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOp
   }
   lap("removed");
   res.output_pieces = res.polygons.size();
-  if (const char* dbg = std::getenv("FDR_DEBUG_FILTER")) {  // developer aid: WKT of the result
+  if (const char* dbg = debug::value(debug::Aid::kFilter)) {  // developer aid: WKT of the result
     if (FILE* fp = std::fopen(dbg, "w")) {
       for (const auto& p : outp) {
         char* wkt = nullptr;

@@ -31,7 +31,7 @@
 #include <mutex>
 
 #include "base/error.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "io/detail.hpp"
 
 namespace fdr::io::detail {

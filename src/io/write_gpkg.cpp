@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "base/step_laps.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
 #include "io/gpkg_rtree.hpp"
@@ -286,7 +286,7 @@ struct RowValues {
 }  // namespace
 
 void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
-  StepLaps lap("FDR_DEBUG_GPKG", "gpkg");  // developer aid (base/step_laps.hpp)
+  StepLaps lap(debug::Aid::kGpkg, "gpkg");  // developer aid (base/step_laps.hpp)
   const SrsRow srs = srs_row(m.crs_wkt, path);
   const auto srs_id = static_cast<std::int32_t>(srs.id);
 

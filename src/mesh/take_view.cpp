@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "base/memory.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::mesh {
 

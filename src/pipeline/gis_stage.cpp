@@ -2,6 +2,7 @@
 // (sizing::spacing_from_rules, gradient-limited), the PSLG cleaned and resampled; the .poly read
 // stage; the depths stage (raster sampled at the mesh's vertices) and the TIN error.
 #include "base/num_format.hpp"
+#include "base/debug.hpp"
 #include "pipeline/gis_stage.hpp"
 #include <algorithm>
 #include <cstdlib>
@@ -249,9 +250,9 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     ro.tolerance_factor = opt.coast_tol;
     ro.domain_by_parity = true;  // as the CDT decides the GIS domain
     pslg::ResampleStats rs;
-    if (const char* dbg = std::getenv("FDR_DEBUG_PSLG")) pslg::write_poly(g.pslg, std::string(dbg) + ".before.poly");
+    if (const char* dbg = debug::value(debug::Aid::kPslg)) pslg::write_poly(g.pslg, std::string(dbg) + ".before.poly");
     g.pslg = pslg::resample(g.pslg, ro, &rs);
-    if (const char* dbg = std::getenv("FDR_DEBUG_PSLG")) pslg::write_poly(g.pslg, std::string(dbg) + ".after.poly");
+    if (const char* dbg = debug::value(debug::Aid::kPslg)) pslg::write_poly(g.pslg, std::string(dbg) + ".after.poly");
     info("coast resampled to f: " + std::to_string(rs.vertices_in) + " -> " + std::to_string(rs.vertices_out) +
          " boundary vertices in " + std::to_string(rs.chains) + " chains (tolerance " + num(opt.coast_tol) +
          " f, max deviation " + num(rs.max_deviation) + " m; " + std::to_string(rs.pieces_restored) +

@@ -22,7 +22,7 @@ double StageClock::lap(const std::string& name) {
   const double s = std::chrono::duration<double>(now - t_).count();
   const long faults = minor_page_faults() - faults_;
   if (out_) out_->push_back({name, s, quality::peak_rss_mb_value().value_or(0.0), faults});
-  static const bool print = std::getenv("FDR_DEBUG_STAGES") != nullptr;  // developer aid: every stage on stderr
+  static const bool print = debug::on(debug::Aid::kStages);  // developer aid: every stage on stderr
   if (print)
     std::fprintf(stderr, "stage %-8s %.3f s faults %ld peak %.1f MB\n", name.c_str(), s, faults,
                  quality::peak_rss_mb_value().value_or(0.0));

@@ -175,7 +175,7 @@ quality::QualityReport measure(mesh::MeshView& m, const PreparedInput& in, const
   // writers then never evaluate f, which lets them run concurrently).
   // Model readiness against the input coast (issue 11) first: it reads the mesher's adjacency,
   // which measure_mesh releases unless an output's boundary lists read it.
-  StepLaps lap("FDR_DEBUG_REPORT", "report");  // developer aid (base/step_laps.hpp)
+  StepLaps lap(debug::Aid::kReport, "report");  // developer aid (base/step_laps.hpp)
   std::optional<quality::ModelReadiness> ready;
   if (plan.gis) ready = quality::compute_model_readiness(m, {in.hmin, opt.min_depth_m, &in.input_boundary, &in.coast_figures});
   lap("model readiness");

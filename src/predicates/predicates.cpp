@@ -1,5 +1,6 @@
 // Exact fallbacks of the predicates through CGAL's Epick kernel (filtered + exact).
 #include "predicates/predicates.hpp"
+#include "base/parallel.hpp"
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gmp.h>
 #include <cmath>
@@ -10,6 +11,21 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using P = K::Point_2;
 inline P cg(Point2 p) { return P(p.x, p.y); }
+
+// A worker thread's counters are added to the thread that started it (base/parallel.hpp), so
+// the report counts every call whichever thread made it.
+void* take_counters() {
+  auto* c = new Counters(counters());
+  reset_counters();
+  return c;
+}
+void give_counters(void* blob) {
+  auto* c = static_cast<Counters*>(blob);
+  counters().filtered += c->filtered;
+  counters().exact += c->exact;
+  delete c;
+}
+[[maybe_unused]] const bool kCountersRegistered = register_thread_state({take_counters, give_counters});
 }  // namespace
 
 

@@ -124,7 +124,7 @@ class Cleaner {
       : in_(in), opt_(opt), repairs_(repairs) {}
 
   Pslg run() {
-    StepLaps lap("FDR_DEBUG_CLEAN", "  clean");
+    StepLaps lap(debug::Aid::kClean, "  clean");
     check_input();
     lap("check");
     snap_input();

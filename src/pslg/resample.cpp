@@ -56,7 +56,7 @@ class Resampler {
   }
 
   Pslg run(ResampleStats* st) {
-    StepLaps lap("FDR_DEBUG_CLEAN", "  resample");
+    StepLaps lap(debug::Aid::kClean, "  resample");
     pts_ = in_.points;
     build_chains();
     lap("chains");

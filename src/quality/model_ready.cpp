@@ -19,7 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/error.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "base/step_laps.hpp"
 
 namespace fdr::quality {
@@ -385,7 +385,7 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
     for (Index v : m.triangles[t])
       if (v >= nv) return compute_model_readiness_plain(m, in);  // which throws the error
   ModelReadiness r = readiness_from_inputs(in);
-  StepLaps L("FDR_DEBUG_REPORT", "  model readiness");  // developer aid (base/step_laps.hpp)
+  StepLaps L(debug::Aid::kReport, "  model readiness");  // developer aid (base/step_laps.hpp)
   const double hmin = r.hmin_m.value_or(0.0);
   r.triangles = nt;
 

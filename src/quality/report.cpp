@@ -26,7 +26,7 @@
 #include "base/error.hpp"
 #include "base/memory.hpp"
 #include "base/step_laps.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/cell_centre.hpp"
 #include "quality/mesh_adjacency.hpp"
@@ -667,7 +667,7 @@ void merge(QualityReport& r, Part& all, Part& p) {
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle,
                               const std::vector<double>* f_at_vertices, std::vector<double>* fill_f_at_vertices) {
-  StepLaps QL("FDR_DEBUG_REPORT", "  quality");  // developer aid (base/step_laps.hpp)
+  StepLaps QL(debug::Aid::kReport, "  quality");  // developer aid (base/step_laps.hpp)
   QualityReport r;
   r.vertices = m.num_vertices();
   r.triangles = m.num_triangles();

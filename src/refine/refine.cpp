@@ -11,7 +11,7 @@
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
 #include "base/memory.hpp"
-#include "base/threads.hpp"
+#include "base/parallel.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
 

@@ -548,7 +548,7 @@ class Smoother {
 
 SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
   SmoothStats st;
-  StepLaps lap("FDR_DEBUG_SMOOTH", "smooth");  // developer aid (base/step_laps.hpp)
+  StepLaps lap(debug::Aid::kSmooth, "smooth");  // developer aid (base/step_laps.hpp)
   tri.rebuild_vertex_map();
   lap("vertex map");
   Shared sh{tri, f, options, 0.0, {}, {}, {}, {}, {}};

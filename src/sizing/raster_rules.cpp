@@ -277,7 +277,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
     distance_bvh(out, std::move(segs));
     return out;
   }
-  StepLaps lap("FDR_DEBUG_SIZING", "  distance");  // developer aid (base/step_laps.hpp)
+  StepLaps lap(debug::Aid::kSizing, "  distance");  // developer aid (base/step_laps.hpp)
   // Segments by cell (compressed rows): every point of a segment lies in a cell that lists it.
   // first[c] counts cell c's segments, then (prefix sums) where its list ends; filling the lists
   // backwards (last segment first) leaves each cell's start there and its list in segment order,

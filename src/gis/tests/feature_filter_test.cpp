@@ -12,7 +12,7 @@
 #include <string>
 
 #include "base/error.hpp"
-#include "base/scoped_env.hpp"
+#include "base/tests/scoped_env.hpp"
 #include "gis/feature_filter.hpp"
 
 namespace fdr::gis {

@@ -18,7 +18,7 @@
 #include <sqlite3.h>
 
 #include "base/error.hpp"
-#include "base/scoped_env.hpp"
+#include "base/tests/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
 #include "io/sqlite_bulk.hpp"

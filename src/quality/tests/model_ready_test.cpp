@@ -9,7 +9,7 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
-#include "base/scoped_env.hpp"
+#include "base/tests/scoped_env.hpp"
 #include "quality/mesh_adjacency.hpp"
 #include "quality/model_ready.hpp"
 #include "quality/report.hpp"

@@ -15,7 +15,7 @@
 #include "refine/refine.hpp"
 #include "refine/smooth.hpp"
 #include "refine/tests/fn_field.hpp"
-#include "base/scoped_env.hpp"
+#include "base/tests/scoped_env.hpp"
 
 using namespace fdr;
 using fdr::testing::FnField;

@@ -15,7 +15,7 @@
 #include "sizing/raster_rules.hpp"
 #include "sizing/spacing_grid.hpp"
 #include "sizing/spacing_rules.hpp"
-#include "base/scoped_env.hpp"
+#include "base/tests/scoped_env.hpp"
 
 namespace fdr::sizing {
 namespace {
