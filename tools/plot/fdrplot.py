@@ -21,15 +21,18 @@ class Mesh:
 
     segments: list of (i, j, kind) vertex-index pairs of constrained edges (kind: str or int).
     tri_fields: per-triangle arrays read from the file (GPKG: area, min_angle, R_over_f).
+    node_fields: per-vertex arrays read from the file (GPKG: f, conformity), NaN where unset.
     """
 
-    def __init__(self, xy, tris, z=None, segments=None, tri_fields=None, source="", crs_wkt=None):
+    def __init__(self, xy, tris, z=None, segments=None, tri_fields=None, source="", crs_wkt=None,
+                 node_fields=None):
         self.crs_wkt = crs_wkt  # CRS of xy (GPKG: the layers' SRS), None when unknown
         self.xy = np.asarray(xy, dtype=float).reshape(-1, 2)
         self.tris = np.asarray(tris, dtype=np.int64).reshape(-1, 3)
         self.z = None if z is None else np.asarray(z, dtype=float)
         self.segments = segments or []
         self.tri_fields = tri_fields or {}
+        self.node_fields = node_fields or {}
         self.source = source
         if len(self.tris) and (self.tris.min() < 0 or self.tris.max() >= len(self.xy)):
             raise MeshError(f"{source}: a triangle references a vertex outside 0..{len(self.xy) - 1}")
@@ -252,7 +255,7 @@ def read_2dm(path):
 
 
 def read_gpkg(path):
-    """fdrmesh GeoPackage: layers nodes (z), triangles (area, min_angle, R_over_f), boundaries (kind)."""
+    """fdrmesh GeoPackage: layers nodes (z, f, conformity), triangles (area, min_angle, R_over_f), boundaries (kind)."""
     from osgeo import ogr  # only GPKG needs GDAL
 
     ogr.UseExceptions()
@@ -263,6 +266,7 @@ def read_gpkg(path):
     if ds is None:
         raise MeshError(f"{path}: cannot open")
     index, xy, z = {}, [], []
+    node_vals = {}  # stored per-node fields: the run's own spacing, so no --spacing is needed to judge it
 
     def vid(x, y):
         key = (x, y)
@@ -270,16 +274,23 @@ def read_gpkg(path):
             index[key] = len(xy)
             xy.append(key)
             z.append(math.nan)
+            for v in node_vals.values():
+                v.append(math.nan)
         return index[key]
 
     nodes = ds.GetLayerByName("nodes")
     if nodes is not None:
-        has_z = nodes.GetLayerDefn().GetFieldIndex("z") >= 0
+        ndefn = nodes.GetLayerDefn()
+        has_z = ndefn.GetFieldIndex("z") >= 0
+        node_vals.update({n: [] for n in ("f", "conformity") if ndefn.GetFieldIndex(n) >= 0})
         for feat in nodes:
             g = feat.GetGeometryRef()
             v = vid(g.GetX(), g.GetY())
             if has_z and feat.IsFieldSetAndNotNull("z"):
                 z[v] = feat.GetFieldAsDouble("z")
+            for n, vals_n in node_vals.items():
+                if feat.IsFieldSetAndNotNull(n):
+                    vals_n[v] = feat.GetFieldAsDouble(n)
     tl = ds.GetLayerByName("triangles")
     if tl is None:
         raise MeshError(f"{path}: no layer 'triangles'")
@@ -311,7 +322,8 @@ def read_gpkg(path):
     return Mesh(np.array(xy).reshape(-1, 2), np.array(tris).reshape(-1, 3),
                 z=None if np.all(np.isnan(zz)) else zz, segments=segs,
                 tri_fields={n: np.array(v) for n, v in vals.items()}, source=path,
-                crs_wkt=srs.ExportToWkt() if srs is not None else None)
+                crs_wkt=srs.ExportToWkt() if srs is not None else None,
+                node_fields={n: np.array(v) for n, v in node_vals.items() if not np.all(np.isnan(v))})
 
 
 def read_mesh(path, ele=None):
@@ -505,10 +517,19 @@ def nearest_neighbour(xy):
         return out
 
 
-def conformity(mesh, f):
-    """c(x) = min(nn/f, f/nn) per vertex (FDR paper, Definition 2.1)."""
+def conformity(mesh, f=None):
+    """c(x) = min(nn/f, f/nn) per vertex (FDR paper, Definition 2.1).
+
+    Without f, the file's own f per node is used (an fdrmesh GeoPackage stores the run's spacing,
+    which a raster-driven run has no expression for); None when the file stores none.
+    """
+    if f is None:
+        fv = mesh.node_fields.get("f")
+        if fv is None:
+            return None
+    else:
+        fv = f(mesh.xy[:, 0], mesh.xy[:, 1])
     nn = nearest_neighbour(mesh.xy)
-    fv = f(mesh.xy[:, 0], mesh.xy[:, 1])
     with np.errstate(divide="ignore", invalid="ignore"):
         c = np.minimum(nn / fv, fv / nn)
     return c[np.isfinite(c)]

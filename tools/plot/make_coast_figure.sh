@@ -1,11 +1,11 @@
 #!/bin/bash
-# README figure "Model-ready coasts": a coastal detail of the Chesapeake mouth meshed with the
+# The coastal-detail figure of docs/model-ready.md: one window of a real coast meshed with the
 # default coast handling and with --keep-coast (every input vertex, no feature removal), side by
-# side in the same window, the input coast drawn over both meshes and the repairs marked.
+# side, the input coast drawn over both meshes and the repairs marked, so the two read at a glance.
 #
 # Usage: tools/plot/make_coast_figure.sh FDRMESH [OUT.png]
 #   FDRMESH  path to the fdrmesh binary
-#   OUT.png  default tools/plot/figures/chesapeake_coast_detail.png
+#   OUT.png  default docs/img/coast_detail.png
 # Environment: PYTHON (default /usr/bin/python3), DATA (default ../shared/data/chesapeake_mouth
 #   next to the repository), HMIN (150), HMAX (5000), BBOX_LONLAT (-75.80,37.47,-75.68,37.57),
 #   KEEP (a folder: keep the meshes and JSON reports there), COLORS (PNG palette size, 128).
@@ -18,7 +18,7 @@ fi
 FDRMESH=$1
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-OUT=${2:-$HERE/figures/chesapeake_coast_detail.png}
+OUT=${2:-$ROOT/docs/img/coast_detail.png}
 PYTHON=${PYTHON:-/usr/bin/python3}
 DATA=${DATA:-$ROOT/../shared/data/chesapeake_mouth}
 HMIN=${HMIN:-150}
@@ -52,7 +52,7 @@ common=("$SRC" --layer water --open-boundary "$SRC" --open-boundary-layer open_b
   --title "default (coast resampled to f, sub-resolution features removed)" \
   --compare-title "--keep-coast --min-angle 0 --smooth 0 (fdrmesh 0.1)" \
   --size 6 --dpi 100 -o "$WORK/figure.png"
-# A palette PNG (no dithering) keeps the README picture small.
+# A palette PNG (no dithering) keeps the picture small enough to keep in the repository.
 "$PYTHON" - "$WORK/figure.png" "$OUT" "$COLORS" <<'EOF'
 import sys
 from PIL import Image

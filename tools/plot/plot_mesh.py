@@ -165,8 +165,7 @@ def draw_panel(fig, ax, mesh, args, f, box, coast, title, color_range):
         if rep:
             handles.append(ax.scatter([r[0] for r in rep], [r[1] for r in rep], marker="x", s=40, c="black",
                                       linewidths=1.5, zorder=7, label=f"repairs ({len(rep)})"))
-    if len(handles) > 1:
-        ax.legend(handles=handles, loc="upper right", fontsize="small", framealpha=0.85)
+    legend = (handles, occupancy(mesh, keep, be)) if len(handles) > 1 else None
 
     amin = float(angles.min()) if nt else float("nan")
     amax = float(angles.max()) if nt else float("nan")
@@ -188,7 +187,65 @@ def draw_panel(fig, ax, mesh, args, f, box, coast, title, color_range):
         ax.yaxis.set_major_locator(MaxNLocator(5))
     else:
         ax.autoscale_view()
-    return pc, label
+    return pc, label, legend
+
+
+def occupancy(mesh, keep, boundary):
+    """What covers the panel, for choosing where the legend goes: a point locator over the drawn
+    triangles, and boundary midpoints with their lengths (a coast is thin but must stay visible)."""
+    tris = mesh.tris[keep]
+    finder = None
+    if len(tris):
+        used = np.unique(tris)
+        local = np.searchsorted(used, tris)  # the locator wants no unused vertices
+        finder = Triangulation(mesh.xy[used, 0], mesh.xy[used, 1], local).get_trifinder()
+    seg = [mesh.xy[boundary]] if len(boundary) else []
+    if mesh.segments:
+        seg.append(mesh.xy[np.array([(a, b) for a, b, _ in mesh.segments])])
+    seg = np.concatenate(seg) if seg else np.zeros((0, 2, 2))
+    return finder, seg.mean(1), np.hypot(*(seg[:, 1] - seg[:, 0]).T)
+
+
+CORNERS = ("upper right", "upper left", "lower left", "lower right")
+
+
+def corner_cover(occ, view, size, pad=0.02, samples=(16, 10)):
+    """For each corner of `view` (xmin, ymin, xmax, ymax), the fraction of a box of `size` (width,
+    height as fractions of the view) in that corner that the mesh covers: a grid of sample points
+    located in the triangles, plus boundary lengths counted as lines 1 % of the view wide."""
+    finder, mid, length = occ
+    x0, y0, x1, y1 = view
+    w, h = (x1 - x0) * size[0], (y1 - y0) * size[1]
+    px, py = (x1 - x0) * pad, (y1 - y0) * pad
+    cover = {}
+    for name in CORNERS:
+        bx0 = x1 - px - w if name.endswith("right") else x0 + px
+        by0 = y1 - py - h if name.startswith("upper") else y0 + py
+        gx, gy = np.meshgrid(bx0 + w * (np.arange(samples[0]) + 0.5) / samples[0],
+                             by0 + h * (np.arange(samples[1]) + 0.5) / samples[1])
+        tri_part = 0.0 if finder is None else float(np.mean(finder(gx.ravel(), gy.ravel()) >= 0))
+        on = (mid[:, 0] >= bx0) & (mid[:, 0] <= bx0 + w) & (mid[:, 1] >= by0) & (mid[:, 1] <= by0 + h)
+        line_part = float(length[on].sum()) * 0.01 * (x1 - x0) / max(w * h, 1e-300)
+        cover[name] = tri_part + line_part
+    return cover
+
+
+def place_legend(fig, ax, handles, occ, max_cover=0.03):
+    """The legend goes into the emptiest corner of the panel or, when every corner holds data,
+    below the panel: a legend must never hide the mesh it explains. Returns its location."""
+    leg = ax.legend(handles=handles, loc="upper right", fontsize="small", framealpha=0.9)
+    fig.canvas.draw()
+    bb = leg.get_window_extent().transformed(ax.transAxes.inverted())
+    leg.remove()
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    cover = corner_cover(occ, (x0, y0, x1, y1), (bb.width, bb.height))
+    best = min(CORNERS, key=lambda k: cover[k])  # ties keep CORNERS' order
+    if cover[best] <= max_cover:
+        ax.legend(handles=handles, loc=best, fontsize="small", framealpha=0.9)
+        return best
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.05), ncol=min(len(handles), 3),
+              fontsize="small", frameon=False)
+    return "below"
 
 
 def draw(mesh, args, other=None):
@@ -215,22 +272,29 @@ def draw(mesh, args, other=None):
     height = args.size
     if box is not None:  # the panel takes the window's shape (plus room for the titles)
         height = min(2 * args.size, max(0.5 * args.size, args.size * (box[3] - box[1]) / (box[2] - box[0]) + 1.2))
+    # Constrained layout gives the colour bar its own column beside the panels instead of drawing it
+    # over them, and keeps room for a legend placed below a panel.
     fig, axes = plt.subplots(1, len(meshes), figsize=(args.size * len(meshes) + (1.2 if other else 0), height),
-                             dpi=args.dpi, squeeze=False, layout="constrained" if other is not None else None)
+                             dpi=args.dpi, squeeze=False, layout="constrained")
     axes = axes[0]
-    pc, label = None, None
+    pc, label, legends = None, None, []
     for ax, m, t in zip(axes, meshes, titles):
-        p, lab = draw_panel(fig, ax, m, args, f, box, coast, t, color_range)
+        p, lab, legend = draw_panel(fig, ax, m, args, f, box, coast, t, color_range)
         pc, label = (p, lab) if p is not None else (pc, label)
+        legends.append(legend)
     if pc is not None:
-        cb = fig.colorbar(pc, ax=list(axes), shrink=0.8, pad=0.02)
+        cb = fig.colorbar(pc, ax=list(axes), shrink=0.8, pad=0.02, location="right")
         cb.set_label(label)
         if args.color == "r_over_f" and args.bound:
             cb.ax.axhline(args.bound, color="red", lw=1.5)
-    if other is None and box is None:
-        fig.tight_layout()
+    places = [place_legend(fig, ax, *legend) if legend is not None else None for ax, legend in zip(axes, legends)]
     fig.savefig(args.output, dpi=args.dpi)
+    # Where things landed, in figure coordinates (x0, y0, x1, y1): the tests check that nothing overlaps.
+    layout = {"panels": [tuple(ax.get_position().extents) for ax in axes],
+              "colorbar": tuple(cb.ax.get_position().extents) if pc is not None else None,
+              "legends": places}
     plt.close(fig)
+    return layout
 
 
 def main(argv=None):

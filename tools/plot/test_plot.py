@@ -280,6 +280,108 @@ def test_plot_histograms(tmp_path):
     assert r.returncode == 1 and "--labels has 2 entries for 1 meshes" in r.stderr
 
 
+def _lattice_gpkg(path, node_f=True, r_over_f=True):
+    """tiny.node as an fdrmesh-like GeoPackage storing f per node and/or R/f(c) per triangle."""
+    ogr = pytest.importorskip("osgeo.ogr")
+    mesh = fdrplot.read_mesh(os.path.join(TINY, "tiny.node"))
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    nodes = ds.CreateLayer("nodes", geom_type=ogr.wkbPoint)
+    if node_f:
+        nodes.CreateField(ogr.FieldDefn("f", ogr.OFTReal))
+    for x, y in mesh.xy:
+        f = ogr.Feature(nodes.GetLayerDefn())
+        if node_f:
+            f.SetField("f", 2.0)  # nearest neighbour 1 everywhere: conformity 0.5
+        f.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({x} {y})"))
+        nodes.CreateFeature(f)
+    tris = ds.CreateLayer("triangles", geom_type=ogr.wkbPolygon)
+    if r_over_f:
+        tris.CreateField(ogr.FieldDefn("R_over_f", ogr.OFTReal))
+    for t in mesh.tris:
+        p = mesh.xy[list(t) + [t[0]]]
+        f = ogr.Feature(tris.GetLayerDefn())
+        if r_over_f:
+            f.SetField("R_over_f", 0.25)
+        f.SetGeometry(ogr.CreateGeometryFromWkt("POLYGON ((" + ",".join(f"{x} {y}" for x, y in p) + "))"))
+        tris.CreateFeature(f)
+    ds = None
+
+
+def test_histograms_use_the_spacing_stored_in_the_gpkg(tmp_path):
+    """A raster-driven run has no --spacing expression: the third panel comes from the file's own f."""
+    import plot_histograms
+
+    path = str(tmp_path / "f.gpkg")
+    _lattice_gpkg(path)
+    m = fdrplot.read_mesh(path)
+    assert m.node_fields["f"] == pytest.approx(np.full(9, 2.0))
+    assert fdrplot.conformity(m) == pytest.approx(np.full(9, 0.5))
+    assert plot_histograms.third_panel_kind([m], None) == "conformity"
+    only_rf = str(tmp_path / "rf.gpkg")
+    _lattice_gpkg(only_rf, node_f=False)
+    m2 = fdrplot.read_mesh(only_rf)
+    assert "f" not in m2.node_fields and fdrplot.conformity(m2) is None
+    assert plot_histograms.third_panel_kind([m2], None) == "r_over_f"
+    bare = fdrplot.read_mesh(os.path.join(TINY, "tiny.node"))
+    assert plot_histograms.third_panel_kind([bare], None) is None
+    assert plot_histograms.third_panel_kind([bare], lambda x, y: x) == "conformity"
+    out = tmp_path / "h.png"
+    r = run("plot_histograms.py", path, "-o", str(out), "--dpi", "100")
+    assert r.returncode == 0, r.stderr
+    assert_png(str(out), 1500, 450)
+    # The legend sits away from the bars.
+    assert plot_histograms.legend_corner([np.full(10, 55.0)], 0, 60) == "upper left"
+    assert plot_histograms.legend_corner([np.full(10, 65.0)], 60, 180) == "upper right"
+
+
+def test_legend_goes_to_an_empty_corner_or_below(tmp_path):
+    """The legend never covers the mesh: an empty corner when there is one, else below the panel."""
+    import plot_mesh
+
+    # An L-shaped mesh: the lower-left quadrant of [0,2]^2 is empty.
+    xy = np.array([[1, 0], [2, 0], [2, 1], [1, 1], [0, 1], [0, 2], [1, 2], [2, 2]], float)
+    tris = np.array([[0, 1, 2], [0, 2, 3], [4, 3, 6], [4, 6, 5], [3, 2, 7], [3, 7, 6]])
+    segs = [(0, 1, "land"), (4, 5, "open")]
+    m = fdrplot.Mesh(xy, tris, segments=segs, source="L")
+    keep = np.ones(len(tris), bool)
+    cover = plot_mesh.corner_cover(plot_mesh.occupancy(m, keep, plot_mesh.boundary_edges(tris)),
+                                   (0, 0, 2, 2), (0.3, 0.2))
+    assert min(cover, key=cover.get) == "lower left" and cover["lower left"] == 0
+    assert cover["upper right"] > 0.5
+    out = tmp_path / "l.png"
+    node = tmp_path / "l.node"
+    node.write_text("8 2 0 1\n" + "".join(f"{i + 1} {x} {y} 1\n" for i, (x, y) in enumerate(xy)))
+    (tmp_path / "l.ele").write_text("6 3 0\n" + "".join(f"{i + 1} {a + 1} {b + 1} {c + 1}\n"
+                                                       for i, (a, b, c) in enumerate(tris)))
+    (tmp_path / "l.poly").write_text("0 2 0 1\n2 1\n1 1 2 1\n2 5 6 2\n0\n")
+    args = plot_mesh.parse_args([str(node), "-o", str(out), "--color", "min_angle", "--size", "5", "--dpi", "80"])
+    mesh = fdrplot.read_mesh(str(node))
+    if len({k for _, _, k in mesh.segments}) < 2:  # the reader found fewer than two kinds: give them
+        mesh.segments = segs
+    layout = plot_mesh.draw(mesh, args)
+    assert layout["legends"] == ["lower left"]
+    # A full square: every corner is covered, so the legend goes below the panel.
+    full = fdrplot.Mesh(np.array([[0, 0], [2, 0], [2, 2], [0, 2]], float), np.array([[0, 1, 2], [0, 2, 3]]),
+                        segments=segs[:1] + [(2, 3, "open")], source="square")
+    layout = plot_mesh.draw(full, args)
+    assert layout["legends"] == ["below"]
+
+
+def test_colour_bar_beside_the_panels(tmp_path):
+    """The colour bar has its own column right of the mesh, never on top of it."""
+    import plot_mesh
+
+    for extra in ([], ["--bbox", "0.5,0.5,1.5,1.0"]):
+        args = plot_mesh.parse_args([os.path.join(TINY, "tiny.node"), "-o", str(tmp_path / "c.png"), "--color",
+                                     "r_over_f", "--spacing", "1", "--bound", "1", "--size", "5", "--dpi", "80",
+                                     *extra])
+        layout = plot_mesh.draw(fdrplot.read_mesh(os.path.join(TINY, "tiny.node")), args)
+        cb = layout["colorbar"]
+        assert cb is not None
+        for panel in layout["panels"]:
+            assert cb[0] >= panel[2], (extra, cb, panel)
+
+
 FAKE_FDRMESH = textwrap.dedent("""\
     #!{py}
     # Stand-in for fdrmesh in tests: a lattice mesh of the .poly's box, spacing ~ B * min f.
