@@ -10,9 +10,9 @@ after the other), and prints for each: the wall time, the user and system CPU ti
 differences B - A within each round and in how many rounds B was faster. A command that fails stops the
 comparison (exit code 1, its stderr shown).
 
-Why: the host's speed drifts by 10-25 % from minute to minute, so only runs interleaved with each other
+Why: the host's speed drifts from minute to minute, so only runs interleaved with each other
 compare, and one pair says little; the system time apart shows what page faults and pages given back
-cost (README "Allocator"). Example (the previous build's program against this one):
+cost (docs/benchmarks.md). Example (the previous build's program against this one):
 
   tools/bench/ab.py -n 6 -- /tmp/base/build/bin/fdrmesh mesh R.gpkg --layer water --raster R.tif \\
       --hmin 120 -q -o /tmp/a.2dm ::: build/bin/fdrmesh mesh R.gpkg --layer water --raster R.tif \\
