@@ -1514,3 +1514,44 @@ TEST_F(IoRoundTrip, DflowfmNetHasEveryEdgeAndEdgeTypes) {
   EXPECT_EQ(conv, "CF-1.8 UGRID-1.0 Deltares-0.10");
   nc_close(nc);
 }
+
+// Packing: full nodes of `cap` cells level by level (the last of a level may hold fewer), each
+// cell one level up numbered in creation order from 2 and holding the union of its node's boxes,
+// and rows without a box left out.
+TEST(GpkgIndex, PackedTreeLevelsAndBoxes) {
+  const std::size_t n = 100, cap = 4;
+  const io::detail::BoxOf box = [](std::size_t i, io::detail::IndexBox& b) {
+    const double x = static_cast<double>(i % 10) + 0.1, y = static_cast<double>(i / 10) + 0.2;
+    b = {x, x + 0.5, y, y + 0.25};
+    return i != 42;
+  };
+  const io::detail::PackedRtree t = io::detail::pack_rtree(n, box, cap);
+  ASSERT_EQ(t.levels.size(), 4u);  // 99 cells: 25 leaves, 7 nodes, 2 nodes, the root's 2 cells
+  EXPECT_EQ(t.levels[0].size(), 99u);
+  EXPECT_EQ(t.levels[1].size(), 25u);
+  EXPECT_EQ(t.levels[2].size(), 7u);
+  EXPECT_EQ(t.levels[3].size(), 2u);
+  const std::vector<std::uint32_t> order = io::detail::rtree_insert_order(n, box);
+  std::uint32_t next_no = 2;
+  for (std::size_t l = 0; l + 1 < t.levels.size(); ++l)
+    for (std::size_t j = 0; j * cap < t.levels[l].size(); ++j) {
+      const io::detail::RtreeCell& up = t.levels[l + 1][j];
+      EXPECT_EQ(up.id, next_no++);
+      for (std::size_t k = j * cap; k < std::min(t.levels[l].size(), (j + 1) * cap); ++k) {
+        const io::detail::RtreeCell& c = t.levels[l][k];
+        EXPECT_TRUE(up.box[0] <= c.box[0] && up.box[1] >= c.box[1] && up.box[2] <= c.box[2] && up.box[3] >= c.box[3]);
+        if (l == 0) {
+          EXPECT_EQ(c.id, order[k] + 1);
+        }
+      }
+    }
+  // Leaf boxes contain the doubles they stand for (rounded outwards).
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    io::detail::IndexBox b{};
+    box(order[k], b);
+    const io::detail::RtreeCell& c = t.levels[0][k];
+    EXPECT_TRUE(c.box[0] <= b.minx && c.box[1] >= b.maxx && c.box[2] <= b.miny && c.box[3] >= b.maxy) << k;
+  }
+  EXPECT_TRUE(io::detail::pack_rtree(0, box, cap).levels.empty());
+  EXPECT_EQ(io::detail::pack_rtree(3, box, cap).levels.size(), 1u);  // a leaf root
+}
