@@ -53,14 +53,6 @@ void SqliteDb::close() {
   db_ = nullptr;
 }
 
-std::int64_t SqliteDb::root_page(const std::string& table) {
-  std::string name;
-  for (char c : table) name += c == '\'' ? std::string("''") : std::string(1, c);
-  const std::int64_t p = query_int("SELECT rootpage FROM sqlite_master WHERE type = 'table' AND name = '" + name + "'");
-  if (p <= 1) fail_output(path_, "cannot find the root page of table '" + table + "'");
-  return p;
-}
-
 SqliteStmt::SqliteStmt(SqliteDb& db, const std::string& sql) : db_(db) {
   if (sqlite3_prepare_v2(db.get(), sql.c_str(), static_cast<int>(sql.size()), &st_, nullptr) != SQLITE_OK)
     db.fail("cannot prepare '" + sql.substr(0, 60) + "'");
@@ -73,29 +65,16 @@ void SqliteStmt::step_done(const char* what) {
   sqlite3_clear_bindings(st_);
 }
 
-BatchInsert::BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt,
-                         bool async)
-    : db_(db), table_(std::move(table)), cols_(std::move(cols)), per_stmt_(rows_per_stmt ? rows_per_stmt : 1),
-      async_(async) {
+BatchInsert::BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt)
+    : db_(db), table_(std::move(table)), cols_(std::move(cols)), per_stmt_(rows_per_stmt ? rows_per_stmt : 1) {
   // Stay within this SQLite build's limit on bound parameters per statement (999 in old builds).
   const int max_vars = sqlite3_limit(db.get(), SQLITE_LIMIT_VARIABLE_NUMBER, -1);
   if (!cols_.empty() && max_vars > 0)
     per_stmt_ = std::max<std::size_t>(1, std::min(per_stmt_, static_cast<std::size_t>(max_vars) / cols_.size()));
   cur_.vals.reserve(per_stmt_ * cols_.size());
-  if (async_) worker_ = std::thread([this] { run(); });
 }
 
-BatchInsert::~BatchInsert() {
-  if (worker_.joinable()) {  // left by an exception: the batches still waiting are not written
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      closing_ = abandon_ = true;
-    }
-    cv_.notify_all();
-    worker_.join();
-  }
-  sqlite3_finalize(full_);
-}
+BatchInsert::~BatchInsert() { sqlite3_finalize(full_); }
 
 BatchInsert& BatchInsert::add_real_or_null(double v) {
   return std::isfinite(v) ? add_real(v) : add_null();
@@ -165,61 +144,10 @@ void BatchInsert::write(Batch& b) {
   b.rows = 0;
 }
 
-void BatchInsert::run() {
-  std::unique_lock<std::mutex> lock(mu_);
-  for (;;) {
-    cv_.wait(lock, [&] { return !queue_.empty() || closing_; });
-    if (queue_.empty() || abandon_) return;
-    Batch b = std::move(queue_.front());
-    queue_.pop_front();
-    const bool failed = error_ != nullptr;  // after a failure the rest is dropped
-    lock.unlock();
-    std::exception_ptr err;
-    try {
-      if (!failed) write(b);
-    } catch (...) {
-      err = std::current_exception();
-    }
-    b.vals.clear();
-    b.bytes.clear();
-    b.rows = 0;
-    lock.lock();
-    if (err && !error_) error_ = err;
-    spare_.push_back(std::move(b));
-    cv_.notify_all();
-  }
-}
-
 void BatchInsert::flush() {
-  if (cur_.rows == 0) return;
-  if (!async_) {
-    write(cur_);
-    return;
-  }
-  std::unique_lock<std::mutex> lock(mu_);
-  cv_.wait(lock, [&] { return queue_.size() < 2 || error_; });
-  if (error_) std::rethrow_exception(error_);
-  queue_.push_back(std::move(cur_));
-  if (!spare_.empty()) {
-    cur_ = std::move(spare_.back());
-    spare_.pop_back();
-  } else {
-    cur_ = Batch{};
-    cur_.vals.reserve(per_stmt_ * cols_.size());
-  }
-  cv_.notify_all();
+  if (cur_.rows > 0) write(cur_);
 }
 
-void BatchInsert::finish() {
-  flush();
-  if (!async_) return;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    closing_ = true;
-  }
-  cv_.notify_all();
-  worker_.join();
-  if (error_) std::rethrow_exception(error_);
-}
+void BatchInsert::finish() { flush(); }
 
 }  // namespace fdr::io::detail

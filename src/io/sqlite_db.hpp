@@ -3,14 +3,9 @@
 #pragma once
 #include <sqlite3.h>
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
-#include <exception>
-#include <mutex>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 namespace fdr::io::detail {
@@ -27,7 +22,6 @@ class SqliteDb {
   const std::string& path() const { return path_; }
   void exec(const std::string& sql);                       // one or more statements, no results
   std::int64_t query_int(const std::string& sql);          // first column of the first row (0 if none)
-  std::int64_t root_page(const std::string& table);        // its B-tree's root page (sqlite_master); throws
   [[noreturn]] void fail(const std::string& what) const;  // adds sqlite3_errmsg
   void close();                                            // throws if closing fails
 
@@ -54,14 +48,9 @@ class SqliteStmt {
 // Values of a row are appended with the add_* calls (in column order), end_row() closes it; the
 // last partial batch is written by finish() through a statement of its own size. Blob and text
 // bytes are copied into the batch, so callers may reuse their buffers.
-//
-// With `async`, full batches are bound and stepped by a thread of the BatchInsert's own while
-// the caller builds the next ones (at most two wait): the caller must not use the database
-// between construction and finish(). Same statements, same rows, same order, so the same file.
 class BatchInsert {
  public:
-  BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt = 128,
-              bool async = false);
+  BatchInsert(SqliteDb& db, std::string table, std::vector<std::string> cols, std::size_t rows_per_stmt = 128);
   ~BatchInsert();
   BatchInsert(const BatchInsert&) = delete;
   BatchInsert& operator=(const BatchInsert&) = delete;
@@ -74,7 +63,7 @@ class BatchInsert {
   void end_row() {
     if (++cur_.rows == per_stmt_) flush();
   }
-  void finish();  // writes the remaining rows (and, async, waits for every batch)
+  void finish();  // writes the remaining rows
 
  private:
   enum Type : std::uint8_t { kNull, kInt, kReal, kBlob, kText };
@@ -93,8 +82,7 @@ class BatchInsert {
     std::size_t rows = 0;
   };
   void flush();
-  void write(Batch& b);  // binds and steps one batch (on the writing thread)
-  void run();            // the async writing thread
+  void write(Batch& b);  // binds and steps one batch
   sqlite3_stmt* prepare(std::size_t rows);
   SqliteDb& db_;
   std::string table_;
@@ -102,15 +90,6 @@ class BatchInsert {
   std::size_t per_stmt_;
   sqlite3_stmt* full_ = nullptr;
   Batch cur_;
-  // async: batches waiting for the writing thread, emptied ones for reuse, the first error.
-  bool async_ = false;
-  std::thread worker_;
-  std::mutex mu_;
-  std::condition_variable cv_;
-  std::deque<Batch> queue_;
-  std::vector<Batch> spare_;
-  bool closing_ = false, abandon_ = false;
-  std::exception_ptr error_;
 };
 
 }  // namespace fdr::io::detail

@@ -2,14 +2,12 @@
 #include "io/write_many.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <mutex>
-#include <thread>
 
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "io/boundaries.hpp"
 #include "io/detail.hpp"
 
@@ -42,7 +40,7 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
                   const WriteOptions& options, unsigned threads) {
   const std::size_t n = paths.size();
   if (formats.size() != n) throw Error(ExitCode::kInternal, "write_meshes: one format per path expected");
-  // Outputs that carry boundary lists share one extraction (a tenth of a second at 1 M triangles).
+  // Outputs that carry boundary lists share one extraction instead of one each.
   std::size_t with_boundaries = 0;
   for (Format f : formats) with_boundaries += carries_boundaries(f) ? 1 : 0;
   BoundaryCache cache;
@@ -60,30 +58,26 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost_rank(formats[a]) < cost_rank(formats[b]); });
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < n;) {
-      const std::size_t i = order[k];
-      try {
-        if (formats[i] == Format::kUgrid) {
-          // The netCDF library is not thread-safe: one UGRID file at a time.
-          static std::mutex netcdf;
-          std::lock_guard<std::mutex> lock(netcdf);
-          write_mesh(mesh, paths[i], formats[i], *opts);
-        } else {
-          write_mesh(mesh, paths[i], formats[i], *opts);
+  // One chunk per file, claimed in `order`; each file's outcome goes to its own slot.
+  parallel_chunks(
+      n,
+      [&](std::size_t k, unsigned) {
+        const std::size_t i = order[k];
+        try {
+          if (formats[i] == Format::kUgrid) {
+            // The netCDF library is not thread-safe: one UGRID file at a time.
+            static std::mutex netcdf;
+            std::lock_guard<std::mutex> lock(netcdf);
+            write_mesh(mesh, paths[i], formats[i], *opts);
+          } else {
+            write_mesh(mesh, paths[i], formats[i], *opts);
+          }
+          done[i] = 1;
+        } catch (...) {
+          errors[i] = std::current_exception();
         }
-        done[i] = 1;
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  const unsigned t = static_cast<unsigned>(std::min<std::size_t>(std::max(1u, threads), n));
-  std::vector<std::thread> pool;
-  for (unsigned k = 1; k < t; ++k) pool.emplace_back(work);
-  work();
-  for (auto& th : pool) th.join();
+      },
+      std::max(1u, threads));
   for (std::size_t i = 0; i < n; ++i) {
     if (!errors[i]) continue;
     for (std::size_t j = 0; j < n; ++j)

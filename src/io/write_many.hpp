@@ -18,7 +18,7 @@ using fdr::max_threads;
 // WriteOptions::f null.
 // Whether the writer of f writes the mesh's boundary lists (extracted once per write_meshes call,
 // in one array read per half-edge when the mesh has the mesher's adjacency, MeshView::neighbours;
-// without it, by grouping the half-edges: at 1 M triangles about 47 MiB of temporary arrays).
+// without it, by grouping the half-edges, which takes large temporary arrays).
 // Inline: the pipeline core asks it without linking the writers (they live in the GIS module).
 inline bool carries_boundaries(Format f) {
   switch (f) {

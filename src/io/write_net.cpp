@@ -1,5 +1,6 @@
 // Delft3D FM (D-Flow FM) UGRID-1.0 net file: mesh2d with every edge, face circumcentres, edge
 // types from the shared boundary extraction, and the CRS as Deltares tools expect it.
+#include <array>
 #include <climits>
 #include <cmath>
 #include <unordered_map>
@@ -14,55 +15,62 @@ namespace {
 std::uint64_t ukey(Index a, Index b) {
   return a < b ? (static_cast<std::uint64_t>(a) << 32 | b) : (static_cast<std::uint64_t>(b) << 32 | a);
 }
-}  // namespace
 
-// Dimensions mesh2d_nNodes, mesh2d_nEdges, mesh2d_nFaces, mesh2d_nMax_face_nodes (3), Two.
-// Edges: every triangle edge once, in order of first appearance (triangle by triangle), stored
-// as in the first triangle that uses it; mesh2d_edge_type 1 internal, 2 open boundary, 3 closed
-// boundary (land, island). Ids are 1-based (start_index 1), as D-Flow FM writes them.
-void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
-  Nc nc{path};
-  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
-  if (nv >= static_cast<std::size_t>(INT_MAX) || 3 * nt >= static_cast<std::size_t>(INT_MAX))
-    fail_output(path, "mesh too large for a D-Flow FM net file (32-bit ids)");
-  const NcCrs crs = nc_crs(m.crs_wkt, path);
+// Every triangle edge once, in order of first appearance, with its mesh2d_edge_type.
+struct NetEdges {
+  std::vector<std::array<Index, 2>> nodes;
+  std::vector<int> type;
+};
 
-  // Every edge once.
-  std::vector<std::array<Index, 2>> edges;
-  std::vector<int> etype;
-  {
-    std::unordered_map<std::uint64_t, std::size_t> seen;
-    seen.reserve(3 * nt / 2 + nv + 16);
-    for (const auto& tr : m.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const Index a = tr[k], b = tr[(k + 1) % 3];
-        if (seen.emplace(ukey(a, b), edges.size()).second) {
-          edges.push_back({a, b});
-          etype.push_back(1);
-        }
+NetEdges net_edges(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  NetEdges e;
+  std::unordered_map<std::uint64_t, std::size_t> seen;
+  seen.reserve(3 * m.triangles.size() / 2 + m.vertices.size() + 16);
+  for (const auto& tr : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = tr[k], b = tr[(k + 1) % 3];
+      if (seen.emplace(ukey(a, b), e.nodes.size()).second) {
+        e.nodes.push_back({a, b});
+        e.type.push_back(1);
       }
-    Boundaries own;
-    const Boundaries& bnd = boundaries_for(m, path, o.boundary_cache, own);
-    for (const auto& l : bnd.loops)
-      for (std::size_t i = 0; i < l.nodes.size(); ++i) {
-        auto it = seen.find(ukey(l.nodes[i], l.nodes[(i + 1) % l.nodes.size()]));
-        if (it != seen.end()) etype[it->second] = l.edge_open[i] ? 2 : 3;
-      }
+    }
+  Boundaries own;
+  const Boundaries& bnd = boundaries_for(m, path, o.boundary_cache, own);
+  for (const auto& l : bnd.loops)
+    for (std::size_t i = 0; i < l.nodes.size(); ++i) {
+      auto it = seen.find(ukey(l.nodes[i], l.nodes[(i + 1) % l.nodes.size()]));
+      if (it != seen.end()) e.type[it->second] = l.edge_open[i] ? 2 : 3;
+    }
+  return e;
+}
+
+// The open file being defined: dimensions, CRS variable, variable ids.
+struct NetFile {
+  const Nc& nc;
+  int id;
+  bool geographic;
+  int d_node = -1, d_edge = -1, d_face = -1, d_max = -1, d_two = -1;
+  int v_crs = -1;
+  std::string crs_var = {};
+  int nx = -1, ny = -1, ex = -1, ey = -1, fx = -1, fy = -1, z = -1, en = -1, et = -1, fn = -1;
+  // The attributes tying a data variable to the mesh (and its CRS).
+  void on_mesh(int var, const char* location, const char* coords) const {
+    nc.text(id, var, "mesh", "mesh2d");
+    nc.text(id, var, "location", location);
+    if (coords) nc.text(id, var, "coordinates", coords);
+    if (v_crs >= 0) nc.text(id, var, "grid_mapping", crs_var);
   }
-  const std::size_t ne = edges.size();
+};
 
-  TempFile tf(path);
-  tf.release_for_library();
-  NcFile f;
-  nc.check(nc_create(tf.path().c_str(), NC_NETCDF4 | NC_NOCLOBBER, &f.id), "create");
-  const int id = f.id;
-
-  int d_node, d_edge, d_face, d_max, d_two;
-  nc.check(nc_def_dim(id, "mesh2d_nNodes", nv, &d_node), "dimension mesh2d_nNodes");
-  nc.check(nc_def_dim(id, "mesh2d_nEdges", ne, &d_edge), "dimension mesh2d_nEdges");
-  nc.check(nc_def_dim(id, "mesh2d_nFaces", nt, &d_face), "dimension mesh2d_nFaces");
-  nc.check(nc_def_dim(id, "mesh2d_nMax_face_nodes", 3, &d_max), "dimension mesh2d_nMax_face_nodes");
-  nc.check(nc_def_dim(id, "Two", 2, &d_two), "dimension Two");
+// Dimensions, global attributes, the mesh topology variable and the CRS variable.
+void define_net_mesh(NetFile& n, const mesh::MeshView& m, std::size_t ne, const WriteOptions& o, const NcCrs& crs) {
+  const Nc& nc = n.nc;
+  const int id = n.id;
+  nc.check(nc_def_dim(id, "mesh2d_nNodes", m.vertices.size(), &n.d_node), "dimension mesh2d_nNodes");
+  nc.check(nc_def_dim(id, "mesh2d_nEdges", ne, &n.d_edge), "dimension mesh2d_nEdges");
+  nc.check(nc_def_dim(id, "mesh2d_nFaces", m.triangles.size(), &n.d_face), "dimension mesh2d_nFaces");
+  nc.check(nc_def_dim(id, "mesh2d_nMax_face_nodes", 3, &n.d_max), "dimension mesh2d_nMax_face_nodes");
+  nc.check(nc_def_dim(id, "Two", 2, &n.d_two), "dimension Two");
 
   nc.text(id, NC_GLOBAL, "Conventions", "CF-1.8 UGRID-1.0 Deltares-0.10");
   nc.text(id, NC_GLOBAL, "title", o.title.empty() ? "fdrmesh mesh" : o.title);
@@ -87,33 +95,30 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
   nc.text(id, v_mesh, "face_coordinates", "mesh2d_face_x mesh2d_face_y");
 
   // Deltares names the CRS variable projected_coordinate_system (or wgs84 for lon/lat).
-  int v_crs = -1;
-  std::string crs_var;
-  if (!crs.wkt1.empty()) {
-    crs_var = crs.geographic ? "wgs84" : "projected_coordinate_system";
-    nc.check(nc_def_var(id, crs_var.c_str(), NC_INT, 0, nullptr, &v_crs), "variable projected_coordinate_system");
-    nc.text(id, v_crs, "name", crs.name.empty() ? "Unknown projected" : crs.name);
-    nc.integer(id, v_crs, "epsg", crs.epsg);
-    nc.text(id, v_crs, "grid_mapping_name", crs.geographic ? "latitude_longitude" : "Unknown projected");
-    nc.real(id, v_crs, "longitude_of_prime_meridian", 0.0);
-    nc.real(id, v_crs, "semi_major_axis", crs.semi_major);
-    nc.real(id, v_crs, "semi_minor_axis", crs.semi_minor);
-    nc.real(id, v_crs, "inverse_flattening", crs.inverse_flattening);
-    if (crs.epsg > 0) nc.text(id, v_crs, "EPSG_code", "EPSG:" + std::to_string(crs.epsg));
-    nc.text(id, v_crs, "value", "value is equal to EPSG code");
-    nc.text(id, v_crs, "wkt", crs.wkt1);
-    nc.text(id, v_crs, "crs_wkt", crs.wkt2);
-  }
-  auto on_mesh = [&](int var, const char* location, const char* coords) {
-    nc.text(id, var, "mesh", "mesh2d");
-    nc.text(id, var, "location", location);
-    if (coords) nc.text(id, var, "coordinates", coords);
-    if (v_crs >= 0) nc.text(id, var, "grid_mapping", crs_var);
-  };
+  if (crs.wkt1.empty()) return;
+  n.crs_var = crs.geographic ? "wgs84" : "projected_coordinate_system";
+  nc.check(nc_def_var(id, n.crs_var.c_str(), NC_INT, 0, nullptr, &n.v_crs), "variable projected_coordinate_system");
+  nc.text(id, n.v_crs, "name", crs.name.empty() ? "Unknown projected" : crs.name);
+  nc.integer(id, n.v_crs, "epsg", crs.epsg);
+  nc.text(id, n.v_crs, "grid_mapping_name", crs.geographic ? "latitude_longitude" : "Unknown projected");
+  nc.real(id, n.v_crs, "longitude_of_prime_meridian", 0.0);
+  nc.real(id, n.v_crs, "semi_major_axis", crs.semi_major);
+  nc.real(id, n.v_crs, "semi_minor_axis", crs.semi_minor);
+  nc.real(id, n.v_crs, "inverse_flattening", crs.inverse_flattening);
+  if (crs.epsg > 0) nc.text(id, n.v_crs, "EPSG_code", "EPSG:" + std::to_string(crs.epsg));
+  nc.text(id, n.v_crs, "value", "value is equal to EPSG code");
+  nc.text(id, n.v_crs, "wkt", crs.wkt1);
+  nc.text(id, n.v_crs, "crs_wkt", crs.wkt2);
+}
+
+// Coordinates of nodes, edges and faces, then node z.
+void define_net_coordinates(NetFile& n) {
+  const Nc& nc = n.nc;
+  const int id = n.id;
   auto coord_var = [&](const char* name, int dim, bool is_x, const char* long_name, const char* location) {
     int v;
     nc.check(nc_def_var(id, name, NC_DOUBLE, 1, &dim, &v), name);
-    if (crs.geographic) {
+    if (n.geographic) {
       nc.text(id, v, "standard_name", is_x ? "longitude" : "latitude");
       nc.text(id, v, "units", is_x ? "degrees_east" : "degrees_north");
     } else {
@@ -121,57 +126,61 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
       nc.text(id, v, "units", "m");
     }
     nc.text(id, v, "long_name", long_name);
-    on_mesh(v, location, nullptr);
+    n.on_mesh(v, location, nullptr);
     return v;
   };
-  const int v_nx = coord_var("mesh2d_node_x", d_node, true, "x-coordinate of mesh nodes", "node");
-  const int v_ny = coord_var("mesh2d_node_y", d_node, false, "y-coordinate of mesh nodes", "node");
-  const int v_ex = coord_var("mesh2d_edge_x", d_edge, true, "Characteristic x-coordinate of the mesh edge (e.g. midpoint)", "edge");
-  const int v_ey = coord_var("mesh2d_edge_y", d_edge, false, "Characteristic y-coordinate of the mesh edge (e.g. midpoint)", "edge");
-  const int v_fx = coord_var("mesh2d_face_x", d_face, true, "Characteristic x-coordinate of mesh face (circumcentre)", "face");
-  const int v_fy = coord_var("mesh2d_face_y", d_face, false, "Characteristic y-coordinate of mesh face (circumcentre)", "face");
+  n.nx = coord_var("mesh2d_node_x", n.d_node, true, "x-coordinate of mesh nodes", "node");
+  n.ny = coord_var("mesh2d_node_y", n.d_node, false, "y-coordinate of mesh nodes", "node");
+  n.ex = coord_var("mesh2d_edge_x", n.d_edge, true, "Characteristic x-coordinate of the mesh edge (e.g. midpoint)", "edge");
+  n.ey = coord_var("mesh2d_edge_y", n.d_edge, false, "Characteristic y-coordinate of the mesh edge (e.g. midpoint)", "edge");
+  n.fx = coord_var("mesh2d_face_x", n.d_face, true, "Characteristic x-coordinate of mesh face (circumcentre)", "face");
+  n.fy = coord_var("mesh2d_face_y", n.d_face, false, "Characteristic y-coordinate of mesh face (circumcentre)", "face");
 
-  int v_z;
-  nc.check(nc_def_var(id, "mesh2d_node_z", NC_DOUBLE, 1, &d_node, &v_z), "variable mesh2d_node_z");
-  nc.text(id, v_z, "standard_name", "altitude");
-  nc.text(id, v_z, "long_name", "z-coordinate of mesh nodes");
-  nc.text(id, v_z, "units", "m");
-  nc.text(id, v_z, "positive", "up");
-  on_mesh(v_z, "node", "mesh2d_node_x mesh2d_node_y");
+  nc.check(nc_def_var(id, "mesh2d_node_z", NC_DOUBLE, 1, &n.d_node, &n.z), "variable mesh2d_node_z");
+  nc.text(id, n.z, "standard_name", "altitude");
+  nc.text(id, n.z, "long_name", "z-coordinate of mesh nodes");
+  nc.text(id, n.z, "units", "m");
+  nc.text(id, n.z, "positive", "up");
+  n.on_mesh(n.z, "node", "mesh2d_node_x mesh2d_node_y");
   const double fill = -999.0;
-  nc.check(nc_put_att_double(id, v_z, "_FillValue", NC_DOUBLE, 1, &fill), "_FillValue");
+  nc.check(nc_put_att_double(id, n.z, "_FillValue", NC_DOUBLE, 1, &fill), "_FillValue");
+}
 
+// Edge nodes and types, face nodes.
+void define_net_connectivity(NetFile& n) {
+  const Nc& nc = n.nc;
+  const int id = n.id;
   const int fill_id = -999;
-  int dims_e[2] = {d_edge, d_two};
-  int v_en;
-  nc.check(nc_def_var(id, "mesh2d_edge_nodes", NC_INT, 2, dims_e, &v_en), "variable mesh2d_edge_nodes");
-  nc.text(id, v_en, "cf_role", "edge_node_connectivity");
-  nc.text(id, v_en, "mesh", "mesh2d");
-  nc.text(id, v_en, "location", "edge");
-  nc.text(id, v_en, "long_name", "Start and end nodes of mesh edges");
-  nc.integer(id, v_en, "start_index", 1);
-  nc.check(nc_put_att_int(id, v_en, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+  int dims_e[2] = {n.d_edge, n.d_two};
+  nc.check(nc_def_var(id, "mesh2d_edge_nodes", NC_INT, 2, dims_e, &n.en), "variable mesh2d_edge_nodes");
+  nc.text(id, n.en, "cf_role", "edge_node_connectivity");
+  nc.text(id, n.en, "mesh", "mesh2d");
+  nc.text(id, n.en, "location", "edge");
+  nc.text(id, n.en, "long_name", "Start and end nodes of mesh edges");
+  nc.integer(id, n.en, "start_index", 1);
+  nc.check(nc_put_att_int(id, n.en, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
 
-  int v_et;
-  nc.check(nc_def_var(id, "mesh2d_edge_type", NC_INT, 1, &d_edge, &v_et), "variable mesh2d_edge_type");
-  nc.text(id, v_et, "long_name", "edge type (relation between edge and flow geometry)");
-  on_mesh(v_et, "edge", "mesh2d_edge_x mesh2d_edge_y");
+  nc.check(nc_def_var(id, "mesh2d_edge_type", NC_INT, 1, &n.d_edge, &n.et), "variable mesh2d_edge_type");
+  nc.text(id, n.et, "long_name", "edge type (relation between edge and flow geometry)");
+  n.on_mesh(n.et, "edge", "mesh2d_edge_x mesh2d_edge_y");
   const int flags[4] = {0, 1, 2, 3};
-  nc.check(nc_put_att_int(id, v_et, "flag_values", NC_INT, 4, flags), "flag_values");
-  nc.text(id, v_et, "flag_meanings", "internal_closed internal boundary boundary_closed");
+  nc.check(nc_put_att_int(id, n.et, "flag_values", NC_INT, 4, flags), "flag_values");
+  nc.text(id, n.et, "flag_meanings", "internal_closed internal boundary boundary_closed");
 
-  int dims_f[2] = {d_face, d_max};
-  int v_fn;
-  nc.check(nc_def_var(id, "mesh2d_face_nodes", NC_INT, 2, dims_f, &v_fn), "variable mesh2d_face_nodes");
-  nc.text(id, v_fn, "cf_role", "face_node_connectivity");
-  nc.text(id, v_fn, "mesh", "mesh2d");
-  nc.text(id, v_fn, "location", "face");
-  nc.text(id, v_fn, "long_name", "Vertex nodes of mesh faces (counterclockwise)");
-  nc.integer(id, v_fn, "start_index", 1);
-  nc.check(nc_put_att_int(id, v_fn, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+  int dims_f[2] = {n.d_face, n.d_max};
+  nc.check(nc_def_var(id, "mesh2d_face_nodes", NC_INT, 2, dims_f, &n.fn), "variable mesh2d_face_nodes");
+  nc.text(id, n.fn, "cf_role", "face_node_connectivity");
+  nc.text(id, n.fn, "mesh", "mesh2d");
+  nc.text(id, n.fn, "location", "face");
+  nc.text(id, n.fn, "long_name", "Vertex nodes of mesh faces (counterclockwise)");
+  nc.integer(id, n.fn, "start_index", 1);
+  nc.check(nc_put_att_int(id, n.fn, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+}
 
-  nc.check(nc_enddef(id), "enddef");
-
+void write_net_data(const NetFile& n, const mesh::MeshView& m, const NetEdges& edges) {
+  const Nc& nc = n.nc;
+  const int id = n.id;
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size(), ne = edges.nodes.size();
   if (nv) {
     std::vector<double> x(nv), y(nv), z(nv, 0.0);
     for (std::size_t v = 0; v < nv; ++v) {
@@ -180,24 +189,24 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
       y[v] = p.y;
       if (!m.z.empty()) z[v] = m.z[v];
     }
-    nc.check(nc_put_var_double(id, v_nx, x.data()), "write mesh2d_node_x");
-    nc.check(nc_put_var_double(id, v_ny, y.data()), "write mesh2d_node_y");
-    nc.check(nc_put_var_double(id, v_z, z.data()), "write mesh2d_node_z");
+    nc.check(nc_put_var_double(id, n.nx, x.data()), "write mesh2d_node_x");
+    nc.check(nc_put_var_double(id, n.ny, y.data()), "write mesh2d_node_y");
+    nc.check(nc_put_var_double(id, n.z, z.data()), "write mesh2d_node_z");
   }
   if (ne) {
     std::vector<int> en(2 * ne);
     std::vector<double> ex(ne), ey(ne);
     for (std::size_t e = 0; e < ne; ++e) {
-      en[2 * e] = static_cast<int>(edges[e][0]) + 1;
-      en[2 * e + 1] = static_cast<int>(edges[e][1]) + 1;
-      const Point2 a = m.world(edges[e][0]), b = m.world(edges[e][1]);
+      en[2 * e] = static_cast<int>(edges.nodes[e][0]) + 1;
+      en[2 * e + 1] = static_cast<int>(edges.nodes[e][1]) + 1;
+      const Point2 a = m.world(edges.nodes[e][0]), b = m.world(edges.nodes[e][1]);
       ex[e] = 0.5 * (a.x + b.x);
       ey[e] = 0.5 * (a.y + b.y);
     }
-    nc.check(nc_put_var_int(id, v_en, en.data()), "write mesh2d_edge_nodes");
-    nc.check(nc_put_var_int(id, v_et, etype.data()), "write mesh2d_edge_type");
-    nc.check(nc_put_var_double(id, v_ex, ex.data()), "write mesh2d_edge_x");
-    nc.check(nc_put_var_double(id, v_ey, ey.data()), "write mesh2d_edge_y");
+    nc.check(nc_put_var_int(id, n.en, en.data()), "write mesh2d_edge_nodes");
+    nc.check(nc_put_var_int(id, n.et, edges.type.data()), "write mesh2d_edge_type");
+    nc.check(nc_put_var_double(id, n.ex, ex.data()), "write mesh2d_edge_x");
+    nc.check(nc_put_var_double(id, n.ey, ey.data()), "write mesh2d_edge_y");
   }
   if (nt) {
     std::vector<int> fn(3 * nt);
@@ -209,11 +218,37 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
       fx[t] = m.origin.x + c.x;
       fy[t] = m.origin.y + c.y;
     }
-    nc.check(nc_put_var_int(id, v_fn, fn.data()), "write mesh2d_face_nodes");
-    nc.check(nc_put_var_double(id, v_fx, fx.data()), "write mesh2d_face_x");
-    nc.check(nc_put_var_double(id, v_fy, fy.data()), "write mesh2d_face_y");
+    nc.check(nc_put_var_int(id, n.fn, fn.data()), "write mesh2d_face_nodes");
+    nc.check(nc_put_var_double(id, n.fx, fx.data()), "write mesh2d_face_x");
+    nc.check(nc_put_var_double(id, n.fy, fy.data()), "write mesh2d_face_y");
   }
-  const int status = nc_close(id);
+}
+
+}  // namespace
+
+// Dimensions mesh2d_nNodes, mesh2d_nEdges, mesh2d_nFaces, mesh2d_nMax_face_nodes (3), Two.
+// Edges: every triangle edge once, in order of first appearance (triangle by triangle), stored
+// as in the first triangle that uses it; mesh2d_edge_type 1 internal, 2 open boundary, 3 closed
+// boundary (land, island). Ids are 1-based (start_index 1), as D-Flow FM writes them.
+void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
+  const Nc nc{path};
+  const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
+  if (nv >= static_cast<std::size_t>(INT_MAX) || 3 * nt >= static_cast<std::size_t>(INT_MAX))
+    fail_output(path, "mesh too large for a D-Flow FM net file (32-bit ids)");
+  const NcCrs crs = nc_crs(m.crs_wkt, path);
+  const NetEdges edges = net_edges(m, path, o);
+
+  TempFile tf(path);
+  tf.release_for_library();
+  NcFile f;
+  nc.check(nc_create(tf.path().c_str(), NC_NETCDF4 | NC_NOCLOBBER, &f.id), "create");
+  NetFile n{nc, f.id, crs.geographic};
+  define_net_mesh(n, m, edges.nodes.size(), o, crs);
+  define_net_coordinates(n);
+  define_net_connectivity(n);
+  nc.check(nc_enddef(f.id), "enddef");
+  write_net_data(n, m, edges);
+  const int status = nc_close(f.id);
   f.id = -1;
   nc.check(status, "close");
   tf.commit();

@@ -21,7 +21,7 @@
 #include "base/tests/scoped_env.hpp"
 #include "io/detail.hpp"
 #include "io/reader.hpp"
-#include "io/sqlite_bulk.hpp"
+#include "io/gpkg_index.hpp"
 #include "io/sqlite_db.hpp"
 #include "io/write_many.hpp"
 #include "io/writer.hpp"
@@ -537,17 +537,17 @@ std::vector<std::string> all_rows(const std::string& path) {
 }
 }  // namespace
 
-// BatchInsert with its own writing thread: the same rows in the same order as without, and a
-// failing batch (here a UNIQUE violation) surfaces as kOutputError from a later call, without
-// hanging and without writing the batches after it.
-TEST(IoSqlite, AsyncBatchInsertSameRowsAndErrors) {
+// BatchInsert writes every row with its types in order (the last partial batch through a
+// statement of its own size), and a failing batch (here a UNIQUE violation) surfaces as
+// kOutputError without the batches after it being written.
+TEST(IoSqlite, BatchInsertSameRowsAndErrors) {
   TmpDir tmp;
-  for (bool async : {false, true}) {
-    const std::string p = tmp / (async ? "a.sqlite" : "s.sqlite");
+  {
+    const std::string p = tmp / "s.sqlite";
     {
       io::detail::SqliteDb db(p, p);
       db.exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; CREATE TABLE t (k INTEGER, v REAL, b BLOB, s TEXT)");
-      io::detail::BatchInsert ins(db, "t", {"k", "v", "b", "s"}, 16, async);
+      io::detail::BatchInsert ins(db, "t", {"k", "v", "b", "s"}, 16);
       std::string blob;
       for (int i = 0; i < 1000; ++i) {
         blob.assign(static_cast<std::size_t>(i % 7), static_cast<char>(i));
@@ -567,7 +567,7 @@ TEST(IoSqlite, AsyncBatchInsertSameRowsAndErrors) {
       EXPECT_EQ(db.query_int("SELECT COUNT(*) FROM t WHERE s = 'row' || k"), 1000);
       db.exec("CREATE TABLE u (k INTEGER UNIQUE)");
       try {
-        io::detail::BatchInsert bad(db, "u", {"k"}, 8, async);
+        io::detail::BatchInsert bad(db, "u", {"k"}, 8);
         for (int i = 0; i < 200; ++i) {
           bad.add_int(i == 20 ? 3 : i);  // the third batch repeats 3
           bad.end_row();
@@ -583,8 +583,8 @@ TEST(IoSqlite, AsyncBatchInsertSameRowsAndErrors) {
   }
 }
 
-// The R-trees planned on a helper thread (FDR_THREADS=2) are the ones planned inline (=1): same
-// rows in every table, shadow tables of the R-trees included; and the file is as large.
+// FDR_THREADS=1 and 2 write the same rows in every table, the R-trees' shadow tables included,
+// and files of the same size.
 TEST_F(IoRoundTrip, GeoPackageSameForEveryThreadCount) {
   mesh::MeshView g = grid_mesh(90);  // 15842 triangles: three R-tree levels
   std::vector<std::string> rows[2];
@@ -615,13 +615,12 @@ std::string pragma_text(const std::string& path, const std::string& sql) {
 }
 }  // namespace
 
-// The nodes, triangles and R-tree shadow tables written as B-tree pages (sqlite_bulk.cpp) hold
-// the rows SQLite's own inserts write (FDR_GPKG_SQL_ROWS), pass SQLite's integrity check, and
-// make the same file whatever the thread count: a mesh whose tables fit in one leaf each (the
-// leaf written on the root page), one with 4 KiB pages and three B-tree levels, one with 64 KiB
-// pages and several chunks per table.
-TEST_F(IoRoundTrip, GeoPackagePagesHoldWhatSqlInsertsWrite) {
-  struct SharedF : sizing::SizingField {  // thread-safe: the rows are built on two threads
+// Files of every size (empty triangles table, one page per table, several B-tree levels with
+// 4 KiB pages, 64 KiB pages) pass SQLite's integrity and R-tree checks, hold the values given
+// with their types, and are the same bytes whatever the thread count (but for the time of
+// writing in gpkg_contents.last_change).
+TEST_F(IoRoundTrip, GeoPackageValidAndSameBytesForEverySize) {
+  struct SharedF : sizing::SizingField {
     double operator()(Point2 p) const override { return 1.5 + 0.001 * p.x; }
     bool thread_safe() const override { return true; }
     std::string describe() const override { return "shared"; }
@@ -633,41 +632,42 @@ TEST_F(IoRoundTrip, GeoPackagePagesHoldWhatSqlInsertsWrite) {
     for (std::size_t v = 0; v < g.vertices.size(); ++v) g.z[v] = v % 5 == 0 ? std::nan("") : -3.25 * static_cast<double>(v);
     std::vector<double> area(g.triangles.size()), angle(g.triangles.size()), rf(g.triangles.size());
     for (std::size_t t = 0; t < g.triangles.size(); ++t) {
-      area[t] = t % 7 == 0 ? 1.0 : 0.5;  // an integral real, as SQLite stores it (as an integer)
+      area[t] = t % 7 == 0 ? 1.0 : 0.5;  // an integral real, which SQLite stores as an integer
       angle[t] = 45.0 + 1e-9 * static_cast<double>(t);
       rf[t] = t % 11 == 0 ? std::numeric_limits<double>::infinity() : 0.25 + 1e-6 * static_cast<double>(t);
     }
     io::WriteOptions o = opts;
-    if (n != 90) o.f = &shared_f;  // 90: a sizing field that is not thread-safe (rows on one thread)
+    o.f = &shared_f;
     o.triangle_area = &area;
     o.triangle_min_angle = &angle;
     o.triangle_r_over_f = &rf;
-    std::string sql_path = tmp / ("sql" + std::to_string(n) + ".gpkg");
-    {
-      ScopedEnv env("FDR_GPKG_SQL_ROWS", "1");
-      io::write_mesh(g, sql_path, Format::kGpkg, o);
-    }
-    std::string pages[2];
+    std::string files[2];
     for (int k = 0; k < 2; ++k) {
       ThreadsEnv threads(k + 1);
-      pages[k] = tmp / ("pages" + std::to_string(n) + "_" + std::to_string(k + 1) + ".gpkg");
-      io::write_mesh(g, pages[k], Format::kGpkg, o);
+      files[k] = tmp / ("sized" + std::to_string(n) + "_" + std::to_string(k + 1) + ".gpkg");
+      io::write_mesh(g, files[k], Format::kGpkg, o);
     }
-    EXPECT_EQ(pragma_text(pages[1], "PRAGMA integrity_check"), "ok") << n;
-    EXPECT_EQ(pragma_text(sql_path, "PRAGMA integrity_check"), "ok") << n;
-    for (const char* t : {"nodes", "triangles"})
-      EXPECT_EQ(pragma_text(pages[1], std::string("SELECT rtreecheck('rtree_") + t + "_geom')"), "ok") << n << " " << t;
-    const std::vector<std::string> want = all_rows(sql_path), got = all_rows(pages[1]);
-    EXPECT_GT(got.size(), 2 * g.triangles.size() + g.vertices.size()) << n;
-    EXPECT_TRUE(want == got) << n;
-    if (want != got)
-      for (std::size_t i = 0; i < std::min(want.size(), got.size()); ++i)
-        if (want[i] != got[i]) {
-          ADD_FAILURE() << "first difference, row " << i << ":\n" << want[i] << "\n" << got[i];
-          break;
-        }
-    // Bit for bit but for gpkg_contents.last_change (the time of writing).
-    std::string bytes[2] = {slurp(pages[0]), slurp(pages[1])};
+    const std::string& p = files[1];
+    EXPECT_EQ(pragma_text(p, "PRAGMA integrity_check"), "ok") << n;
+    for (const char* t : {"nodes", "triangles", "boundaries", "repairs"}) {
+      EXPECT_EQ(pragma_text(p, std::string("SELECT rtreecheck('rtree_") + t + "_geom')"), "ok") << n << " " << t;
+      EXPECT_EQ(pragma_text(p, std::string("SELECT COUNT(*) FROM rtree_") + t + "_geom"),
+                pragma_text(p, std::string("SELECT COUNT(*) FROM ") + t)) << n << " " << t;
+    }
+    const auto nt = static_cast<std::int64_t>(g.triangles.size()), nv = static_cast<std::int64_t>(g.vertices.size());
+    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE fid = id AND typeof(area) = 'real'"), std::to_string(nt));
+    std::int64_t unit = 0, infinite = 0;
+    for (std::int64_t t = 0; t < nt; ++t) unit += t % 7 == 0, infinite += t % 11 == 0;
+    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE area = 1.0"), std::to_string(unit)) << n;
+    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE R_over_f IS NULL AND quality IS NULL"),
+              std::to_string(infinite)) << n;
+    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM nodes WHERE fid = id AND (z IS NULL) = ((id - 1) % 5 = 0)"),
+              std::to_string(nv)) << n;
+    EXPECT_EQ(pragma_text(p, "SELECT seq FROM sqlite_sequence WHERE name = 'triangles'"),
+              n == 0 ? "<no row>" : std::to_string(nt));  // as SQLite: no row before the first insert
+    EXPECT_EQ(pragma_text(p, "PRAGMA page_size"), nt >= 32768 ? "65536" : "4096") << n;
+    EXPECT_TRUE(all_rows(files[0]) == all_rows(files[1])) << n;
+    std::string bytes[2] = {slurp(files[0]), slurp(files[1])};
     for (std::string& b : bytes)
       for (std::size_t i = 0; i + 24 <= b.size(); ++i)
         if (b[i + 4] == '-' && b[i + 7] == '-' && b[i + 10] == 'T' && b[i + 13] == ':' && b[i + 16] == ':' &&
@@ -675,80 +675,69 @@ TEST_F(IoRoundTrip, GeoPackagePagesHoldWhatSqlInsertsWrite) {
           std::fill(b.begin() + static_cast<std::ptrdiff_t>(i), b.begin() + static_cast<std::ptrdiff_t>(i + 24), 'X');
     EXPECT_EQ(bytes[0].size(), bytes[1].size()) << n;
     EXPECT_TRUE(bytes[0] == bytes[1]) << n;
-    EXPECT_EQ(pragma_text(pages[1], "SELECT seq FROM sqlite_sequence WHERE name = 'triangles'"),
-              n == 0 ? "<no row>" : std::to_string(g.triangles.size()));  // as SQLite: no row before the first
     // GDAL reads it back whole.
-    mesh::MeshView back = io::read_mesh(pages[1]);
+    mesh::MeshView back = io::read_mesh(p);
     EXPECT_EQ(back.num_triangles(), g.num_triangles());
     EXPECT_EQ(back.num_vertices(), g.num_vertices());
   }
 }
 
-// Record encodes every kind of value as SQLite does (integers of each width, negative ones, 0
-// and 1, reals, NULL, blobs, text), write_bulk_tables fills several tables of one file at once,
-// and no page is put on the lock-byte page (SQLite's pending byte moved to 64 KiB for the test,
-// so that page falls inside the rows written).
-TEST(SqliteBulk, RowsReadBackAndLockBytePageSkipped) {
-  const bool moved = sqlite3_test_control(SQLITE_TESTCTRL_PENDING_BYTE, 0x10000) >= 0;
-  TmpDir tmp;
-  const std::string path = tmp / "bulk.sqlite";
-  const std::int64_t ints[] = {0, 1, -1, 2, 127, 128, -128, -129, 32767, 32768, -32769, 8388607, 8388608, 2147483647,
-                               2147483648LL, -2147483649LL, 140737488355327LL, 140737488355328LL,
-                               std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::min()};
-  auto values = [&](std::size_t i, auto& r) {
-    r.add_int(ints[i % std::size(ints)]);
-    r.add_real_or_null(i % 13 == 0 ? std::nan("") : 0.1 * static_cast<double>(i) - 7);
-    const std::string b(i % 300, static_cast<char>(i & 0xFF));
-    r.add_blob(b.data(), b.size());
-    r.add_text("row " + std::to_string(i));
-    r.add_null();
-  };
-  const std::size_t rows[2] = {20000, 3};
-  {
-    io::detail::SqliteDb db(path, path);
-    db.exec("PRAGMA page_size = 4096; PRAGMA journal_mode = OFF;");
-    db.exec("CREATE TABLE a (k INTEGER PRIMARY KEY, i INTEGER, r REAL, b BLOB, s TEXT, n);"
-            "CREATE TABLE b (k INTEGER PRIMARY KEY, i INTEGER, r REAL, b BLOB, s TEXT, n);"
-            "CREATE TABLE ref (k INTEGER PRIMARY KEY, i INTEGER, r REAL, b BLOB, s TEXT, n);");
-    {
-      io::detail::BatchInsert ins(db, "ref", {"k", "i", "r", "b", "s", "n"}, 64);
-      for (std::size_t i = 0; i < rows[0]; ++i) {
-        ins.add_int(static_cast<std::int64_t>(3 * i + 5));
-        values(i, ins);
-        ins.end_row();
-      }
-      ins.finish();
+// The Hilbert curve of the 2^16 grid starts with the 16 x 16 square at the origin, cell by
+// neighbouring cell; rtree_insert_order follows it over box centres and leaves out rows
+// without a box.
+TEST(GpkgIndex, HilbertKeyWalksNeighbouringCells) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> at(256, {~0u, ~0u});
+  for (std::uint32_t x = 0; x < 16; ++x)
+    for (std::uint32_t y = 0; y < 16; ++y) {
+      const std::uint32_t k = io::detail::hilbert_key(x, y);
+      ASSERT_LT(k, 256u) << x << " " << y;
+      EXPECT_EQ(at[k].first, ~0u) << "key " << k << " given twice";
+      at[k] = {x, y};
     }
-    std::vector<io::detail::BulkTable> tables;
-    for (int t = 0; t < 2; ++t)
-      tables.push_back({t ? "b" : "a", db.query_int(std::string("SELECT rootpage FROM sqlite_master WHERE name = '") + (t ? "b" : "a") + "'"),
-                        rows[t], true, [&](std::size_t i, io::detail::Record& r) {
-                          r.clear(static_cast<std::int64_t>(3 * i + 5));
-                          r.add_null();
-                          values(i, r);
-                        }});
-    db.close();
-    io::detail::write_bulk_tables(path, path, tables, 0x10000);
+  EXPECT_EQ(io::detail::hilbert_key(0, 0), 0u);
+  for (std::size_t k = 1; k < at.size(); ++k) {
+    const auto dx = static_cast<int>(at[k].first) - static_cast<int>(at[k - 1].first);
+    const auto dy = static_cast<int>(at[k].second) - static_cast<int>(at[k - 1].second);
+    EXPECT_EQ(std::abs(dx) + std::abs(dy), 1) << "keys " << k - 1 << " and " << k;
   }
-  EXPECT_EQ(pragma_text(path, "PRAGMA integrity_check"), "ok");
-  EXPECT_EQ(pragma_text(path, "SELECT COUNT(*) FROM a"), "20000");
-  EXPECT_EQ(pragma_text(path, "SELECT COUNT(*) FROM b"), "3");
-  // Every value of a and of b is the reference's, with its type.
-  EXPECT_EQ(pragma_text(path, "SELECT COUNT(*) FROM a JOIN ref USING (k) WHERE a.i IS ref.i AND a.r IS ref.r AND a.b IS "
-                              "ref.b AND a.s IS ref.s AND a.n IS NULL AND typeof(a.i) = typeof(ref.i) AND typeof(a.r) = "
-                              "typeof(ref.r) AND typeof(a.b) = typeof(ref.b)"),
-            "20000");
-  EXPECT_EQ(pragma_text(path, "SELECT COUNT(*) FROM b JOIN ref USING (k) WHERE b.i IS ref.i AND b.b IS ref.b"), "3");
-  EXPECT_EQ(pragma_text(path, "SELECT i FROM a WHERE k = " + std::to_string(3 * 19 + 5)), "-9223372036854775808");
-  EXPECT_EQ(pragma_text(path, "SELECT MAX(k) FROM a"), std::to_string(3 * 19999 + 5));
-  // The file has no page left over (the lock-byte page aside, SQLite counts it).
-  EXPECT_EQ(static_cast<std::int64_t>(fs::file_size(path)), 4096 * std::stoll(pragma_text(path, "PRAGMA page_count")));
-  if (!moved) GTEST_SKIP() << "this SQLite build cannot move its lock byte: the lock-byte page was not exercised";
-  // The rows span the lock-byte page (17 at 4 KiB pages): SQLite read them around it.
-  EXPECT_GT(std::stoll(pragma_text(path, "PRAGMA page_count")), 17);
+  EXPECT_EQ(io::detail::hilbert_key(65535, 0), 0xFFFFFFFFu);  // the curve ends at the other bottom corner
 }
 
-TEST_F(IoRoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
+// Box centres on whole cells of the grid (the first two rows span it), so the expected order
+// is the one of their Hilbert keys, rows in order on equal keys.
+TEST(GpkgIndex, InsertOrderFollowsTheCurveAndSkipsEmptyRows) {
+  const std::size_t n = 500;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cell(n);
+  cell[0] = {0, 65535};
+  cell[1] = {65535, 0};
+  std::uint32_t r = 12345;
+  for (std::size_t i = 2; i < n; ++i) {
+    r = r * 1103515245u + 12345u;
+    const std::uint32_t x = (r >> 8) & 0xFFFF;
+    cell[i] = i % 10 == 7 ? cell[i - 1] : std::make_pair(x, (x * 7919u + static_cast<std::uint32_t>(i)) & 0xFFFF);
+  }
+  const io::detail::BoxOf box = [&](std::size_t i, io::detail::IndexBox& b) {
+    const double x = cell[i].first, y = cell[i].second;
+    b = {x - 0.25, x + 0.25, y - 0.5, y + 0.5};
+    return i % 5 != 3;
+  };
+  std::vector<std::uint32_t> want;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (i % 5 != 3) want.push_back(i);
+  std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return io::detail::hilbert_key(cell[a].first, cell[a].second) < io::detail::hilbert_key(cell[b].first, cell[b].second);
+  });
+  EXPECT_EQ(io::detail::rtree_insert_order(n, box), want);
+  EXPECT_TRUE(io::detail::rtree_insert_order(0, box).empty());
+  // One centre for every row: the order of the rows.
+  const io::detail::BoxOf same = [](std::size_t, io::detail::IndexBox& b) {
+    b = {1, 2, 3, 4};
+    return true;
+  };
+  EXPECT_EQ(io::detail::rtree_insert_order(3, same), (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+TEST_F(IoRoundTrip, GeoPackageSpatialIndexIsValidAndMaintained) {
   mesh::MeshView g = grid_mesh(60);  // 6962 triangles, 3600 nodes
   std::string p = tmp / "grid.gpkg";
   io::write_mesh(g, p, Format::kGpkg, opts);
@@ -801,7 +790,7 @@ TEST_F(IoRoundTrip, GeoPackageBulkSpatialIndexIsValidAndMaintained) {
   }
   GDALClose(ds2);
   lt->SetSpatialFilter(nullptr);
-  // The maintenance triggers keep the bulk-built index up to date on edits.
+  // The maintenance triggers keep the index up to date on edits.
   OGRLayer* lr = ds->GetLayerByName("repairs");
   OGRFeature nf(lr->GetLayerDefn());
   nf.SetField("kind", "manual");
@@ -1524,4 +1513,45 @@ TEST_F(IoRoundTrip, DflowfmNetHasEveryEdgeAndEdgeTypes) {
   nc_get_att_text(nc, NC_GLOBAL, "Conventions", conv.data());
   EXPECT_EQ(conv, "CF-1.8 UGRID-1.0 Deltares-0.10");
   nc_close(nc);
+}
+
+// Packing: full nodes of `cap` cells level by level (the last of a level may hold fewer), each
+// cell one level up numbered in creation order from 2 and holding the union of its node's boxes,
+// and rows without a box left out.
+TEST(GpkgIndex, PackedTreeLevelsAndBoxes) {
+  const std::size_t n = 100, cap = 4;
+  const io::detail::BoxOf box = [](std::size_t i, io::detail::IndexBox& b) {
+    const double x = static_cast<double>(i % 10) + 0.1, y = static_cast<double>(i / 10) + 0.2;
+    b = {x, x + 0.5, y, y + 0.25};
+    return i != 42;
+  };
+  const io::detail::PackedRtree t = io::detail::pack_rtree(n, box, cap);
+  ASSERT_EQ(t.levels.size(), 4u);  // 99 cells: 25 leaves, 7 nodes, 2 nodes, the root's 2 cells
+  EXPECT_EQ(t.levels[0].size(), 99u);
+  EXPECT_EQ(t.levels[1].size(), 25u);
+  EXPECT_EQ(t.levels[2].size(), 7u);
+  EXPECT_EQ(t.levels[3].size(), 2u);
+  const std::vector<std::uint32_t> order = io::detail::rtree_insert_order(n, box);
+  std::uint32_t next_no = 2;
+  for (std::size_t l = 0; l + 1 < t.levels.size(); ++l)
+    for (std::size_t j = 0; j * cap < t.levels[l].size(); ++j) {
+      const io::detail::RtreeCell& up = t.levels[l + 1][j];
+      EXPECT_EQ(up.id, next_no++);
+      for (std::size_t k = j * cap; k < std::min(t.levels[l].size(), (j + 1) * cap); ++k) {
+        const io::detail::RtreeCell& c = t.levels[l][k];
+        EXPECT_TRUE(up.box[0] <= c.box[0] && up.box[1] >= c.box[1] && up.box[2] <= c.box[2] && up.box[3] >= c.box[3]);
+        if (l == 0) {
+          EXPECT_EQ(c.id, order[k] + 1);
+        }
+      }
+    }
+  // Leaf boxes contain the doubles they stand for (rounded outwards).
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    io::detail::IndexBox b{};
+    box(order[k], b);
+    const io::detail::RtreeCell& c = t.levels[0][k];
+    EXPECT_TRUE(c.box[0] <= b.minx && c.box[1] >= b.maxx && c.box[2] <= b.miny && c.box[3] >= b.maxy) << k;
+  }
+  EXPECT_TRUE(io::detail::pack_rtree(0, box, cap).levels.empty());
+  EXPECT_EQ(io::detail::pack_rtree(3, box, cap).levels.size(), 1u);  // a leaf root
 }
