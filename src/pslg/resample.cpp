@@ -1,12 +1,12 @@
 // Boundary resampling to f (see resample.hpp): the rounds of planning, assembly and conflict
 // checks; the chains between anchors; the output PSLG from the planned pieces.
 #include "pslg/resample.hpp"
-#include "base/step_laps.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <vector>
+#include "base/step_laps.hpp"
 #include "predicates/predicates.hpp"
 #include "pslg/resampler.hpp"
 #include "pslg/segment_grid.hpp"
