@@ -5,7 +5,7 @@
 
 namespace fdr {
 
-// Process exit codes (documented in README.md, "Exit codes"). Never renumber.
+// Process exit codes: scripts depend on them, so never renumber.
 enum class ExitCode : int {
   kOk = 0,
   kInternal = 1,         // a bug: an invariant failed inside fdrmesh

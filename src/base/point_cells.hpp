@@ -12,9 +12,9 @@ namespace fdr {
 // Points (those with keep(i)) in the cells of a uniform grid, in compressed rows: for_each_within
 // calls f(i) for every kept point strictly nearer than sqrt(r2) to q, by the same test KdTree
 // makes (norm2(p_i - q) < r2), so the same points (in another order). Why: the smoothing queries
-// only its segment vertices, with radii near the cell length, and ordering every vertex for a
-// tree (nth_element over copies of all of them) cost 50 ms at 0.56 M vertices; counting them into
-// cells costs two passes. `cell`: the wanted cell length (enlarged to at most as many cells as
+// only its segment vertices, with radii near the cell length, so ordering every vertex for a
+// tree (nth_element over copies of all of them) costs more than the queries gain; counting them
+// into cells costs two passes. `cell`: the wanted cell length (enlarged to at most as many cells as
 // points); `box`: the points' box (a point outside it falls in a border cell, still found).
 class PointCells {
  public:

@@ -17,8 +17,8 @@ inline long minor_page_faults() {
 
 // When the developer aid `aid` is on, lap("x") prints "<prefix> x <seconds> s faults <n>"
 // on stderr: the time and the process's minor page faults since the previous lap (or since
-// construction). Otherwise it does nothing. Why the faults: on this project's machine a 4 KiB
-// page fault costs about 10 us, so a step's time is often its fresh memory.
+// construction). Otherwise it does nothing. Why the faults: a 4 KiB page fault costs about as
+// much as writing the page, so a step's time is often its fresh memory.
 class StepLaps {
  public:
   StepLaps(debug::Aid aid, const char* prefix) : on_(debug::on(aid)), prefix_(prefix) {

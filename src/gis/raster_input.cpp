@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <mutex>
+#include <numbers>
 
 #include <gdal_alg.h>
 #include <gdal_priv.h>
@@ -361,7 +362,7 @@ double grid_cell_size_hint(const std::string& path, const Frame& frame, Box2 box
   if (rs.IsGeographic()) {
     // Degrees (angular units) to metres at the box centre on the WGS 84 mean radius.
     const double rad = rs.GetAngularUnits(nullptr);
-    const double lat = frame.to_lonlat(box.center()).lat_deg * M_PI / 180.0;
+    const double lat = frame.to_lonlat(box.center()).lat_deg * std::numbers::pi / 180.0;
     const double R = 6371008.8;
     mx = px * rad * R * std::cos(lat);
     my = py * rad * R;

@@ -25,7 +25,7 @@ std::uint64_t bits(double v) {
 }
 
 // Open-addressing map from a key of two words to the head of a chain of indices (no per-key
-// allocation: the snapping registers every input vertex, half a million on an ocean basin).
+// allocation: the snapping registers every input vertex).
 class KeyHeads {
  public:
   Index head(std::uint64_t k1, std::uint64_t k2) const {

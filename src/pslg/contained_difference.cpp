@@ -7,12 +7,14 @@
 #include <limits>
 #include <tuple>
 #include "predicates/predicates.hpp"
+#include "pslg/contained_difference_steps.hpp"
 #include "pslg/segment_grid.hpp"
 
 namespace fdr::pslg {
 
 using predicates::orient2d;
 
+namespace cd_steps {
 namespace {
 
 bool lex_less(Point2 p, Point2 q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
@@ -90,12 +92,6 @@ class CellIndex {
   }
   double pad_, x0_ = 0, y0_ = 0, cs_ = 1;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> items_;
-};
-
-struct Ring {
-  std::vector<Point2> p;
-  bool from_a;
-  int want;  // orientation with the result's interior on the left: +1 ccw, -1 cw
 };
 
 // Segments of rings as (from, to) arrays, with (ring, index) of each.
@@ -201,8 +197,82 @@ std::size_t insert_near(std::vector<Ring>& rings, bool src_a, double eps) {
   return count;
 }
 
-// True if w comes before z turning clockwise around v from the ray v -> r (a direction equal
-// to the ray's counts as a full turn).
+double area2(const std::vector<Point2>& p) {
+  double s = 0;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 a = p[i] - p[0], b = p[(i + 1) % n] - p[0];
+    s += a.x * b.y - a.y * b.x;
+  }
+  return s;
+}
+
+// The input rings, tidied, each with the orientation that puts the result's interior on its
+// left: a's shells counter-clockwise and holes clockwise, b's the other way round.
+const char* input_rings(PolygonSet& a, PolygonSet& b, std::vector<Ring>& rings) {
+  for (int set = 0; set < 2; ++set)
+    for (auto& poly : set == 0 ? a : b)
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        Ring r{std::move(poly[k]), set == 0, (set == 0) == (k == 0) ? 1 : -1};
+        for (const Point2& q : r.p)
+          if (!std::isfinite(q.x) || !std::isfinite(q.y)) return "a coordinate is not finite";
+        if (!tidy(r.p)) {
+          if (k == 0) return "a shell with fewer than 3 vertices";
+          continue;
+        }
+        rings.push_back(std::move(r));
+      }
+  std::size_t nv = 0;
+  for (const Ring& r : rings) nv += r.p.size();
+  if (nv >= std::numeric_limits<std::uint32_t>::max() / 4) return "too many vertices";
+  return nullptr;
+}
+
+// Moves each vertex of a within eps of a vertex of b onto the nearest one (of equally near
+// ones the lexicographically smallest, so the result does not depend on the order of b).
+const char* snap_a_onto_b(std::vector<Ring>& rings, double eps, std::size_t& snapped) {
+  const Segs sb = segments_of(rings, false);
+  if (sb.from.empty()) return nullptr;
+  const CellIndex idx(sb.from, sb.to, eps);
+  for (Ring& r : rings) {
+    if (!r.from_a) continue;
+    for (Point2& v : r.p) {
+      double best = eps;
+      Point2 to = v;
+      idx.near_point(v, [&](std::uint32_t s) {
+        for (const Point2 q : {sb.from[s], sb.to[s]}) {
+          const double d = q == v ? 0.0 : dist(q, v);
+          if (d < best || (d == best && lex_less(q, to))) {
+            best = d;
+            to = q;
+          }
+        }
+      });
+      if (!(to == v)) {
+        v = to;
+        ++snapped;
+      }
+    }
+    if (!tidy(r.p)) return "a ring of a collapsed when snapped onto b";
+  }
+  return nullptr;
+}
+
+// Tidies every ring and turns it to the orientation it wants.
+const char* orient_rings(std::vector<Ring>& rings) {
+  for (Ring& r : rings) {
+    if (!tidy(r.p)) return "a ring collapsed";
+    const int o = orientation(r.p);
+    if (o == 0) return "a ring without area";
+    if (o != r.want) std::reverse(r.p.begin(), r.p.end());
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+// The steps declared in contained_difference_steps.hpp.
+
 bool cw_before(Point2 v, Point2 r, Point2 w, Point2 z) {
   auto half = [&](Point2 q) {
     const int o = orient2d(v, r, q);
@@ -217,7 +287,6 @@ bool cw_before(Point2 v, Point2 r, Point2 w, Point2 z) {
   return orient2d(v, w, z) < 0;  // z clockwise of w: w first
 }
 
-// Exact point-in-ring: +1 inside, -1 outside, 0 on the boundary.
 int locate(Point2 h, const std::vector<Point2>& ring) {
   int wn = 0;
   const std::size_t n = ring.size();
@@ -240,224 +309,200 @@ int locate(Point2 h, const std::vector<Point2>& ring) {
   return wn != 0 ? 1 : -1;
 }
 
-double area2(const std::vector<Point2>& p) {
-  double s = 0;
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point2 a = p[i] - p[0], b = p[(i + 1) % n] - p[0];
-    s += a.x * b.y - a.y * b.x;
+const char* cancel_shared(const std::vector<Ring>& rings, std::vector<Edge>& rest, std::size_t& cancelled) {
+  std::vector<Edge> edges;
+  for (std::uint32_t r = 0; r < rings.size(); ++r) {
+    const auto& p = rings[r].p;
+    for (std::uint32_t i = 0; i < p.size(); ++i) edges.push_back({p[i], p[(i + 1) % p.size()], r, i});
   }
-  return s;
+  auto lo = [&](const Edge& e) { return lex_less(e.u, e.v) ? e.u : e.v; };
+  auto hi = [&](const Edge& e) { return lex_less(e.u, e.v) ? e.v : e.u; };
+  std::vector<std::uint32_t> ord(edges.size());
+  for (std::uint32_t i = 0; i < ord.size(); ++i) ord[i] = i;
+  // Sorted by the undirected segment (smaller end first), then by index.
+  std::sort(ord.begin(), ord.end(), [&](std::uint32_t i, std::uint32_t j) {
+    const Point2 xl = lo(edges[i]), yl = lo(edges[j]);
+    if (!(xl == yl)) return lex_less(xl, yl);
+    const Point2 xh = hi(edges[i]), yh = hi(edges[j]);
+    if (!(xh == yh)) return lex_less(xh, yh);
+    return i < j;
+  });
+  std::vector<char> live(edges.size(), 1);
+  cancelled = 0;
+  for (std::size_t g = 0; g < ord.size();) {
+    std::size_t e = g + 1;
+    const Edge& first = edges[ord[g]];
+    while (e < ord.size() && lo(edges[ord[e]]) == lo(first) && hi(edges[ord[e]]) == hi(first)) ++e;
+    if (e - g == 2) {
+      const Edge &x = edges[ord[g]], &y = edges[ord[g + 1]];
+      if (rings[x.ring].from_a == rings[y.ring].from_a) return "a segment twice in one set";
+      if (x.u == y.u) return "b lies beside a along a shared segment";
+      live[ord[g]] = live[ord[g + 1]] = 0;
+      ++cancelled;
+    } else if (e - g > 2) {
+      return "a segment in more than two rings";
+    }
+    g = e;
+  }
+  rest.clear();
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (live[i]) rest.push_back(edges[i]);
+  return nullptr;
 }
 
-}  // namespace
-
-std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, double eps, ContainedDifferenceStats* stats) {
-  // The predicate counters report the mesher's decisions: this one's are not counted (they
-  // would depend on which thread ran it).
-  struct KeepCounters {
-    predicates::Counters saved = predicates::counters();
-    ~KeepCounters() { predicates::counters() = saved; }
-  } keep_counters;
-  ContainedDifferenceStats st;
-  auto refuse = [&](const char* why) -> std::optional<PolygonSet> {
-    st.refused = why;
-    if (stats) *stats = st;
-    return std::nullopt;
-  };
-  // Rings oriented so that the result's interior lies on their left: a's shells counter-
-  // clockwise and holes clockwise, b's the other way round.
-  std::vector<Ring> rings;
-  for (int set = 0; set < 2; ++set)
-    for (auto& poly : set == 0 ? a : b)
-      for (std::size_t k = 0; k < poly.size(); ++k) {
-        Ring r{std::move(poly[k]), set == 0, (set == 0) == (k == 0) ? 1 : -1};
-        for (const Point2& q : r.p)
-          if (!std::isfinite(q.x) || !std::isfinite(q.y)) return refuse("a coordinate is not finite");
-        if (!tidy(r.p)) {
-          if (k == 0) return refuse("a shell with fewer than 3 vertices");
-          continue;
-        }
-        rings.push_back(std::move(r));
+std::vector<std::vector<std::uint32_t>> split_closed_walk(const std::vector<std::uint32_t>& walk,
+                                                          const std::vector<Edge>& rest) {
+  std::vector<std::vector<std::uint32_t>> parts;
+  std::vector<Point2> sorted;
+  sorted.reserve(walk.size());
+  for (const std::uint32_t e : walk) sorted.push_back(rest[e].u);
+  std::sort(sorted.begin(), sorted.end(), lex_less);
+  bool repeats = false;
+  for (std::size_t k = 0; k + 1 < sorted.size() && !repeats; ++k) repeats = sorted[k] == sorted[k + 1];
+  if (!repeats) {
+    parts.push_back(walk);
+    return parts;
+  }
+  std::vector<std::uint32_t> stack;
+  std::vector<std::pair<Point2, std::size_t>> at;  // vertex -> index in stack
+  for (const std::uint32_t e : walk) {
+    const Point2 p = rest[e].u;
+    std::ptrdiff_t k = -1;
+    for (std::size_t q = at.size(); q-- > 0;)
+      if (at[q].first == p) {
+        k = static_cast<std::ptrdiff_t>(q);
+        break;
       }
-  std::size_t nv = 0;
-  for (const Ring& r : rings) nv += r.p.size();
-  if (nv >= std::numeric_limits<std::uint32_t>::max() / 4) return refuse("too many vertices");
+    if (k >= 0) {  // back at p: the segments since p left form a loop
+      const std::size_t from = at[static_cast<std::size_t>(k)].second;
+      parts.emplace_back(stack.begin() + static_cast<std::ptrdiff_t>(from), stack.end());
+      stack.resize(from);
+      at.resize(static_cast<std::size_t>(k));
+    }
+    at.push_back({p, stack.size()});
+    stack.push_back(e);
+  }
+  if (!stack.empty()) parts.push_back(stack);
+  return parts;
+}
 
-  // 1. Near contacts made exact: a's vertices onto b's vertices, then each side's vertices into
-  // the other's segments.
-  if (eps > 0) {
-    const Segs sb = segments_of(rings, false);
-    if (!sb.from.empty()) {
-      const CellIndex idx(sb.from, sb.to, eps);
-      for (Ring& r : rings) {
-        if (!r.from_a) continue;
-        for (Point2& v : r.p) {
-          double best = eps;
-          Point2 to = v;
-          idx.near_point(v, [&](std::uint32_t s) {
-            for (const Point2 q : {sb.from[s], sb.to[s]}) {
-              const double d = q == v ? 0.0 : dist(q, v);
-              if (d < best || (d == best && lex_less(q, to))) {
-                best = d;
-                to = q;
-              }
-            }
-          });
-          if (!(to == v)) {
-            v = to;
-            ++st.snapped;
-          }
-        }
-        if (!tidy(r.p)) return refuse("a ring of a collapsed when snapped onto b");
+namespace {
+
+// A contact point to insert into segment `at` of ring `ring`.
+struct Cut {
+  std::uint32_t ring, at;
+  Point2 q;
+};
+
+// Where a segment of one set crosses or touches one of the other (not just at shared ends),
+// the contact point goes into both: a crossing rounded to the nearest doubles (which moves each
+// segment by an ulp), a touch or overlap as the ends of each inside the other.
+const char* find_cuts(const std::vector<Ring>& rings, const std::vector<Edge>& rest, std::vector<Cut>& cuts) {
+  std::vector<Point2> from(rest.size()), to(rest.size());
+  for (std::size_t i = 0; i < rest.size(); ++i) from[i] = rest[i].u, to[i] = rest[i].v;
+  const CellIndex idx(from, to, 0.0);
+  bool same_set = false;
+  idx.pairs(from, to, [&](std::uint32_t i, std::uint32_t j) {
+    const Contact c = classify(from[i], to[i], from[j], to[j]);
+    if (c == Contact::kNone || c == Contact::kEndpoint) return;
+    if (rings[rest[i].ring].from_a == rings[rest[j].ring].from_a) {
+      same_set = true;
+      return;
+    }
+    auto cut = [&](std::uint32_t k, Point2 q) {
+      if (!(q == from[k]) && !(q == to[k])) cuts.push_back({rest[k].ring, rest[k].at, q});
+    };
+    if (c == Contact::kProper) {
+      const Point2 q = crossing_point(from[i], to[i], from[j], to[j]);
+      cut(i, q);
+      cut(j, q);
+    } else {
+      for (const Point2 q : {from[j], to[j]})
+        if (in_interior(from[i], to[i], q)) cut(i, q);
+      for (const Point2 q : {from[i], to[i]})
+        if (in_interior(from[j], to[j], q)) cut(j, q);
+    }
+  });
+  return same_set ? "a set's own boundary crosses itself" : nullptr;
+}
+
+// Inserts the cuts into their segments, in order along each.
+const char* insert_cuts(std::vector<Ring>& rings, std::vector<Cut>& cuts) {
+  std::sort(cuts.begin(), cuts.end(), [&](const Cut& x, const Cut& y) {
+    if (x.ring != y.ring) return x.ring < y.ring;
+    if (x.at != y.at) return x.at < y.at;
+    const Point2 a0 = rings[x.ring].p[x.at];
+    const double dx = dist(a0, x.q), dy = dist(a0, y.q);
+    if (dx != dy) return dx < dy;
+    return lex_less(x.q, y.q);
+  });
+  std::size_t q = 0;
+  for (std::uint32_t r = 0; r < rings.size() && q < cuts.size(); ++r) {
+    if (cuts[q].ring != r) continue;
+    const auto& p = rings[r].p;
+    std::vector<Point2> out;
+    out.reserve(p.size() + 8);
+    for (std::uint32_t i = 0; i < p.size(); ++i) {
+      out.push_back(p[i]);
+      for (; q < cuts.size() && cuts[q].ring == r && cuts[q].at == i; ++q) {
+        const Point2 c = cuts[q].q;
+        if (!(out.back() == c) && !(c == p[(i + 1) % p.size()])) out.push_back(c);
       }
     }
-    st.inserted += insert_near(rings, true, eps);
-    st.inserted += insert_near(rings, false, eps);
+    rings[r].p.swap(out);
+    if (!tidy(rings[r].p)) return "a ring collapsed when cut";
   }
-  for (Ring& r : rings) {
-    if (!tidy(r.p)) return refuse("a ring collapsed");
-    const int o = orientation(r.p);
-    if (o == 0) return refuse("a ring without area");
-    if (o != r.want) std::reverse(r.p.begin(), r.p.end());
-  }
+  return nullptr;
+}
 
-  // 2. Shared segments cancel: a's u -> v against b's (reversed) v -> u. The same direction in
-  // both means b lies beside a there. 3. The rest must meet at shared ends only: where a
-  // segment of b crosses or touches one of a (b sticking out of a at a reflex corner by more
-  // than eps), the contact point is inserted into both (a crossing rounded to the nearest
-  // doubles, which moves each segment by an ulp) and the round is redone, at most 4 times.
-  struct Edge {
-    Point2 u, v;
-    std::uint32_t ring, at;  // u = rings[ring].p[at]
-  };
-  std::vector<Edge> rest;
+// Steps 2 and 3: the shared segments cancel (the same direction in both sets means b lies
+// beside a there); the rest must meet at shared ends only, so where a segment of b crosses or
+// touches one of a (b sticking out of a at a reflex corner by more than eps), the contact is
+// cut into both and the round is redone, at most 4 times.
+const char* meet_exactly(std::vector<Ring>& rings, std::vector<Edge>& rest, ContainedDifferenceStats& st) {
   for (int round = 0;; ++round) {
-    std::vector<Edge> edges;
-    for (std::uint32_t r = 0; r < rings.size(); ++r) {
-      const auto& p = rings[r].p;
-      for (std::uint32_t i = 0; i < p.size(); ++i) edges.push_back({p[i], p[(i + 1) % p.size()], r, i});
-    }
-    auto lo = [&](const Edge& e) { return lex_less(e.u, e.v) ? e.u : e.v; };
-    auto hi = [&](const Edge& e) { return lex_less(e.u, e.v) ? e.v : e.u; };
-    std::vector<std::uint32_t> ord(edges.size());
-    for (std::uint32_t i = 0; i < ord.size(); ++i) ord[i] = i;
-    // Sorted by the undirected segment (smaller end first), then by index.
-    std::sort(ord.begin(), ord.end(), [&](std::uint32_t i, std::uint32_t j) {
-      const Point2 xl = lo(edges[i]), yl = lo(edges[j]);
-      if (!(xl == yl)) return lex_less(xl, yl);
-      const Point2 xh = hi(edges[i]), yh = hi(edges[j]);
-      if (!(xh == yh)) return lex_less(xh, yh);
-      return i < j;
-    });
-    std::vector<char> live(edges.size(), 1);
     std::size_t cancelled = 0;
-    for (std::size_t g = 0; g < ord.size();) {
-      std::size_t e = g + 1;
-      const Edge& first = edges[ord[g]];
-      while (e < ord.size() && lo(edges[ord[e]]) == lo(first) && hi(edges[ord[e]]) == hi(first)) ++e;
-      if (e - g == 2) {
-        const Edge &x = edges[ord[g]], &y = edges[ord[g + 1]];
-        if (rings[x.ring].from_a == rings[y.ring].from_a) return refuse("a segment twice in one set");
-        if (x.u == y.u) return refuse("b lies beside a along a shared segment");
-        live[ord[g]] = live[ord[g + 1]] = 0;
-        ++cancelled;
-      } else if (e - g > 2) {
-        return refuse("a segment in more than two rings");
-      }
-      g = e;
-    }
-    rest.clear();
-    for (std::size_t i = 0; i < edges.size(); ++i)
-      if (live[i]) rest.push_back(edges[i]);
+    if (const char* why = cancel_shared(rings, rest, cancelled)) return why;
     st.cancelled = cancelled;
-    if (rest.empty()) {
-      if (stats) *stats = st;
-      return PolygonSet{};
-    }
-    std::vector<Point2> from(rest.size()), to(rest.size());
-    for (std::size_t i = 0; i < rest.size(); ++i) from[i] = rest[i].u, to[i] = rest[i].v;
-    const CellIndex idx(from, to, 0.0);
-    bool same_set = false;
-    std::vector<std::tuple<std::uint32_t, std::uint32_t, Point2>> cuts;  // (ring, at, point)
-    idx.pairs(from, to, [&](std::uint32_t i, std::uint32_t j) {
-      const Contact c = classify(from[i], to[i], from[j], to[j]);
-      if (c == Contact::kNone || c == Contact::kEndpoint) return;
-      if (rings[rest[i].ring].from_a == rings[rest[j].ring].from_a) { same_set = true; return; }
-      auto cut = [&](std::uint32_t k, Point2 q) {
-        if (!(q == from[k]) && !(q == to[k])) cuts.emplace_back(rest[k].ring, rest[k].at, q);
-      };
-      if (c == Contact::kProper) {
-        const Point2 q = crossing_point(from[i], to[i], from[j], to[j]);
-        cut(i, q);
-        cut(j, q);
-      } else {  // touch or overlap: the ends of each inside the other
-        for (const Point2 q : {from[j], to[j]})
-          if (in_interior(from[i], to[i], q)) cut(i, q);
-        for (const Point2 q : {from[i], to[i]})
-          if (in_interior(from[j], to[j], q)) cut(j, q);
-      }
-    });
-    if (same_set) return refuse("a set's own boundary crosses itself");
-    if (cuts.empty()) break;
-    if (round >= 4) return refuse("the boundaries still cross after 4 rounds of cuts");
+    if (rest.empty()) return nullptr;
+    std::vector<Cut> cuts;
+    if (const char* why = find_cuts(rings, rest, cuts)) return why;
+    if (cuts.empty()) return nullptr;
+    if (round >= 4) return "the boundaries still cross after 4 rounds of cuts";
     st.cut += cuts.size();
-    // Insert the cuts into their segments, in order along each.
-    std::sort(cuts.begin(), cuts.end(), [&](const auto& x, const auto& y) {
-      if (std::get<0>(x) != std::get<0>(y)) return std::get<0>(x) < std::get<0>(y);
-      if (std::get<1>(x) != std::get<1>(y)) return std::get<1>(x) < std::get<1>(y);
-      const auto& p = rings[std::get<0>(x)].p;
-      const Point2 a0 = p[std::get<1>(x)];
-      const double dx = dist(a0, std::get<2>(x)), dy = dist(a0, std::get<2>(y));
-      if (dx != dy) return dx < dy;
-      return lex_less(std::get<2>(x), std::get<2>(y));
-    });
-    std::size_t q = 0;
-    for (std::uint32_t r = 0; r < rings.size() && q < cuts.size(); ++r) {
-      if (std::get<0>(cuts[q]) != r) continue;
-      const auto& p = rings[r].p;
-      std::vector<Point2> out;
-      out.reserve(p.size() + 8);
-      for (std::uint32_t i = 0; i < p.size(); ++i) {
-        out.push_back(p[i]);
-        for (; q < cuts.size() && std::get<0>(cuts[q]) == r && std::get<1>(cuts[q]) == i; ++q) {
-          const Point2 c = std::get<2>(cuts[q]);
-          if (!(out.back() == c) && !(c == p[(i + 1) % p.size()])) out.push_back(c);
-        }
-      }
-      rings[r].p.swap(out);
-      if (!tidy(rings[r].p)) return refuse("a ring collapsed when cut");
-    }
+    if (const char* why = insert_cuts(rings, cuts)) return why;
   }
+}
 
-  // 4. Faces: from each segment u -> v on to the segment leaving v that turns left most
-  // sharply (the first clockwise from v -> u).
-  std::vector<std::uint32_t> out_ord(rest.size());
-  for (std::uint32_t i = 0; i < out_ord.size(); ++i) out_ord[i] = i;
-  std::sort(out_ord.begin(), out_ord.end(), [&](std::uint32_t i, std::uint32_t j) {
-    if (!(rest[i].u == rest[j].u)) return lex_less(rest[i].u, rest[j].u);
+// Segment indices sorted by one end (then by index), for finding the segments at a vertex.
+std::vector<std::uint32_t> order_by_end(const std::vector<Edge>& rest, Point2 Edge::*end) {
+  std::vector<std::uint32_t> ord(rest.size());
+  for (std::uint32_t i = 0; i < ord.size(); ++i) ord[i] = i;
+  std::sort(ord.begin(), ord.end(), [&](std::uint32_t i, std::uint32_t j) {
+    if (!(rest[i].*end == rest[j].*end)) return lex_less(rest[i].*end, rest[j].*end);
     return i < j;
   });
-  std::vector<std::uint32_t> in_count(rest.size(), 0);
-  auto first_out = [&](Point2 v) {
-    return std::lower_bound(out_ord.begin(), out_ord.end(), v,
-                            [&](std::uint32_t i, Point2 p) { return lex_less(rest[i].u, p); });
+  return ord;
+}
+
+// Step 4: from each segment u -> v on to the segment leaving v that turns left most sharply
+// (the first clockwise from v -> u). Where several segments meet (a pinch, or a cut crossing),
+// the segment into v is followed by the first ray clockwise from it when that ray leaves v (the
+// wedge between them, on the left of both, is in a - b); when that ray also enters v, the
+// segment bounds a sliver of b outside a on its right, and is followed by the first ray
+// counter-clockwise.
+const char* link_segments(const std::vector<Edge>& rest, std::vector<std::uint32_t>& next) {
+  const std::vector<std::uint32_t> out_ord = order_by_end(rest, &Edge::u), in_ord = order_by_end(rest, &Edge::v);
+  auto first_at = [&](const std::vector<std::uint32_t>& ord, Point2 Edge::*end, Point2 v) {
+    return std::lower_bound(ord.begin(), ord.end(), v,
+                            [&](std::uint32_t i, Point2 p) { return lex_less(rest[i].*end, p); });
   };
-  std::vector<std::uint32_t> in_ord(rest.size());  // by the end vertex
-  for (std::uint32_t i = 0; i < in_ord.size(); ++i) in_ord[i] = i;
-  std::sort(in_ord.begin(), in_ord.end(), [&](std::uint32_t i, std::uint32_t j) {
-    if (!(rest[i].v == rest[j].v)) return lex_less(rest[i].v, rest[j].v);
-    return i < j;
-  });
-  // Where several segments meet (a pinch, or a cut crossing): the segment into v is followed
-  // by the first ray clockwise from it when that ray leaves v (the wedge between them, on the
-  // left of both, is in a - b); when that ray also enters v, the segment bounds a sliver of b
-  // outside a on its right, and is followed by the first ray counter-clockwise.
-  std::vector<std::uint32_t> next(rest.size());
+  std::vector<std::uint32_t> in_count(rest.size(), 0);
+  next.assign(rest.size(), 0);
   for (std::uint32_t i = 0; i < rest.size(); ++i) {
     const Point2 u = rest[i].u, v = rest[i].v;
-    auto it = first_out(v);
-    if (it == out_ord.end() || !(rest[*it].u == v)) return refuse("a ring does not close");
+    auto it = first_at(out_ord, &Edge::u, v);
+    if (it == out_ord.end() || !(rest[*it].u == v)) return "a ring does not close";
     auto end = it;
     while (end != out_ord.end() && rest[*end].u == v) ++end;
     if (end - it == 1) {
@@ -468,9 +513,7 @@ std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, doubl
     // Every ray at v but this segment's own: (far end, leaves v?, segment).
     std::vector<std::tuple<Point2, bool, std::uint32_t>> rays;
     for (auto o = it; o != end; ++o) rays.emplace_back(rest[*o].v, true, *o);
-    auto in0 = std::lower_bound(in_ord.begin(), in_ord.end(), v,
-                                [&](std::uint32_t k, Point2 p) { return lex_less(rest[k].v, p); });
-    for (; in0 != in_ord.end() && rest[*in0].v == v; ++in0)
+    for (auto in0 = first_at(in_ord, &Edge::v, v); in0 != in_ord.end() && rest[*in0].v == v; ++in0)
       if (*in0 != i) rays.emplace_back(rest[*in0].u, false, *in0);
     std::size_t cw = 0, ccw = 0;
     for (std::size_t k = 1; k < rays.size(); ++k) {
@@ -478,20 +521,25 @@ std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, doubl
       if (cw_before(v, u, std::get<0>(rays[ccw]), std::get<0>(rays[k]))) ccw = k;
     }
     const std::size_t pick = std::get<1>(rays[cw]) ? cw : ccw;
-    if (!std::get<1>(rays[pick])) return refuse("no segment leaves a vertex beside the one entering it");
+    if (!std::get<1>(rays[pick])) return "no segment leaves a vertex beside the one entering it";
     next[i] = std::get<2>(rays[pick]);
     ++in_count[next[i]];
   }
   for (const std::uint32_t c : in_count)
-    if (c != 1) return refuse("two faces leave a vertex by one segment");
+    if (c != 1) return "two faces leave a vertex by one segment";
+  return nullptr;
+}
+
+struct Loop {
+  std::vector<Point2> p;
+  int o = 0;  // +1 counter-clockwise, -1 clockwise, 0 dropped
+};
+
+// The closed walks along `next`, each split into simple loops; loop_of[segment] = its loop.
+const char* trace_loops(const std::vector<Edge>& rest, const std::vector<std::uint32_t>& next,
+                        std::vector<Loop>& loops, std::vector<std::uint32_t>& loop_of) {
   std::vector<char> seen(rest.size(), 0);
-  struct Loop {
-    std::vector<Point2> p;
-    std::vector<std::uint32_t> e;  // the segments, p[k] = rest[e[k]].u
-    int o = 0;                     // +1 counter-clockwise, -1 clockwise
-  };
-  std::vector<Loop> loops;
-  std::vector<std::uint32_t> loop_of(rest.size(), 0);
+  loop_of.assign(rest.size(), 0);
   std::vector<std::uint32_t> walk;
   for (std::uint32_t s0 = 0; s0 < rest.size(); ++s0) {
     if (seen[s0]) continue;
@@ -500,122 +548,136 @@ std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, doubl
       seen[e] = 1;
       walk.push_back(e);
     }
-    if (!(rest[walk.back()].v == rest[walk.front()].u)) return refuse("a walk does not close");
-    // Split the closed walk where it passes a vertex twice: each loop is a simple ring.
-    std::vector<std::vector<std::uint32_t>> parts;
-    std::vector<std::uint32_t> stack;
-    std::vector<std::pair<Point2, std::size_t>> at;  // vertex -> index in stack
-    std::vector<Point2> sorted;
-    sorted.reserve(walk.size());
-    for (const std::uint32_t e : walk) sorted.push_back(rest[e].u);
-    std::sort(sorted.begin(), sorted.end(), lex_less);
-    bool repeats = false;
-    for (std::size_t k = 0; k + 1 < sorted.size() && !repeats; ++k) repeats = sorted[k] == sorted[k + 1];
-    if (!repeats) {
-      parts.push_back(walk);
-    } else {
-      for (const std::uint32_t e : walk) {
-        const Point2 p = rest[e].u;
-        std::ptrdiff_t k = -1;
-        for (std::size_t q = at.size(); q-- > 0;)
-          if (at[q].first == p) { k = static_cast<std::ptrdiff_t>(q); break; }
-        if (k >= 0) {
-          const std::size_t from = at[static_cast<std::size_t>(k)].second;
-          parts.emplace_back(stack.begin() + static_cast<std::ptrdiff_t>(from), stack.end());
-          stack.resize(from);
-          at.resize(static_cast<std::size_t>(k));
-        }
-        at.push_back({p, stack.size()});
-        stack.push_back(e);
-      }
-      if (!stack.empty()) parts.push_back(stack);
-    }
-    for (auto& part : parts) {
+    if (!(rest[walk.back()].v == rest[walk.front()].u)) return "a walk does not close";
+    for (const auto& part : split_closed_walk(walk, rest)) {
       Loop l;
       for (const std::uint32_t e : part) l.p.push_back(rest[e].u);
-      if (l.p.size() < 3) return refuse("a degenerate loop");
+      if (l.p.size() < 3) return "a degenerate loop";
       l.o = orientation(l.p);
-      if (l.o == 0) return refuse("a loop without area");
+      if (l.o == 0) return "a loop without area";
       for (const std::uint32_t e : part) loop_of[e] = static_cast<std::uint32_t>(loops.size());
-      l.e = std::move(part);
       loops.push_back(std::move(l));
     }
   }
+  return nullptr;
+}
 
-  // 5. Which loops bound a - b. The loops are the boundary of [a] - [b] (each segment has the
-  // larger value on its left), so at a point the value is the sum of the winding numbers of the
-  // loops around it. At a vertex of loop L on no other loop, the other loops' sum c is the value
-  // just outside L: a counter-clockwise L bounds a - b when c = 0 (inside it the value is 1) and
-  // the hole of a sliver of b outside a when c = -1; a clockwise L is a hole of a - b when c = 1
-  // and the edge of a sliver of b outside a (GEOS's offsets approximate arcs by chords, which
-  // cut reflex corners by a hair) when c = 0. The sums: a ray to +x from the vertex, through the
-  // segments listed in its band of y.
-  {
+// The segments listed by bands of y (each in every band its y range meets), for winding sums
+// along rays to +x.
+class YBands {
+ public:
+  explicit YBands(const std::vector<Edge>& rest) : rest_(rest) {
     Box2 all;
     for (const Edge& e : rest) all.add(e.u), all.add(e.v);
-    const std::size_t nb = std::clamp<std::size_t>(rest.size() / 16, 1, 1u << 16);
-    const double y0 = all.lo.y, bh = std::max(all.height() / static_cast<double>(nb), 1e-300);
-    auto band = [&](double y) {
-      return static_cast<std::size_t>(std::clamp(std::floor((y - y0) / bh), 0.0, static_cast<double>(nb - 1)));
-    };
-    std::vector<std::uint32_t> start(nb + 1, 0);
+    nb_ = std::clamp<std::size_t>(rest.size() / 16, 1, 1u << 16);
+    y0_ = all.lo.y;
+    bh_ = std::max(all.height() / static_cast<double>(nb_), 1e-300);
+    start_.assign(nb_ + 1, 0);
     for (const Edge& e : rest)
-      for (std::size_t k = band(std::min(e.u.y, e.v.y)); k <= band(std::max(e.u.y, e.v.y)); ++k) ++start[k + 1];
-    for (std::size_t k = 0; k < nb; ++k) start[k + 1] += start[k];
-    std::vector<std::uint32_t> list(start[nb]), fill(start.begin(), start.end() - 1);
+      for (std::size_t k = band(std::min(e.u.y, e.v.y)); k <= band(std::max(e.u.y, e.v.y)); ++k) ++start_[k + 1];
+    for (std::size_t k = 0; k < nb_; ++k) start_[k + 1] += start_[k];
+    list_.resize(start_[nb_]);
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     for (std::uint32_t i = 0; i < rest.size(); ++i)
       for (std::size_t k = band(std::min(rest[i].u.y, rest[i].v.y)); k <= band(std::max(rest[i].u.y, rest[i].v.y)); ++k)
-        list[fill[k]++] = i;
-    for (std::uint32_t li = 0; li < loops.size(); ++li) {
-      Loop& l = loops[li];
-      bool decided = false;
-      int c = 0;
-      for (std::size_t t = 0; t < l.p.size() && !decided; ++t) {
-        const Point2 q = l.p[t];
-        const std::size_t k = band(q.y);
-        bool on = false;
-        int w = 0;
-        for (std::uint32_t x = start[k]; x < start[k + 1] && !on; ++x) {
-          const std::uint32_t i = list[x];
-          if (loop_of[i] == li) continue;
-          const Point2 p = rest[i].u, r = rest[i].v;
-          if (p == q || r == q) { on = true; break; }
-          if (std::max(p.x, r.x) < q.x) continue;
-          if (p.y <= q.y) {
-            if (r.y > q.y) {
-              const int o = orient2d(p, r, q);
-              if (o > 0) ++w;
-              else if (o == 0) on = true;
-            }
-          } else if (r.y <= q.y) {
-            const int o = orient2d(p, r, q);
-            if (o < 0) --w;
-            else if (o == 0) on = true;
-          }
-          if (p.y == q.y && r.y == q.y && std::min(p.x, r.x) <= q.x && q.x <= std::max(p.x, r.x)) on = true;
-        }
-        if (on) continue;
-        decided = true;
-        c = w;
-      }
-      if (!decided) return refuse("a loop lies on other loops at every vertex");
-      if (l.o > 0 ? c == 0 : c == 1) continue;  // kept
-      if (l.o > 0 ? c == -1 : c == 0) {
-        l.o = 0;  // dropped
-        ++st.dropped;
-        continue;
-      }
-      return refuse("the loops nest inconsistently");
-    }
+        list_[fill[k]++] = i;
   }
+
+  // The sum of the winding numbers around q of the segments not on loop `skip` (exact, by a ray
+  // to +x from q); nullopt when q lies on one of them.
+  std::optional<int> winding_of_others(Point2 q, std::uint32_t skip, const std::vector<std::uint32_t>& loop_of) const {
+    const std::size_t k = band(q.y);
+    int w = 0;
+    for (std::uint32_t x = start_[k]; x < start_[k + 1]; ++x) {
+      const std::uint32_t i = list_[x];
+      if (loop_of[i] == skip) continue;
+      const Point2 p = rest_[i].u, r = rest_[i].v;
+      if (p == q || r == q) return std::nullopt;
+      if (std::max(p.x, r.x) < q.x) continue;
+      if (p.y <= q.y) {
+        if (r.y > q.y) {
+          const int o = orient2d(p, r, q);
+          if (o > 0) ++w;
+          else if (o == 0) return std::nullopt;
+        }
+      } else if (r.y <= q.y) {
+        const int o = orient2d(p, r, q);
+        if (o < 0) --w;
+        else if (o == 0) return std::nullopt;
+      }
+      if (p.y == q.y && r.y == q.y && std::min(p.x, r.x) <= q.x && q.x <= std::max(p.x, r.x)) return std::nullopt;
+    }
+    return w;
+  }
+
+ private:
+  std::size_t band(double y) const {
+    return static_cast<std::size_t>(std::clamp(std::floor((y - y0_) / bh_), 0.0, static_cast<double>(nb_ - 1)));
+  }
+  const std::vector<Edge>& rest_;
+  std::size_t nb_ = 1;
+  double y0_ = 0, bh_ = 1;
+  std::vector<std::uint32_t> start_, list_;
+};
+
+// Step 5: which loops bound a - b. The loops are the boundary of [a] - [b] (each segment has
+// the larger value on its left), so at a point the value is the sum of the winding numbers of
+// the loops around it. At a vertex of loop L on no other loop, the other loops' sum c is the
+// value just outside L: a counter-clockwise L bounds a - b when c = 0 (inside it the value is
+// 1) and the hole of a sliver of b outside a when c = -1; a clockwise L is a hole of a - b when
+// c = 1 and the edge of a sliver of b outside a when c = 0 (offsets that approximate arcs by
+// chords cut reflex corners by a hair). Dropped loops get o = 0.
+const char* judge_loops(const std::vector<Edge>& rest, const std::vector<std::uint32_t>& loop_of,
+                        std::vector<Loop>& loops, std::size_t& dropped) {
+  const YBands bands(rest);
+  for (std::uint32_t li = 0; li < loops.size(); ++li) {
+    Loop& l = loops[li];
+    std::optional<int> c;
+    for (std::size_t t = 0; t < l.p.size() && !c; ++t) c = bands.winding_of_others(l.p[t], li, loop_of);
+    if (!c) return "a loop lies on other loops at every vertex";
+    if (l.o > 0 ? *c == 0 : *c == 1) continue;  // kept
+    if (l.o > 0 ? *c == -1 : *c == 0) {
+      l.o = 0;
+      ++dropped;
+      continue;
+    }
+    return "the loops nest inconsistently";
+  }
+  return nullptr;
+}
+
+// The index of the smallest shell around a hole, judged at its first vertex on no shell; -1
+// when there is no such vertex or no shell around it.
+std::ptrdiff_t hole_owner(const std::vector<Point2>& hole, const std::vector<std::vector<Point2>>& shells,
+                          const std::vector<Box2>& sbox, const std::vector<double>& sarea, const CellIndex& sidx) {
+  for (const Point2 p : hole) {
+    double best = std::numeric_limits<double>::infinity();
+    std::ptrdiff_t who = -1;
+    bool on = false;
+    sidx.near_point(p, [&](std::uint32_t i) {
+      if (on || !sbox[i].contains(p) || !(sarea[i] < best)) return;
+      const int l = locate(p, shells[i]);
+      if (l == 0) {
+        on = true;
+      } else if (l > 0) {
+        best = sarea[i];
+        who = static_cast<std::ptrdiff_t>(i);
+      }
+    });
+    if (!on) return who;
+  }
+  return -1;
+}
+
+// Step 6: the kept loops as polygons, each hole in the smallest shell around it; shells
+// clockwise and holes counter-clockwise, as the callers want them.
+const char* nest_holes(std::vector<Loop>& loops, PolygonSet& out) {
   std::vector<std::vector<Point2>> shells, holes;
   for (Loop& l : loops) {
     if (l.o > 0) shells.push_back(std::move(l.p));
     else if (l.o < 0) holes.push_back(std::move(l.p));
   }
   loops.clear();
-
-  // 6. Each hole into the smallest shell around it.
   std::vector<Box2> sbox(shells.size());
   std::vector<double> sarea(shells.size());
   for (std::size_t i = 0; i < shells.size(); ++i) {
@@ -628,40 +690,65 @@ std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, doubl
     for (std::size_t i = 0; i < shells.size(); ++i) lo[i] = sbox[i].lo, hi[i] = sbox[i].hi;
     const CellIndex sidx(lo, hi, 0.0);
     for (std::size_t h = 0; h < holes.size(); ++h) {
-      std::ptrdiff_t owner = -1;
-      bool decided = false;
-      for (std::size_t t = 0; t < holes[h].size() && !decided; ++t) {
-        const Point2 p = holes[h][t];
-        double best = std::numeric_limits<double>::infinity();
-        std::ptrdiff_t who = -1;
-        bool on = false;
-        sidx.near_point(p, [&](std::uint32_t i) {
-          if (on || !sbox[i].contains(p) || !(sarea[i] < best)) return;
-          const int l = locate(p, shells[i]);
-          if (l == 0) on = true;
-          else if (l > 0) { best = sarea[i]; who = static_cast<std::ptrdiff_t>(i); }
-        });
-        if (on) continue;
-        decided = true;
-        owner = who;
-      }
-      if (!decided || owner < 0) return refuse("a hole of a - b inside no shell");
+      const std::ptrdiff_t owner = hole_owner(holes[h], shells, sbox, sarea, sidx);
+      if (owner < 0) return "a hole of a - b inside no shell";
       shell_holes[static_cast<std::size_t>(owner)].push_back(h);
     }
   }
-  PolygonSet out;
+  out.clear();
   out.reserve(shells.size());
   for (std::size_t i = 0; i < shells.size(); ++i) {
     PolygonRings pr;
     pr.push_back(std::move(shells[i]));
-    std::reverse(pr.back().begin(), pr.back().end());  // shells clockwise
+    std::reverse(pr.back().begin(), pr.back().end());
     for (const std::size_t h : shell_holes[i]) {
       pr.push_back(std::move(holes[h]));
-      std::reverse(pr.back().begin(), pr.back().end());  // holes counter-clockwise
+      std::reverse(pr.back().begin(), pr.back().end());
     }
     out.push_back(std::move(pr));
   }
+  return nullptr;
+}
+
+// Every step in turn; returns why it gave up, else null with the result in out.
+const char* run_steps(PolygonSet& a, PolygonSet& b, double eps, ContainedDifferenceStats& st, PolygonSet& out) {
+  std::vector<Ring> rings;
+  if (const char* why = input_rings(a, b, rings)) return why;
+  // 1. Near contacts made exact: a's vertices onto b's vertices, then each side's vertices into
+  // the other's segments.
+  if (eps > 0) {
+    if (const char* why = snap_a_onto_b(rings, eps, st.snapped)) return why;
+    st.inserted += insert_near(rings, true, eps);
+    st.inserted += insert_near(rings, false, eps);
+  }
+  if (const char* why = orient_rings(rings)) return why;
+  std::vector<Edge> rest;
+  if (const char* why = meet_exactly(rings, rest, st)) return why;
+  out.clear();
+  if (rest.empty()) return nullptr;
+  std::vector<std::uint32_t> next, loop_of;
+  if (const char* why = link_segments(rest, next)) return why;
+  std::vector<Loop> loops;
+  if (const char* why = trace_loops(rest, next, loops, loop_of)) return why;
+  if (const char* why = judge_loops(rest, loop_of, loops, st.dropped)) return why;
+  return nest_holes(loops, out);
+}
+
+}  // namespace
+}  // namespace cd_steps
+
+std::optional<PolygonSet> contained_difference(PolygonSet a, PolygonSet b, double eps, ContainedDifferenceStats* stats) {
+  // The predicate counters report the mesher's decisions: this one's are not counted (they
+  // would depend on which thread ran it).
+  struct KeepCounters {
+    predicates::Counters saved = predicates::counters();
+    ~KeepCounters() { predicates::counters() = saved; }
+  } keep_counters;
+  ContainedDifferenceStats st;
+  PolygonSet out;
+  st.refused = cd_steps::run_steps(a, b, eps, st, out);
   if (stats) *stats = st;
+  if (st.refused) return std::nullopt;
   return out;
 }
 

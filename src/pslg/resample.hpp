@@ -35,7 +35,7 @@ struct ResampleOptions {
   // makes outside it (a needle of land) is allowed; otherwise every side is checked.
   bool domain_by_parity = false;
   // A ring without anchors at most 12 steps round whose plan has a piece under 0.6 f is planned
-  // again as points at equal steps from the best start (resample.cpp, small_ring).
+  // again as points at equal steps from the best start (resample_plan.cpp, small_ring).
   bool small_rings = true;
 };
 

@@ -53,7 +53,7 @@ Pslg resolve(const Pslg& in, const ResolveOptions& options, std::vector<Repair>*
     const double pixel = std::max(std::ldexp(std::max(b.width(), b.height()), -36), std::ldexp(mag, -48));
     if (options.snap && pixel > 0 && std::isfinite(pixel)) co.snap_distance = co.segment_snap = pixel;
   }
-  // Fast path (clean inputs cost what validate() cost before): no exact conflict, no two vertices
+  // Fast path (a clean input costs no more than validate()): no exact conflict, no two vertices
   // and no vertex and segment closer than the snap tolerance -> the input as it is.
   if (clean_within(in, co.snap_distance, options.source)) return in;
   co.max_iterations = options.max_iterations;

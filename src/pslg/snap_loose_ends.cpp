@@ -1,4 +1,4 @@
-// snap_loose_ends (moved from pipeline/gis_stage.cpp: issue 8).
+// Loose breakline ends and fixed points put on a boundary segment they nearly touch.
 #include "base/num_format.hpp"
 #include "pslg/snap_loose_ends.hpp"
 #include <algorithm>
@@ -15,7 +15,7 @@ std::string num(double v) { return num6(v); }
 
 // Breakline ends and free points lying within `tol` of a boundary segment they do not touch are
 // put on it: the segment is split at the point. Why: a river clipped at the coast ends a rounding
-// error (1e-11 m) short of it; pslg::clean merges close vertices but not vertex-segment pairs, and
+// error short of it; pslg::clean merges close vertices but not vertex-segment pairs, and
 // such a near-T-junction leaves a sliver the refiner cannot split (the rounded midpoint of the
 // coast segment falls outside it). Returns one Repair per split (local coordinates).
 std::vector<Repair> snap_loose_ends(pslg::Pslg& g, double tol) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "base/error.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::sizing {
 
@@ -53,8 +53,8 @@ Grid rule_channel(const Grid& dist, const std::vector<char>& water, double n_ele
     return dist.v[static_cast<std::size_t>(j * nx + i)];
   };
   static const int dirs[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  // Row bands on both threads (every cell is decided from `dist` alone).
-  parallel_rows(dist.ny, [&](std::size_t j0, std::size_t j1) {
+  // Row bands on every thread (every cell is decided from `dist` alone).
+  parallel_bands(dist.ny, [&](std::size_t j0, std::size_t j1) {
     for (long j = static_cast<long>(j0); j < static_cast<long>(j1); ++j)
       for (long i = 0; i < nx; ++i) {
         const std::size_t k = static_cast<std::size_t>(j * nx + i);

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "base/error.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::sizing {
 
@@ -22,7 +22,7 @@ void nearest_seed(std::size_t nx, std::size_t ny, double dx, double dy, const st
   if (n == 0) return;
   // Pass 1: row of the nearest seed in the same column (-1: none), as int32.
   std::vector<std::int32_t> col(n);
-  parallel_rows(nx, [&](std::size_t i0, std::size_t i1) {
+  parallel_bands(nx, [&](std::size_t i0, std::size_t i1) {
     // Upward scan: the last seed at or below.
     for (std::size_t j = 0; j < ny; ++j) {
       const std::size_t r = j * nx;
@@ -45,7 +45,7 @@ void nearest_seed(std::size_t nx, std::size_t ny, double dx, double dy, const st
   // Pass 2: per row, lower envelope of f_i(x) = (x - i)^2 + w * g_i^2 with w = (dy/dx)^2
   // (squared distance in units of dx^2). For square cells every value is an integer below 2^53.
   const double w = (dy / dx) * (dy / dx);
-  parallel_rows(ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(ny, [&](std::size_t j0, std::size_t j1) {
     std::vector<std::int64_t> site(nx);  // columns on the envelope
     std::vector<double> fsite(nx);       // their f value at their own column
     std::vector<double> start(nx + 1);   // the envelope's piece k starts at start[k]

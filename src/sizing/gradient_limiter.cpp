@@ -9,7 +9,7 @@
 
 #include "base/error.hpp"
 #include "sizing/fields.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::sizing {
 
@@ -170,7 +170,7 @@ bool rows_with_changes(const Grid& g, double alpha, std::vector<char>& row_flag)
   }
   const auto nx = static_cast<std::int64_t>(g.nx), ny = static_cast<std::int64_t>(g.ny);
   row_flag.assign(g.ny, 0);
-  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(g.ny, [&](std::size_t j0, std::size_t j1) {
     // Quick pass: when every pair of cells one offer apart differs by at most 0.999 of the rise
     // alpha |c - k| (a margin far above rounding), no offer can change anything either way.
     // NaN fails the comparison and sends the band to the exact pass.
@@ -229,7 +229,7 @@ void limit_gradient(Grid& g, double alpha) {
   // when no offer of the first sweep pair would change a cell, the sweeps return the grid
   // unchanged. In that first pair every source is still the neighbour itself, so each offer is
   // g(k) + alpha |c - k| with |c - k| one of 16 constants: check that first, read-only, in row
-  // bands on both cores, with the offers' own arithmetic and tests. Rows without such an offer
+  // bands on every thread, with the offers' own arithmetic and tests. Rows without such an offer
   // count as already swept both ways (row skipping below), so the first pair sweeps only the
   // rows that change and those downstream of a change.
   std::vector<char> row_flag;
@@ -238,7 +238,7 @@ void limit_gradient(Grid& g, double alpha) {
   Limiter L{g, alpha, src, static_cast<std::int64_t>(g.nx), static_cast<std::int64_t>(g.ny)};
   L.tick = 1;
   for (std::size_t j = 0; j < g.ny; ++j) L.last_fwd[j] = L.last_bwd[j] = row_flag[j] ? 0 : 1;
-  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(g.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < g.nx; ++i) {
         const double v = g.at(i, j);

@@ -14,8 +14,8 @@ namespace fdr::sizing {
 //   g(q) <= g(p) + alpha |p - q|   (up to a relative 1e-12, see below),
 // hence along any 8-connected path. Each value is h(y) + alpha |x - y| for some y, so the
 // result is never below the exact formula and never above the input. Against a brute-force
-// evaluation of the formula on random grids it is exact for square cells and aspect 1.7; at
-// aspect 3 a few cells in 1e3 exceed it by about 1%.
+// evaluation of the formula on random grids it is exact for square cells; on anisotropic cells
+// a few cells exceed it slightly, because the neighbour and knight moves miss some directions.
 // - Values never increase; decreases smaller than 1e-12 relative are ignored, which makes
 //   the limiter idempotent and leaves an already alpha-Lipschitz grid bit-for-bit unchanged.
 // - NaN cells stay NaN and neither receive nor pass values: propagation goes around them

@@ -13,7 +13,7 @@
 #include "base/step_laps.hpp"
 #include "sizing/distance_transform.hpp"
 #include "sizing/fields.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::sizing {
 
@@ -183,7 +183,7 @@ double mixed_diff(const Grid& g, std::int64_t i, std::int64_t j) {
 // fn(cell index) for every cell, in row bands on max_threads() threads (cells are independent).
 template <class Fn>
 void for_cells(const Grid& g, Fn&& fn) {
-  parallel_rows(g.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(g.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t c = j0 * g.nx; c < j1 * g.nx; ++c) fn(c);
   });
 }
@@ -204,7 +204,7 @@ void distance_bvh(Grid& out, std::vector<Seg> segs) {
   const SegmentBvh bvh(std::move(segs));
   // Why serpentine order: consecutive cells are neighbours, so the previous answer is a
   // tight initial bound and each query prunes almost everything.
-  parallel_rows(out.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(out.ny, [&](std::size_t j0, std::size_t j1) {
     std::uint32_t hint = 0;
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t k = 0; k < out.nx; ++k) {
@@ -305,7 +305,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   lap("nearest seed");
   // Per shore cell, the segment nearest to its centre goes first in its list: where the descent
   // below starts (first of the nearest in list order, so the choice is deterministic).
-  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t c = j0 * like.nx; c < j1 * like.nx; ++c) {
       if (first[c + 1] - first[c] < 2) continue;
       const Point2 p = like.center(c % like.nx, c / like.nx);
@@ -330,7 +330,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   const std::size_t ns = segs.size();
   // Phase 1 writes each cell's segment over its own feature entry (same cell: in place).
   std::vector<std::uint32_t>& near = feature;
-  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
@@ -358,7 +358,7 @@ Grid distance_to_shore(const Grid& like, const std::vector<std::pair<Point2, Poi
   // Phase 2: the best of the 3 x 3 cells' phase-1 segments (one step of vector propagation: the
   // neighbour may have found a nearer coast), then the exact window near the shore. Reads phase
   // 1 only, so row bands do not interact.
-  parallel_rows(like.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(like.ny, [&](std::size_t j0, std::size_t j1) {
     for (std::size_t j = j0; j < j1; ++j)
       for (std::size_t i = 0; i < like.nx; ++i) {
         const Point2 p = like.center(i, j);
@@ -423,7 +423,7 @@ Grid rule_slope(const Grid& depth, double slp) {
   require(slp > 0 && std::isfinite(slp), "slope rule: slp must be a positive number, got " + format_number(slp));
   Grid out = like_grid(depth);
   const double k = 2.0 * std::numbers::pi / slp;
-  parallel_rows(depth.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(depth.ny, [&](std::size_t j0, std::size_t j1) {
   for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < depth.nx; ++i) {
       const double d = depth.at(i, j);
@@ -459,7 +459,7 @@ Grid rule_curvature(const Grid& dem, double tol) {
   check_grid(dem, "rule_curvature");
   require(tol > 0 && std::isfinite(tol), "curvature rule: tol must be a positive number, got " + format_number(tol));
   Grid out = like_grid(dem);
-  parallel_rows(dem.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(dem.ny, [&](std::size_t j0, std::size_t j1) {
   for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < dem.nx; ++i) {
       if (std::isnan(dem.at(i, j))) {

@@ -29,9 +29,8 @@ namespace fdr::sizing {
 //   (d~ <= d + a cell diagonal), and in practice wherever d <= 3.5 cells: the narrow water the
 //   channel rule measures and the coast's first cells;
 // - farther out, the distance to one particular segment: never below the exact distance, at most
-//   a cell diagonal above it, usually equal (Gulf of Maine, 4 M cells of 300 m: 2.8 % of the cells
-//   differ, 1 % by more than 0.1 cell, at most 0.76 cell; relative error at most 16 % between 3
-//   and 10 cells, 2 % beyond 30 cells; README "Sizing speed").
+//   a cell diagonal above it, usually equal; the relative error shrinks with the distance, where
+//   the distance rule's spacing is coarse anyway.
 // Rows run on max_threads() threads; the result does not depend on the thread count. No
 // segments: +inf everywhere. A non-finite coordinate throws Error(kInvalidGeometry) naming the
 // segment. Segments reaching outside the grid (or exact = true) take a bounding-volume hierarchy

@@ -1,10 +1,10 @@
-// Grid resampling for the spacing rules (moved from pipeline/gis_stage.cpp: issue 8).
+// Grids resampled onto the spacing grid's cells for the spacing rules (see resample_grid.hpp).
 #include "sizing/resample_grid.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include "sizing/raster_rules.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 
 namespace fdr::sizing {
 
@@ -15,7 +15,7 @@ Grid resample_like(const Grid& g, const Grid& like) {
   if (g.nx == like.nx && g.ny == like.ny && g.x0 == like.x0 && g.y0 == like.y0 && g.dx == like.dx && g.dy == like.dy)
     return g;
   Grid r = like;
-  parallel_rows(r.ny, [&](std::size_t j0, std::size_t j1) {
+  parallel_bands(r.ny, [&](std::size_t j0, std::size_t j1) {
   for (std::size_t j = j0; j < j1; ++j)
     for (std::size_t i = 0; i < r.nx; ++i) {
       const Point2 p = r.center(i, j);

@@ -1,4 +1,4 @@
-// The GIS spacing rules on a grid (moved from pipeline/gis_stage.cpp: issue 8).
+// The GIS spacing rules on a grid: each rule named, then combined, clamped and filled in one pass.
 #include "base/num_format.hpp"
 #include "sizing/spacing_rules.hpp"
 #include "sizing/channel_rule.hpp"
@@ -6,7 +6,7 @@
 #include <sstream>
 #include "sizing/raster_rules.hpp"
 #include "sizing/resample_grid.hpp"
-#include "sizing/parallel_rows.hpp"
+#include "base/parallel.hpp"
 #include <cmath>
 
 namespace fdr::sizing {
@@ -40,8 +40,8 @@ RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {
     rules.push_back(std::move(channel));
     names.push_back("channel (" + num(*r.channel_elements) + " elements across)");
   }
-  // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on the native
-  // 5'/30" cells would miss the bends between samples that a fine TIN must follow.
+  // Depth rules run on the DEM resampled to the spacing grid: the curvature rule on a DEM's
+  // native (often coarser) cells would miss the bends between samples that a fine TIN must follow.
   Grid zfine, depth;
   if (in.dem && (r.slope || r.wavelength || r.vertical_tol)) {
     zfine = resample_like(*in.dem, like);
@@ -77,7 +77,7 @@ RuleGrid spacing_from_rules(const SpacingRules& r, const RuleInputs& in) {
     // combine_min, clamp and fill_nan in one pass, in place over the first rule's grid.
     h = std::move(rules[0]);
     const double hmin = r.hmin, hmax = r.hmax;
-    parallel_rows(h.ny, [&](std::size_t j0, std::size_t j1) {
+    parallel_bands(h.ny, [&](std::size_t j0, std::size_t j1) {
       for (std::size_t c = j0 * h.nx; c < j1 * h.nx; ++c) {
         double v = h.v[c];
         for (std::size_t k = 1; k < rules.size(); ++k) v = std::fmin(v, rules[k].v[c]);

@@ -1,4 +1,4 @@
-// The GIS spacing rules (README "GIS spacing"), evaluated on a grid in ground metres: the rules
+// The GIS spacing rules, evaluated on a grid in ground metres: the rules
 // named on the command line combined by minimum, clamped to [hmin, hmax], nodata -> hmax.
 #pragma once
 #include <optional>

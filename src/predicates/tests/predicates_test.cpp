@@ -1,5 +1,6 @@
 // Predicates against CGAL's exact kernel on random, near-degenerate and exactly degenerate inputs.
 #include <gtest/gtest.h>
+#include <numbers>
 #include <random>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include "predicates/predicates.hpp"
@@ -70,7 +71,7 @@ TEST(Predicates, DiametralMatchesExact) {
     Point2 a{u(rng), u(rng)}, b{u(rng), u(rng)};
     // A point near the circle with diameter ab.
     Point2 c = 0.5 * (a + b);
-    double r = dist(a, b) / 2, th = u(rng) * 3.14159;
+    double r = dist(a, b) / 2, th = u(rng) * std::numbers::pi;
     Point2 p{c.x + r * std::cos(th), c.y + r * std::sin(th)};
     int got = diametral(a, b, p);
     auto ang = CGAL::angle(ek(a), ek(p), ek(b));

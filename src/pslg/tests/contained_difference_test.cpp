@@ -1,7 +1,10 @@
 // contained_difference: a - b for polygon sets whose boundaries run together, checked against
 // point classification (exact point-in-ring) on a lattice, ring validity and areas.
 #include "pslg/contained_difference.hpp"
+#include "pslg/contained_difference_steps.hpp"
 #include <gtest/gtest.h>
+#include <numbers>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include "predicates/predicates.hpp"
@@ -191,7 +194,7 @@ TEST(ContainedDifference, RandomStarsAgainstPointClassification) {
     const int n = 8 + static_cast<int>(u(rng) * 40);
     Ring ra, rb;
     for (int i = 0; i < n; ++i) {
-      const double th = 2 * M_PI * (i + 0.8 * u(rng)) / n;
+      const double th = 2 * std::numbers::pi * (i + 0.8 * u(rng)) / n;
       const double r = 4 + 4 * u(rng);
       const Point2 dir{std::cos(th), std::sin(th)};
       ra.push_back(r * dir);
@@ -232,6 +235,65 @@ TEST(ContainedDifference, SameResultForEitherRingStart) {
   const auto r1 = contained_difference(a, b, 1e-9), r2 = contained_difference(a, b2, 1e-9);
   ASSERT_TRUE(r1 && r2);
   EXPECT_NEAR(signed_area((*r1)[0][0]), signed_area((*r2)[0][0]), 1e-12);
+}
+
+// The steps on their own.
+
+TEST(ContainedDifferenceSteps, CancelSharedDropsOppositeSegmentsOnly) {
+  using cd_steps::Ring;
+  // a's square counter-clockwise, b's square sharing a's bottom side, clockwise (b's interior
+  // on the left of a - b's boundary): the shared side cancels, the other six remain.
+  std::vector<Ring> rings{{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, true, 1},
+                          {{{0, 0}, {0, 4}, {10, 4}, {10, 0}}, false, -1}};
+  std::vector<cd_steps::Edge> rest;
+  std::size_t cancelled = 9;
+  ASSERT_EQ(cd_steps::cancel_shared(rings, rest, cancelled), nullptr);
+  EXPECT_EQ(cancelled, 1u);
+  ASSERT_EQ(rest.size(), 6u);
+  for (const auto& e : rest) EXPECT_FALSE(std::min(e.u.y, e.v.y) == 0 && std::max(e.u.y, e.v.y) == 0);
+  // The same direction in both sets: b beside a.
+  std::reverse(rings[1].p.begin(), rings[1].p.end());
+  EXPECT_NE(cd_steps::cancel_shared(rings, rest, cancelled), nullptr);
+  // A segment twice in one set.
+  rings[1].from_a = true;
+  std::reverse(rings[1].p.begin(), rings[1].p.end());
+  EXPECT_NE(cd_steps::cancel_shared(rings, rest, cancelled), nullptr);
+}
+
+TEST(ContainedDifferenceSteps, SplitClosedWalkAtARepeatedVertex) {
+  // A figure eight through (0, 0): two triangles.
+  const std::vector<Point2> p{{0, 0}, {1, 1}, {1, -1}, {0, 0}, {-1, -1}, {-1, 1}};
+  std::vector<cd_steps::Edge> rest;
+  std::vector<std::uint32_t> walk;
+  for (std::uint32_t i = 0; i < p.size(); ++i) {
+    rest.push_back({p[i], p[(i + 1) % p.size()], 0, i});
+    walk.push_back(i);
+  }
+  const auto parts = cd_steps::split_closed_walk(walk, rest);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0], (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(parts[1], (std::vector<std::uint32_t>{3, 4, 5}));
+  // Distinct vertices: the walk stays whole.
+  const std::vector<std::uint32_t> tri{0, 1, 2};
+  ASSERT_EQ(cd_steps::split_closed_walk(tri, rest).size(), 1u);
+}
+
+TEST(ContainedDifferenceSteps, ClockwiseOrderAroundAVertex) {
+  const Point2 v{0, 0}, r{1, 0};
+  // Turning clockwise from +x: -y first, then -x, then +y; the ray's own direction last.
+  EXPECT_TRUE(cd_steps::cw_before(v, r, {0, -1}, {-1, 0}));
+  EXPECT_TRUE(cd_steps::cw_before(v, r, {-1, 0}, {0, 1}));
+  EXPECT_FALSE(cd_steps::cw_before(v, r, {0, 1}, {0, -1}));
+  EXPECT_TRUE(cd_steps::cw_before(v, r, {0, 1}, {2, 0}));
+}
+
+TEST(ContainedDifferenceSteps, LocateIsExactOnTheBoundary) {
+  const std::vector<Point2> sq{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
+  EXPECT_EQ(cd_steps::locate({1, 1}, sq), 1);
+  EXPECT_EQ(cd_steps::locate({5, 1}, sq), -1);
+  EXPECT_EQ(cd_steps::locate({4, 2}, sq), 0);
+  EXPECT_EQ(cd_steps::locate({2, 0}, sq), 0);
+  EXPECT_EQ(cd_steps::locate({0, 4}, sq), 0);
 }
 
 }  // namespace

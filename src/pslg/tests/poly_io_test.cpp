@@ -1,5 +1,6 @@
 // Triangle .poly/.node I/O: round trips, the index-base and .node conventions, every error path.
 #include <gtest/gtest.h>
+#include <numbers>
 #include <random>
 #include "pslg/poly_io.hpp"
 #include "pslg/validate.hpp"
@@ -106,7 +107,7 @@ TEST(PolyIo, InteriorSegmentWithRegionAndComments) {
 TEST(PolyIo, WedgeIsValid) {
   const Pslg g = read_poly(testdata("poly/wedge_1deg.poly"));
   ASSERT_EQ(g.points.size(), 3u);
-  const double ang = std::atan2(g.points[2].y, g.points[2].x) * 180 / M_PI;
+  const double ang = std::atan2(g.points[2].y, g.points[2].x) * 180 / std::numbers::pi;
   EXPECT_NEAR(ang, 1.0, 1e-12);
   EXPECT_NO_THROW(validate(g, "wedge"));
 }

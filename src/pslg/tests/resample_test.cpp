@@ -3,6 +3,7 @@
 // the result is deterministic.
 #include <gtest/gtest.h>
 
+#include <numbers>
 #include <cmath>
 #include <random>
 
@@ -12,8 +13,6 @@
 
 namespace fdr::pslg {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A closed ring of n vertices (marker m) appended to g; returns the first vertex id.
 Index add_ring(Pslg& g, const std::vector<Point2>& pts, std::int32_t marker, std::int32_t part) {
@@ -30,7 +29,7 @@ std::vector<Point2> wiggly_circle(Point2 c, double r, std::size_t n, double a, s
   std::uniform_real_distribution<double> u(-a, a);
   std::vector<Point2> p;
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = 2 * kPi * static_cast<double>(i) / static_cast<double>(n);
+    const double t = 2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
     const double rr = r + u(rng);
     p.push_back({c.x + rr * std::cos(t), c.y + rr * std::sin(t)});
   }
@@ -311,7 +310,7 @@ TEST(Resample, SmallIslandsGetEqualStepsFromTheirBestStart) {
     const int k = 4 + static_cast<int>(4 * u(rng));
     std::vector<Point2> cs;
     for (int i = 0; i < k; ++i) {
-      const double t = 2 * kPi * (i + 0.7 * u(rng)) / k, r = R * (0.4 + 0.6 * u(rng));
+      const double t = 2 * std::numbers::pi * (i + 0.7 * u(rng)) / k, r = R * (0.4 + 0.6 * u(rng));
       cs.push_back({r * std::cos(t), r * std::sin(t)});
     }
     std::vector<Point2> isl;
@@ -365,7 +364,7 @@ TEST(Resample, SmallIslandClustersDoNotCross) {
       std::vector<Point2> cs, ring;
       const int k = 4 + static_cast<int>(4 * u(rng));
       for (int j = 0; j < k; ++j) {
-        const double t = 2 * kPi * (j + 0.7 * u(rng)) / k, r = R * (0.5 + 0.5 * u(rng));
+        const double t = 2 * std::numbers::pi * (j + 0.7 * u(rng)) / k, r = R * (0.5 + 0.5 * u(rng));
         cs.push_back({x + r * std::cos(t), r * std::sin(t)});
       }
       for (int j = 0; j < k; ++j) {
