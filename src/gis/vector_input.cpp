@@ -626,10 +626,10 @@ RepairRecord repair_record(const Frame& frame, pslg::Repair rep) {
 }
 }  // namespace
 
-void start_features(GisInput& in) { start_removed(in.features); }
+void start_features(GisInput& in) { coast::start_removed(in.features); }
 
 void finish_features(GisInput& in) {
-  std::vector<pslg::Repair> reps = finish_removed(in.features);
+  std::vector<pslg::Repair> reps = coast::finish_removed(in.features);
   if (reps.empty()) return;
   std::vector<RepairRecord> recs;
   for (auto& rep : reps) recs.push_back(repair_record(in.frame, std::move(rep)));
@@ -703,9 +703,9 @@ GisInput read_domain(const DomainOptions& o) {
   }
 
   if (o.features) {
-    const FeatureFilterOptions fo = o.features(bb);
+    const coast::Options fo = o.features(bb);
     in.input_polygons = in.domain_polygons;
-    FeatureFilterResult fr = filter_features(in.domain_polygons, fo);
+    coast::Result fr = coast::generalise(in.domain_polygons, fo);
     // Which input ring each new ring continues: vote of its vertices near the old rings.
     std::vector<SegmentBuckets::Seg> old_segs;
     for (const auto& r : rings)
@@ -831,7 +831,7 @@ GisInput read_domain(const DomainOptions& o) {
     // on the coast by snap_loose_ends (pipeline).
     const double hair = 0.05 * in.features.close_width;
     std::unique_ptr<OGRGeometry> clip =
-        local_domain_geometry(hair > 0 ? offset_polygons(in.domain_polygons, -hair) : in.domain_polygons);
+        local_domain_geometry(hair > 0 ? coast::offset_polygons(in.domain_polygons, -hair) : in.domain_polygons);
     if (!clip->IsValid()) {  // raw (self-intersecting) rings: GEOS needs a valid copy to clip against
       std::unique_ptr<OGRGeometry> v(clip->MakeValid());
       if (!v) throw Error(ExitCode::kInvalidGeometry, dom.label() + ": cannot make a valid copy of the domain "
