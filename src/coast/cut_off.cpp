@@ -33,7 +33,7 @@ std::vector<int> owners(const OwnedPolygons& wps, const OwnedPolygons& rps) {
     if (owner[j] >= 0) continue;
     OGREnvelope re;
     rps[j]->getEnvelope(&re);
-    // (by its vertices, most of which are input coast: an overlay with a basin polygon costs seconds)
+    // (by its vertices, most of which are input coast: an overlay with a large polygon is slow)
     int best = 0;
     const OGRLinearRing* ring = rps[j]->getExteriorRing();
     const int nv = ring->getNumPoints();

@@ -24,9 +24,10 @@ std::size_t vertices_of(const OGRGeometry* g, std::size_t* rings) {
   return nv;
 }
 
-// Thin water widened. The parts of W no disk of radius rw fits in, T = W - open(W, rw), that are at least 2 s wide (their core C = (W - s) - open(W, rw), a
-// strip w - 2 s wide along a channel w wide) are grown by rw - s: the channel becomes
-// w + 2 rw - 4 s >= 2 rw wide (for w >= 2 s), each bank moved by rw - 2 s into the land. Why: a
+// Thin water widened. The parts of W no disk of radius rw fits in, T = W - open(W, rw), that are
+// at least 2 s wide (their core C = (W - s) - open(W, rw), a strip w - 2 s wide along a channel
+// w wide) are grown by rw - s: the channel becomes w + 2 rw - 4 s >= 2 rw wide (for w >= 2 s),
+// each bank moved by rw - 2 s into the land. Why: a
 // channel narrower than the resolution keeps its coast only with elements as narrow as itself
 // (every edge across it is < w); widened to 2 rw it holds elements near hmin and the coast moves
 // by a fraction of hmin, where closing it would move the coast by its whole length. Convex water

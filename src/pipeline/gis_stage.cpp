@@ -194,8 +194,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     info("spacing: " + desc);
     auto field = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
     // The grid --write-spacing writes is the field's own (an aliasing pointer that keeps the field
-    // alive), not a copy: a copy held a second grid of fresh pages to the end of the run (32 MiB
-    // at 4 M cells).
+    // alive), not a copy: a copy held a second grid of fresh pages to the end of the run.
     fgrid = std::shared_ptr<const sizing::Grid>(field, &field->grid());
     f_ground = std::move(field);
   }

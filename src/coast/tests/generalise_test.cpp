@@ -64,7 +64,7 @@ double corner_loss(const Options& o, int right_angles) {
   return right_angles * r * r * (1 - 3.14159265358979 / 4) * 1.2 + 1.0;
 }
 
-TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
+TEST(Generalise, NarrowDeadEndInletIsClosedAndListed) {
   const Result r = generalise(basin_with_inlet(10), opts(100));  // 10 m < 25 m
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_NEAR(area(r.polygons), 1e6, 1e6 * 1e-3);  // the 5000 m^2 inlet is gone
@@ -80,7 +80,7 @@ TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
 // The removed-water listing deferred to another thread (defer_removed, as the pipeline runs it)
 // gives the same repairs, in the same order, and the same figures once finish_removed() took it;
 // before that it is missing (so the test sees a listing that was really deferred).
-TEST(FeatureFilter, DeferredRemovedListingEqualsTheDirectOne) {
+TEST(Generalise, DeferredRemovedListingEqualsTheDirectOne) {
   Polygons in = basin_with_inlet(10);
   in.push_back(rect(2000, 0, 2300, 8));  // a water body nowhere min_feature wide
   in[0].push_back({{200, 200}, {200, 203}, {260, 203}, {260, 200}});  // a thin island (cut)
@@ -111,7 +111,7 @@ TEST(FeatureFilter, DeferredRemovedListingEqualsTheDirectOne) {
   }
 }
 
-TEST(FeatureFilter, InletWiderThanCloseWidthIsKeptAsDrawn) {
+TEST(Generalise, InletWiderThanCloseWidthIsKeptAsDrawn) {
   const Polygons in = basin_with_inlet(40);  // 40 m > 25 m
   const Result r = generalise(in, opts(100));
   EXPECT_NEAR(area(r.polygons), area(in), corner_loss(opts(100), 6));
@@ -141,7 +141,7 @@ Polygons two_basins(double w) {
   return {r};
 }
 
-TEST(FeatureFilter, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
+TEST(Generalise, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
   // 15 m: narrower than close_width (25 m), wider than min_feature (10 m): kept, one piece.
   const Result r = generalise(two_basins(15), opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
@@ -149,7 +149,7 @@ TEST(FeatureFilter, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
   EXPECT_NEAR(area(r.polygons), area(two_basins(15)), corner_loss(opts(100), 8));
 }
 
-TEST(FeatureFilter, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyListed) {
+TEST(Generalise, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyListed) {
   // 5 m < min_feature: closed; the smaller body is cut off and removed, listed with its area.
   Polygons in = two_basins(5);
   in[0][0][4].x = 1400;  // make the east basin smaller than the west one
@@ -167,7 +167,7 @@ TEST(FeatureFilter, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyList
   EXPECT_NEAR(area(r.polygons), 1e6, 1e4);
 }
 
-TEST(FeatureFilter, SmallIslandsRemovedLargeOnesKept) {
+TEST(Generalise, SmallIslandsRemovedLargeOnesKept) {
   const Rings sea = rect(0, 0, 2000, 2000);
   const Polygons in{{sea[0], {{100, 100}, {100, 120}, {120, 120}, {120, 100}},  // 400 m^2 < 1000 m^2
                      {{500, 500}, {500, 800}, {800, 800}, {800, 500}}}};       // 90000 m^2
@@ -195,7 +195,7 @@ bool has_vertex(const Result& r, Point2 p) {
   return false;
 }
 
-TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
+TEST(Generalise, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   // hmin 100: close_width 25 m, tips kept unless other land is within 80 m of their end.
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings a = island_with_needle(1000, 1000);  // tip (2000, 1300): open water around it
@@ -225,7 +225,7 @@ TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   EXPECT_EQ(r0.tips_kept, 0u);
 }
 
-TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
+TEST(Generalise, ThinIslandKeptInOpenWaterRemovedNearLand) {
   // Islands 400 m long and 20 m wide (thinner than close_width everywhere): one in open water,
   // one 50 m from the coast.
   const Rings sea = rect(0, 0, 4000, 4000);
@@ -260,7 +260,7 @@ Options widen_opts() {  // the CLI's defaults at hmin 100
   return o;
 }
 
-TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
+TEST(Generalise, NarrowInletIsWidenedToTheWidenWidthAndListed) {
   // A 30 m inlet (close_width 15 <= 30 < widen_width 60): its banks move by
   // widen_width / 2 - close_width = 15 m into the land, so it becomes 60 m wide.
   const Polygons in = basin_with_inlet(30);
@@ -298,7 +298,7 @@ TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
   }
 }
 
-TEST(FeatureFilter, WideningNeverJoinsTwoWaterBodies) {
+TEST(Generalise, WideningNeverJoinsTwoWaterBodies) {
   // The 30 m inlet runs 20 m below a second water body: widening it would leave 5 m of land
   // between them (less than close_width, which the closing removes), so it is not widened and
   // the two bodies stay apart.
@@ -310,7 +310,7 @@ TEST(FeatureFilter, WideningNeverJoinsTwoWaterBodies) {
   EXPECT_FALSE(water_at(r, {1250, 475 - 4}));  // the piece is judged whole: the south bank stays too
 }
 
-TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
+TEST(Generalise, NoTinyEdgesAtVerticesTheFilterMade) {
   // A needle cut near other land and an inlet widened: every edge with an endpoint that is not
   // an input vertex is at least close_width / 4 long.
   const Rings sea = rect(0, 0, 4000, 4000);
@@ -361,7 +361,7 @@ Polygons islets_and_big_island() {
   return {{sea[0], open_islet[0], big[0], near_islet[0]}};
 }
 
-TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
+TEST(Generalise, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   Options o = islet_opts();
   const Result r = generalise(islets_and_big_island(), o);
   ASSERT_EQ(r.polygons.size(), 1u);
@@ -395,7 +395,7 @@ double farthest_from(const std::vector<Point2>& pts, const std::vector<Point2>& 
 // With join_islets (the CLI's default), the islet 30 m from the big island, with no room for its
 // triangle, is joined to it: the convex hull of the islet and of the island's coast near it becomes
 // land, so the islet's outer side stays coast; nothing is removed and no water is cut off.
-TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
+TEST(Generalise, IsletNearLandWithoutRoomIsJoinedToIt) {
   Options o = islet_opts();
   o.join_islets = true;
   const Result r = generalise(islets_and_big_island(), o);
@@ -423,7 +423,7 @@ TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
 // runs round the corner, and the hull has an edge along the north side (it touches the coast at the
 // corner between the run's ends). Joined all the same: refused, the islet was removed and the
 // coast the model sees moved by its distance to the island.
-TEST(FeatureFilter, IsletBesideACornerIsJoinedRoundIt) {
+TEST(Generalise, IsletBesideACornerIsJoinedRoundIt) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
   const Rings islet{{{1530, 1470}, {1530, 1490}, {1550, 1490}, {1550, 1470}}};
@@ -446,7 +446,7 @@ TEST(FeatureFilter, IsletBesideACornerIsJoinedRoundIt) {
 
 // An islet in a channel 90 m wide, 35 m from either bank: joined to one bank where the hull keeps
 // islet_side / 4 from the other, never across the channel (the water stays one piece).
-TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
+TEST(Generalise, IsletInAChannelIsNeverJoinedAcrossIt) {
   // Two basins joined by a channel y in [1000, 1090], x in [1000, 2000].
   const Rings water{{{0, 0}, {1000, 0}, {1000, 1000}, {2000, 1000}, {2000, 0}, {3000, 0}, {3000, 2090}, {2000, 2090},
                      {2000, 1090}, {1000, 1090}, {1000, 2090}, {0, 2090}}};
@@ -468,7 +468,7 @@ TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
 // Three islets 30 m apart in open water: judged one by one with the others as land, none had room;
 // judged again with the others left out, the first gets its triangle and the other two are joined
 // to it (the convex hull of triangle and islet): one island, nothing removed.
-TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
+TEST(Generalise, RowOfIsletsBecomesOneIsland) {
   const Rings sea = rect(0, 0, 4000, 4000);
   Options o = islet_opts();
   o.join_islets = true;
@@ -498,7 +498,7 @@ TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
 // A long islet's triangle is turned to fit it: with the apex always up, the ends of an islet
 // 100 m long lying at 30 degrees stuck out 29.8 m from its triangle of side 70 (corners rounded
 // by the closing); turned, 22.8 m.
-TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
+TEST(Generalise, IsletTriangleIsTurnedToFitTheIslet) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const std::vector<Point2> islet{{1956.699, 1975.0}, {1998.0, 2003.464}, {2043.301, 2025.0}};  // clockwise
   Options o = widen_opts();
@@ -514,7 +514,7 @@ TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
 
 // A long islet in open water gets a larger triangle (side 90 m for 150 m, up to 1.6 x 70), which
 // keeps its ends within 40 m; the side is in the repair.
-TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
+TEST(Generalise, LongIsletGetsALargerTriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const std::vector<Point2> islet{{1925.0, 2000.0}, {2000.0, 2006.0}, {2075.0, 2000.0}};  // 450 m^2
   Options o = widen_opts();
@@ -539,7 +539,7 @@ TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
 
 // An island above --min-island (4000 m^2 > 3000) but thinner than --close-width (10 m < 15)
 // everywhere: the closing would leave nothing of it, so it is an islet and becomes a triangle.
-TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
+TEST(Generalise, ThinIslandAboveMinIslandBecomesATriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings thin = rect(2000, 2000, 2400, 2010);
   Options o = widen_opts();
@@ -562,7 +562,7 @@ TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
 // An island of 12500 m^2 (a 50 m square with a 10 m wide tail 1 km long) is judged after the
 // closing: the tail goes, the square's 2500 m^2 remnant is below --min-island (3000) and becomes
 // a triangle where it was instead of water.
-TEST(FeatureFilter, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
+TEST(Generalise, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings isl{{{2000, 2000}, {2050, 2000}, {2050, 2020}, {3050, 2020}, {3050, 2030}, {2050, 2030}, {2050, 2050}, {2000, 2050}}};
   Options o = widen_opts();
@@ -588,7 +588,7 @@ TEST(FeatureFilter, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
 
 // The same islet 30 m from the big island (its centroid 40 m away, 75 m needed) with
 // islet_shift 40: its triangle moves 40 m east, away from the island, instead of being removed.
-TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
+TEST(Generalise, IsletNearLandMovesItsTriangleAwayFromIt) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
   const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
@@ -620,7 +620,7 @@ TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
 // An islet whose triangle (side 70 m, hmin 100) leaves 45 m of water to the next land: room
 // enough to place it (35 m beyond its corners), but narrower than --widen-width (60 m). The
 // triangle goes in after the widening, so the widening does not eat into it: it keeps its side.
-TEST(FeatureFilter, IsletTriangleNextToNarrowWaterKeepsItsSide) {
+TEST(Generalise, IsletTriangleNextToNarrowWaterKeepsItsSide) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
   const Rings land = rect(2090, 1500, 3000, 2500);
@@ -641,7 +641,7 @@ TEST(FeatureFilter, IsletTriangleNextToNarrowWaterKeepsItsSide) {
   EXPECT_GE(r.widened, 1u);  // the water beside it was narrow all the same
 }
 
-TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
+TEST(Generalise, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
   const Result r = generalise(in, opts(100));
@@ -651,14 +651,14 @@ TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
   EXPECT_NEAR(area(r.polygons), 2e6 - 2.5e5, corner_loss(opts(100), 6));
 }
 
-TEST(FeatureFilter, IdenticalPolygonsAreUnited) {
+TEST(Generalise, IdenticalPolygonsAreUnited) {
   const Polygons in{rect(0, 0, 1000, 1000), rect(0, 0, 1000, 1000)};
   const Result r = generalise(in, opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_NEAR(area(r.polygons), 1e6, corner_loss(opts(100), 4));
 }
 
-TEST(FeatureFilter, NothingLeftIsAnError) {
+TEST(Generalise, NothingLeftIsAnError) {
   try {
     generalise({rect(0, 0, 1000, 5)}, opts(100));  // 5 m wide everywhere, min_feature 10 m
     ADD_FAILURE() << "no error";
@@ -668,7 +668,7 @@ TEST(FeatureFilter, NothingLeftIsAnError) {
   }
 }
 
-TEST(FeatureFilter, OffKeepsEverything) {
+TEST(Generalise, OffKeepsEverything) {
   const Polygons in = basin_with_inlet(10);
   const Result r = generalise(in, Options{});
   EXPECT_NEAR(area(r.polygons), area(in), 1e-6);
@@ -677,7 +677,7 @@ TEST(FeatureFilter, OffKeepsEverything) {
 
 // Validity: a valid polygon with many islands is taken as it is (the fast exact test), invalid
 // ones (an island inside an island, a self-crossing bow tie) are repaired by GEOS as before.
-TEST(FeatureFilter, ValidAndInvalidInputsWithoutFilter) {
+TEST(Generalise, ValidAndInvalidInputsWithoutFilter) {
   Rings many = rect(0, 0, 1000, 1000);
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j) {
@@ -722,7 +722,7 @@ Polygons wavy_basin_with_inlet() {
   return {r};
 }
 
-TEST(FeatureFilter, UnchangedCoastComesBackAsTheInputsVertices) {
+TEST(Generalise, UnchangedCoastComesBackAsTheInputsVertices) {
   // The buffers return an unchanged coast as arc points around every input vertex; the filter
   // gives the input's own vertices back there (CoastRestorer), so only the closed inlet and the
   // rounded corners carry new vertices.
@@ -756,7 +756,7 @@ TEST(FeatureFilter, UnchangedCoastComesBackAsTheInputsVertices) {
   EXPECT_LT(r.polygons[0][0].size(), in[0][0].size() + 40);  // a few arcs at the corners only
 }
 
-TEST(FeatureFilter, CoastRestoreIsDeterministic) {
+TEST(Generalise, CoastRestoreIsDeterministic) {
   const Result a = generalise(wavy_basin_with_inlet(), opts(100));
   const Result b = generalise(wavy_basin_with_inlet(), opts(100));
   ASSERT_EQ(a.polygons.size(), b.polygons.size());
@@ -798,7 +798,7 @@ Polygons messy_coast() {
   return in;
 }
 
-TEST(FeatureFilter, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
+TEST(Generalise, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
   // The pieces between the two openings come from the faces of their non-shared segments
   // (difference_by_faces); Options::diff_overlay computes them with GEOS's overlay of the whole.
   for (const Polygons& in : {messy_coast(), wavy_basin_with_inlet(), two_basins(15), two_basins(5)}) {
