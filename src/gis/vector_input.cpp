@@ -17,6 +17,7 @@
 
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
+#include "gis/vector_layers.hpp"
 #include "base/edge_kind.hpp"
 #include "predicates/predicates.hpp"
 
@@ -26,232 +27,10 @@ namespace {
 
 using fdr::EdgeKind;
 
-std::string num(double v, int prec = 6) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
-  return buf;
-}
-
-std::string where_str(const OGRGeometry* g) {
-  if (!g || g->IsEmpty()) return "(empty geometry)";
-  OGREnvelope e;
-  g->getEnvelope(&e);
-  return "at (" + num(0.5 * (e.MinX + e.MaxX)) + ", " + num(0.5 * (e.MinY + e.MaxY)) + ")";
-}
-
-// One feature's geometry, flattened to 2D and with curves linearized.
-struct Feature {
-  std::int64_t fid = -1;
-  std::unique_ptr<OGRGeometry> geom;
-};
-
-struct LayerData {
-  std::string file, layer;
-  OGRSpatialReference srs;  // traditional GIS order
-  std::vector<Feature> features;
-  std::string label() const { return file + ": layer '" + layer + "'"; }
-};
-
-// Refuses a vertex with a NaN, infinite or out-of-range coordinate, naming layer, feature id,
-// part (member of a multi-geometry / collection), ring (polygons: 0 = outer), vertex index and
-// value. Why here: a bad coordinate otherwise surfaces as a misleading CRS error later ("the
-// domain spans 1e308 degrees of longitude"). Ranges: a geographic CRS needs |lon| <= 180,
-// |lat| <= 90; a projected one |v| <= 1e9 (beyond the Earth in metres or feet) and, when the CRS
-// knows its area of use, within that area's projected bounding box widened by its own size.
-struct CoordLimits {
-  bool geographic = false;
-  double xmin = -1e9, xmax = 1e9, ymin = -1e9, ymax = 1e9;
-  std::string what = "|x|, |y| <= 1e9";
-};
-
-CoordLimits coord_limits(const OGRSpatialReference& srs) {
-  CoordLimits c;
-  if (srs.IsGeographic()) {
-    c.geographic = true;
-    c.xmin = -180, c.xmax = 180, c.ymin = -90, c.ymax = 90;
-    c.what = "longitude within [-180, 180] and latitude within [-90, 90]";
-    return c;
-  }
-  double w = 0, s = 0, e = 0, n = 0;
-  const char* name = nullptr;
-  if (!srs.GetAreaOfUse(&w, &s, &e, &n, &name) || !(w >= -180 && e <= 180 && s >= -90 && n <= 90 && s < n)) return c;
-  OGRSpatialReference ll;
-  ll.SetWellKnownGeogCS("WGS84");
-  ll.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  OGRSpatialReference dst(srs);
-  dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation, void (*)(OGRCoordinateTransformation*)> ct(
-      OGRCreateCoordinateTransformation(&ll, &dst), OGRCoordinateTransformation::DestroyCT);
-  if (!ct) return c;
-  const double east = e >= w ? e : e + 360;  // area crossing the antimeridian
-  std::vector<double> xs, ys;
-  for (int i = 0; i <= 16; ++i)
-    for (int j = 0; j <= 16; ++j) {
-      double lon = w + (east - w) * i / 16.0;
-      if (lon > 180) lon -= 360;
-      xs.push_back(lon);
-      ys.push_back(s + (n - s) * j / 16.0);
-    }
-  std::vector<int> ok(xs.size(), 0);
-  ct->Transform(static_cast<int>(xs.size()), xs.data(), ys.data(), nullptr, ok.data());
-  Box2 b;
-  for (std::size_t k = 0; k < xs.size(); ++k)
-    if (ok[k] && std::isfinite(xs[k]) && std::isfinite(ys[k])) b.add({xs[k], ys[k]});
-  if (!(b.width() > 0 && b.height() > 0)) return c;
-  const double m = std::max(b.width(), b.height());
-  c.xmin = std::max(c.xmin, b.lo.x - m), c.xmax = std::min(c.xmax, b.hi.x + m);
-  c.ymin = std::max(c.ymin, b.lo.y - m), c.ymax = std::min(c.ymax, b.hi.y + m);
-  std::string area = name ? name : "";
-  if (area.size() > 48) area = area.substr(0, 45) + "...";
-  c.what = "within the CRS's area of use" + (area.empty() ? std::string() : " (" + area + ")") +
-           ", widened by its size: x in [" + num(c.xmin) + ", " + num(c.xmax) + "], y in [" + num(c.ymin) + ", " +
-           num(c.ymax) + "]";
-  return c;
-}
-
-void check_coordinates(const OGRGeometry* g, const CoordLimits& lim, const std::string& label, std::int64_t fid,
-                       const std::string& where) {
-  auto bad = [&](double v, double lo, double hi) { return !std::isfinite(v) || v < lo || v > hi; };
-  auto check_curve = [&](const OGRSimpleCurve* c, const std::string& at) {
-    for (int i = 0; i < c->getNumPoints(); ++i) {
-      const double x = c->getX(i), y = c->getY(i);
-      const bool bx = bad(x, lim.xmin, lim.xmax), by = bad(y, lim.ymin, lim.ymax);
-      if (!bx && !by) continue;
-      const char* axis = bx ? (lim.geographic ? "longitude" : "x") : (lim.geographic ? "latitude" : "y");
-      char v[48];
-      std::snprintf(v, sizeof v, "%.17g", bx ? x : y);
-      throw Error(ExitCode::kInvalidGeometry,
-                  label + ", feature FID " + std::to_string(fid) + at + ", vertex " + std::to_string(i) + ": " +
-                      axis + " = " + v + " is " + (std::isfinite(bx ? x : y) ? "out of range (need " + lim.what + ")"
-                                                                             : std::string("not a finite number")));
-    }
-  };
-  const auto t = wkbFlatten(g->getGeometryType());
-  if (t == wkbPoint) {
-    const auto* p = g->toPoint();
-    OGRLineString l;
-    l.addPoint(p->getX(), p->getY());
-    check_curve(&l, where);
-  } else if (t == wkbLineString || t == wkbLinearRing) {
-    check_curve(g->toSimpleCurve(), where);
-  } else if (t == wkbPolygon || t == wkbTriangle) {
-    int r = 0;
-    for (const OGRLinearRing* ring : *g->toPolygon()) {
-      check_curve(ring, where + ", ring " + std::to_string(r) + (r == 0 ? " (outer)" : " (hole)"));
-      ++r;
-    }
-  } else if (OGR_GT_IsSubClassOf(t, wkbGeometryCollection) || t == wkbPolyhedralSurface || t == wkbTIN) {
-    int k = 0;
-    const OGRGeometryCollection* gc = t == wkbPolyhedralSurface || t == wkbTIN ? nullptr : g->toGeometryCollection();
-    if (!gc) return;
-    for (const auto* sub : *gc) check_coordinates(sub, lim, label, fid, where + ", part " + std::to_string(k++));
-  }
-}
-
-LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* option) {
-  GdalQuiet quiet;
-  DatasetPtr ds = open_vector(ref.path);
-  OGRLayer* lyr = nullptr;
-  if (ref.layer.empty()) {
-    if (ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, ref.path + ": no layers");
-    lyr = ds->GetLayer(0);
-  } else {
-    lyr = ds->GetLayerByName(ref.layer.c_str());
-    if (!lyr) {
-      std::string names;
-      for (int i = 0; i < ds->GetLayerCount(); ++i)
-        names += (i ? ", " : "") + std::string(ds->GetLayer(i)->GetName());
-      throw Error(ExitCode::kInputUnreadable, ref.path + ": no layer '" + ref.layer + "' (layers: " + names + ")");
-    }
-  }
-  LayerData out;
-  out.file = ref.path;
-  out.layer = lyr->GetName();
-  if (!ref.where.empty() && lyr->SetAttributeFilter(ref.where.c_str()) != OGRERR_NONE)
-    throw Error(ExitCode::kUsage, out.label() + ": invalid " + option + " where clause '" + ref.where +
-                                      "': " + CPLGetLastErrorMsg());
-  const OGRSpatialReference* srs = lyr->GetSpatialRef();
-  if (srs) {
-    out.srs = *srs;
-  } else if (!s_srs.empty()) {
-    if (out.srs.SetFromUserInput(s_srs.c_str()) != OGRERR_NONE)
-      throw Error(ExitCode::kCrsError, "--s_srs '" + s_srs + "': unknown CRS");
-  } else {
-    throw Error(ExitCode::kCrsError, out.label() + " has no CRS; give --s_srs");
-  }
-  out.srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  const CoordLimits limits = coord_limits(out.srs);
-  lyr->ResetReading();
-  CPLErrorReset();
-  for (auto& f : *lyr) {
-    const OGRGeometry* g = f->GetGeometryRef();
-    if (!g || g->IsEmpty()) continue;
-    Feature feat;
-    feat.fid = f->GetFID();
-    feat.geom.reset(g->hasCurveGeometry() ? g->getLinearGeometry() : g->clone());
-    feat.geom->flattenTo2D();
-    check_coordinates(feat.geom.get(), limits, out.label(), feat.fid, "");
-    out.features.push_back(std::move(feat));
-  }
-  if (CPLGetLastErrorType() >= CE_Failure) {
-    const std::string msg = CPLGetLastErrorMsg();
-    if (!ref.where.empty())
-      throw Error(ExitCode::kUsage, out.label() + ": invalid " + option + " where clause '" + ref.where + "': " + msg);
-    throw Error(ExitCode::kInputMalformed, out.label() + ": reading features failed: " + msg);
-  }
-  if (out.features.empty()) {
-    if (!ref.where.empty())
-      throw Error(ExitCode::kInvalidGeometry, out.label() + ": " + option + " where clause '" + ref.where +
-                                                  "' selects no features with a geometry");
-    throw Error(ExitCode::kInvalidGeometry, out.label() + " has no features with a geometry");
-  }
-  return out;
-}
-
-// Appends the polygons in g (Polygon, MultiPolygon, collections of them) to out; returns the
-// first geometry of another type, or nullptr.
-const OGRGeometry* collect_polygons(const OGRGeometry* g, std::vector<const OGRPolygon*>& out) {
-  const auto t = wkbFlatten(g->getGeometryType());
-  if (t == wkbPolygon || t == wkbTriangle) {
-    out.push_back(g->toPolygon());
-    return nullptr;
-  }
-  if (t == wkbMultiPolygon || t == wkbGeometryCollection || t == wkbPolyhedralSurface || t == wkbTIN) {
-    for (const auto* sub : *g->toGeometryCollection()) {
-      if (const OGRGeometry* bad = collect_polygons(sub, out)) return bad;
-    }
-    return nullptr;
-  }
-  return g;
-}
-
-const OGRGeometry* collect_lines(const OGRGeometry* g, std::vector<const OGRSimpleCurve*>& out) {
-  const auto t = wkbFlatten(g->getGeometryType());
-  if (t == wkbLineString || t == wkbLinearRing) {
-    out.push_back(g->toSimpleCurve());
-    return nullptr;
-  }
-  if (t == wkbMultiLineString || t == wkbGeometryCollection) {
-    for (const auto* sub : *g->toGeometryCollection()) {
-      if (wkbFlatten(sub->getGeometryType()) == wkbPoint) continue;  // intersection by-products
-      if (const OGRGeometry* bad = collect_lines(sub, out)) return bad;
-    }
-    return nullptr;
-  }
-  return g;
-}
-
-std::vector<Point2> curve_points(const OGRSimpleCurve* c) {
-  std::vector<Point2> v(static_cast<std::size_t>(c->getNumPoints()));
-  for (int i = 0; i < c->getNumPoints(); ++i) v[i] = {c->getX(i), c->getY(i)};
-  return v;
-}
-
 // Densification of geographic segments (DomainOptions::densify_deg, `--densify DEG`; off by
 // default, as in GDAL and QGIS, where a reprojected segment is the chord between its projected
 // ends). Why offer it: a lon/lat segment may mean the straight line in lon/lat (a parallel, a
-// meridian), and on an ocean basin the 46-degree bottom side of a region box as one chord crosses
-// the Antilles. A segment whose longitude or latitude span exceeds `step` degrees gets
+// meridian), and a long side of a region box as one chord can cross whole islands. A segment whose longitude or latitude span exceeds `step` degrees gets
 // k - 1 points at j/k of the way, k = ceil(span / step). The points are computed from the
 // segment's lexicographically smaller end, so the same source segment gives bitwise the same
 // points in every layer and in either direction (a polygon ring and an open-boundary line drawn
@@ -626,10 +405,10 @@ RepairRecord repair_record(const Frame& frame, pslg::Repair rep) {
 }
 }  // namespace
 
-void start_features(GisInput& in) { start_removed(in.features); }
+void start_features(GisInput& in) { coast::start_removed(in.features); }
 
 void finish_features(GisInput& in) {
-  std::vector<pslg::Repair> reps = finish_removed(in.features);
+  std::vector<pslg::Repair> reps = coast::finish_removed(in.features);
   if (reps.empty()) return;
   std::vector<RepairRecord> recs;
   for (auto& rep : reps) recs.push_back(repair_record(in.frame, std::move(rep)));
@@ -649,143 +428,147 @@ void clean_domain(GisInput& in, const pslg::CleanOptions& options) {
   in.counts.repairs = in.repairs.size();
 }
 
-GisInput read_domain(const DomainOptions& o) {
-  ensure_gdal_registered();
+
+namespace {
+
+// Usage errors in the choice of domain layers.
+void check_domain_options(const DomainOptions& o) {
   if (o.domain.given() == (o.land.given() || o.extent.has_value()))
     throw Error(ExitCode::kUsage, o.domain.given() ? "give either a domain layer or --land with --extent, not both"
                                                    : "no domain: give a polygon layer, or --land with --extent");
   if (o.land.given() != o.extent.has_value())
     throw Error(ExitCode::kUsage, o.land.given() ? "--land needs --extent xmin,ymin,xmax,ymax" : "--extent needs --land");
+}
 
-  GisInput in;
-  std::vector<std::vector<std::vector<char>>> on_box;
-  LayerData dom = o.domain.given() ? read_layer(o.domain, o.s_srs, "--where") : land_minus_box(o, on_box);
+// Open boundary lines in the local frame (tag = index into fid_of_tag): the extent box sides
+// (land mode) and the open-boundary layer. Ring segments lying on them become kOpen after the
+// resolution filter has reshaped the rings.
+struct OpenLines {
+  std::vector<std::int64_t> fid_of_tag;
+  std::string file, layer;
+  std::vector<SegmentBuckets::Seg> segs;
+};
 
-  std::vector<LonLat> sample;
-  sample_lonlat(dom, sample);
-  in.frame = choose_frame(sample, o.t_srs);
+// The sides of the extent box (land mode): the ring segments on_box flags, through seg_source
+// (per ring, the source segment of each densified segment).
+void add_box_sides(const std::vector<std::vector<std::vector<char>>>& on_box, const std::vector<Ring>& rings,
+                   const std::vector<std::vector<std::uint32_t>>& seg_source, const DomainOptions& o, OpenLines& open) {
+  auto& open_segs = open.segs;
+  std::size_t k = 0;
+  for (const auto& poly : on_box)
+    for (const auto& flags : poly) {
+      const auto& pts = rings[k].pts;
+      const auto& src = seg_source[k];  // densified segment -> source segment (its flag)
+      for (std::size_t i = 0; i < src.size() && i < pts.size(); ++i)
+        if (src[i] < flags.size() && flags[src[i]]) open_segs.push_back({pts[i], pts[(i + 1) % pts.size()], 0});
+      ++k;
+    }
+  open.fid_of_tag.push_back(-1);
+  open.file = o.land.path;
+  open.layer = "--extent";
+}
+
+// The coast generalisation (coast/generalise.hpp) of the domain polygons: the rings replaced by
+// its result, each new ring given the source part of the input ring it continues (a vote of its
+// vertices near the old rings); its repairs and figures in `in`.
+void generalise_domain(const DomainOptions& o, const LayerData& dom, const Box2& bb, double diam, GisInput& in,
+                       std::vector<Ring>& rings) {
   const Frame& frame = in.frame;
-
-  std::vector<Ring> rings;
-  std::vector<std::vector<std::uint32_t>> seg_source;  // per ring: source segment of each segment
-  add_polygon_rings(dom, frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
-                    in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
-  if (rings.empty())
-    throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
-  for (const auto& poly : in.domain_polygons)
-    for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(ring_area(poly[k]));
-
-  Box2 bb;
+  const coast::Options fo = o.features(bb);
+  in.input_polygons = in.domain_polygons;
+  coast::Result fr = coast::generalise(in.domain_polygons, fo);
+  // Which input ring each new ring continues: vote of its vertices near the old rings.
+  std::vector<SegmentBuckets::Seg> old_segs;
   for (const auto& r : rings)
-    for (const auto& p : r.pts) bb.add(p);
-  const double diam = std::hypot(bb.width(), bb.height());
-  in.frame.set_domain_box(bb);
-
-  // Open boundary lines in the local frame (tag = index into open_fid_of_tag): the extent box
-  // sides (land mode) and the open-boundary layer. Ring segments lying on them become kOpen
-  // after the resolution filter has reshaped the rings.
-  std::vector<std::int64_t> open_fid_of_tag;
-  std::string open_file, open_layer;
-  std::vector<SegmentBuckets::Seg> open_segs;
-  if (!on_box.empty()) {
-    std::size_t k = 0;
-    for (const auto& poly : on_box)
-      for (const auto& flags : poly) {
-        const auto& pts = rings[k].pts;
-        const auto& src = seg_source[k];  // densified segment -> source segment (its flag)
-        for (std::size_t i = 0; i < src.size() && i < pts.size(); ++i)
-          if (src[i] < flags.size() && flags[src[i]]) open_segs.push_back({pts[i], pts[(i + 1) % pts.size()], 0});
-        ++k;
+    for (std::size_t i = 0; i < r.pts.size(); ++i) old_segs.push_back({r.pts[i], r.pts[(i + 1) % r.pts.size()], r.part});
+  const SegmentBuckets old_near(std::move(old_segs), std::max({fo.close_width, 1e-7 * diam, 1e-6}));
+  std::vector<Ring> out_rings;
+  for (const auto& poly : fr.polygons)
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      Ring r;
+      r.pts = poly[k];
+      r.hole = k > 0;
+      r.open.assign(r.pts.size(), 0);
+      std::map<int, int> votes;
+      const std::size_t step = std::max<std::size_t>(1, r.pts.size() / 16);
+      for (std::size_t i = 0; i < r.pts.size(); i += step)
+        if (const int t = old_near.near(r.pts[i]); t >= 0) ++votes[t];
+      int best = -1, bestn = 0;
+      for (const auto& [t, n] : votes)
+        if (n > bestn) { best = t; bestn = n; }
+      if (best >= 0 && (in.parts[static_cast<std::size_t>(best)].role == "hole") == r.hole) {
+        r.part = best;
+      } else {
+        r.part = static_cast<int>(in.parts.size());
+        SourcePart sp = best >= 0 ? in.parts[static_cast<std::size_t>(best)] : SourcePart{dom.file, dom.layer, -1, "", -1};
+        sp.role = r.hole ? "hole" : (o.domain.given() ? "outer ring" : "extent box");
+        sp.ring = r.hole ? -1 : 0;
+        in.parts.push_back(sp);
       }
-    open_fid_of_tag.push_back(-1);
-    open_file = o.land.path;
-    open_layer = "--extent";
-  }
+      out_rings.push_back(std::move(r));
+    }
+  rings = std::move(out_rings);
+  in.domain_polygons = fr.polygons;
+  in.domain_area_m2 = fr.output_area;
+  for (auto& rep : fr.repairs) in.feature_repairs.push_back(repair_record(frame, std::move(rep)));
+  fr.repairs.clear();
+  fr.polygons.clear();
+  in.features = std::move(fr);
+  in.repairs = in.feature_repairs;
+}
 
-  if (o.features) {
-    const FeatureFilterOptions fo = o.features(bb);
-    in.input_polygons = in.domain_polygons;
-    FeatureFilterResult fr = filter_features(in.domain_polygons, fo);
-    // Which input ring each new ring continues: vote of its vertices near the old rings.
-    std::vector<SegmentBuckets::Seg> old_segs;
-    for (const auto& r : rings)
-      for (std::size_t i = 0; i < r.pts.size(); ++i) old_segs.push_back({r.pts[i], r.pts[(i + 1) % r.pts.size()], r.part});
-    const SegmentBuckets old_near(std::move(old_segs), std::max({fo.close_width, 1e-7 * diam, 1e-6}));
-    std::vector<Ring> out_rings;
-    for (const auto& poly : fr.polygons)
-      for (std::size_t k = 0; k < poly.size(); ++k) {
-        Ring r;
-        r.pts = poly[k];
-        r.hole = k > 0;
-        r.open.assign(r.pts.size(), 0);
-        std::map<int, int> votes;
-        const std::size_t step = std::max<std::size_t>(1, r.pts.size() / 16);
-        for (std::size_t i = 0; i < r.pts.size(); i += step)
-          if (const int t = old_near.near(r.pts[i]); t >= 0) ++votes[t];
-        int best = -1, bestn = 0;
-        for (const auto& [t, n] : votes)
-          if (n > bestn) { best = t; bestn = n; }
-        if (best >= 0 && (in.parts[static_cast<std::size_t>(best)].role == "hole") == r.hole) {
-          r.part = best;
-        } else {
-          r.part = static_cast<int>(in.parts.size());
-          SourcePart sp = best >= 0 ? in.parts[static_cast<std::size_t>(best)] : SourcePart{dom.file, dom.layer, -1, "", -1};
-          sp.role = r.hole ? "hole" : (o.domain.given() ? "outer ring" : "extent box");
-          sp.ring = r.hole ? -1 : 0;
-          in.parts.push_back(sp);
-        }
-        out_rings.push_back(std::move(r));
-      }
-    rings = std::move(out_rings);
-    in.domain_polygons = fr.polygons;
-    in.domain_area_m2 = fr.output_area;
-    for (auto& rep : fr.repairs) in.feature_repairs.push_back(repair_record(frame, std::move(rep)));
-    fr.repairs.clear();
-    fr.polygons.clear();
-    in.features = std::move(fr);
-    in.repairs = in.feature_repairs;
-  }
-
-  if (o.open_boundary.given()) {
-    LayerData ob = read_layer(o.open_boundary, o.s_srs, "--open-boundary");
-    open_file = ob.file;
-    open_layer = ob.layer;
-    for (const auto& f : ob.features) {
-      std::vector<const OGRSimpleCurve*> ls;
-      if (const OGRGeometry* bad = collect_lines(f.geom.get(), ls))
-        throw Error(ExitCode::kInvalidGeometry, ob.label() + ", feature FID " + std::to_string(f.fid) + " " +
-                                                    where_str(bad) + ": geometry is " + bad->getGeometryName() +
-                                                    ", expected LineString or MultiLineString");
-      ++in.counts.open_features;
-      const int tag = static_cast<int>(open_fid_of_tag.size());
-      open_fid_of_tag.push_back(f.fid);
-      for (const auto* c : ls) {
-        std::vector<Point2> pts = curve_points(c);
-        line_to_local(pts, ob.srs, dom.srs, frame, ob.label(), o.densify_deg, in.counts);
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) open_segs.push_back({pts[i], pts[i + 1], tag});
-      }
+// The open-boundary layer's lines (tags after the box sides').
+void read_open_boundary(const DomainOptions& o, const LayerData& dom, GisInput& in, OpenLines& open) {
+  const Frame& frame = in.frame;
+  auto& open_segs = open.segs;
+  auto& open_fid_of_tag = open.fid_of_tag;
+  LayerData ob = read_layer(o.open_boundary, o.s_srs, "--open-boundary");
+  open.file = ob.file;
+  open.layer = ob.layer;
+  for (const auto& f : ob.features) {
+    std::vector<const OGRSimpleCurve*> ls;
+    if (const OGRGeometry* bad = collect_lines(f.geom.get(), ls))
+      throw Error(ExitCode::kInvalidGeometry, ob.label() + ", feature FID " + std::to_string(f.fid) + " " +
+                                                  where_str(bad) + ": geometry is " + bad->getGeometryName() +
+                                                  ", expected LineString or MultiLineString");
+    ++in.counts.open_features;
+    const int tag = static_cast<int>(open_fid_of_tag.size());
+    open_fid_of_tag.push_back(f.fid);
+    for (const auto* c : ls) {
+      std::vector<Point2> pts = curve_points(c);
+      line_to_local(pts, ob.srs, dom.srs, frame, ob.label(), o.densify_deg, in.counts);
+      for (std::size_t i = 0; i + 1 < pts.size(); ++i) open_segs.push_back({pts[i], pts[i + 1], tag});
     }
   }
-  if (!open_segs.empty()) {
-    // Open lines normally share the polygon's vertices exactly; the tolerance only absorbs
-    // rounding from a different file format, a reprojection or the resolution filter.
-    const double tol = std::max(1e-7 * diam, 1e-6);
-    SegmentBuckets buckets(std::move(open_segs), tol);
-    for (auto& r : rings) {
-      const std::size_t n = r.pts.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const Point2 a = r.pts[i], b = r.pts[(i + 1) % n];
-        const int ta = buckets.near(a);
-        if (ta < 0 || buckets.near(b) < 0 || buckets.near(0.5 * (a + b)) < 0) continue;
-        r.open[i] = 1 + ta;  // remember which open feature matched (1-based)
-      }
+}
+
+// Ring segments lying on an open line become open (r.open: 1 + the line's tag).
+void mark_open_segments(std::vector<Ring>& rings, OpenLines& open, double diam) {
+  auto& open_segs = open.segs;
+  // Open lines normally share the polygon's vertices exactly; the tolerance only absorbs
+  // rounding from a different file format, a reprojection or the resolution filter.
+  const double tol = std::max(1e-7 * diam, 1e-6);
+  SegmentBuckets buckets(std::move(open_segs), tol);
+  for (auto& r : rings) {
+    const std::size_t n = r.pts.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 a = r.pts[i], b = r.pts[(i + 1) % n];
+      const int ta = buckets.near(a);
+      if (ta < 0 || buckets.near(b) < 0 || buckets.near(0.5 * (a + b)) < 0) continue;
+      r.open[i] = 1 + ta;  // remember which open feature matched (1-based)
     }
   }
+}
 
-  // Assemble the raw PSLG: ring segments, open runs get their own part ids.
+// The raw PSLG: ring segments, open runs get their own part ids.
+void assemble_rings(GisInput& in, const std::vector<Ring>& rings, const OpenLines& open) {
+  const Frame& frame = in.frame;
+  const auto& open_fid_of_tag = open.fid_of_tag;
+  const std::string& open_file = open.file;
+  const std::string& open_layer = open.layer;
   pslg::Pslg& P = in.raw;
   P.origin = frame.origin();
-  for (auto& r : rings) {
+  for (const auto& r : rings) {
     const std::size_t n = r.pts.size();
     if (n < 2) continue;
     const Index base = static_cast<Index>(P.points.size());
@@ -820,90 +603,132 @@ GisInput read_domain(const DomainOptions& o) {
       ++in.counts.boundary_segments;
     }
   }
+}
 
-  // Breaklines, clipped to the domain polygons with GEOS.
-  if (o.breaklines.given()) {
-    LayerData bl = read_layer(o.breaklines, o.s_srs, "--breaklines");
-    GdalQuiet quiet;
-    // After the resolution filter, clip to the domain shrunk by a hair (5 % of --close-width):
-    // a breakline drawn along the coast (a border) would otherwise run a fraction of a metre from
-    // the rounded corners the filter made, a sliver no mesher can split. Its ends are put back
-    // on the coast by snap_loose_ends (pipeline).
-    const double hair = 0.05 * in.features.close_width;
-    std::unique_ptr<OGRGeometry> clip =
-        local_domain_geometry(hair > 0 ? offset_polygons(in.domain_polygons, -hair) : in.domain_polygons);
-    if (!clip->IsValid()) {  // raw (self-intersecting) rings: GEOS needs a valid copy to clip against
-      std::unique_ptr<OGRGeometry> v(clip->MakeValid());
-      if (!v) throw Error(ExitCode::kInvalidGeometry, dom.label() + ": cannot make a valid copy of the domain "
-                                                                    "for clipping breaklines: " + CPLGetLastErrorMsg());
-      clip = std::move(v);
+// Breaklines, clipped to the domain polygons with GEOS.
+void add_breaklines(const DomainOptions& o, const LayerData& dom, GisInput& in) {
+  const Frame& frame = in.frame;
+  pslg::Pslg& P = in.raw;
+  LayerData bl = read_layer(o.breaklines, o.s_srs, "--breaklines");
+  GdalQuiet quiet;
+  // After the resolution filter, clip to the domain shrunk by a hair (5 % of --close-width):
+  // a breakline drawn along the coast (a border) would otherwise run a fraction of a metre from
+  // the rounded corners the filter made, a sliver no mesher can split. Its ends are put back
+  // on the coast by snap_loose_ends (pipeline).
+  const double hair = 0.05 * in.features.close_width;
+  std::unique_ptr<OGRGeometry> clip =
+      local_domain_geometry(hair > 0 ? coast::offset_polygons(in.domain_polygons, -hair) : in.domain_polygons);
+  if (!clip->IsValid()) {  // raw (self-intersecting) rings: GEOS needs a valid copy to clip against
+    std::unique_ptr<OGRGeometry> v(clip->MakeValid());
+    if (!v) throw Error(ExitCode::kInvalidGeometry, dom.label() + ": cannot make a valid copy of the domain "
+                                                                  "for clipping breaklines: " + CPLGetLastErrorMsg());
+    clip = std::move(v);
+  }
+  for (const auto& f : bl.features) {
+    std::vector<const OGRSimpleCurve*> ls;
+    if (const OGRGeometry* bad = collect_lines(f.geom.get(), ls))
+      throw Error(ExitCode::kInvalidGeometry, bl.label() + ", feature FID " + std::to_string(f.fid) + " " +
+                                                  where_str(bad) + ": geometry is " + bad->getGeometryName() +
+                                                  ", expected LineString or MultiLineString");
+    ++in.counts.breakline_features;
+    OGRMultiLineString local;
+    for (const auto* c : ls) {
+      std::vector<Point2> pts = curve_points(c);
+      line_to_local(pts, bl.srs, dom.srs, frame, bl.label(), o.densify_deg, in.counts);
+      OGRLineString l;
+      for (const auto& p : pts) l.addPoint(p.x, p.y);
+      local.addGeometry(&l);
     }
-    for (const auto& f : bl.features) {
-      std::vector<const OGRSimpleCurve*> ls;
-      if (const OGRGeometry* bad = collect_lines(f.geom.get(), ls))
-        throw Error(ExitCode::kInvalidGeometry, bl.label() + ", feature FID " + std::to_string(f.fid) + " " +
-                                                    where_str(bad) + ": geometry is " + bad->getGeometryName() +
-                                                    ", expected LineString or MultiLineString");
-      ++in.counts.breakline_features;
-      OGRMultiLineString local;
-      for (const auto* c : ls) {
-        std::vector<Point2> pts = curve_points(c);
-        line_to_local(pts, bl.srs, dom.srs, frame, bl.label(), o.densify_deg, in.counts);
-        OGRLineString l;
-        for (const auto& p : pts) l.addPoint(p.x, p.y);
-        local.addGeometry(&l);
-      }
-      std::unique_ptr<OGRGeometry> cut(clip->Intersection(&local));
-      if (!cut)
-        throw Error(ExitCode::kInvalidGeometry, bl.label() + ", feature FID " + std::to_string(f.fid) + " " +
-                                                    where_str(f.geom.get()) + ": clipping to the domain failed: " +
-                                                    CPLGetLastErrorMsg());
-      std::vector<const OGRSimpleCurve*> pieces;
-      collect_lines(cut.get(), pieces);
-      if (pieces.empty()) continue;
-      const int part = static_cast<int>(in.parts.size());
-      in.parts.push_back({bl.file, bl.layer, f.fid, "breakline", -1});
-      for (const auto* c : pieces) {
-        const std::vector<Point2> pts = curve_points(c);
-        if (pts.size() < 2) continue;
-        const Index base = static_cast<Index>(P.points.size());
-        P.points.insert(P.points.end(), pts.begin(), pts.end());
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-          P.segments.push_back({base + static_cast<Index>(i), base + static_cast<Index>(i + 1),
-                                static_cast<std::int32_t>(EdgeKind::kBreakline), part});
-          ++in.counts.breakline_segments;
-        }
+    std::unique_ptr<OGRGeometry> cut(clip->Intersection(&local));
+    if (!cut)
+      throw Error(ExitCode::kInvalidGeometry, bl.label() + ", feature FID " + std::to_string(f.fid) + " " +
+                                                  where_str(f.geom.get()) + ": clipping to the domain failed: " +
+                                                  CPLGetLastErrorMsg());
+    std::vector<const OGRSimpleCurve*> pieces;
+    collect_lines(cut.get(), pieces);
+    if (pieces.empty()) continue;
+    const int part = static_cast<int>(in.parts.size());
+    in.parts.push_back({bl.file, bl.layer, f.fid, "breakline", -1});
+    for (const auto* c : pieces) {
+      const std::vector<Point2> pts = curve_points(c);
+      if (pts.size() < 2) continue;
+      const Index base = static_cast<Index>(P.points.size());
+      P.points.insert(P.points.end(), pts.begin(), pts.end());
+      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        P.segments.push_back({base + static_cast<Index>(i), base + static_cast<Index>(i + 1),
+                              static_cast<std::int32_t>(EdgeKind::kBreakline), part});
+        ++in.counts.breakline_segments;
       }
     }
   }
+}
 
-  // Fixed points inside the domain (parity rule, as the mesher classifies triangles).
-  if (o.points.given()) {
-    LayerData pl = read_layer(o.points, o.s_srs, "--points");
-    std::vector<Point2> pts;
-    for (const auto& f : pl.features) {
-      const auto t = wkbFlatten(f.geom->getGeometryType());
-      if (t == wkbPoint) {
-        pts.push_back({f.geom->toPoint()->getX(), f.geom->toPoint()->getY()});
-      } else if (t == wkbMultiPoint) {
-        for (const auto* p : *f.geom->toMultiPoint()) pts.push_back({p->getX(), p->getY()});
-      } else {
-        throw Error(ExitCode::kInvalidGeometry, pl.label() + ", feature FID " + std::to_string(f.fid) + " " +
-                                                    where_str(f.geom.get()) + ": geometry is " +
-                                                    f.geom->getGeometryName() + ", expected Point or MultiPoint");
-      }
-    }
-    frame.to_local_batch(pts, pl.srs, pl.label());
-    for (const auto& p : pts) {
-      if (inside_by_parity(p, rings)) {
-        P.points.push_back(p);
-        ++in.counts.fixed_points;
-      } else {
-        ++in.counts.points_outside;
-      }
+// Fixed points inside the domain (parity rule, as the mesher classifies triangles).
+void add_points(const DomainOptions& o, const std::vector<Ring>& rings, GisInput& in) {
+  const Frame& frame = in.frame;
+  pslg::Pslg& P = in.raw;
+  LayerData pl = read_layer(o.points, o.s_srs, "--points");
+  std::vector<Point2> pts;
+  for (const auto& f : pl.features) {
+    const auto t = wkbFlatten(f.geom->getGeometryType());
+    if (t == wkbPoint) {
+      pts.push_back({f.geom->toPoint()->getX(), f.geom->toPoint()->getY()});
+    } else if (t == wkbMultiPoint) {
+      for (const auto* p : *f.geom->toMultiPoint()) pts.push_back({p->getX(), p->getY()});
+    } else {
+      throw Error(ExitCode::kInvalidGeometry, pl.label() + ", feature FID " + std::to_string(f.fid) + " " +
+                                                  where_str(f.geom.get()) + ": geometry is " +
+                                                  f.geom->getGeometryName() + ", expected Point or MultiPoint");
     }
   }
+  frame.to_local_batch(pts, pl.srs, pl.label());
+  for (const auto& p : pts) {
+    if (inside_by_parity(p, rings)) {
+      P.points.push_back(p);
+      ++in.counts.fixed_points;
+    } else {
+      ++in.counts.points_outside;
+    }
+  }
+}
 
+}  // namespace
+
+GisInput read_domain(const DomainOptions& o) {
+  ensure_gdal_registered();
+  check_domain_options(o);
+
+  GisInput in;
+  std::vector<std::vector<std::vector<char>>> on_box;
+  LayerData dom = o.domain.given() ? read_layer(o.domain, o.s_srs, "--where") : land_minus_box(o, on_box);
+
+  std::vector<LonLat> sample;
+  sample_lonlat(dom, sample);
+  in.frame = choose_frame(sample, o.t_srs);
+  const Frame& frame = in.frame;
+
+  std::vector<Ring> rings;
+  std::vector<std::vector<std::uint32_t>> seg_source;  // per ring: source segment of each segment
+  add_polygon_rings(dom, frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
+                    in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
+  if (rings.empty())
+    throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
+  for (const auto& poly : in.domain_polygons)
+    for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(ring_area(poly[k]));
+
+  Box2 bb;
+  for (const auto& r : rings)
+    for (const auto& p : r.pts) bb.add(p);
+  const double diam = std::hypot(bb.width(), bb.height());
+  in.frame.set_domain_box(bb);
+  OpenLines open;
+  if (!on_box.empty()) add_box_sides(on_box, rings, seg_source, o, open);
+  if (o.features) generalise_domain(o, dom, bb, diam, in, rings);
+  if (o.open_boundary.given()) read_open_boundary(o, dom, in, open);
+  if (!open.segs.empty()) mark_open_segments(rings, open, diam);
+  assemble_rings(in, rings, open);
+  if (o.breaklines.given()) add_breaklines(o, dom, in);
+  if (o.points.given()) add_points(o, rings, in);
   in.snap_distance_m = o.snap_distance_m >= 0 ? o.snap_distance_m : std::max(1e-6 * diam, 0.01);
   if (o.clean) {
     pslg::CleanOptions co;

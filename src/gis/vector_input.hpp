@@ -8,7 +8,7 @@
 #include <vector>
 #include "base/types.hpp"
 #include "gis/crs.hpp"
-#include "gis/feature_filter.hpp"
+#include "coast/generalise.hpp"
 #include "pslg/clean.hpp"
 #include "pslg/pslg.hpp"
 #include "sizing/sizing_field.hpp"
@@ -47,9 +47,9 @@ struct DomainOptions {
   std::function<sizing::SizingPtr(const Frame&)> spacing;
   double simplify_factor = 0;     // off by default
   double simplify_tolerance_m = 0;
-  // Resolution filter (gis/feature_filter.hpp), called with the domain box in the local frame
+  // Coast generalisation (coast/generalise.hpp), called with the domain box in the local frame
   // once the frame is known; unset: the polygons are used as read.
-  std::function<FeatureFilterOptions(const Box2& local_box)> features;
+  std::function<coast::Options(const Box2& local_box)> features;
 };
 
 // Where a PSLG segment `part` came from (index = Segment::part).
@@ -99,7 +99,7 @@ struct GisInput {
   std::vector<SourcePart> parts;      // indexed by Segment::part
   std::vector<RepairRecord> repairs;
   std::vector<RepairRecord> feature_repairs;  // from the resolution filter (kept by clean_domain)
-  FeatureFilterResult features;       // its figures (polygons cleared); input_pieces 0 when off
+  coast::Result features;             // its figures (polygons cleared); input_pieces 0 when off
   GisCounts counts;
   double snap_distance_m = 0;         // the snap distance actually used
 };
@@ -116,10 +116,10 @@ GisInput read_domain(const DomainOptions& options);
 void clean_domain(GisInput& in, const pslg::CleanOptions& options);
 
 // Starts the resolution filter's deferred removed-water listing beside the caller (see
-// start_removed); finish_features takes it.
+// coast::start_removed); finish_features takes it.
 void start_features(GisInput& in);
 
-// Adds the resolution filter's deferred removed-water listing (FeatureFilterOptions::defer_removed)
+// Adds the resolution filter's deferred removed-water listing (coast::Options::defer_removed)
 // to in.features, in.feature_repairs and in.repairs (after the filter's other repairs, where
 // they were listed before the listing could be deferred); nothing when none is pending.
 void finish_features(GisInput& in);

@@ -84,23 +84,22 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     if (!(hmin > 0) || (opt.hmax && !(*opt.hmax >= hmin)))
       throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " +
                                                  (opt.hmax ? num(*opt.hmax) : std::string("auto")) + ")");
-    gis::FeatureFilterOptions fo;
-    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);  // README: why 0.15
+    coast::Options fo;
+    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);
     fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
-    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.65 * hmin);  // README: why 0.65
+    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.65 * hmin);
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
     // Tips of land thinner than --close-width stay unless other land is within hmin/2 of their
-    // end (README, "Tips of land").
-    fo.tip_clearance = (std::getenv("FDR_NO_TIPS") ? 0.0 : 0.5) * hmin;
-    fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // README: islets
+    // end (coast/tips.hpp).
+    fo.tip_clearance = 0.5 * hmin;
+    fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // coast/islet_placer.hpp
     fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
     fo.join_islets = !opt.keep_coast;
     fo.defer_removed = true;  // listed beside the stages that follow (start_features, finish_features)
-    // At once when the filter holds 512 MiB or more: a large input (GSHHG-h basin: 970 MB there,
-    // the listing 2.4 s, hidden by the rest of its read; the Gulf of Maine: 170 MB, 0.3 s, started
-    // after the spacing stage, whose peak it would raise by 50 MiB).
+    // At once when the filter holds 512 MiB or more: a large input, whose listing the rest of its
+    // read hides; a smaller one's starts after the spacing stage, whose peak it would raise.
     fo.early_listing_rss = std::size_t{512} << 20;
     if (!(fo.close_width >= 0) || !(fo.min_feature >= 0) || !(fo.min_island_area >= 0) || !(fo.widen_width >= 0))
       throw Error(ExitCode::kUsage, "--close-width, --widen-width, --min-feature and --min-island must be >= 0");
@@ -195,8 +194,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
     info("spacing: " + desc);
     auto field = std::make_shared<sizing::GridField>(std::move(rg.h), desc);
     // The grid --write-spacing writes is the field's own (an aliasing pointer that keeps the field
-    // alive), not a copy: a copy held a second grid of fresh pages to the end of the run (32 MiB
-    // at 4 M cells).
+    // alive), not a copy: a copy held a second grid of fresh pages to the end of the run.
     fgrid = std::shared_ptr<const sizing::Grid>(field, &field->grid());
     f_ground = std::move(field);
   }
@@ -350,10 +348,9 @@ PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const Pro
   gis::GisInput g = read_gis_input(opt, clock, progress, log);
   const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
   // The filter's removed-water listing from here on (unless the filter started it: a large input,
-  // FeatureFilterOptions::early_listing_rss), on an arena of its own, waited for after the
-  // refinement (pipeline.cpp). Beside the spacing stage it took a core from its parallel loops
-  // and its memory added to that stage's, the process's peak (Gulf of Maine: 197 -> 245-250 MiB,
-  // spacing 0.3 -> 0.45 s).
+  // coast::Options::early_listing_rss), on an arena of its own, waited for after the
+  // refinement (pipeline.cpp). Beside the spacing stage it would take a core from its parallel
+  // loops and add its memory to that stage's, the process's peak.
   gis::start_features(g);
   return clean_gis_input(opt, std::move(g), sp, clock, log, defer_listing);
 }

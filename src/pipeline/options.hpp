@@ -40,7 +40,7 @@ struct Options {
   std::optional<double> vertical_tol;    // terrain: h = sqrt(8 tol / |kappa|)
   double gradation = 0.15;               // alpha for gradient limiting (GIS runs)
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
-  // Model-ready coast (GIS runs; gis/feature_filter.hpp, pslg/resample.hpp).
+  // Model-ready coast (GIS runs; coast/generalise.hpp, pslg/resample.hpp).
   bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)
   double coast_tol = 0.35;               // resampling tolerance, fraction of the local f
   std::optional<double> close_width;     // dead-end water narrower than this is closed (default 0.15 hmin)

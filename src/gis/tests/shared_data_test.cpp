@@ -71,7 +71,7 @@ TEST(SharedData, WaterOpenBoundaryAndRawRingsCleanUp) {
 }
 
 // The coast restorer's rounds after the first examine only the segments the previous round
-// changed (and those near them); FDR_RESTORE_FULL_ROUNDS makes every round examine everything.
+// changed (and those near them); Options::restore_full_rounds makes every round examine everything.
 // Chesapeake with the pipeline's defaults for hmin 150 m gives up runs (so a second round runs):
 // the results must be the same bit for bit.
 TEST(SharedData, CoastRestorerLocalRoundsGiveTheFullResult) {
@@ -82,17 +82,15 @@ TEST(SharedData, CoastRestorerLocalRoundsGiveTheFullResult) {
   const GisInput in = read_domain(o);
   ASSERT_FALSE(in.domain_polygons.empty());
   const double hmin = 150;
-  FeatureFilterOptions fo;  // pipeline/gis_stage.cpp's settings, with close width hmin/4 (more runs given up)
+  coast::Options fo;  // pipeline/gis_stage.cpp's settings, with close width hmin/4 (more runs given up)
   fo.close_width = 0.25 * hmin;
   fo.min_feature = 0.1 * hmin;
   fo.min_island_area = 0.1 * hmin * hmin;
   fo.list_area = 0.5 * hmin * hmin;
   fo.tip_clearance = 0.8 * hmin;
-  unsetenv("FDR_RESTORE_FULL_ROUNDS");
-  const FeatureFilterResult local = filter_features(in.domain_polygons, fo);
-  setenv("FDR_RESTORE_FULL_ROUNDS", "1", 1);
-  const FeatureFilterResult full = filter_features(in.domain_polygons, fo);
-  unsetenv("FDR_RESTORE_FULL_ROUNDS");
+  const coast::Result local = coast::generalise(in.domain_polygons, fo);
+  fo.restore_full_rounds = true;
+  const coast::Result full = coast::generalise(in.domain_polygons, fo);
   ASSERT_EQ(local.polygons.size(), full.polygons.size());
   for (std::size_t i = 0; i < local.polygons.size(); ++i) EXPECT_EQ(local.polygons[i], full.polygons[i]) << i;
   EXPECT_EQ(local.repairs.size(), full.repairs.size());

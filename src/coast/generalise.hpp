@@ -1,6 +1,7 @@
-// Resolution filter for water polygons (GEOS through OGR): unites overlapping polygons, closes
-// water narrower than the mesh can resolve while keeping connections between water bodies,
-// fills islands smaller than the resolution. Every change is reported.
+// The coast generalisation (resolution filter) for water polygons, GEOS through OGR: unites
+// overlapping polygons, closes water narrower than the mesh can resolve while keeping
+// connections between water bodies, replaces or joins islands smaller than the resolution, keeps
+// thin tips of land, widens narrow channels. Every change is reported.
 //
 // Why morphological opening: the FDR bounds (paper, Section 5) need f <= D * lfs; a channel
 // narrower than hmin forces elements narrower than hmin. The opening of the water W by a disk of
@@ -12,22 +13,24 @@
 // a piece of O2 - O1 that touches two or more pieces of O1 is a channel joining water bodies
 // (kept), a piece touching none is a small water body of its own (kept), a piece touching one is
 // a dead end (closed). Result R = O1 + kept pieces; W - R is listed as repairs.
+//
+// The steps, in order (one file each): union.hpp, islets.hpp, widen.hpp, tips.hpp (closing),
+// openings.hpp, cut_off.hpp, islets.hpp (remnants), restore.hpp, removed.hpp, tiny_edges.hpp.
 #pragma once
-#include "base/memory.hpp"
 #include <cstddef>
-#include <future>
 #include <memory>
 #include <vector>
+
 #include "base/types.hpp"
 #include "pslg/clean.hpp"
 
-namespace fdr::gis {
+namespace fdr::coast {
 
 // Polygons in the local frame: rings (outer first, then holes), without the closing repeat.
 using Rings = std::vector<std::vector<Point2>>;
 using Polygons = std::vector<Rings>;
 
-struct FeatureFilterOptions {
+struct Options {
   double close_width = 0;      // dead-end water narrower than this is closed (0: no opening)
   double min_feature = 0;      // connections narrower than this are closed too (<= close_width)
   double min_island_area = 0;  // islands (holes) with a smaller area are removed (m^2); 0 keeps all
@@ -44,13 +47,16 @@ struct FeatureFilterOptions {
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
   bool defer_removed = false;  // the listing of removed water (input minus result: thousands of
-                               // pieces, seconds on an ocean basin) goes on on another thread after
-                               // filter_features returns; finish_removed() adds it to the result
+                               // pieces on a large input) goes on on another thread after
+                               // generalise returns; finish_removed() adds it to the result
   // With defer_removed: the listing starts at once (beside the rest of the read) when the process
   // holds at least this many bytes there, a large input whose read goes on long enough to hide
   // it and whose filter's peak dwarfs what the spacing stage adds; else the caller starts it
   // (start_removed). 0: never at once.
   std::size_t early_listing_rss = 0;
+  // Cross-checks for tests (the same result by slower paths):
+  bool diff_overlay = false;         // every difference by GEOS's overlay of the whole
+  bool restore_full_rounds = false;  // every round of the coast restoration examines everything
 };
 
 // The listing of removed water: its repairs (narrow_water_closed) and figures.
@@ -59,13 +65,9 @@ struct RemovedWater {
   std::vector<double> areas;      // every removed piece counted, in order (added to closed_area)
   std::size_t closed = 0, corner_pieces = 0;
 };
-struct PendingRemoved {
-  std::future<RemovedWater> job;  // deferred: run by `runner` (start_removed) or by finish_removed
-  std::future<void> runner;
-  std::shared_ptr<OwnArena> arena;  // the runner's allocations (base/memory.hpp)
-};
+struct PendingRemoved;  // removed.hpp
 
-struct FeatureFilterResult {
+struct Result {
   Polygons polygons;                 // outer rings counter-clockwise, holes clockwise
   std::vector<pslg::Repair> repairs; // local coordinates
   std::size_t input_pieces = 0;      // connected water bodies of the input (after union)
@@ -91,24 +93,24 @@ struct FeatureFilterResult {
   double islands_area = 0;
   double input_area = 0, output_area = 0;
   double close_width = 0;            // the close width used (0: no opening)
-  // With FeatureFilterOptions::defer_removed: the removed-water listing still running (null
-  // without); closed, closed_area, corner_pieces and repairs lack it until finish_removed().
+  // With Options::defer_removed: the removed-water listing still running (null without);
+  // closed, closed_area, corner_pieces and repairs lack it until finish_removed().
   std::shared_ptr<PendingRemoved> removed_pending;
 };
 
 // Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
-FeatureFilterResult filter_features(const Polygons& input, const FeatureFilterOptions& options);
+Result generalise(const Polygons& input, const Options& options);
 
 // Starts a deferred removed-water listing on a thread of its own (with two threads allowed), so
 // that it runs beside what the caller does next, its allocations on an arena of its own
 // (OwnArena) when `own_arena`; finish_removed then only waits. Nothing if it already runs.
-void start_removed(FeatureFilterResult& res, bool own_arena = true);
+void start_removed(Result& res, bool own_arena = true);
 
 // Waits for a deferred removed-water listing and adds it to res (repairs appended); returns the
 // repairs it added (none when nothing was pending). Rethrows the listing's error.
-std::vector<pslg::Repair> finish_removed(FeatureFilterResult& res);
+std::vector<pslg::Repair> finish_removed(Result& res);
 
 // The polygons grown (d > 0) or shrunk (d < 0) by |d| (GEOS buffer, ring by ring).
 Polygons offset_polygons(const Polygons& input, double d);
 
-}  // namespace fdr::gis
+}  // namespace fdr::coast

@@ -1,4 +1,4 @@
-// Resolution filter (gis/feature_filter.hpp): synthetic channels of known widths are kept or
+// The coast generalisation as a whole (coast/generalise.hpp): synthetic channels of known widths are kept or
 // closed and reported, connections between water bodies are kept down to --min-feature, small
 // islands are removed, overlapping polygons are united.
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@
 
 #include "base/error.hpp"
 #include "base/tests/scoped_env.hpp"
-#include "gis/feature_filter.hpp"
+#include "coast/generalise.hpp"
 
-namespace fdr::gis {
+namespace fdr::coast {
 namespace {
 
 using fdr::ThreadsEnv;
@@ -37,7 +37,7 @@ double area(const Polygons& ps) {
   return a;
 }
 
-std::size_t count(const FeatureFilterResult& r, const std::string& kind) {
+std::size_t count(const Result& r, const std::string& kind) {
   std::size_t n = 0;
   for (const auto& x : r.repairs) n += x.kind == kind;
   return n;
@@ -49,8 +49,8 @@ Polygons basin_with_inlet(double w) {
   return {r};
 }
 
-FeatureFilterOptions opts(double hmin) {
-  FeatureFilterOptions o;
+Options opts(double hmin) {
+  Options o;
   o.close_width = 0.25 * hmin;
   o.min_feature = 0.1 * hmin;
   o.min_island_area = 0.1 * hmin * hmin;
@@ -59,13 +59,13 @@ FeatureFilterOptions opts(double hmin) {
 }
 
 // Convex water corners are rounded with radius close_width / 2: r^2 (1 - pi/4) per right angle.
-double corner_loss(const FeatureFilterOptions& o, int right_angles) {
+double corner_loss(const Options& o, int right_angles) {
   const double r = 0.5 * o.close_width;
   return right_angles * r * r * (1 - 3.14159265358979 / 4) * 1.2 + 1.0;
 }
 
-TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
-  const FeatureFilterResult r = filter_features(basin_with_inlet(10), opts(100));  // 10 m < 25 m
+TEST(Generalise, NarrowDeadEndInletIsClosedAndListed) {
+  const Result r = generalise(basin_with_inlet(10), opts(100));  // 10 m < 25 m
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_NEAR(area(r.polygons), 1e6, 1e6 * 1e-3);  // the 5000 m^2 inlet is gone
   EXPECT_GE(r.closed_area, 4900.0);
@@ -80,16 +80,16 @@ TEST(FeatureFilter, NarrowDeadEndInletIsClosedAndListed) {
 // The removed-water listing deferred to another thread (defer_removed, as the pipeline runs it)
 // gives the same repairs, in the same order, and the same figures once finish_removed() took it;
 // before that it is missing (so the test sees a listing that was really deferred).
-TEST(FeatureFilter, DeferredRemovedListingEqualsTheDirectOne) {
+TEST(Generalise, DeferredRemovedListingEqualsTheDirectOne) {
   Polygons in = basin_with_inlet(10);
   in.push_back(rect(2000, 0, 2300, 8));  // a water body nowhere min_feature wide
   in[0].push_back({{200, 200}, {200, 203}, {260, 203}, {260, 200}});  // a thin island (cut)
   for (const int threads : {1, 2}) {
     ThreadsEnv env(threads);
-    FeatureFilterOptions o = opts(100);
-    const FeatureFilterResult direct = filter_features(in, o);
+    Options o = opts(100);
+    const Result direct = generalise(in, o);
     o.defer_removed = true;
-    FeatureFilterResult later = filter_features(in, o);
+    Result later = generalise(in, o);
     ASSERT_TRUE(later.removed_pending != nullptr);
     EXPECT_EQ(count(later, "narrow_water_closed"), 0u);
     const std::vector<pslg::Repair> added = finish_removed(later);
@@ -111,9 +111,9 @@ TEST(FeatureFilter, DeferredRemovedListingEqualsTheDirectOne) {
   }
 }
 
-TEST(FeatureFilter, InletWiderThanCloseWidthIsKeptAsDrawn) {
+TEST(Generalise, InletWiderThanCloseWidthIsKeptAsDrawn) {
   const Polygons in = basin_with_inlet(40);  // 40 m > 25 m
-  const FeatureFilterResult r = filter_features(in, opts(100));
+  const Result r = generalise(in, opts(100));
   EXPECT_NEAR(area(r.polygons), area(in), corner_loss(opts(100), 6));
   EXPECT_EQ(count(r, "narrow_water_closed"), 0u);
   // Straight coast keeps the input's exact coordinates (the changes are applied to the input, not
@@ -141,21 +141,21 @@ Polygons two_basins(double w) {
   return {r};
 }
 
-TEST(FeatureFilter, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
+TEST(Generalise, ConnectionBetweenWaterBodiesIsKeptDownToMinFeature) {
   // 15 m: narrower than close_width (25 m), wider than min_feature (10 m): kept, one piece.
-  const FeatureFilterResult r = filter_features(two_basins(15), opts(100));
+  const Result r = generalise(two_basins(15), opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_GE(r.channels_kept, 1u);
   EXPECT_NEAR(area(r.polygons), area(two_basins(15)), corner_loss(opts(100), 8));
 }
 
-TEST(FeatureFilter, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyListed) {
+TEST(Generalise, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyListed) {
   // 5 m < min_feature: closed; the smaller body is cut off and removed, listed with its area.
   Polygons in = two_basins(5);
   in[0][0][4].x = 1400;  // make the east basin smaller than the west one
   in[0][0][5] = {1900, 0};
   in[0][0][6] = {1900, 1000};
-  const FeatureFilterResult r = filter_features(in, opts(100));
+  const Result r = generalise(in, opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_EQ(r.input_pieces, 1u);
   ASSERT_EQ(count(r, "cut_off_water_removed"), 1u);
@@ -167,11 +167,11 @@ TEST(FeatureFilter, ConnectionNarrowerThanMinFeatureIsClosedAndTheCutOffBodyList
   EXPECT_NEAR(area(r.polygons), 1e6, 1e4);
 }
 
-TEST(FeatureFilter, SmallIslandsRemovedLargeOnesKept) {
+TEST(Generalise, SmallIslandsRemovedLargeOnesKept) {
   const Rings sea = rect(0, 0, 2000, 2000);
   const Polygons in{{sea[0], {{100, 100}, {100, 120}, {120, 120}, {120, 100}},  // 400 m^2 < 1000 m^2
                      {{500, 500}, {500, 800}, {800, 800}, {800, 500}}}};       // 90000 m^2
-  const FeatureFilterResult r = filter_features(in, opts(100));
+  const Result r = generalise(in, opts(100));
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 2u);  // outer + the large island
   EXPECT_EQ(r.islands_removed, 1u);
@@ -187,7 +187,7 @@ Rings island_with_needle(double x0, double y0) {
   return {{{x0, y0}, {x0, y0 + 600}, {x1, y0 + 600}, {x1, yc + 10}, {x1 + 400, yc}, {x1, yc - 10}, {x1, y0}}};
 }
 
-bool has_vertex(const FeatureFilterResult& r, Point2 p) {
+bool has_vertex(const Result& r, Point2 p) {
   for (const auto& poly : r.polygons)
     for (const auto& ring : poly)
       for (const Point2& q : ring)
@@ -195,16 +195,16 @@ bool has_vertex(const FeatureFilterResult& r, Point2 p) {
   return false;
 }
 
-TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
+TEST(Generalise, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   // hmin 100: close_width 25 m, tips kept unless other land is within 80 m of their end.
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings a = island_with_needle(1000, 1000);  // tip (2000, 1300): open water around it
   const Rings b = island_with_needle(1000, 2400);  // tip (2000, 2700): 40 m from island c
   const Rings c{{{2040, 2400}, {2040, 3000}, {2600, 3000}, {2600, 2400}}};
   const Polygons in{{sea[0], a[0], b[0], c[0]}};
-  FeatureFilterOptions o = opts(100);
+  Options o = opts(100);
   o.tip_clearance = 80;
-  const FeatureFilterResult r = filter_features(in, o);
+  const Result r = generalise(in, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 4u);  // sea and three islands
   EXPECT_TRUE(has_vertex(r, {2000, 1300})) << "the needle in open water keeps its tip";
@@ -215,26 +215,26 @@ TEST(FeatureFilter, TipsOfLandStayUnlessOtherLandIsNearTheirEnd) {
   // Deterministic, whatever the thread count (the rings are closed on several threads).
   for (int t : {1, 2, 3}) {
     ThreadsEnv env(t);
-    const FeatureFilterResult r2 = filter_features(in, o);
+    const Result r2 = generalise(in, o);
     EXPECT_EQ(r2.polygons, r.polygons) << "FDR_THREADS=" << t;
   }
   // Without tip clearance every thin part is cut, as before.
-  const FeatureFilterResult r0 = filter_features(in, opts(100));
+  const Result r0 = generalise(in, opts(100));
   EXPECT_FALSE(has_vertex(r0, {2000, 1300}));
   EXPECT_FALSE(has_vertex(r0, {2000, 2700}));
   EXPECT_EQ(r0.tips_kept, 0u);
 }
 
-TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
+TEST(Generalise, ThinIslandKeptInOpenWaterRemovedNearLand) {
   // Islands 400 m long and 20 m wide (thinner than close_width everywhere): one in open water,
   // one 50 m from the coast.
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings open{{{1000, 2000}, {1000, 2020}, {1400, 2020}, {1400, 2000}}};
   const Rings near{{{1000, 50}, {1000, 70}, {1400, 70}, {1400, 50}}};
-  FeatureFilterOptions o = opts(100);
+  Options o = opts(100);
   o.min_island_area = 1000;  // both (8000 m^2) are above it
   o.tip_clearance = 80;
-  const FeatureFilterResult r = filter_features({{sea[0], open[0], near[0]}}, o);
+  const Result r = generalise({{sea[0], open[0], near[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 2u);
   EXPECT_TRUE(has_vertex(r, {1400, 2020}));
@@ -242,7 +242,7 @@ TEST(FeatureFilter, ThinIslandKeptInOpenWaterRemovedNearLand) {
 }
 
 // Even-odd point-in-polygon over every ring (test helper; points well away from edges).
-bool water_at(const FeatureFilterResult& r, Point2 q) {
+bool water_at(const Result& r, Point2 q) {
   bool in = false;
   for (const auto& poly : r.polygons)
     for (const auto& ring : poly)
@@ -253,18 +253,18 @@ bool water_at(const FeatureFilterResult& r, Point2 q) {
   return in;
 }
 
-FeatureFilterOptions widen_opts() {  // the CLI's defaults at hmin 100
-  FeatureFilterOptions o = opts(100);
+Options widen_opts() {  // the CLI's defaults at hmin 100
+  Options o = opts(100);
   o.close_width = 15;
   o.widen_width = 60;
   return o;
 }
 
-TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
+TEST(Generalise, NarrowInletIsWidenedToTheWidenWidthAndListed) {
   // A 30 m inlet (close_width 15 <= 30 < widen_width 60): its banks move by
   // widen_width / 2 - close_width = 15 m into the land, so it becomes 60 m wide.
   const Polygons in = basin_with_inlet(30);
-  const FeatureFilterResult r = filter_features(in, widen_opts());
+  const Result r = generalise(in, widen_opts());
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_GE(r.widened, 1u);
   EXPECT_GE(count(r, "water_widened"), 1u);
@@ -280,7 +280,7 @@ TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
   // An inlet at least widen_width wide keeps its banks; only its convex corners (right angles,
   // like sharper ones, would need narrow elements) are blunted by a few metres.
   const Polygons wide = basin_with_inlet(80);
-  const FeatureFilterResult r2 = filter_features(wide, widen_opts());
+  const Result r2 = generalise(wide, widen_opts());
   for (double x : {1100.0, 1250.0, 1400.0}) {
     EXPECT_TRUE(water_at(r2, {x, 500 + 38})) << x;
     EXPECT_FALSE(water_at(r2, {x, 500 + 42})) << x;
@@ -288,38 +288,38 @@ TEST(FeatureFilter, NarrowInletIsWidenedToTheWidenWidthAndListed) {
   }
   EXPECT_LT(r2.widened_area, 6 * 300.0);
   // Off: as before.
-  FeatureFilterOptions off = widen_opts();
+  Options off = widen_opts();
   off.widen_width = 0;
-  EXPECT_EQ(filter_features(in, off).widened, 0u);
+  EXPECT_EQ(generalise(in, off).widened, 0u);
   // Same polygons whatever the thread count.
   for (int t : {1, 2, 3}) {
     ThreadsEnv env(t);
-    EXPECT_EQ(filter_features(in, widen_opts()).polygons, r.polygons) << "FDR_THREADS=" << t;
+    EXPECT_EQ(generalise(in, widen_opts()).polygons, r.polygons) << "FDR_THREADS=" << t;
   }
 }
 
-TEST(FeatureFilter, WideningNeverJoinsTwoWaterBodies) {
+TEST(Generalise, WideningNeverJoinsTwoWaterBodies) {
   // The 30 m inlet runs 20 m below a second water body: widening it would leave 5 m of land
   // between them (less than close_width, which the closing removes), so it is not widened and
   // the two bodies stay apart.
   const Polygons in{basin_with_inlet(30)[0] /* inlet y 485..515 */, rect(1040, 535, 1500, 1000)};
-  const FeatureFilterResult r = filter_features(in, widen_opts());
+  const Result r = generalise(in, widen_opts());
   EXPECT_EQ(r.input_pieces, 2u);
   EXPECT_EQ(r.output_pieces, 2u);
   EXPECT_FALSE(water_at(r, {1250, 525}));
   EXPECT_FALSE(water_at(r, {1250, 475 - 4}));  // the piece is judged whole: the south bank stays too
 }
 
-TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
+TEST(Generalise, NoTinyEdgesAtVerticesTheFilterMade) {
   // A needle cut near other land and an inlet widened: every edge with an endpoint that is not
   // an input vertex is at least close_width / 4 long.
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings b = island_with_needle(1000, 2400);  // its tip 40 m from island c: cut
   const Rings c{{{2040, 2400}, {2040, 3000}, {2600, 3000}, {2600, 2400}}};
   const Polygons in{{sea[0], b[0], c[0]}};
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.tip_clearance = 50;
-  const FeatureFilterResult r = filter_features(in, o);
+  const Result r = generalise(in, o);
   std::size_t checked = 0;
   std::set<std::pair<double, double>> input;
   for (const auto& ring : in[0])
@@ -345,8 +345,8 @@ TEST(FeatureFilter, NoTinyEdgesAtVerticesTheFilterMade) {
 }
 
 // hmin 100: --min-island 0.3 hmin^2 = 3000 m^2, triangles of side 70 m.
-FeatureFilterOptions islet_opts() {
-  FeatureFilterOptions o = widen_opts();
+Options islet_opts() {
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
   return o;
@@ -361,9 +361,9 @@ Polygons islets_and_big_island() {
   return {{sea[0], open_islet[0], big[0], near_islet[0]}};
 }
 
-TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
-  FeatureFilterOptions o = islet_opts();
-  const FeatureFilterResult r = filter_features(islets_and_big_island(), o);
+TEST(Generalise, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
+  Options o = islet_opts();
+  const Result r = generalise(islets_and_big_island(), o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 3u);  // sea, the big island, the open islet's triangle
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -374,7 +374,7 @@ TEST(FeatureFilter, IsletsInOpenWaterBecomeTrianglesNearLandTheyAreRemoved) {
   EXPECT_NEAR(area(r.polygons), 4000.0 * 4000 - 1e6 - std::sqrt(3.0) / 4 * 70 * 70, 300.0);
   // Without islet_side: both removed.
   o.islet_side = 0;
-  const FeatureFilterResult r0 = filter_features(islets_and_big_island(), o);
+  const Result r0 = generalise(islets_and_big_island(), o);
   EXPECT_EQ(r0.polygons[0].size(), 2u);
   EXPECT_EQ(r0.islands_removed, 2u);
 }
@@ -395,10 +395,10 @@ double farthest_from(const std::vector<Point2>& pts, const std::vector<Point2>& 
 // With join_islets (the CLI's default), the islet 30 m from the big island, with no room for its
 // triangle, is joined to it: the convex hull of the islet and of the island's coast near it becomes
 // land, so the islet's outer side stays coast; nothing is removed and no water is cut off.
-TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
-  FeatureFilterOptions o = islet_opts();
+TEST(Generalise, IsletNearLandWithoutRoomIsJoinedToIt) {
+  Options o = islet_opts();
   o.join_islets = true;
-  const FeatureFilterResult r = filter_features(islets_and_big_island(), o);
+  const Result r = generalise(islets_and_big_island(), o);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 3u);  // sea, the big island with the islet joined, the open islet's triangle
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -423,13 +423,13 @@ TEST(FeatureFilter, IsletNearLandWithoutRoomIsJoinedToIt) {
 // runs round the corner, and the hull has an edge along the north side (it touches the coast at the
 // corner between the run's ends). Joined all the same: refused, the islet was removed and the
 // coast the model sees moved by its distance to the island.
-TEST(FeatureFilter, IsletBesideACornerIsJoinedRoundIt) {
+TEST(Generalise, IsletBesideACornerIsJoinedRoundIt) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
   const Rings islet{{{1530, 1470}, {1530, 1490}, {1550, 1490}, {1550, 1470}}};
-  FeatureFilterOptions o = islet_opts();
+  Options o = islet_opts();
   o.join_islets = true;
-  const FeatureFilterResult r = filter_features({{sea[0], big[0], islet[0]}}, o);
+  const Result r = generalise({{sea[0], big[0], islet[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);  // sea, the big island with the islet joined
   EXPECT_EQ(r.islets_joined, 1u);
@@ -446,14 +446,14 @@ TEST(FeatureFilter, IsletBesideACornerIsJoinedRoundIt) {
 
 // An islet in a channel 90 m wide, 35 m from either bank: joined to one bank where the hull keeps
 // islet_side / 4 from the other, never across the channel (the water stays one piece).
-TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
+TEST(Generalise, IsletInAChannelIsNeverJoinedAcrossIt) {
   // Two basins joined by a channel y in [1000, 1090], x in [1000, 2000].
   const Rings water{{{0, 0}, {1000, 0}, {1000, 1000}, {2000, 1000}, {2000, 0}, {3000, 0}, {3000, 2090}, {2000, 2090},
                      {2000, 1090}, {1000, 1090}, {1000, 2090}, {0, 2090}}};
   const Rings islet{{{1490, 1035}, {1490, 1055}, {1510, 1055}, {1510, 1035}}};
-  FeatureFilterOptions o = islet_opts();
+  Options o = islet_opts();
   o.join_islets = true;
-  const FeatureFilterResult r = filter_features({{water[0], islet[0]}}, o);
+  const Result r = generalise({{water[0], islet[0]}}, o);
   EXPECT_EQ(r.output_pieces, 1u);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_TRUE(water_at(r, {500, 1000}));
@@ -468,9 +468,9 @@ TEST(FeatureFilter, IsletInAChannelIsNeverJoinedAcrossIt) {
 // Three islets 30 m apart in open water: judged one by one with the others as land, none had room;
 // judged again with the others left out, the first gets its triangle and the other two are joined
 // to it (the convex hull of triangle and islet): one island, nothing removed.
-TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
+TEST(Generalise, RowOfIsletsBecomesOneIsland) {
   const Rings sea = rect(0, 0, 4000, 4000);
-  FeatureFilterOptions o = islet_opts();
+  Options o = islet_opts();
   o.join_islets = true;
   Polygons in{{sea[0]}};
   std::vector<Point2> verts;
@@ -480,7 +480,7 @@ TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
     in[0].push_back(h);
     verts.insert(verts.end(), h.begin(), h.end());
   }
-  const FeatureFilterResult r = filter_features(in, o);
+  const Result r = generalise(in, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);
   EXPECT_EQ(r.islands_removed, 0u);
@@ -491,20 +491,20 @@ TEST(FeatureFilter, RowOfIsletsBecomesOneIsland) {
   EXPECT_LT(farthest_from(verts, r.polygons[0][1]), 35.0);
   // Without joining, the pass with the others left out still places one triangle.
   o.join_islets = false;
-  const FeatureFilterResult r0 = filter_features(in, o);
+  const Result r0 = generalise(in, o);
   EXPECT_EQ(r0.islets_replaced, 1u);
 }
 
 // A long islet's triangle is turned to fit it: with the apex always up, the ends of an islet
 // 100 m long lying at 30 degrees stuck out 29.8 m from its triangle of side 70 (corners rounded
 // by the closing); turned, 22.8 m.
-TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
+TEST(Generalise, IsletTriangleIsTurnedToFitTheIslet) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const std::vector<Point2> islet{{1956.699, 1975.0}, {1998.0, 2003.464}, {2043.301, 2025.0}};  // clockwise
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], islet}}, o);
+  const Result r = generalise({{sea[0], islet}}, o);
   ASSERT_EQ(r.islets_replaced, 1u);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);
@@ -514,13 +514,13 @@ TEST(FeatureFilter, IsletTriangleIsTurnedToFitTheIslet) {
 
 // A long islet in open water gets a larger triangle (side 90 m for 150 m, up to 1.6 x 70), which
 // keeps its ends within 40 m; the side is in the repair.
-TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
+TEST(Generalise, LongIsletGetsALargerTriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const std::vector<Point2> islet{{1925.0, 2000.0}, {2000.0, 2006.0}, {2075.0, 2000.0}};  // 450 m^2
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], islet}}, o);
+  const Result r = generalise({{sea[0], islet}}, o);
   ASSERT_EQ(r.islets_replaced, 1u);
   ASSERT_EQ(r.polygons[0].size(), 2u);
   const double worst = farthest_from(islet, r.polygons[0][1]);
@@ -531,7 +531,7 @@ TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
   EXPECT_TRUE(said);
   // With a large island 78 m from its centroid there is room for the usual triangle only: side 70.
   const Rings big{{{1500, 2080}, {1500, 3000}, {2500, 3000}, {2500, 2080}}};
-  const FeatureFilterResult r2 = filter_features({{sea[0], islet, big[0]}}, o);
+  const Result r2 = generalise({{sea[0], islet, big[0]}}, o);
   EXPECT_EQ(r2.islets_replaced, 1u);
   for (const auto& x : r2.repairs)
     if (x.kind == "islet_simplified") { EXPECT_NE(x.reason.find("triangle of side 70 m"), std::string::npos) << x.reason; }
@@ -539,13 +539,13 @@ TEST(FeatureFilter, LongIsletGetsALargerTriangle) {
 
 // An island above --min-island (4000 m^2 > 3000) but thinner than --close-width (10 m < 15)
 // everywhere: the closing would leave nothing of it, so it is an islet and becomes a triangle.
-TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
+TEST(Generalise, ThinIslandAboveMinIslandBecomesATriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings thin = rect(2000, 2000, 2400, 2010);
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], thin[0]}}, o);
+  const Result r = generalise({{sea[0], thin[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 2u);  // sea and the triangle
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -562,13 +562,13 @@ TEST(FeatureFilter, ThinIslandAboveMinIslandBecomesATriangle) {
 // An island of 12500 m^2 (a 50 m square with a 10 m wide tail 1 km long) is judged after the
 // closing: the tail goes, the square's 2500 m^2 remnant is below --min-island (3000) and becomes
 // a triangle where it was instead of water.
-TEST(FeatureFilter, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
+TEST(Generalise, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings isl{{{2000, 2000}, {2050, 2000}, {2050, 2020}, {3050, 2020}, {3050, 2030}, {2050, 2030}, {2050, 2050}, {2000, 2050}}};
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], isl[0]}}, o);
+  const Result r = generalise({{sea[0], isl[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].size(), 2u);
   EXPECT_EQ(r.islets_replaced, 1u);
@@ -581,22 +581,22 @@ TEST(FeatureFilter, RemnantBelowMinIslandAfterTheClosingBecomesATriangle) {
   EXPECT_TRUE(said);
   // Without islet_side the remnant is removed, as before.
   o.islet_side = 0;
-  const FeatureFilterResult r0 = filter_features({{sea[0], isl[0]}}, o);
+  const Result r0 = generalise({{sea[0], isl[0]}}, o);
   EXPECT_EQ(r0.polygons[0].size(), 1u);
   EXPECT_EQ(r0.islands_removed, 1u);
 }
 
 // The same islet 30 m from the big island (its centroid 40 m away, 75 m needed) with
 // islet_shift 40: its triangle moves 40 m east, away from the island, instead of being removed.
-TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
+TEST(Generalise, IsletNearLandMovesItsTriangleAwayFromIt) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings big{{{500, 500}, {500, 1500}, {1500, 1500}, {1500, 500}}};
   const Rings near_islet{{{1530, 1000}, {1530, 1020}, {1550, 1020}, {1550, 1000}}};
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
   o.islet_shift = 40;
-  const FeatureFilterResult r = filter_features({{sea[0], big[0], near_islet[0]}}, o);
+  const Result r = generalise({{sea[0], big[0], near_islet[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.islets_replaced, 1u);
   EXPECT_EQ(r.islands_removed, 0u);
@@ -612,7 +612,7 @@ TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
   EXPECT_TRUE(said);
   // Shifts too small for the room it needs: removed, as without islet_shift.
   o.islet_shift = 20;
-  const FeatureFilterResult r2 = filter_features({{sea[0], big[0], near_islet[0]}}, o);
+  const Result r2 = generalise({{sea[0], big[0], near_islet[0]}}, o);
   EXPECT_EQ(r2.islets_replaced, 0u);
   EXPECT_EQ(r2.islands_removed, 1u);
 }
@@ -620,14 +620,14 @@ TEST(FeatureFilter, IsletNearLandMovesItsTriangleAwayFromIt) {
 // An islet whose triangle (side 70 m, hmin 100) leaves 45 m of water to the next land: room
 // enough to place it (35 m beyond its corners), but narrower than --widen-width (60 m). The
 // triangle goes in after the widening, so the widening does not eat into it: it keeps its side.
-TEST(FeatureFilter, IsletTriangleNextToNarrowWaterKeepsItsSide) {
+TEST(Generalise, IsletTriangleNextToNarrowWaterKeepsItsSide) {
   const Rings sea = rect(0, 0, 4000, 4000);
   const Rings islet{{{2000, 2000}, {2000, 2020}, {2020, 2020}, {2020, 2000}}};
   const Rings land = rect(2090, 1500, 3000, 2500);
-  FeatureFilterOptions o = widen_opts();
+  Options o = widen_opts();
   o.min_island_area = 3000;
   o.islet_side = 70;
-  const FeatureFilterResult r = filter_features({{sea[0], islet[0], land[0]}}, o);
+  const Result r = generalise({{sea[0], islet[0], land[0]}}, o);
   ASSERT_EQ(r.polygons.size(), 1u);
   ASSERT_EQ(r.islets_replaced, 1u);
   double tri = -1;
@@ -641,26 +641,26 @@ TEST(FeatureFilter, IsletTriangleNextToNarrowWaterKeepsItsSide) {
   EXPECT_GE(r.widened, 1u);  // the water beside it was narrow all the same
 }
 
-TEST(FeatureFilter, OverlappingPolygonsAreUnited) {
+TEST(Generalise, OverlappingPolygonsAreUnited) {
   // Two overlapping squares: one domain (not the symmetric difference), reported.
   const Polygons in{rect(0, 0, 1000, 1000), rect(500, 500, 1500, 1500)};
-  const FeatureFilterResult r = filter_features(in, opts(100));
+  const Result r = generalise(in, opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_EQ(r.united, 1u);
   EXPECT_EQ(count(r, "polygons_united"), 1u);
   EXPECT_NEAR(area(r.polygons), 2e6 - 2.5e5, corner_loss(opts(100), 6));
 }
 
-TEST(FeatureFilter, IdenticalPolygonsAreUnited) {
+TEST(Generalise, IdenticalPolygonsAreUnited) {
   const Polygons in{rect(0, 0, 1000, 1000), rect(0, 0, 1000, 1000)};
-  const FeatureFilterResult r = filter_features(in, opts(100));
+  const Result r = generalise(in, opts(100));
   EXPECT_EQ(r.output_pieces, 1u);
   EXPECT_NEAR(area(r.polygons), 1e6, corner_loss(opts(100), 4));
 }
 
-TEST(FeatureFilter, NothingLeftIsAnError) {
+TEST(Generalise, NothingLeftIsAnError) {
   try {
-    filter_features({rect(0, 0, 1000, 5)}, opts(100));  // 5 m wide everywhere, min_feature 10 m
+    generalise({rect(0, 0, 1000, 5)}, opts(100));  // 5 m wide everywhere, min_feature 10 m
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
@@ -668,43 +668,43 @@ TEST(FeatureFilter, NothingLeftIsAnError) {
   }
 }
 
-TEST(FeatureFilter, OffKeepsEverything) {
+TEST(Generalise, OffKeepsEverything) {
   const Polygons in = basin_with_inlet(10);
-  const FeatureFilterResult r = filter_features(in, FeatureFilterOptions{});
+  const Result r = generalise(in, Options{});
   EXPECT_NEAR(area(r.polygons), area(in), 1e-6);
   EXPECT_TRUE(r.repairs.empty());
 }
 
 // Validity: a valid polygon with many islands is taken as it is (the fast exact test), invalid
 // ones (an island inside an island, a self-crossing bow tie) are repaired by GEOS as before.
-TEST(FeatureFilter, ValidAndInvalidInputsWithoutFilter) {
+TEST(Generalise, ValidAndInvalidInputsWithoutFilter) {
   Rings many = rect(0, 0, 1000, 1000);
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j) {
       const double x = 50 + 115 * i, y = 50 + 115 * j;
       many.push_back({{x, y}, {x, y + 40}, {x + 40, y + 40}, {x + 40, y}});
     }
-  const FeatureFilterResult a = filter_features({many}, FeatureFilterOptions{});
+  const Result a = generalise({many}, Options{});
   EXPECT_EQ(a.output_pieces, 1u);
   EXPECT_NEAR(area(a.polygons), 1e6 - 64 * 1600, 1e-6);
   // An island drawn inside another island: GEOS makes the inner ring a separate water body.
   Rings nested = rect(0, 0, 1000, 1000);
   nested.push_back({{100, 100}, {100, 900}, {900, 900}, {900, 100}});
   nested.push_back({{300, 300}, {300, 700}, {700, 700}, {700, 300}});
-  const FeatureFilterResult b = filter_features({nested}, FeatureFilterOptions{});
+  const Result b = generalise({nested}, Options{});
   EXPECT_EQ(b.output_pieces, 2u);
   EXPECT_NEAR(area(b.polygons), 1e6 - 640000 + 160000, 1e-6);
   // A bow tie (the outer ring crosses itself) becomes two triangles.
   const Rings bow{{{0, 0}, {1000, 1000}, {1000, 0}, {0, 1000}}};
-  const FeatureFilterResult c = filter_features({bow}, FeatureFilterOptions{});
+  const Result c = generalise({bow}, Options{});
   EXPECT_EQ(c.output_pieces, 2u);
   EXPECT_NEAR(area(c.polygons), 5e5, 1e-6);
 }
 
 }  // namespace
-}  // namespace fdr::gis
+}  // namespace fdr::coast
 
-namespace fdr::gis {
+namespace fdr::coast {
 namespace {
 
 // A 10 km basin whose south coast is a zigzag of 400 vertices 25 m apart turning by 25 degrees
@@ -722,12 +722,12 @@ Polygons wavy_basin_with_inlet() {
   return {r};
 }
 
-TEST(FeatureFilter, UnchangedCoastComesBackAsTheInputsVertices) {
+TEST(Generalise, UnchangedCoastComesBackAsTheInputsVertices) {
   // The buffers return an unchanged coast as arc points around every input vertex; the filter
   // gives the input's own vertices back there (CoastRestorer), so only the closed inlet and the
   // rounded corners carry new vertices.
   const Polygons in = wavy_basin_with_inlet();
-  const FeatureFilterResult r = filter_features(in, opts(100));  // close_width 25 m
+  const Result r = generalise(in, opts(100));  // close_width 25 m
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_GE(count(r, "narrow_water_closed"), 1u);
   std::set<std::pair<double, double>> input;
@@ -756,17 +756,17 @@ TEST(FeatureFilter, UnchangedCoastComesBackAsTheInputsVertices) {
   EXPECT_LT(r.polygons[0][0].size(), in[0][0].size() + 40);  // a few arcs at the corners only
 }
 
-TEST(FeatureFilter, CoastRestoreIsDeterministic) {
-  const FeatureFilterResult a = filter_features(wavy_basin_with_inlet(), opts(100));
-  const FeatureFilterResult b = filter_features(wavy_basin_with_inlet(), opts(100));
+TEST(Generalise, CoastRestoreIsDeterministic) {
+  const Result a = generalise(wavy_basin_with_inlet(), opts(100));
+  const Result b = generalise(wavy_basin_with_inlet(), opts(100));
   ASSERT_EQ(a.polygons.size(), b.polygons.size());
   for (std::size_t i = 0; i < a.polygons.size(); ++i) EXPECT_EQ(a.polygons[i], b.polygons[i]);
 }
 
 }  // namespace
-}  // namespace fdr::gis
+}  // namespace fdr::coast
 
-namespace fdr::gis {
+namespace fdr::coast {
 namespace {
 
 // A coast with everything the openings' difference sees: inlets from 4 to 70 m wide, channels
@@ -798,16 +798,14 @@ Polygons messy_coast() {
   return in;
 }
 
-TEST(FeatureFilter, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
+TEST(Generalise, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
   // The pieces between the two openings come from the faces of their non-shared segments
-  // (difference_by_faces); FDR_DIFF_OVERLAY computes them with GEOS's overlay of the whole.
+  // (difference_by_faces); Options::diff_overlay computes them with GEOS's overlay of the whole.
   for (const Polygons& in : {messy_coast(), wavy_basin_with_inlet(), two_basins(15), two_basins(5)}) {
-    const FeatureFilterResult a = filter_features(in, opts(100));
-    FeatureFilterResult b;
-    {
-      ScopedEnv overlay("FDR_DIFF_OVERLAY", "1");
-      b = filter_features(in, opts(100));
-    }
+    const Result a = generalise(in, opts(100));
+    Options ob = opts(100);
+    ob.diff_overlay = true;
+    const Result b = generalise(in, ob);
     EXPECT_EQ(a.polygons, b.polygons);
     // The removed pieces are the same; their order and the last bits of their areas (summed
     // from another first vertex) may differ.
@@ -829,4 +827,4 @@ TEST(FeatureFilter, DifferenceOfOpeningsByFacesEqualsTheOverlay) {
 }
 
 }  // namespace
-}  // namespace fdr::gis
+}  // namespace fdr::coast

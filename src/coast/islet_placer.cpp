@@ -1,0 +1,303 @@
+// Islet placement (islet_placer.hpp).
+#include "coast/islet_placer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "coast/report.hpp"
+
+namespace fdr::coast {
+
+IsletPlacer::IsletPlacer(const Options& options, Result& report)
+    : o(options), res(report), tri_r(options.islet_side / std::sqrt(3.0)), placed_grid(2 * options.islet_side),
+      tris(std::make_unique<OGRMultiPolygon>()) {}
+
+void IsletPlacer::build_land(const std::vector<std::unique_ptr<OGRPolygon>>& ps, LandIndex& L) const {
+  Box2 box;
+  for (const auto& p : ps)
+    for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+      const OGRLinearRing* r = k < 0 ? p->getExteriorRing() : p->getInteriorRing(k);
+      const int id = L.rings++;
+      L.id_of[r] = id;
+      L.first.push_back(L.seg.size());
+      for (int i = 0; i + 1 < r->getNumPoints(); ++i) {
+        L.seg.push_back({{r->getX(i), r->getY(i)}, {r->getX(i + 1), r->getY(i + 1)}});
+        L.ring.push_back(id);
+        box.add(L.seg.back().first);
+      }
+    }
+  L.first.push_back(L.seg.size());
+  if (L.seg.empty()) return;
+  L.grid = std::make_unique<pslg::SegmentGrid>(box, L.seg.size(), o.islet_side);
+  for (std::size_t k = 0; k < L.seg.size(); ++k) L.grid->add_segment(static_cast<Index>(k), L.seg[k].first, L.seg[k].second);
+}
+
+bool IsletPlacer::has_room(const LandIndex& L, int own, Point2 c, double clf, double r) {
+  if (r == 0) r = tri_r;
+  const double lim = r + clf * o.islet_side;
+  placed_grid.near({{c.x - lim, c.y - lim}, {c.x + lim, c.y + lim}}, &cand);
+  for (const std::uint32_t k : cand)
+    if (dist(placed[k], c) < lim + placed_r[k]) return false;
+  Box2 qb;
+  qb.add({c.x - lim, c.y - lim});
+  qb.add({c.x + lim, c.y + lim});
+  L.grid->segments_near(qb, &near);
+  for (Index k : near)
+    if (L.ring[k] != own && (L.gone.empty() || !L.gone[L.ring[k]]) &&
+        dist_to_segment(c, L.seg[k].first, L.seg[k].second) < lim)
+      return false;
+  return true;
+}
+
+bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a,
+                        const std::string& what, OGRMultiPolygon* into) {
+  const int ns = shape.getNumPoints();  // with the closing repeat
+  Point2 c = cen;
+  // A long islet gets a larger triangle where there is room around its centroid (side up to
+  // 1.6 islet_side: the best turn of a triangle of side s leaves the ends of an islet of length
+  // len about len / 2 - 0.39 s out; sized for 0.57 islet_side, 0.4 hmin), so that fewer
+  // vertices of long islets lie far from the mesh's coast.
+  double r = tri_r;
+  if (ns <= 64) {
+    double len = 0;
+    for (int i = 0; i + 1 < ns; ++i)
+      for (int j = i + 1; j + 1 < ns; ++j)
+        len = std::max(len, dist({shape.getX(i), shape.getY(i)}, {shape.getX(j), shape.getY(j)}));
+    const double side = std::min(1.6 * o.islet_side, (0.5 * len - 0.57 * o.islet_side) / 0.39);
+    if (side > o.islet_side && has_room(L, own, c, 0.5, side / std::sqrt(3.0))) r = side / std::sqrt(3.0);
+  }
+  bool room = r > tri_r || has_room(L, own, c);
+  for (int step = 1; !room && step <= 3 && o.islet_shift > 0; ++step)
+    for (int d = 0; d < 8 && !room; ++d) {
+      const double t = o.islet_shift * step / 3.0, ang = 0.7853981633974483 * d;
+      const Point2 q{cen.x + t * std::cos(ang), cen.y + t * std::sin(ang)};
+      if (has_room(L, own, q, shifted_cl)) { c = q; room = true; }
+    }
+  if (!room) return false;
+  placed_grid.add(static_cast<std::uint32_t>(placed.size()), c, r);
+  placed.push_back(c);
+  placed_r.push_back(r);
+  placed_ring.push_back(own);
+  // The turn of the triangle: the one of 40 turns 3 degrees apart (from apex up; the first of
+  // equals) that keeps the islet's farthest vertex nearest the triangle's sides. The room test
+  // above is the same for every turn (a disk around the circumcircle). Why: with the apex always
+  // up, the ends of an islet longer than the triangle stuck out by up to 0.6 islet_side, which
+  // the model sees as coast moved by that much.
+  auto corner = [&](double t0, int k) {
+    const double t = t0 - 2.0943951023931957 * k;  // clockwise
+    return Point2{c.x + r * std::cos(t), c.y + r * std::sin(t)};
+  };
+  double turn = 1.5707963267948966, best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 40; ++k) {
+    const double t0 = 1.5707963267948966 + k * (2.0943951023931957 / 40);
+    const Point2 p0 = corner(t0, 0), p1 = corner(t0, 1), p2 = corner(t0, 2);
+    double worst = 0;
+    for (int i = 0; i + 1 < ns && worst < best; ++i) {
+      const Point2 v{shape.getX(i), shape.getY(i)};
+      worst = std::max(worst, std::min({dist_to_segment(v, p0, p1), dist_to_segment(v, p1, p2),
+                                        dist_to_segment(v, p2, p0)}));
+    }
+    if (worst < best) {
+      best = worst;
+      turn = t0;
+    }
+  }
+  OGRLinearRing tr;
+  for (int k = 0; k < 3; ++k) {
+    const Point2 q = corner(turn, k);
+    tr.addPoint(q.x, q.y);
+  }
+  tr.closeRings();
+  auto tp = std::make_unique<OGRPolygon>();
+  tp->addRing(&tr);
+  const double ta = tp->get_Area();
+  const double moved = dist(c, cen);
+  ++res.islets_replaced;
+  res.repairs.push_back({"islet_simplified", c, a,
+                         what + " is smaller than " + num(o.min_island_area) +
+                             " m^2 (--min-island); kept as a triangle of side " + num(r * std::sqrt(3.0)) + " m (" +
+                             num(ta) + " m^2) " +
+                             (moved > 0 ? "around a point " + num(moved) +
+                                              " m from its centroid (other land too near the centroid)"
+                                        : std::string("around its centroid")),
+                         -1});
+  into->addGeometryDirectly(tp.release());
+  return true;
+}
+
+bool IsletPlacer::hull_clear(const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox,
+                             const std::vector<std::vector<Point2>>& joined, double cl, bool rings) {
+  const Box2 hb = box_of(h);
+  if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
+    return false;
+  if (rings && L.grid) {
+    L.grid->segments_near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &near);
+    for (Index j : near) {
+      const int r = L.ring[j];
+      if (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)]) continue;
+      if (convex_distance(L.seg[j].first, L.seg[j].second, h) < cl) return false;
+    }
+  }
+  placed_grid.near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &cand);
+  for (const std::size_t t : cand) {
+    if (beyond(placed[t], placed_r[t] + cl, hb)) continue;
+    if (inside_convex(placed[t], h)) return false;
+    for (std::size_t i = 0; i < h.size(); ++i)
+      if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return false;
+  }
+  for (std::size_t k = 0; k < joined.size(); ++k) {
+    if (apart(joined_box[k], hb, cl)) continue;
+    const auto& g = joined[k];
+    for (std::size_t i = 0; i < g.size(); ++i)
+      if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return false;
+  }
+  return true;
+}
+
+std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
+                                      const std::vector<std::vector<Point2>>& joined, double* taken, double* gap) {
+  std::vector<Point2> isl;
+  for (int i = 0; i + 1 < shape.getNumPoints(); ++i) isl.push_back({shape.getX(i), shape.getY(i)});
+  const std::size_t ni = isl.size();
+  if (ni < 3 || !L.grid) return std::vector<Point2>{};
+  Box2 ib;
+  for (Point2 q : isl) ib.add(q);
+  const double dmax = o.islet_side, cl = 0.25 * o.islet_side;
+  Box2 qb{{ib.lo.x - dmax, ib.lo.y - dmax}, {ib.hi.x + dmax, ib.hi.y + dmax}};
+  L.grid->segments_near(qb, &near);
+  std::sort(near.begin(), near.end());  // the first of equals, whatever the grid's order
+  double best = std::numeric_limits<double>::infinity();
+  Index kb = kNoId;
+  Point2 pb{};
+  auto closest_on = [](Point2 q, Point2 a, Point2 b) {
+    const Point2 ab = b - a;
+    const double l2 = norm2(ab);
+    const double t = l2 > 0 ? std::clamp(dot(q - a, ab) / l2, 0.0, 1.0) : 0.0;
+    return Point2{a.x + t * ab.x, a.y + t * ab.y};
+  };
+  for (Index k : near) {
+    const int r = L.ring[k];
+    if (r == own || (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)])) continue;
+    const auto [a, b] = L.seg[k];
+    for (std::size_t i = 0; i < ni; ++i) {  // islet vertices to the segment
+      const Point2 c = closest_on(isl[i], a, b);
+      if (const double d = dist(isl[i], c); d < best) { best = d; kb = k; pb = c; }
+    }
+    for (const Point2 e : {a, b})  // segment ends to the islet's sides
+      for (std::size_t i = 0; i < ni; ++i)
+        if (const double d = dist_to_segment(e, isl[i], isl[(i + 1) % ni]); d < best) { best = d; kb = k; pb = e; }
+  }
+  if (kb == kNoId || !(best > 0) || best > dmax) return std::vector<Point2>{};
+  const int ra = L.ring[kb];
+  const std::size_t f0 = L.first[static_cast<std::size_t>(ra)], f1 = L.first[static_cast<std::size_t>(ra) + 1];
+  const std::size_t nseg = f1 - f0;
+  double len = 0;
+  for (std::size_t i = 0; i < ni; ++i)
+    for (std::size_t j = i + 1; j < ni; ++j) len = std::max(len, dist(isl[i], isl[j]));
+  const double rho = 0.5 * len + best + 0.1 * o.islet_side;
+  // The run of ring ra's coast within arc length rho of pb, both ways: its vertices in ring
+  // order from the backward end e0 to the forward end e1 (on segments s0 and s1). A walk that
+  // comes back to a segment already in the run (the whole ring is that near) finds no run.
+  std::vector<char> in_run(nseg, 0);
+  in_run[kb - f0] = 1;
+  std::vector<Point2> fwd, bwd;
+  Point2 e1{}, e0{};
+  std::size_t s1 = kb, s0 = kb;
+  auto walk = [&](bool forward, std::vector<Point2>& passed, Point2& end, std::size_t& end_seg) {
+    double acc = 0;
+    std::size_t k = kb;
+    Point2 at = pb;
+    for (std::size_t steps = 0; steps <= nseg; ++steps) {
+      const Point2 v = forward ? L.seg[k].second : L.seg[k].first;
+      const double l = dist(at, v);
+      if (acc + l >= rho) {
+        const double t = l > 0 ? (rho - acc) / l : 0;
+        end = {at.x + t * (v.x - at.x), at.y + t * (v.y - at.y)};
+        end_seg = k;
+        return true;
+      }
+      acc += l;
+      passed.push_back(v);
+      at = v;
+      k = forward ? (k + 1 == f1 ? f0 : k + 1) : (k == f0 ? f1 - 1 : k - 1);
+      // Backward, the forward walk's last segment may be met: the ends' check below rejects it.
+      if (in_run[k - f0] && (forward || k != s1)) return false;
+      in_run[k - f0] = 1;
+    }
+    return false;
+  };
+  if (!walk(true, fwd, e1, s1) || !walk(false, bwd, e0, s0)) return std::vector<Point2>{};
+  if (s0 == s1 && s0 != kb) return std::vector<Point2>{};  // met going round
+  std::vector<Point2> run{e0};
+  run.insert(run.end(), bwd.rbegin(), bwd.rend());
+  run.insert(run.end(), fwd.begin(), fwd.end());
+  run.push_back(e1);
+  std::vector<Point2> all = isl;
+  all.insert(all.end(), run.begin(), run.end());
+  std::vector<Point2> h = convex_hull(all);
+  if (h.size() < 3) return std::vector<Point2>{};
+  auto index_of = [&](Point2 q) {
+    for (std::size_t i = 0; i < h.size(); ++i)
+      if (h[i].x == q.x && h[i].y == q.y) return i;
+    return h.size();
+  };
+  const std::size_t i0 = index_of(e0), i1 = index_of(e1);
+  if (i0 == h.size() || i1 == h.size()) return std::vector<Point2>{};
+  const Box2 hb = box_of(h);
+  const double harea = signed_area(h);
+  if (harea > 3 * o.islet_side * o.islet_side) return std::vector<Point2>{};
+  // The water side: the hull's chain from e1 round to e0 (counter-clockwise) or from e0 to e1,
+  // whichever holds an islet vertex; with the run it bounds the water taken (and the islet).
+  auto chain = [&](std::size_t from, std::size_t to) {
+    std::vector<Point2> c;
+    for (std::size_t i = from;; i = (i + 1) % h.size()) {
+      c.push_back(h[i]);
+      if (i == to) break;
+    }
+    return c;
+  };
+  auto holds_islet = [&](const std::vector<Point2>& c) {
+    for (std::size_t i = 1; i + 1 < c.size(); ++i)
+      for (Point2 q : isl)
+        if (q.x == c[i].x && q.y == c[i].y) return true;
+    return false;
+  };
+  std::vector<Point2> wc = chain(i1, i0), lc = chain(i0, i1);  // from e1 to e0, from e0 to e1
+  const bool w1 = holds_islet(wc), w2 = holds_islet(lc);
+  if (w1 == w2) return std::vector<Point2>{};
+  std::vector<Point2> water = w1 ? wc : lc;  // ends e1 ... e0 or e0 ... e1
+  if (!w1) std::reverse(water.begin(), water.end());  // now e1 ... e0
+  // Closed by the run from e0 forward to e1 (without the ends, which the chain has).
+  water.insert(water.end(), run.begin() + 1, run.end() - 1);
+  const double taken_area = std::fabs(signed_area(water)) - std::fabs(signed_area(isl));
+  // Room: the rings near the hull.
+  Box2 cb{{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}};
+  L.grid->segments_near(cb, &near);
+  for (Index j : near) {
+    const int r = L.ring[j];
+    if (r == own || (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)])) continue;
+    const auto [a, b] = L.seg[j];
+    if (r != ra) {
+      if (convex_distance(a, b, h) < cl) return std::vector<Point2>{};
+      continue;
+    }
+    if (j == s0 && j == s1) {  // the run lies inside one segment: the parts beyond its ends
+      if (convex_distance(a, {e0.x + 1e-6 * (a.x - e0.x), e0.y + 1e-6 * (a.y - e0.y)}, h) == 0 ||
+          convex_distance({e1.x + 1e-6 * (b.x - e1.x), e1.y + 1e-6 * (b.y - e1.y)}, b, h) == 0)
+        return std::vector<Point2>{};
+    } else if (j == s0) {  // the part before e0
+      if (convex_distance(a, {e0.x + 1e-6 * (a.x - e0.x), e0.y + 1e-6 * (a.y - e0.y)}, h) == 0) return std::vector<Point2>{};
+    } else if (j == s1) {  // the part after e1
+      if (convex_distance({e1.x + 1e-6 * (b.x - e1.x), e1.y + 1e-6 * (b.y - e1.y)}, b, h) == 0) return std::vector<Point2>{};
+    } else if (!in_run[j - f0]) {
+      if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
+    }
+  }
+  if (!hull_clear(L, h, inbox, joined, cl, false)) return std::vector<Point2>{};
+  *taken = std::max(0.0, taken_area);
+  *gap = best;
+  return h;
+}
+
+}  // namespace fdr::coast

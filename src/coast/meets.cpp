@@ -1,0 +1,22 @@
+// Meets (meets.hpp).
+#include "coast/meets.hpp"
+
+namespace fdr::coast {
+
+std::size_t Meets::count(const OGRPolygon& piece) {
+  OGREnvelope e;
+  piece.getEnvelope(&e);
+  e.MinX -= grow_; e.MinY -= grow_; e.MaxX += grow_; e.MaxY += grow_;
+  const bool ungrown = alone_ungrown_ && ps_.size() == 1;
+  std::size_t n = 0;
+  GeomPtr grown;
+  for (std::size_t i = 0; i < ps_.size(); ++i) {
+    if (!env_[i].Intersects(e)) continue;
+    if (!ungrown && !grown) grown = checked(piece.Buffer(grow_, 1), "buffer of a piece");
+    if (!prep_[i]) prep_[i] = std::make_unique<Prepared>(ps_[i].get());
+    if (prep_[i]->intersects(ungrown ? static_cast<const OGRGeometry*>(&piece) : grown.get()) && ++n >= 2) break;
+  }
+  return n;
+}
+
+}  // namespace fdr::coast
