@@ -2,7 +2,7 @@
 #include "base/memory.hpp"
 #include "base/path_util.hpp"
 #include "api/triangulate.hpp"
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include <optional>
 #include <algorithm>
 #include <chrono>

@@ -3,7 +3,7 @@
 #include "base/num_format.hpp"
 #include <map>
 #include <sstream>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "pslg/poly_io.hpp"
 
