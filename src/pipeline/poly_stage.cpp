@@ -1,4 +1,4 @@
-// Read stage of .poly/.node runs (core: no GDAL/PROJ; moved from gis_stage.cpp): the PSLG in its
+// Read stage of .poly/.node runs (core: no GDAL/PROJ): the PSLG in its
 // local frame, repairs reported, f from --spacing.
 #include "base/num_format.hpp"
 #include <map>

@@ -1,5 +1,5 @@
 // `fdrmesh quality`: reads a mesh (2DM, fort.14, msh, node/ele, fdrmesh GPKG), evaluates f and
-// measures the same report as `fdrmesh mesh --report` (moved here from the CLI: issue 8).
+// measures the same report as `fdrmesh mesh --report`.
 #include "pipeline/quality_run.hpp"
 #include "api/core_stages.hpp"
 #include "base/error.hpp"
