@@ -2,7 +2,7 @@
 #include "base/memory.hpp"
 #include "base/path_util.hpp"
 #include "api/triangulate.hpp"
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include <optional>
 #include <algorithm>
 #include <chrono>
@@ -260,8 +260,7 @@ QualityReport measure_mesh(MeshView& m, const SizingField* f, const TriangulateO
   QualityReport r = quality::compute_quality(m, f, opt.bound, fig.alpha, run_info(f, opt, fig), per_triangle, nullptr,
                                              f_filled ? &m.f : nullptr);
   // The report was the adjacency's last reader, but for the boundary lists: with it they take one
-  // array read per half-edge, without it about 47 MiB of temporary arrays at 1 M triangles (and
-  // more time) where the adjacency is 12 MiB.
+  // array read per half-edge, without it temporary arrays several times its size (and more time).
   if (!keep_adjacency) release_huge(m.neighbours);
   return r;
 }

@@ -10,6 +10,9 @@
 #include <cstring>
 #include <string>
 #include <sys/mman.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 extern "C" int mallctl(const char* name, void* oldp, std::size_t* oldlenp, void* newp,
                        std::size_t newlen) __attribute__((weak));
@@ -142,6 +145,13 @@ std::optional<ProcessMemory> process_memory(const std::string& status_path) {
   return m;
 }
 
+void set_process_allocator_policy() {
+  if (mallctl) return;  // jemalloc: compiled-in options
+#if defined(__GLIBC__) && defined(M_ARENA_MAX)
+  mallopt(M_ARENA_MAX, 1);
+#endif
+}
+
 void release_free_memory() {
   if (!mallctl) return;
   bool any_own = false;
@@ -204,8 +214,8 @@ OwnArena::OwnArena() {
   const std::string a = "arena." + std::to_string(i) + ".";
   swap_ssize(a + "dirty_decay_ms", &old, -1);
   swap_ssize(a + "muzzy_decay_ms", &old, -1);
-  // Its extents on huge pages (jemalloc 5 hooks, as HugePageArenas): GEOS's churn through a
-  // fresh arena faulted 4 KiB pages by the hundred thousand (GSHHG-h basin: 0.29 M faults).
+  // Its extents on huge pages (jemalloc 5 hooks, as HugePageArenas): churn through a fresh arena
+  // would otherwise fault in 4 KiB pages one by one.
   if (jemalloc5()) wrap_hooks(i);
   index_ = i;
   active_ = true;
@@ -240,8 +250,8 @@ HugePageArenas::HugePageArenas() {
   // Every automatic arena is made now (an arena made later would take the default hooks), and
   // the arena of allocations above opt.oversize_threshold (8 MiB) by one such allocation. That
   // allocation's extent is mapped before the hooks are wrapped, and the arena keeps it for the
-  // next large request: it is advised here, as the hook would have done (without this, the first
-  // 16 MiB array of a run faulted in 4 KiB pages: 4 096 faults, 40 ms on this machine).
+  // next large request: it is advised here, as the hook would have done (else the first large
+  // array of a run would fault in 4 KiB pages).
   constexpr std::size_t kOversize = std::size_t{16} << 20;
   void* volatile oversize = std::malloc(kOversize);  // volatile: the pair is not elided
   if (oversize != nullptr) advise_and_record(oversize, kOversize);

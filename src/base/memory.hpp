@@ -1,4 +1,5 @@
-// Returning freed memory to the system between pipeline stages.
+// The allocator's controls: freed memory returned to the system or kept, huge pages, the process's
+// arenas. Which of them a run uses is decided in one place (pipeline/memory_policy.hpp).
 #pragma once
 #include <sys/types.h>
 #include <cstddef>
@@ -9,6 +10,13 @@
 
 namespace fdr {
 
+// The process-wide allocator settings of a program (the fdrmesh command calls it first thing;
+// libraries leave their host's allocator alone). Under glibc's malloc: one arena for every thread,
+// so that a second thread and the concurrent writers reuse the memory the refinement freed instead
+// of growing arenas of their own. Under jemalloc nothing: its options are compiled in
+// (src/base/jemalloc_conf.cpp).
+void set_process_allocator_policy();
+
 // Gives the pages of freed memory back to the system when the program's allocator is jemalloc
 // (the fdrmesh program links it, see src/cli/CMakeLists.txt); a no-op under any other allocator.
 // Why: jemalloc keeps freed pages resident for seconds and serves the next stage's arrays from
@@ -18,8 +26,8 @@ void release_free_memory();
 // Asks the kernel to back [p, p + bytes) with transparent huge pages (madvise MADV_HUGEPAGE on
 // the 2 MiB-aligned pages inside the range; nothing for smaller ranges or where the kernel has no
 // THP). Call it on a large array's buffer before its pages are first touched. Why: the mesh's
-// arrays are tens of MiB written once in scattered order, and on this machine a 4 KiB page fault
-// costs about as much as writing the page: faults were 15 % of a 1 M-triangle run's samples.
+// arrays are tens of MiB written once in scattered order, and a 4 KiB page fault costs about as
+// much as writing the page.
 void advise_huge_pages(const void* p, std::size_t bytes);
 
 // Takes the advice back (MADV_NOHUGEPAGE on the same pages; pages already huge stay so until
@@ -89,21 +97,16 @@ class ArenaDecay {
   std::vector<ssize_t> dirty_, muzzy_;             // arena.<i>.*_decay_ms
 };
 
-// Decay 0, and what was freed before goes back at once. The pipeline holds one from the
-// triangulation on in .poly runs: the mesh's arrays are few and large, and pages kept lazily by
-// one stage would add to the next stage's peak (at 1 M triangles 76 -> 57 MiB). GIS runs hold a
-// KeepFreedPages instead (pipeline::run: a thread beside the CDT and the refinement).
+// Decay 0, and what was freed before goes back at once. Why: where a few large arrays are freed,
+// pages kept lazily by one stage would add to the next stage's peak.
 class EagerMemoryRelease : public ArenaDecay {
  public:
   EagerMemoryRelease();
 };
 
 // Decay -1 while it lives (freed pages stay with the allocator and serve the next allocations),
-// and every freed page goes back to the system when it ends. The GIS input's read and filter
-// hold one (pipeline/gis_stage.cpp): GEOS allocates and frees millions of small objects, and
-// pages purged by the default 10 s decay were faulted in again (on this machine a 4 KiB fault
-// costs about as much as writing the page; GSHHG-h basin: 1.7 M minor faults, read 31 s; with
-// this and the program's single arena 0.6 M faults, read 20-25 s; README "Allocator").
+// and every freed page goes back to the system when it ends. Why: where millions of small objects
+// are allocated and freed, pages purged by the default decay would be faulted in again.
 class KeepFreedPages : public ArenaDecay {
  public:
   KeepFreedPages() : ArenaDecay(-1) {}
@@ -119,14 +122,12 @@ struct ProcessMemory {
 std::optional<ProcessMemory> process_memory(const std::string& status_path = "/proc/self/status");
 
 // A jemalloc arena of its own for work that runs beside the pipeline's stages (the GIS filter's
-// removed-water listing: GEOS's millions of small objects), whose freed pages it keeps (decay
-// -1) whatever the ArenaDecay of the stages meanwhile and release_free_memory() leaves alone,
-// and whose extents of 2 MiB or more are advised for huge pages; bind() puts the calling
-// thread's allocations there. When it ends its pages go back to the system (the arena stays:
-// objects made there may live on; a process makes at most 1 024, then it is a no-op). Why: under
-// the EagerMemoryRelease (decay 0) the GIS mesh stages then held, and under the purge at every
-// stage's end, every page GEOS freed was purged and faulted in again (GSHHG-h basin: 0.29 M
-// faults, the listing beside the refinement 4 s instead of 2.35).
+// removed-water listing: GEOS's small objects), whose freed pages it keeps (decay -1) whatever the
+// ArenaDecay of the stages meanwhile and release_free_memory() leaves alone, and whose extents of
+// 2 MiB or more are advised for huge pages; bind() puts the calling thread's allocations there.
+// When it ends its pages go back to the system (the arena stays: objects made there may live on;
+// a process makes at most 1 024, then it is a no-op). Why: under the stages' own settings and the
+// purge at every stage's end, every page the work beside them freed would be faulted in again.
 // A no-op under any other allocator.
 class OwnArena {
  public:
@@ -146,14 +147,12 @@ class OwnArena {
 // (every arena's extent allocation hook is wrapped to madvise MADV_HUGEPAGE the extents of 2 MiB
 // or more that it maps; the advice is taken back and the previous hooks come back when it ends,
 // so a host program keeps its own). A no-op under any other allocator, under a jemalloc other
-// than 5.x, or while another HugePageArenas lives. The GIS pipeline holds one over its read,
-// spacing and clean stages (pipeline/gis_stage.cpp: prepare_gis_input): GEOS allocates and walks
-// millions of small objects, the spacing stage fills grids of tens of MiB once, and with 4 KiB
-// pages a GSHHG-h basin took 0.65 M page faults there (sizing 1.1-1.4 s, most of it in the
-// kernel). Memory mapped before it lives is not advised: jemalloc reuses what it retains without
-// calling the hook, so it must live from the first stage on. Not over the mesh stages: there
-// small allocations would each take a 2 MiB page, and the large arrays are advised one by one
-// (advise_huge_pages). README "Allocator".
+// than 5.x, or while another HugePageArenas lives. Why: memory written once in scattered order
+// (many small objects, grids of tens of MiB) takes one fault per 2 MiB instead of one per 4 KiB.
+// Memory mapped before it lives is not advised: jemalloc reuses what it retains without calling
+// the hook, so it must live from the first stage that wants it on. Not for phases of few large
+// arrays: there small allocations would each take a 2 MiB page, and the large arrays are advised
+// one by one (advise_huge_pages).
 class HugePageArenas {
  public:
   HugePageArenas();

@@ -5,7 +5,7 @@
 #include "pipeline/options.hpp"
 
 namespace fdr::cli {
-// Returns the process exit code (see base/error.hpp and README "Exit codes").
+// Returns the process exit code (base/error.hpp).
 int run(int argc, char** argv);
 
 // Parses the arguments of `fdrmesh mesh` (without the program and subcommand names) with the

@@ -1,5 +1,5 @@
-// gis_backend(): the built-in GIS table when the program links fdr_pipeline, else the module
-// fdrmesh_gis.so loaded on first use (gis_backend.hpp).
+// gis_backend(): the GIS table when the program links the GIS library, else that library loaded
+// on first use (gis_backend.hpp).
 #include "pipeline/gis_backend.hpp"
 #include <dlfcn.h>
 #include <unistd.h>
@@ -9,9 +9,8 @@
 #include <mutex>
 #include "base/error.hpp"
 
-// Weak: null unless the program links the built-in table (fdr_pipeline forces it in with
-// --undefined=fdr_builtin_gis_backend).
-extern "C" const fdr::pipeline::GisBackend* fdr_builtin_gis_backend() __attribute__((weak));
+// Weak: null unless the program links the GIS library (or fdr_pipeline itself).
+extern "C" const fdr::pipeline::GisBackend* fdr_gis_backend_table() __attribute__((weak));
 
 namespace fdr::pipeline {
 namespace {
@@ -66,11 +65,10 @@ const GisBackend* load_module() {
       continue;
     }
     using Fn = const GisBackend* (*)();
-    auto fn = reinterpret_cast<Fn>(::dlsym(h, "fdr_gis_module_backend"));
+    auto fn = reinterpret_cast<Fn>(::dlsym(h, "fdr_gis_backend_table"));
     const GisBackend* b = fn ? fn() : nullptr;
-    const std::size_t layout[5] = FDR_GIS_BACKEND_LAYOUT;
-    if (!b || std::strcmp(b->version, kVersion) != 0 || std::memcmp(b->layout, layout, sizeof layout) != 0) {
-      why += "\n  " + path + ": from another build of fdrmesh";
+    if (!b || std::strcmp(b->version, kVersion) != 0) {
+      why += "\n  " + path + ": from another version of fdrmesh";
       ::dlclose(h);
       continue;
     }
@@ -89,13 +87,13 @@ const GisBackend* g_table = nullptr;
 
 const GisBackend& gis_backend() {
   std::lock_guard<std::mutex> lock(g_mutex);
-  if (!g_table) g_table = fdr_builtin_gis_backend ? fdr_builtin_gis_backend() : load_module();
+  if (!g_table) g_table = fdr_gis_backend_table ? fdr_gis_backend_table() : load_module();
   return *g_table;
 }
 
 bool gis_backend_loaded() {
   std::lock_guard<std::mutex> lock(g_mutex);
-  return g_table != nullptr || fdr_builtin_gis_backend != nullptr;
+  return g_table != nullptr || fdr_gis_backend_table != nullptr;
 }
 
 }  // namespace fdr::pipeline

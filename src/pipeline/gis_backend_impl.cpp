@@ -1,5 +1,5 @@
-// The GIS side of the pipeline as one table (gis_backend.hpp): built into fdr_pipeline, and
-// exported by the module fdrmesh_gis.so that the fdrmesh command loads when a run needs it.
+// The GIS side of the pipeline as one table (gis_backend.hpp), exported by the GIS library
+// fdrmesh_gis.so: linked by tests and the Python module, loaded by the fdrmesh command.
 #include "base/error.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/raster_output.hpp"
@@ -35,17 +35,10 @@ void write_many(const mesh::MeshView& m, const std::vector<std::string>& paths, 
   io::write_meshes(m, paths, fmts, wo, threads);
 }
 
-predicates::Counters take_counters() {
-  const predicates::Counters c = predicates::counters();
-  predicates::reset_counters();
-  return c;
-}
-
 mesh::MeshView read_mesh(const std::string& path) { return io::read_mesh(path); }
 
 const GisBackend kTable{
     kVersion,
-    FDR_GIS_BACKEND_LAYOUT,
     &prepare_gis,
     &pipeline::sample_depths,
     &pipeline::tin_error,
@@ -55,10 +48,11 @@ const GisBackend kTable{
     &write_spacing,
     &read_mesh,
     &gis::read_raster_native,
-    &take_counters,
 };
 
 }  // namespace
 }  // namespace fdr::pipeline
 
-extern "C" const fdr::pipeline::GisBackend* fdr_builtin_gis_backend() { return &fdr::pipeline::kTable; }
+extern "C" __attribute__((visibility("default"))) const fdr::pipeline::GisBackend* fdr_gis_backend_table() {
+  return &fdr::pipeline::kTable;
+}

@@ -10,13 +10,14 @@
 #include <map>
 #include <optional>
 #include <sstream>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "base/error.hpp"
 #include "base/memory.hpp"
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
+#include "pipeline/memory_policy.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
 #include "pslg/snap_loose_ends.hpp"
@@ -109,7 +110,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
   gis::GisInput g = [&d] {
     // Freed pages stay for reuse while the input is read and filtered: GEOS's millions of small
     // objects (base/memory.hpp; purged when it ends).
-    const KeepFreedPages keep;
+    const PhaseMemory memory(MemoryPhase::kGisRead, true);
     return gis::read_domain(d);
   }();
   clock.lap("read");
@@ -344,7 +345,7 @@ PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const Pro
                                 bool defer_listing) {
   // What the allocator maps for GEOS's objects, the spacing grids and the cleaned and resampled
   // PSLG goes on huge pages (base/memory.hpp).
-  const HugePageArenas huge;
+  const PhaseMemory memory(MemoryPhase::kGisInput, true);
   gis::GisInput g = read_gis_input(opt, clock, progress, log);
   const GisSpacing sp = gis_spacing(opt, g, clock, progress, log);
   // The filter's removed-water listing from here on (unless the filter started it: a large input,

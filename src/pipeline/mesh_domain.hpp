@@ -18,8 +18,8 @@
 
 namespace fdr {
 
-// The options of a GIS run are those of `fdrmesh mesh` (one field per long option, README
-// "Options"); outputs listed in `outputs` are written during the run, atomically.
+// The options of a GIS run are those of `fdrmesh mesh` (one field per long option); outputs
+// listed in `outputs` are written during the run, atomically.
 using DomainOptions = pipeline::Options;
 
 // A mesh from the GIS pipeline: Mesh (view in the working CRS's local frame, report) plus

@@ -1,65 +1,39 @@
 // Pipeline: read (gis / pslg) -> spacing (sizing) -> CDT + refinement (api core stages) ->
-// depths (gis) -> measure (quality) -> write (io). The stages are in stages.cpp and the modules.
+// depths (gis) -> measure (quality) -> write (io). The stages are in plan, measure, write and the
+// modules; this file knows their order.
 #include "pipeline/pipeline.hpp"
 #include <chrono>
-#include <optional>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "base/error.hpp"
-#include "base/memory.hpp"
 #include "mesh/take_view.hpp"
 #include "pipeline/gis_backend.hpp"
 #include "pipeline/gis_stage.hpp"
-#include "pipeline/stages.hpp"
+#include "pipeline/memory_policy.hpp"
+#include "pipeline/plan.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::pipeline {
+namespace {
 
-Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
-  const auto t_start = std::chrono::steady_clock::now();
-  auto report_progress = [&](double frac, const char* stage) {
-    if (progress && !progress(frac, stage)) throw Error(ExitCode::kCancelled, std::string("cancelled during ") + stage);
-  };
-  const Plan plan = plan_run(opt);  // every usage error, before any I/O
-  predicates::reset_counters();
-
-  Result result;
-  report_progress(0.0, "read");
-  StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
-  PreparedInput in;
+// Read stage: the PSLG and f of a GIS or a .poly input, its repairs in `result`.
+PreparedInput read_input(const Options& opt, const Plan& plan, StageClock& clock, const ProgressFn& progress,
+                         const LogFn& log, Result& result) {
   if (plan.gis) {
     // read (gis), spacing (sizing), clean and resample (pslg): the GIS side (gis_backend.hpp)
-    in = gis_backend().prepare_gis(opt, clock, progress, log);
-    const predicates::Counters gis_calls = gis_backend().take_predicate_counters();  // a module counts apart
-    predicates::counters().filtered += gis_calls.filtered;
-    predicates::counters().exact += gis_calls.exact;
+    PreparedInput in = gis_backend().prepare_gis(opt, clock, progress, log);
     result.crs_name = in.crs_name;
-  } else {
-    in = prepare_poly_input(opt, log);  // read, resolve or refuse conflicts (pslg), spacing from --spacing
-    result.repairs = in.repairs.size();
-    result.repair_rows = in.repairs;
-    clock.lap("read");
+    return in;
   }
-  result.f = in.f;
-  report_progress(0.05, "cdt");
-  // The mesh stages of .poly runs give freed pages back at once (few large arrays; base/memory.hpp).
-  // GIS runs keep them (each stage's end still gives them back: StageClock::lap): the filter's
-  // removed-water listing runs beside the CDT and the refinement on another thread, and every
-  // page given back (madvise) interrupts that thread too (a TLB shootdown, costly in a virtual
-  // machine). Gulf of Maine at hmin 120: madvise calls in the CDT and the refinement 6 100 -> 300,
-  // CDT 0.12-0.19 -> 0.09-0.15 s, system time 1.38 -> 0.96 s, the whole process 0.37 s faster at
-  // the median of ten interleaved rounds (tools/bench/ab.py), peak unchanged. Kept pages also let
-  // the report's and the writers' temporary arrays reuse the pages freed before them (report
-  // 0.53-0.59 -> 0.42-0.44 s, write 1.26-1.68 -> 1.10-1.32 s when first kept from the compaction
-  // on). README "Allocator". Not for .poly runs: no thread beside their refinement, and kept pages
-  // would add to their peak where the compaction frees the triangulation (60 -> 69 MiB at 1 M
-  // triangles; issue 7's 64 bytes/triangle).
-  std::optional<EagerMemoryRelease> eager;
-  std::optional<KeepFreedPages> keep;
-  if (plan.gis) keep.emplace();
-  else eager.emplace();
-  clock.restart();
+  PreparedInput in = prepare_poly_input(opt, log);  // read, resolve or refuse conflicts, --spacing
+  result.repairs = in.repairs.size();
+  result.repair_rows = in.repairs;
+  clock.lap("read");
+  return in;
+}
 
-  TriangulateFigures fig;
+// CDT, refinement, smoothing and checks; the mesh in its compact form (the triangulation freed).
+mesh::MeshView triangulate(const Options& opt, const Plan& plan, PreparedInput& in, StageClock& clock,
+                           const ProgressFn& progress, const LogFn& log, TriangulateFigures& fig) {
   // .poly: Triangle's semantics (exterior and hole seeds removed; --convex-hull); GIS: parity.
   mesh::Triangulation tri =
       fdr::build_cdt(in.pslg, plan.source, &fig.cdt_s,
@@ -72,25 +46,47 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   to.stage_done = [&](const std::string& stage) {
     clock.lap(stage);
     // GIS runs: the filter's removed-water listing ran beside the CDT and the refinement (single
-    // threads); it is waited for before the smoothing, which takes both cores (beside it the
-    // listing slowed it by half on a GSHHG-h basin). Its repairs and figures now
-    // (pipeline/gis_stage.cpp); a wait shows as the stage "listing".
+    // threads); it is waited for before the smoothing, which takes both cores and which it would
+    // slow down. A wait shows as the stage "listing".
     if (stage == "refine" && in.complete) {
       complete_input(in);
       clock.lap("listing");
     }
   };
   fig.refine = fdr::refine_stage(tri, *in.f, in.pslg.bbox(), to);  // refine, smooth, check
+  if (plan.gis) complete_input(in);  // done after the refinement (above) unless it stopped before
+  return mesh::take_view(tri);       // the report and writers read a compact copy; frees tri
+}
+
+}  // namespace
+
+Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  const auto t_start = std::chrono::steady_clock::now();
+  auto report_progress = [&](double frac, const char* stage) {
+    if (progress && !progress(frac, stage)) throw Error(ExitCode::kCancelled, std::string("cancelled during ") + stage);
+  };
+  const Plan plan = plan_run(opt);  // every usage error, before any I/O
+  predicates::reset_counters();
+
+  Result result;
+  report_progress(0.0, "read");
+  StageClock clock(&result.stages);  // per-stage timing hooks (Result::stages)
+  PreparedInput in = read_input(opt, plan, clock, progress, log, result);
+  result.f = in.f;
+  report_progress(0.05, "cdt");
+  const PhaseMemory memory(MemoryPhase::kMesh, plan.gis);
+  clock.restart();
+
+  TriangulateFigures fig;
+  result.mesh = triangulate(opt, plan, in, clock, progress, log, fig);
   if (plan.gis) {
-    complete_input(in);  // done after the refinement (above) unless it stopped before
     result.repairs = in.repairs.size();
     result.repair_rows = in.repairs;
   }
   report_progress(0.8, "report");
   result.alpha = fig.refine.alpha;
-  result.min_angle_deg = to.min_angle_deg;
+  result.min_angle_deg = plan.triangulate.min_angle_deg;
 
-  result.mesh = mesh::take_view(tri);  // the report and writers read a compact copy; frees tri
   mesh::MeshView& m = result.mesh;
   if (plan.gis) {
     m.crs_wkt = in.crs_wkt;
@@ -99,17 +95,17 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   clock.lap("depths");
 
   quality::TriangleValues tri_values;
-  const bool want_tri_values = opt.output_crs.empty() && stores_triangle_values(plan.formats);
-  if (report_is_read(opt, plan)) {
-    result.report = measure(m, in, opt, plan, fig, want_tri_values ? &tri_values : nullptr, log);
+  quality::TriangleValues* values = plan.triangle_values ? &tri_values : nullptr;
+  if (plan.measure_report) {
+    result.report = measure(m, in, plan.measure, fig, values, log);
     clock.lap("report");
   } else {
-    result.report = unmeasured_report(m, in, opt, plan, fig);  // what the outputs read of the report
+    result.report = unmeasured_report(m, in, plan.measure, fig);  // what the outputs read of the report
   }
 
   report_progress(0.9, "write");
-  result.written = write_outputs(result, in, opt, plan, want_tri_values ? &tri_values : nullptr, t_start,
-                                 progress);  // reports "done"
+  const WriteInput w{m, result.report, in, result.alpha, values};
+  result.written = write_outputs(w, plan.write, t_start, progress).paths;  // reports "done"
   clock.lap("write");
   return result;
 }

@@ -1,9 +1,9 @@
-// Read stage of .poly/.node runs (core: no GDAL/PROJ; moved from gis_stage.cpp): the PSLG in its
+// Read stage of .poly/.node runs (core: no GDAL/PROJ): the PSLG in its
 // local frame, repairs reported, f from --spacing.
 #include "base/num_format.hpp"
 #include <map>
 #include <sstream>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "pslg/poly_io.hpp"
 

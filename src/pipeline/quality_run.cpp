@@ -1,7 +1,7 @@
 // `fdrmesh quality`: reads a mesh (2DM, fort.14, msh, node/ele, fdrmesh GPKG), evaluates f and
-// measures the same report as `fdrmesh mesh --report` (moved here from the CLI: issue 8).
+// measures the same report as `fdrmesh mesh --report`.
 #include "pipeline/quality_run.hpp"
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "base/error.hpp"
 #include "pipeline/gis_backend.hpp"
 #include "quality/rss.hpp"

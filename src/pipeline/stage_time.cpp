@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "base/memory.hpp"
 #include "base/step_laps.hpp"
+#include "pipeline/memory_policy.hpp"
 #include "quality/rss.hpp"
 
 namespace fdr::pipeline {
@@ -26,7 +26,7 @@ double StageClock::lap(const std::string& name) {
   if (print)
     std::fprintf(stderr, "stage %-8s %.3f s faults %ld peak %.1f MB\n", name.c_str(), s, faults,
                  quality::peak_rss_mb_value().value_or(0.0));
-  release_free_memory();  // the stage's garbage does not stay resident beside the next stage
+  stage_ended();
   restart();
   return s;
 }

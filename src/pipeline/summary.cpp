@@ -1,4 +1,4 @@
-// What the command line prints after a run (moved from cli.cpp so that the CLI sees only pipeline).
+// What the command line prints after a run (here, so that the CLI sees only pipeline).
 #include "pipeline/summary.hpp"
 #include <cstdio>
 #include <ostream>

@@ -86,12 +86,10 @@ fdr::Pslg make_pslg(py::array_t<double, py::array::c_style | py::array::forcecas
   return g;
 }
 
-}  // namespace
 
-PYBIND11_MODULE(_core, mod) {
-  mod.doc() = "fdrmesh core bindings (use the fdrmesh package)";
-  mod.attr("__version__") = fdr::kVersion;
-
+// Exceptions: fdrmesh.Error(RuntimeError) with .exit_code; one subclass per exit code, and the
+// translator of fdr::Error and std::bad_alloc to them.
+void bind_errors(py::module_& mod) {
   // Exceptions: fdrmesh.Error(RuntimeError) with .exit_code; one subclass per exit code.
   py::handle base_error = PyErr_NewException("fdrmesh.Error", PyExc_RuntimeError, nullptr);
   mod.attr("Error") = base_error;
@@ -124,112 +122,116 @@ PYBIND11_MODULE(_core, mod) {
       PyErr_SetObject(c.ptr(), exc.ptr());
     }
   });
+}
 
-  mod.def("read_poly", [](const std::string& path) {
-    fdr::Pslg g;
-    {
-      py::gil_scoped_release nogil;
-      g = fdr::read_pslg(path);
-    }
-    const auto n = static_cast<py::ssize_t>(g.points.size()), m = static_cast<py::ssize_t>(g.segments.size()),
-               h = static_cast<py::ssize_t>(g.holes.size());
-    py::array_t<double> v({n, py::ssize_t(2)}), hs({h, py::ssize_t(2)});
-    py::array_t<long long> s({m, py::ssize_t(2)});
-    py::array_t<int> smark(m), vmark(n);
-    auto vv = v.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const fdr::Point2 w = g.origin + g.points[i];
-      vv(i, 0) = w.x;
-      vv(i, 1) = w.y;
-      vmark.mutable_at(i) = g.point_markers.empty() ? 0 : g.point_markers[i];
-    }
-    auto ss = s.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < m; ++i) {
-      ss(i, 0) = g.segments[i].a;
-      ss(i, 1) = g.segments[i].b;
-      smark.mutable_at(i) = g.segments[i].marker;
-    }
-    auto hh = hs.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < h; ++i) {
-      const fdr::Point2 w = g.origin + g.holes[i];
-      hh(i, 0) = w.x;
-      hh(i, 1) = w.y;
-    }
-    return py::make_tuple(v, s, hs, vmark, smark, g.point_markers.empty());
-  });
+// read_poly(path): the .poly file as numpy arrays (world coordinates).
+py::tuple read_poly(const std::string& path) {
+  fdr::Pslg g;
+  {
+    py::gil_scoped_release nogil;
+    g = fdr::read_pslg(path);
+  }
+  const auto n = static_cast<py::ssize_t>(g.points.size()), m = static_cast<py::ssize_t>(g.segments.size()),
+             h = static_cast<py::ssize_t>(g.holes.size());
+  py::array_t<double> v({n, py::ssize_t(2)}), hs({h, py::ssize_t(2)});
+  py::array_t<long long> s({m, py::ssize_t(2)});
+  py::array_t<int> smark(m), vmark(n);
+  auto vv = v.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const fdr::Point2 w = g.origin + g.points[i];
+    vv(i, 0) = w.x;
+    vv(i, 1) = w.y;
+    vmark.mutable_at(i) = g.point_markers.empty() ? 0 : g.point_markers[i];
+  }
+  auto ss = s.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < m; ++i) {
+    ss(i, 0) = g.segments[i].a;
+    ss(i, 1) = g.segments[i].b;
+    smark.mutable_at(i) = g.segments[i].marker;
+  }
+  auto hh = hs.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < h; ++i) {
+    const fdr::Point2 w = g.origin + g.holes[i];
+    hh(i, 0) = w.x;
+    hh(i, 1) = w.y;
+  }
+  return py::make_tuple(v, s, hs, vmark, smark, g.point_markers.empty());
+}
 
-  mod.def("default_spacing", [](py::array_t<double, py::array::c_style | py::array::forcecast> v) {
-    return fdr::default_spacing_spec(make_pslg(v, std::nullopt, std::nullopt, std::nullopt, std::nullopt));
-  });
+// The spacing grid the Python side sampled: None, or (nx, ny, x0, y0, dx, dy, values, label).
+std::optional<fdr::sizing::Grid> spacing_grid(py::object grid, std::string* label) {
+  if (grid.is_none()) return std::nullopt;
+  fdr::sizing::Grid gr;
+  auto t = grid.cast<py::tuple>();
+  gr.nx = t[0].cast<std::size_t>();
+  gr.ny = t[1].cast<std::size_t>();
+  gr.x0 = t[2].cast<double>();
+  gr.y0 = t[3].cast<double>();
+  gr.dx = t[4].cast<double>();
+  gr.dy = t[5].cast<double>();
+  auto vals = t[6].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  if (static_cast<std::size_t>(vals.size()) != gr.nx * gr.ny)
+    throw fdr::Error(fdr::ExitCode::kInvalidSpacing, "the spacing callable returned " + std::to_string(vals.size()) +
+                                                         " values for a grid of " + std::to_string(gr.nx * gr.ny));
+  gr.v.assign(vals.data(), vals.data() + vals.size());
+  *label = t[7].cast<std::string>();
+  return gr;
+}
 
-  // _triangulate(vertices, segments, holes, segment_markers, vertex_markers, spacing_spec, grid,
-  //              bound, min_angle, max_steiner, convex_hull, check, smooth)
-  // grid = None or (nx, ny, x0, y0, dx, dy, values, label): a spacing sampled by the Python side.
-  mod.def("_triangulate", [](py::array_t<double, py::array::c_style | py::array::forcecast> v,
-                             std::optional<py::array_t<long long, py::array::c_style | py::array::forcecast>> s,
-                             std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> h,
-                             std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> smark,
-                             std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> vmark,
-                             const std::string& spec, py::object grid, double bound, double min_angle,
-                             std::uint64_t max_steiner, bool convex_hull, bool check, int smooth) {
-    auto out = std::make_shared<PyMesh>();
-    fdr::Pslg g = make_pslg(v, s, h, smark, vmark);
-    fdr::sizing::Grid gr;
-    std::string label;
-    const bool has_grid = !grid.is_none();
-    if (has_grid) {
-      auto t = grid.cast<py::tuple>();
-      gr.nx = t[0].cast<std::size_t>();
-      gr.ny = t[1].cast<std::size_t>();
-      gr.x0 = t[2].cast<double>();
-      gr.y0 = t[3].cast<double>();
-      gr.dx = t[4].cast<double>();
-      gr.dy = t[5].cast<double>();
-      auto vals = t[6].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
-      if (static_cast<std::size_t>(vals.size()) != gr.nx * gr.ny)
-        throw fdr::Error(fdr::ExitCode::kInvalidSpacing, "the spacing callable returned " + std::to_string(vals.size()) +
-                                                             " values for a grid of " + std::to_string(gr.nx * gr.ny));
-      gr.v.assign(vals.data(), vals.data() + vals.size());
-      label = t[7].cast<std::string>();
-    }
-    fdr::TriangulateOptions o;
-    o.bound = bound;
-    o.min_angle_deg = min_angle;
-    o.max_steiner = max_steiner;
-    o.convex_hull = convex_hull;
-    o.check = check;
-    o.smooth_passes = smooth;
-    o.source = "vertices";
-    o.log = collector(&out->log);
-    {
-      py::gil_scoped_release nogil;
-      fdr::SizingPtr f = has_grid ? fdr::grid_spacing(std::move(gr), label) : fdr::make_spacing(spec);
-      static_cast<fdr::Mesh&>(out->m) = fdr::triangulate(g, std::move(f), o);
-    }
-    return out;
-  });
+// _triangulate(vertices, segments, holes, segment_markers, vertex_markers, spacing_spec, grid,
+//              bound, min_angle, max_steiner, convex_hull, check, smooth)
+// grid = None or (nx, ny, x0, y0, dx, dy, values, label): a spacing sampled by the Python side.
+std::shared_ptr<PyMesh> triangulate(py::array_t<double, py::array::c_style | py::array::forcecast> v,
+                                    std::optional<py::array_t<long long, py::array::c_style | py::array::forcecast>> s,
+                                    std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> h,
+                                    std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> smark,
+                                    std::optional<py::array_t<int, py::array::c_style | py::array::forcecast>> vmark,
+                                    const std::string& spec, py::object grid, double bound, double min_angle,
+                                    std::uint64_t max_steiner, bool convex_hull, bool check, int smooth) {
+  auto out = std::make_shared<PyMesh>();
+  fdr::Pslg g = make_pslg(v, s, h, smark, vmark);
+  std::string label;
+  std::optional<fdr::sizing::Grid> gr = spacing_grid(grid, &label);
+  fdr::TriangulateOptions o;
+  o.bound = bound;
+  o.min_angle_deg = min_angle;
+  o.max_steiner = max_steiner;
+  o.convex_hull = convex_hull;
+  o.check = check;
+  o.smooth_passes = smooth;
+  o.source = "vertices";
+  o.log = collector(&out->log);
+  {
+    py::gil_scoped_release nogil;
+    fdr::SizingPtr f = gr ? fdr::grid_spacing(std::move(*gr), label) : fdr::make_spacing(spec);
+    static_cast<fdr::Mesh&>(out->m) = fdr::triangulate(g, std::move(f), o);
+  }
+  return out;
+}
 
-  mod.def("_mesh", [](const std::vector<std::string>& args) {
-    auto out = std::make_shared<PyMesh>();
-    out->gis = true;
-    fdr::DomainOptions o = fdr::cli::parse_mesh_args(args);
-    {
-      py::gil_scoped_release nogil;
-      out->m = fdr::mesh_domain(o, {}, collector(&out->log));
-    }
-    return out;
-  });
+// _mesh(args): a GIS run with the arguments of `fdrmesh mesh`.
+std::shared_ptr<PyMesh> mesh_gis(const std::vector<std::string>& args) {
+  auto out = std::make_shared<PyMesh>();
+  out->gis = true;
+  fdr::DomainOptions o = fdr::cli::parse_mesh_args(args);
+  {
+    py::gil_scoped_release nogil;
+    out->m = fdr::mesh_domain(o, {}, collector(&out->log));
+  }
+  return out;
+}
 
-  // The `mesh` options of the CLI option table: (key, type, repeat, positional).
-  mod.def("_mesh_options", [] {
-    py::list l;
-    for (const auto& o : fdr::cli::option_table())
-      if (o.command == "mesh") l.append(py::make_tuple(o.key, o.type, o.repeat, o.positional, o.names));
-    return l;
-  });
+// The `mesh` options of the CLI option table: (key, type, repeat, positional, names).
+py::list mesh_options() {
+  py::list l;
+  for (const auto& o : fdr::cli::option_table())
+    if (o.command == "mesh") l.append(py::make_tuple(o.key, o.type, o.repeat, o.positional, o.names));
+  return l;
+}
 
-  py::class_<PyMesh, std::shared_ptr<PyMesh>>(mod, "Mesh", "A finished mesh (see fdrmesh.Mesh)")
-      .def_property_readonly("origin", [](const PyMesh& s) { return py::make_tuple(s.m.view.origin.x, s.m.view.origin.y); })
+// The Mesh's numpy arrays: read-only views into the C++ result.
+void bind_mesh_arrays(py::class_<PyMesh, std::shared_ptr<PyMesh>>& c) {
+  c.def_property_readonly("origin", [](const PyMesh& s) { return py::make_tuple(s.m.view.origin.x, s.m.view.origin.y); })
       .def_property_readonly("local_vertices", [](py::object self) {
         const PyMesh& s = self.cast<const PyMesh&>();
         const auto n = static_cast<py::ssize_t>(s.m.view.vertices.size());
@@ -277,8 +279,12 @@ PYBIND11_MODULE(_core, mod) {
         if (s.m.view.f.empty()) return py::none();
         const auto n = static_cast<py::ssize_t>(s.m.view.f.size());
         return view_array<double>(s, self, s.m.view.f.data(), {n}, {static_cast<py::ssize_t>(sizeof(double))});
-      })
-      .def_property_readonly("crs_wkt", [](const PyMesh& s) -> py::object {
+      });
+}
+
+// The Mesh's CRS, report, repairs, log and write().
+void bind_mesh_results(py::class_<PyMesh, std::shared_ptr<PyMesh>>& c) {
+  c.def_property_readonly("crs_wkt", [](const PyMesh& s) -> py::object {
         if (s.m.view.crs_wkt.empty()) return py::none();
         return py::str(s.m.view.crs_wkt);
       })
@@ -311,4 +317,22 @@ PYBIND11_MODULE(_core, mod) {
         if (s.gis) fdr::write_mesh(s.m, path, format);
         else fdr::write_mesh(static_cast<const fdr::Mesh&>(s.m), path, format);
       }, py::arg("path"), py::arg("format") = "");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, mod) {
+  mod.doc() = "fdrmesh core bindings (use the fdrmesh package)";
+  mod.attr("__version__") = fdr::kVersion;
+  bind_errors(mod);
+  mod.def("read_poly", &read_poly);
+  mod.def("default_spacing", [](py::array_t<double, py::array::c_style | py::array::forcecast> v) {
+    return fdr::default_spacing_spec(make_pslg(v, std::nullopt, std::nullopt, std::nullopt, std::nullopt));
+  });
+  mod.def("_triangulate", &triangulate);
+  mod.def("_mesh", &mesh_gis);
+  mod.def("_mesh_options", &mesh_options);
+  py::class_<PyMesh, std::shared_ptr<PyMesh>> mesh(mod, "Mesh", "A finished mesh (see fdrmesh.Mesh)");
+  bind_mesh_arrays(mesh);
+  bind_mesh_results(mesh);
 }

@@ -1,7 +1,7 @@
 // fdr::triangulate and fdr::Triangulator: one-shot == step-wise, refining further, errors.
 #include <gtest/gtest.h>
 #include <cmath>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "api/triangulate.hpp"
 
 namespace {

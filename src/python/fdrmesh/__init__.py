@@ -137,9 +137,9 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     semantics). spacing f: None (a twentieth of the box diagonal, the CLI's default), a number,
     a string as --spacing (expression in x, y or preset: "paper-f1", "0.1*paper-f2"), or a
     callable f(x, y) on numpy arrays, sampled in one call on a grid of `resolution` cells along
-    the longer side of the domain. convex_hull: mesh the convex hull (--convex-hull; needs a
-    build with issue 10's core support, UsageError otherwise). smooth: quality smoothing sweeps
-    after refinement (--smooth; 0, the CLI's value for .poly inputs, keeps the FDR mesh as is).
+    the longer side of the domain. convex_hull: mesh the convex hull (--convex-hull). smooth:
+    quality smoothing sweeps after refinement (--smooth; 0, the CLI's value for .poly inputs,
+    keeps the FDR mesh as is).
     Returns a Mesh; the GIL is released while meshing."""
     v = _np.ascontiguousarray(vertices, dtype=_np.float64)
     grid, spec = None, ""

@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 #include <vector>
-#include "api/stages.hpp"
+#include "api/core_stages.hpp"
 #include "api/triangulate.hpp"
 #include "mesh/take_view.hpp"
 

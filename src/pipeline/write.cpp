@@ -1,0 +1,160 @@
+// Write stage (write.hpp).
+#include "pipeline/write.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include "base/error.hpp"
+#include "base/path_util.hpp"
+#include "base/threads.hpp"
+#include "base/version.hpp"
+#include "pipeline/gis_backend.hpp"
+#include "predicates/predicates.hpp"
+#include "quality/rss.hpp"
+
+namespace fdr::pipeline {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The .cli written beside a Selafin output.
+std::string cli_path_of(const std::string& slf) {
+  const std::string e = lower_ext(slf);
+  return (e == "slf" ? slf.substr(0, slf.size() - 4) : slf) + ".cli";
+}
+
+// The .ele written beside a .node output.
+std::string ele_path_of(const std::string& node) {
+  const auto dot = node.find_last_of('.');
+  return (dot == std::string::npos ? node : node.substr(0, dot)) + ".ele";
+}
+
+// Per-triangle R/f(c), min angle and area in the metric frame, for outputs written in --output-crs.
+struct MetricTriangleValues {
+  std::vector<double> r_over_f, min_angle, area;
+};
+MetricTriangleValues metric_triangle_values(const mesh::MeshView& m, const sizing::SizingField& f) {
+  MetricTriangleValues v;
+  v.r_over_f.resize(m.triangles.size());
+  v.min_angle.resize(m.triangles.size());
+  v.area.resize(m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+    double r2;
+    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+    v.r_over_f[t] = std::sqrt(r2) / f(cc);
+    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+    auto ang = [](double x, double y, double z) {  // angle opposite x
+      return std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+    };
+    v.min_angle[t] = std::min({ang(la, lb, lc), ang(lb, lc, la), ang(lc, la, lb)});
+    v.area[t] = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  return v;
+}
+
+// The writers' options, with the run's metadata for the formats that store it.
+io::WriteOptions write_options(const WriteInput& w, const WriteParams& p) {
+  const sizing::SizingField& f = *w.in.f;
+  io::WriteOptions wo;
+  wo.f = &f;
+  wo.bound_B = p.bound;
+  wo.title = p.source;
+  wo.slf_double = p.slf_double;
+  wo.telemac_open_codes = p.telemac_codes;
+  if (stores_metadata(p.formats)) {
+    std::ostringstream js;
+    quality::write_json(w.report, js);
+    wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
+                   {"command_line", p.command_line},
+                   {"input", p.source},
+                   {"spacing", f.describe()},
+                   {"bound_B", std::to_string(p.bound)},
+                   {"min_angle_deg", std::to_string(p.min_angle_deg)},
+                   {"alpha", std::to_string(w.alpha)},
+                   {"crs", w.in.crs_name}};
+    wo.metadata.emplace_back("quality", std::move(js).str());  // moved, not copied: it can be large
+    for (const auto& kv : w.in.metadata) wo.metadata.push_back(kv);
+  }
+  wo.repairs = w.in.repairs;
+  return wo;
+}
+
+// The mesh files and what is written beside them (a Selafin's .cli, a .node's .ele): `written`
+// gets the outputs as named, `beside` the others.
+void write_meshes(const mesh::MeshView& m, const io::WriteOptions& wo, const WriteParams& p,
+                  std::vector<std::string>& written, std::vector<std::string>& beside) {
+  // The writers are on the GIS side (GeoPackage: SQLite, UGRID: netCDF): loaded only when there
+  // are outputs. Concurrent writers are safe: only GPKG, VTU and UGRID would evaluate f, and they
+  // get the report's values instead (or the --output-crs ones, with wo.f null).
+  if (!p.outputs.empty()) gis_backend().write_meshes(m, p.outputs, p.formats, wo, fdr::max_threads());
+  for (std::size_t i = 0; i < p.outputs.size(); ++i) {
+    written.push_back(p.outputs[i]);
+    if (p.formats[i] == io::Format::kSelafin) beside.push_back(cli_path_of(p.outputs[i]));
+    if (p.formats[i] == io::Format::kNode) beside.push_back(ele_path_of(p.outputs[i]));
+  }
+}
+
+}  // namespace
+
+bool stores_triangle_values(const std::vector<io::Format>& formats) {
+  return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
+  });
+}
+
+bool stores_metadata(const std::vector<io::Format>& formats) {
+  return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
+    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+  });
+}
+
+WrittenOutputs write_outputs(const WriteInput& w, const WriteParams& p, Clock::time_point t_start,
+                             const ProgressFn& progress) {
+  const auto t_write = Clock::now();
+  io::WriteOptions wo = write_options(w, p);
+  // --output-crs: quality columns are computed in the metric frame, then the copy is reprojected.
+  mesh::MeshView projected;
+  MetricTriangleValues metric;
+  const mesh::MeshView* to_write = &w.mesh;
+  if (p.gis && !p.output_crs.empty() && !p.outputs.empty()) {
+    metric = metric_triangle_values(w.mesh, *w.in.f);
+    projected = w.mesh;
+    gis_backend().reproject_mesh(projected, w.in, p.output_crs);
+    wo.f = nullptr;
+    wo.triangle_r_over_f = &metric.r_over_f;
+    wo.triangle_min_angle = &metric.min_angle;
+    wo.triangle_area = &metric.area;
+    to_write = &projected;
+  }
+  if (w.triangle_values) {
+    wo.f = nullptr;  // m.f holds f at the vertices; the triangles' values come from the report
+    wo.triangle_r_over_f = &w.triangle_values->r_over_f;
+    wo.triangle_min_angle = &w.triangle_values->min_angle_deg;
+    wo.triangle_area = &w.triangle_values->area;
+  }
+  // All or nothing: if a later output (mesh, spacing GeoTIFF, report) fails or the run is
+  // cancelled, the files already written are removed again.
+  WrittenOutputs out;
+  std::vector<std::string> beside;
+  if (!p.write_spacing.empty()) beside.push_back(p.write_spacing);
+  try {
+    write_meshes(*to_write, wo, p, out.paths, beside);
+    if (p.gis && !p.write_spacing.empty()) gis_backend().write_spacing_geotiff(w.in, p.write_spacing);
+    w.report.run.write_s = since(t_write);
+    w.report.run.total_s = since(t_start);
+    w.report.run.peak_rss_mb = quality::peak_rss_mb_value();
+    if (!p.report_json.empty()) {
+      quality::write_json_file(w.report, p.report_json);
+      out.paths.push_back(p.report_json);
+    }
+    if (progress && !progress(1.0, "done")) throw Error(ExitCode::kCancelled, "cancelled during done");
+  } catch (...) {
+    for (const auto& f : out.paths) std::remove(f.c_str());
+    for (const auto& f : beside) std::remove(f.c_str());
+    throw;
+  }
+  return out;
+}
+
+}  // namespace fdr::pipeline
