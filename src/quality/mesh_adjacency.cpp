@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <thread>
 #include <unordered_set>
 
+#include "base/parallel.hpp"
 #include "quality/orthogonality.hpp"
 
 namespace fdr::quality {
@@ -501,9 +501,7 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
   if (!s.usable()) return {};
   // Vertices in two fixed halves (results per vertex do not depend on the split).
   if (threads > 1 && nv >= 4096) {
-    std::thread other([&] { s.search(nv / 2, nv); });
-    s.search(0, nv / 2);
-    other.join();
+    run_beside([&] { s.search(nv / 2, nv); }, [&] { s.search(0, nv / 2); });
   } else {
     s.search(0, nv);
   }
