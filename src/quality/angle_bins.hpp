@@ -88,17 +88,19 @@ class AngleBins {
   // The bin of the angle with dot product d: the number of inner edges phi_k <= t (the first and
   // last bins take the values outside, as Histogram::add). False when a comparison is unclear.
   // d - acr cot(phi_k) increases with k; <= 0 means t >= phi_k. Every edge is compared (no
-  // branch on the data): a clear comparison far from the angle's bin cannot be wrong.
+  // branch on the data): a clear comparison far from the angle's bin cannot be wrong. The counts
+  // are doubles (exact for these small numbers) so that the compiler compares two edges per
+  // instruction.
   template <std::size_t N>
   static bool bin(const Edges<N>& e, double d, double acr, double tol, std::size_t& out) {
     if (!e.ok) return false;
-    unsigned k = 0, unclear = 0;
+    double k = 0, unclear = 0;
     for (std::size_t i = 0; i < N; ++i) {
       const double g = d - acr * e.cot[i];
-      k += g <= 0;
-      unclear |= !(std::fabs(g) > tol);
+      k += g <= 0 ? 1.0 : 0.0;
+      unclear += std::fabs(g) > tol ? 0.0 : 1.0;  // NaN: unclear
     }
-    out = k;
+    out = static_cast<std::size_t>(k);
     return unclear == 0;
   }
   Edges<12> lo_;  // the report: 11 inner edges (0..60 deg by 5)

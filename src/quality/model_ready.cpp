@@ -1,4 +1,4 @@
-// Model readiness of a final mesh (issue 11): edges against hmin, skinny triangles, mean quality,
+// Model readiness of a final mesh: edges against hmin, skinny triangles, mean quality,
 // coast deviation both ways, connected pieces, gravity-wave time step, removed features.
 // Measurements only (double precision); no combinatorial decision is taken here.
 #include "quality/compensated_sum.hpp"

@@ -101,16 +101,19 @@ void measure_triangles(TrianglePhase& ph, const PassInputs& in, bool f_shared, u
     return;
   }
   bool started = false;
+  // Work units of several sum chunks: fewer places where two workers write the same vertices.
+  constexpr std::size_t kChunksPerUnit = 8;
   parallel_chunks(
-      nchunks,
-      [&](std::size_t c, unsigned w) {
+      (nchunks + kChunksPerUnit - 1) / kChunksPerUnit,
+      [&](std::size_t u, unsigned w) {
         if (w == 0 && !started) {
           before_first();
           started = true;
         }
         const bool with_f = w == 0 || f_shared || in.f == nullptr;
-        ph.passes[w]->measure<true>(c * kSumChunk, std::min(nt, (c + 1) * kSumChunk), with_f);
-        ph.without_f[c] = !with_f;
+        const std::size_t c_hi = std::min(nchunks, (u + 1) * kChunksPerUnit);
+        ph.passes[w]->measure<true>(u * kChunksPerUnit * kSumChunk, std::min(nt, c_hi * kSumChunk), with_f);
+        for (std::size_t c = u * kChunksPerUnit; c < c_hi; ++c) ph.without_f[c] = !with_f;
       },
       threads);
   if (!started) before_first();

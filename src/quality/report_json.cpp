@@ -1,4 +1,4 @@
-// The JSON report (schema in the README's "Quality report"), written atomically to a file.
+// The JSON report, written atomically to a file.
 #include <cmath>
 #include <cstdio>
 #include <fstream>

@@ -16,7 +16,7 @@ namespace fdr::quality {
 class TopK {
  public:
   explicit TopK(std::size_t k = 1) : k_(std::max<std::size_t>(k, 1)) {}
-  void add(double x) {
+  __attribute__((always_inline)) void add(double x) {
     if (!(x < thr_)) {
       v_.push_back(x);
       if (v_.size() >= 2 * k_) trim();
@@ -32,7 +32,7 @@ class TopK {
   void release() { std::vector<double>().swap(v_); }
 
  private:
-  void trim() {
+  __attribute__((noinline)) void trim() {
     const auto cut = v_.begin() + static_cast<std::ptrdiff_t>(v_.size() - k_);
     std::nth_element(v_.begin(), cut, v_.end(), less);
     thr_ = *cut;
