@@ -60,10 +60,10 @@ std::vector<T> large_vector(std::size_t n, const T& x) {
 
 // The per-vertex arrays; their fresh pages are written on two threads when `two`.
 void prepare_vertex_arrays(MeshWalkPrep& prep, std::vector<double>* fill, std::size_t nv, bool walk, bool two) {
-  auto shortest = [&] { prep.nn2 = large_vector(nv, kInf); };
+  auto shortest = [&] { prep.nn2.assign(nv, kInf); };
   auto f_and_corners = [&] {
     if (fill) *fill = large_vector(nv, 0.0);
-    if (walk) prep.tri_of_vertex = large_vector<Index>(nv, kNoId);
+    if (walk) prep.tri_of_vertex.assign(nv, kNoId);
   };
   if (two) {
     run_beside(shortest, f_and_corners);
@@ -271,8 +271,8 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
   add_orthogonality(r, fig, top_k, m, nb);
 
   // Vertex metrics: nn(p) is exact over all vertices (not only mesh neighbours).
-  const std::vector<double> nn = nearest_from(std::move(walk_sq), std::move(prep.nn2), m.vertices);
-  prep.tri_of_vertex = {};
+  const std::vector<double> nn = nearest_from(std::move(walk_sq), std::move(prep.nn2).take(), m.vertices);
+  prep.tri_of_vertex.release();
   QL("merge+p99+take");
   if (nv >= 2) r.nn_min = *std::min_element(nn.begin(), nn.end());
   const bool have_vertex_f = f != nullptr || m.f.size() == nv;
