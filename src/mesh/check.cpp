@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
+#include "base/triangle_geometry.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::mesh {
@@ -109,7 +110,7 @@ CheckResult check_spacing(const Triangulation& tri, const std::function<double(P
     if (tri.dead(t)) continue;
     const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
     double r2 = 0;
-    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+    const Point2 cc = geom::circumcentre(a, b, c, &r2);
     const double fc = f(cc);
     if (!(fc > 0) || r2 > bound * bound * fc * fc) {
       std::ostringstream s;

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <thread>
 #include <unordered_set>
 
+#include "base/parallel.hpp"
 #include "quality/orthogonality.hpp"
 
 namespace fdr::quality {
@@ -414,11 +414,11 @@ namespace {
 struct MeshNearestNeighbours::Impl {
   const mesh::MeshView& m;
   const std::vector<Index>& nb;
-  const std::vector<Index>& tri_of_vertex;
+  const LargeArray<Index>& tri_of_vertex;
   std::vector<double> nn;
   bool usable = false, certify = false;
   std::unique_ptr<EdgeIndex> si;
-  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const std::vector<Index>& tov)
+  Impl(const mesh::MeshView& mm, const std::vector<Index>& nbb, const LargeArray<Index>& tov)
       : m(mm), nb(nbb), tri_of_vertex(tov) {}
 };
 
@@ -426,11 +426,11 @@ MeshNearestNeighbours::MeshNearestNeighbours(const mesh::MeshView& m, const std:
                                              MeshWalkPrep& prep) {
   const std::size_t nv = m.vertices.size(), nt = m.triangles.size();
   impl_ = std::make_unique<Impl>(m, nb, prep.tri_of_vertex);
-  const std::vector<Index>& tri_of_vertex = prep.tri_of_vertex;
+  const LargeArray<Index>& tri_of_vertex = prep.tri_of_vertex;
   if (nv < 2 || nb.size() != 3 * nt || prep.nn2.size() != nv || tri_of_vertex.size() != nv) return;
   // One triangle of every vertex (prep.nn2 is left intact when the walk cannot be used).
   if (std::find(tri_of_vertex.begin(), tri_of_vertex.end(), kNoId) != tri_of_vertex.end()) return;
-  impl_->nn = std::move(prep.nn2);  // upper bounds from the mesh edges
+  impl_->nn = std::move(prep.nn2).take();  // upper bounds from the mesh edges
   impl_->usable = true;
 
   // S: the boundary and the constrained edges (m.edges), as half-edges, sorted.
@@ -501,9 +501,7 @@ std::vector<double> mesh_nearest_neighbour_sq(const mesh::MeshView& m, const std
   if (!s.usable()) return {};
   // Vertices in two fixed halves (results per vertex do not depend on the split).
   if (threads > 1 && nv >= 4096) {
-    std::thread other([&] { s.search(nv / 2, nv); });
-    s.search(0, nv / 2);
-    other.join();
+    run_beside([&] { s.search(nv / 2, nv); }, [&] { s.search(0, nv / 2); });
   } else {
     s.search(0, nv);
   }

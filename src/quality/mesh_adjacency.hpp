@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 #include <vector>
+#include "base/large_array.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace fdr::quality {
@@ -15,8 +16,8 @@ std::vector<Index> half_edge_neighbours(const mesh::MeshView& m);
 
 // What one pass over the triangles (compute_orthogonality with `prep`) gathers for the search.
 struct MeshWalkPrep {
-  std::vector<double> nn2;           // per vertex: squared length of its shortest mesh edge (+inf: none)
-  std::vector<Index> tri_of_vertex;  // per vertex: one triangle with that corner (kNoId: none)
+  LargeArray<double> nn2;           // per vertex: squared length of its shortest mesh edge (+inf: none)
+  LargeArray<Index> tri_of_vertex;  // per vertex: one triangle with that corner (kNoId: none)
   std::vector<Index> not_delaunay;   // interior half-edges (one per edge) whose far apex lies strictly
                                      // inside the triangle's circumcircle (exact incircle)
   bool ccw = true;                   // every triangle counter-clockwise (exact orient2d)

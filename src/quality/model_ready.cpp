@@ -1,18 +1,15 @@
-// Model readiness of a final mesh (issue 11): edges against hmin, skinny triangles, mean quality,
+// Model readiness of a final mesh: edges against hmin, skinny triangles, mean quality,
 // coast deviation both ways, connected pieces, gravity-wave time step, removed features.
 // Measurements only (double precision); no combinatorial decision is taken here.
 #include "quality/compensated_sum.hpp"
 #include "quality/model_ready.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <thread>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <ostream>
 #include <string>
@@ -20,6 +17,7 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "base/triangle_geometry.hpp"
 #include "base/step_laps.hpp"
 
 namespace fdr::quality {
@@ -27,22 +25,14 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kGravity = 9.81;                   // m/s^2
-const double kCos20 = std::cos(20.0 * 3.14159265358979323846 / 180.0);
-const double kCos30 = std::cos(30.0 * 3.14159265358979323846 / 180.0);
-const double kFourSqrt3 = 4.0 * std::sqrt(3.0);
+const double kCos20 = std::cos(20.0 * std::numbers::pi / 180.0);
+const double kCos30 = std::cos(30.0 * std::numbers::pi / 180.0);
 constexpr std::size_t kMaxSamples = 4'000'000;      // cap on coast-deviation samples per direction
 
-// Twice the signed area of triangle p[0] p[1] p[2], and its quality 4 sqrt(3) area / sum of
-// squared edges from the edge lengths `len`: one definition for every path (the sums must agree
-// bit for bit).
-inline double cross2(const Point2 (&p)[3]) {
-  return (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
-}
-inline double quality_of(const double (&len)[3], double cr) {
-  const double sum2 = len[0] * len[0] + len[1] * len[1] + len[2] * len[2];
-  return sum2 > 0 ? kFourSqrt3 * 0.5 * std::fabs(cr) / sum2 : 0.0;
-}
-
+// Twice the signed area of triangle p[0] p[1] p[2], and its mean-ratio quality (unsigned): one
+// definition for every path (the sums must agree bit for bit).
+inline double cross2(const Point2 (&p)[3]) { return geom::cross2(p[0], p[1], p[2]); }
+inline double quality_of(const Point2 (&p)[3]) { return std::fabs(geom::mean_ratio_quality(p[0], p[1], p[2])); }
 
 // Uniform grid over segments for nearest-segment distance queries. Each segment is cut into
 // pieces no longer than a cell and registered in the (at most 2x2) cells of each piece's box, so
@@ -339,7 +329,7 @@ ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const Mode
     const double len[3] = {dist(p[0], p[1]), dist(p[1], p[2]), dist(p[2], p[0])};
     const double cr = cross2(p);
     area.add(0.5 * cr);
-    const double q = quality_of(len, cr);
+    const double q = quality_of(p);
     qsum.add(q);
     if (!r.min_quality || q < *r.min_quality) r.min_quality = q;
     // The smallest angle is at the corner opposite the shortest edge; it is acute, so comparing
@@ -372,12 +362,204 @@ ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const Mode
   return r;
 }
 
+namespace {
+
+using Key = std::pair<Index, Index>;  // an edge: (smaller id, larger id)
+
+// The figures of a contiguous range of triangles (compute_model_readiness).
+struct RangeFigures {
+  std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
+  double shortest = kInf;
+  Key shortest_key{kNoId, kNoId};  // the first in the plain path's order among equal lengths
+  std::optional<double> min_q;
+  std::optional<TimeStep> step;
+  std::vector<Key> boundary;  // the boundary edges
+};
+
+// Measures ranges of triangles with the mesher's adjacency; an edge is counted once, from its
+// boundary half-edge or from its interior half-edge u -> w with u < w.
+class ReadinessPass {
+ public:
+  ReadinessPass(const mesh::MeshView& m, const ModelReadyInputs& in, double hmin)
+      : m_(m), have_z_(!m.z.empty() && m.z.size() == m.num_vertices()),
+        min_depth_(in.min_depth_m > 0 ? in.min_depth_m : 0.0), hmin_(hmin) {}
+
+  // The triangles [lo, hi) in order; `sums` (when given) adds their areas and qualities in order.
+  void measure(std::size_t lo, std::size_t hi, RangeFigures& p, CompensatedSum* area, CompensatedSum* qsum) const;
+  // Only the area and quality sums of [lo, hi), in order: the values measure() adds.
+  void sums(std::size_t lo, std::size_t hi, CompensatedSum& area, CompensatedSum& qsum) const;
+
+ private:
+  // A triangle's time step h / sqrt(g depth), h its shortest altitude, when it may be below `best`.
+  void time_step(std::size_t t, const Point2 (&pt)[3], double cr, double lmax, RangeFigures& p, double& best) const;
+
+  const mesh::MeshView& m_;
+  bool have_z_;
+  double min_depth_, hmin_;
+};
+
+void ReadinessPass::measure(std::size_t lo, std::size_t hi, RangeFigures& p, CompensatedSum* area,
+                            CompensatedSum* qsum) const {
+  const auto& T = m_.triangles;
+  const auto& V = m_.vertices;
+  const auto& nb = m_.neighbours;
+  const double half = 0.5 * hmin_, tenth = 0.1 * hmin_;
+  // The accumulators in locals (the per-triangle stores below could alias them), written back.
+  std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
+  double shortest = p.shortest, min_q = p.min_q.value_or(kInf), best_dt = p.step ? p.step->dt_s : kInf;
+  Key shortest_key = p.shortest_key;
+  for (std::size_t t = lo; t < hi; ++t) {
+    if (t + 16 < hi)  // the corners a few triangles ahead (scattered loads)
+      for (const Index v : T[t + 16]) {
+        __builtin_prefetch(&V[v]);
+        if (have_z_) __builtin_prefetch(&m_.z[v]);
+      }
+    const auto& tri = T[t];
+    const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
+    const double len[3] = {dist(pt[0], pt[1]), dist(pt[1], pt[2]), dist(pt[2], pt[0])};
+    for (int k = 0; k < 3; ++k) {
+      const Index u = tri[k], w = tri[k == 2 ? 0 : k + 1];
+      const bool boundary = nb[3 * t + k] == kNoId;
+      if (!boundary && !(u < w)) continue;
+      const Key key{std::min(u, w), std::max(u, w)};
+      if (boundary) p.boundary.push_back(key);
+      ++edges;
+      // dist() is symmetric bit for bit: len[k] is the plain path's dist(smaller, larger).
+      if (len[k] < shortest || (len[k] == shortest && key < shortest_key)) {
+        shortest = len[k];
+        shortest_key = key;
+      }
+      below_half += len[k] < half;
+      below_tenth += len[k] < tenth;
+    }
+    const double cr = cross2(pt);
+    const double qt = quality_of(pt);
+    if (area) {
+      area->add(0.5 * cr);
+      qsum->add(qt);
+    }
+    if (qt < min_q) min_q = qt;  // qt is finite (the mesher's coordinates)
+    const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
+    const int apex = (ks + 2) % 3;
+    const double lu = len[(ks + 1) % 3], lv = len[(ks + 2) % 3];
+    if (lu > 0 && lv > 0) {
+      // c = d / (lu lv) > cos 30 (and so > cos 20) is impossible when d is clearly below
+      // cos 30 * lu lv (the division's rounding is ~1e-16 of c): no division then.
+      const double d = dot(pt[(apex + 1) % 3] - pt[apex], pt[(apex + 2) % 3] - pt[apex]), l = lu * lv;
+      if (!(d < kCos30 * l * (1 - 1e-12))) {
+        const double c = d / l;
+        below20 += c > kCos20;
+        below30 += c > kCos30;
+      }
+    } else {  // c = 1
+      below20 += 1.0 > kCos20;
+      below30 += 1.0 > kCos30;
+    }
+    if (have_z_) time_step(t, pt, cr, std::max({len[0], len[1], len[2]}), p, best_dt);
+  }
+  p.edges += edges;
+  if (hmin_ > 0) {
+    p.below_half += below_half;
+    p.below_tenth += below_tenth;
+  }
+  p.below20 += below20;
+  p.below30 += below30;
+  p.shortest = shortest;
+  p.shortest_key = shortest_key;
+  if (min_q < kInf) p.min_q = min_q;
+}
+
+void ReadinessPass::time_step(std::size_t t, const Point2 (&pt)[3], double cr, double lmax, RangeFigures& p,
+                              double& best) const {
+  const auto& tri = m_.triangles[t];
+  const double h = lmax > 0 ? std::fabs(cr) / lmax : 0.0;  // shortest altitude = 2 * area / longest edge
+  const double depth = std::max(-(m_.z[tri[0]] + m_.z[tri[1]] + m_.z[tri[2]]) / 3.0, min_depth_);
+  // dt = h / sqrt(g depth) >= best is certain when h^2 >= best^2 g depth by a margin far above
+  // the rounding of either side: no square root or division then.
+  if (!(depth > 0 && std::isfinite(depth)) || h * h > best * best * (kGravity * depth) * (1 + 1e-9)) return;
+  const double dt = h / std::sqrt(kGravity * depth);
+  if (!p.step || dt < p.step->dt_s) {
+    p.step = TimeStep{dt, h, depth, m_.origin + (1.0 / 3.0) * (pt[0] + pt[1] + pt[2]), t};
+    best = dt;
+  }
+}
+
+void ReadinessPass::sums(std::size_t lo, std::size_t hi, CompensatedSum& area, CompensatedSum& qsum) const {
+  const auto& T = m_.triangles;
+  const auto& V = m_.vertices;
+  for (std::size_t t = lo; t < hi; ++t) {
+    if (t + 16 < hi)
+      for (const Index v : T[t + 16]) __builtin_prefetch(&V[v]);
+    const auto& tri = T[t];
+    const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
+    area.add(0.5 * cross2(pt));
+    qsum.add(quality_of(pt));
+  }
+}
+
+// The connected pieces: a flood fill over the triangles through the adjacency (one visit each).
+std::size_t count_pieces(const std::vector<Index>& nb, std::size_t nt) {
+  std::vector<std::uint8_t> seen(nt, 0);
+  std::vector<Index> stack;
+  std::size_t n = 0;
+  for (std::size_t s0 = 0; s0 < nt; ++s0) {
+    if (seen[s0]) continue;
+    ++n;
+    seen[s0] = 1;
+    stack.push_back(static_cast<Index>(s0));
+    while (!stack.empty()) {
+      const Index t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const Index g = nb[3 * static_cast<std::size_t>(t) + k];
+        if (g != kNoId && !seen[g / 3]) {
+          seen[g / 3] = 1;
+          stack.push_back(g / 3);
+        }
+      }
+    }
+  }
+  return n;
+}
+
+// The figures of the front range [0, split) and the back range [split, nt) into r (ties go to the
+// front, first in triangle order); returns the mesh boundary in the plain path's order.
+std::vector<std::pair<Point2, Point2>> merge_ranges(ModelReadiness& r, RangeFigures& front, const RangeFigures& back,
+                                                     const mesh::MeshView& m) {
+  const auto& V = m.vertices;
+  r.edges = front.edges + back.edges;
+  r.edges_below_half_hmin = front.below_half + back.below_half;
+  r.edges_below_tenth_hmin = front.below_tenth + back.below_tenth;
+  r.triangles_below_20_deg = front.below20 + back.below20;
+  r.triangles_below_30_deg = front.below30 + back.below30;
+  const RangeFigures& se =
+      back.shortest < front.shortest || (back.shortest == front.shortest && back.shortest_key < front.shortest_key)
+          ? back : front;
+  if (std::isfinite(se.shortest)) {
+    r.shortest_edge_m = se.shortest;
+    r.shortest_edge_at = m.origin + 0.5 * (V[se.shortest_key.first] + V[se.shortest_key.second]);
+  }
+  r.min_quality = front.min_q;
+  if (back.min_q && (!r.min_quality || *back.min_q < *r.min_quality)) r.min_quality = back.min_q;
+  r.time_step = front.step;
+  if (back.step && (!r.time_step || back.step->dt_s < r.time_step->dt_s)) r.time_step = back.step;
+  // The boundary in the plain path's order: by (smaller id, larger id), from the smaller.
+  std::vector<Key>& keys = front.boundary;
+  keys.insert(keys.end(), back.boundary.begin(), back.boundary.end());
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<Point2, Point2>> boundary(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) boundary[i] = {V[keys[i].first], V[keys[i].second]};
+  return boundary;
+}
+
+}  // namespace
+
 // With the mesher's adjacency (m.neighbours): every figure of compute_model_readiness_plain, the
-// same values bit for bit, without grouping and sorting the half-edges: an edge is counted once,
-// from its boundary half-edge or from its interior half-edge u -> w with u < w; the pieces join
-// triangles through m.neighbours. The triangles in chunks claimed from the front by the calling
-// thread and from the back by a second one (two contiguous ranges: first-in-order ties are kept
-// by preferring the front's), the compensated sums added afterwards in triangle order.
+// same values bit for bit, without grouping and sorting the half-edges; the pieces join
+// triangles through m.neighbours. With two threads the triangles are cut in a front and a back
+// half: the second thread counts the pieces and measures the back half while the calling thread
+// measures the front half and then adds the back half's area and quality in order (the
+// compensated sums depend on the order).
 ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReadyInputs& in) {
   const std::size_t nv = m.num_vertices(), nt = m.num_triangles();
   if (m.neighbours.size() != 3 * nt || nt == 0) return compute_model_readiness_plain(m, in);
@@ -388,201 +570,31 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   StepLaps L(debug::Aid::kReport, "  model readiness");  // developer aid (base/step_laps.hpp)
   const double hmin = r.hmin_m.value_or(0.0);
   r.triangles = nt;
-
-  const auto& T = m.triangles;
-  const auto& V = m.vertices;
-  const auto& nb = m.neighbours;
-  const bool have_z = !m.z.empty() && m.z.size() == nv;
-  const double min_depth = in.min_depth_m > 0 ? in.min_depth_m : 0.0;
-  const double half = 0.5 * hmin, tenth = 0.1 * hmin;
-  using Key = std::pair<Index, Index>;
-  // The area and quality sums run over the triangles in order (compensated sums depend on the
-  // order): the calling thread adds its front range as it measures it, then the back range's
-  // values, computed again from the mesh (sums below, the same operations) while the second thread
-  // measures. Before, two per-triangle arrays (16 MiB at 1 M triangles, all of it
-  // faulted in afresh) held them for a pass in order at the end.
+  const ReadinessPass pass(m, in, hmin);
   CompensatedSum area, qsum;
-  struct Part {
-    std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
-    double shortest = kInf;
-    Key shortest_key{kNoId, kNoId};  // (smaller id, larger id): the first in the plain path's order
-    std::optional<double> min_q;
-    std::optional<TimeStep> step;
-    std::vector<Key> boundary;  // the boundary edges
-  };
-  auto measure = [&](std::size_t lo, std::size_t hi, Part& p, bool sum) {
-    // The accumulators in locals (the per-triangle stores below could alias them), written back.
-    std::size_t edges = 0, below_half = 0, below_tenth = 0, below20 = 0, below30 = 0;
-    double shortest = p.shortest, min_q = p.min_q.value_or(kInf), best_dt = p.step ? p.step->dt_s : kInf;
-    Key shortest_key = p.shortest_key;
-    for (std::size_t t = lo; t < hi; ++t) {
-      if (t + 16 < hi)  // the corners a few triangles ahead (scattered loads)
-        for (const Index v : T[t + 16]) {
-          __builtin_prefetch(&V[v]);
-          if (have_z) __builtin_prefetch(&m.z[v]);
-        }
-      const auto& tri = T[t];
-      const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
-      const double len[3] = {dist(pt[0], pt[1]), dist(pt[1], pt[2]), dist(pt[2], pt[0])};
-      for (int k = 0; k < 3; ++k) {
-        const Index u = tri[k], w = tri[k == 2 ? 0 : k + 1];
-        const bool boundary = nb[3 * t + k] == kNoId;
-        if (!boundary && !(u < w)) continue;
-        const Key key{std::min(u, w), std::max(u, w)};
-        if (boundary) p.boundary.push_back(key);
-        ++edges;
-        // dist() is symmetric bit for bit: len[k] is the plain path's dist(smaller, larger).
-        if (len[k] < shortest || (len[k] == shortest && key < shortest_key)) {
-          shortest = len[k];
-          shortest_key = key;
-        }
-        below_half += len[k] < half;
-        below_tenth += len[k] < tenth;
-      }
-      const double cr = cross2(pt);
-      const double qt = quality_of(len, cr);
-      if (sum) {
-        area.add(0.5 * cr);
-        qsum.add(qt);
-      }
-      if (qt < min_q) min_q = qt;  // qt is finite (the mesher's coordinates)
-      const int ks = len[0] <= len[1] ? (len[0] <= len[2] ? 0 : 2) : (len[1] <= len[2] ? 1 : 2);
-      const int apex = (ks + 2) % 3;
-      const double lu = len[(ks + 1) % 3], lv = len[(ks + 2) % 3];
-      if (lu > 0 && lv > 0) {
-        // c = d / (lu lv) > cos 30 (and so > cos 20) is impossible when d is clearly below
-        // cos 30 * lu lv (the division's rounding is ~1e-16 of c): no division then.
-        const double d = dot(pt[(apex + 1) % 3] - pt[apex], pt[(apex + 2) % 3] - pt[apex]), l = lu * lv;
-        if (!(d < kCos30 * l * (1 - 1e-12))) {
-          const double c = d / l;
-          below20 += c > kCos20;
-          below30 += c > kCos30;
-        }
-      } else {  // c = 1
-        below20 += 1.0 > kCos20;
-        below30 += 1.0 > kCos30;
-      }
-      if (have_z) {
-        const double lmax = std::max({len[0], len[1], len[2]});
-        const double h = lmax > 0 ? std::fabs(cr) / lmax : 0.0;
-        const double depth = std::max(-(m.z[tri[0]] + m.z[tri[1]] + m.z[tri[2]]) / 3.0, min_depth);
-        // dt = h / sqrt(g depth) >= best_dt is certain when h^2 >= best_dt^2 g depth by a margin
-        // far above the rounding of either side: no square root or division then.
-        if (depth > 0 && std::isfinite(depth) && !(h * h > best_dt * best_dt * (kGravity * depth) * (1 + 1e-9))) {
-          const double dt = h / std::sqrt(kGravity * depth);
-          if (!p.step || dt < p.step->dt_s) {
-            p.step = TimeStep{dt, h, depth, m.origin + (1.0 / 3.0) * (pt[0] + pt[1] + pt[2]), t};
-            best_dt = dt;
-          }
-        }
-      }
-    }
-    p.edges += edges;
-    if (hmin > 0) {
-      p.below_half += below_half;
-      p.below_tenth += below_tenth;
-    }
-    p.below20 += below20;
-    p.below30 += below30;
-    p.shortest = shortest;
-    p.shortest_key = shortest_key;
-    if (min_q < kInf) p.min_q = min_q;
-  };
-  // Two contiguous ranges: [0, split) on this thread, [split, nt) on the other.
-  Part front, back;
-  constexpr std::size_t kChunk = 8192;
-  const std::size_t nchunks = (nt + kChunk - 1) / kChunk;
-  const bool two = max_threads() > 1 && nchunks >= 4;
+  RangeFigures front, back;
   std::size_t pieces = 0;
-  auto count_pieces = [&] {  // flood fill over the triangles through the adjacency (one visit each)
-    std::vector<std::uint8_t> seen(nt, 0);
-    std::vector<Index> stack;
-    std::size_t n = 0;
-    for (std::size_t s0 = 0; s0 < nt; ++s0) {
-      if (seen[s0]) continue;
-      ++n;
-      seen[s0] = 1;
-      stack.push_back(static_cast<Index>(s0));
-      while (!stack.empty()) {
-        const Index t = stack.back();
-        stack.pop_back();
-        for (int k = 0; k < 3; ++k) {
-          const Index g = nb[3 * static_cast<std::size_t>(t) + k];
-          if (g != kNoId && !seen[g / 3]) {
-            seen[g / 3] = 1;
-            stack.push_back(g / 3);
-          }
-        }
-      }
-    }
-    return n;
-  };
-  // The sums over [lo, hi), measured on the other thread: the values measure() computes.
-  auto sums = [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t t = lo; t < hi; ++t) {
-      if (t + 16 < hi)
-        for (const Index v : T[t + 16]) __builtin_prefetch(&V[v]);
-      const auto& tri = T[t];
-      const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
-      const double len[3] = {dist(pt[0], pt[1]), dist(pt[1], pt[2]), dist(pt[2], pt[0])};
-      const double cr = cross2(pt);
-      area.add(0.5 * cr);
-      qsum.add(quality_of(len, cr));
-    }
-  };
-  if (two) {
-    std::unique_ptr<std::atomic<unsigned char>[]> claimed(new std::atomic<unsigned char>[nchunks]);
-    for (std::size_t c = 0; c < nchunks; ++c) claimed[c].store(0, std::memory_order_relaxed);
+  constexpr std::size_t kMinHalf = 3 * 8192;  // a second thread costs more than it saves below
+  if (max_threads() > 1 && nt > kMinHalf) {
+    const std::size_t split = nt / 2;
     run_beside(
         [&] {
-          // The pieces first (they read only the adjacency): the calling thread meanwhile
-          // measures from the front, and the chunks left when they are counted are shared.
-          pieces = count_pieces();
-          std::size_t lo = nt;
-          for (std::size_t c = nchunks; c-- > 0;) {
-            if (claimed[c].exchange(1)) break;
-            const std::size_t clo = c * kChunk;
-            measure(clo, lo, back, false);
-            lo = clo;
-          }
+          pieces = count_pieces(m.neighbours, nt);
+          pass.measure(split, nt, back, nullptr, nullptr);
         },
         [&] {
-          std::size_t c = 0;
-          for (; c < nchunks && !claimed[c].exchange(1); ++c)
-            measure(c * kChunk, std::min(nt, (c + 1) * kChunk), front, true);
-          sums(std::min(nt, c * kChunk), nt);  // the back range (the chunks not claimed here), in order
+          pass.measure(0, split, front, &area, &qsum);
+          pass.sums(split, nt, area, qsum);
         });
   } else {
-    measure(0, nt, front, true);
-    pieces = count_pieces();
+    pass.measure(0, nt, front, &area, &qsum);
+    pieces = count_pieces(m.neighbours, nt);
   }
   L("measure");
-  // Merge: the front range comes first in triangle order.
-  r.edges = front.edges + back.edges;
-  r.edges_below_half_hmin = front.below_half + back.below_half;
-  r.edges_below_tenth_hmin = front.below_tenth + back.below_tenth;
-  r.triangles_below_20_deg = front.below20 + back.below20;
-  r.triangles_below_30_deg = front.below30 + back.below30;
-  const Part& se = back.shortest < front.shortest || (back.shortest == front.shortest && back.shortest_key < front.shortest_key)
-                       ? back : front;
-  if (std::isfinite(se.shortest)) {
-    r.shortest_edge_m = se.shortest;
-    const Point2 pa = V[se.shortest_key.first], pb = V[se.shortest_key.second];
-    r.shortest_edge_at = m.origin + 0.5 * (pa + pb);
-  }
-  r.min_quality = front.min_q;
-  if (back.min_q && (!r.min_quality || *back.min_q < *r.min_quality)) r.min_quality = back.min_q;
-  r.time_step = front.step;
-  if (back.step && (!r.time_step || back.step->dt_s < r.time_step->dt_s)) r.time_step = back.step;
+  const std::vector<std::pair<Point2, Point2>> boundary = merge_ranges(r, front, back, m);
   r.mean_quality = qsum.value() / static_cast<double>(nt);
   r.mesh_area_m2 = area.value();
   r.mesh_pieces = pieces;
-  // The boundary in the plain path's order: by (smaller id, larger id), from the smaller.
-  std::vector<Key>& keys = front.boundary;
-  keys.insert(keys.end(), back.boundary.begin(), back.boundary.end());
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::pair<Point2, Point2>> boundary(keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) boundary[i] = {V[keys[i].first], V[keys[i].second]};
   r.mesh_boundary_edges = boundary.size();
   L("boundary");
   coast_deviation(r, boundary, in, hmin, m.origin);

@@ -1,4 +1,4 @@
-// Model readiness of a final mesh (issue 11): what a coastal modeler checks before running it —
+// Model readiness of a final mesh: what a coastal modeler checks before running it —
 // shortest edge against hmin, skinny triangles, mean element quality, coast deviation both ways
 // between the input boundary and the mesh boundary, connected pieces, the gravity-wave (CFL)
 // time step, and the features the GIS stage removed.

@@ -6,9 +6,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <thread>
 #include <vector>
 
+#include "base/parallel.hpp"
+#include "base/triangle_geometry.hpp"
 #include "predicates/predicates.hpp"
 #include "quality/cell_centre.hpp"
 #include "quality/mesh_adjacency.hpp"
@@ -64,7 +65,7 @@ OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, const std::vec
   }
   auto centre_area = [&](std::size_t t, Point2& cc, double& area) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
-    cc = cell_centre(a, b, c, predicates::circumcenter(a, b, c));
+    cc = cell_centre(a, b, c, geom::circumcentre(a, b, c));
     area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
   };
   auto is_edge = [&](std::size_t t, int k) {
@@ -157,9 +158,7 @@ OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, const std::vec
     parts[i].hi = nt * (i + 1) / parts.size();
   }
   if (parts.size() == 2) {
-    std::thread other([&] { pass1(parts[1], nullptr); });
-    pass1(parts[0], nullptr);
-    other.join();
+    run_beside([&] { pass1(parts[1], nullptr); }, [&] { pass1(parts[0], nullptr); });
   } else {
     pass1(parts[0], prep);
   }

@@ -27,8 +27,8 @@ struct OrthogonalityStats {
 };
 
 // Over the interior edges through the mesh adjacency (MeshView::neighbours, else built from the
-// triangles), cell centres from predicates::circumcenter in
-// the local frame. p99 is the nearest-rank 99th percentile over the interior edges.
+// triangles), cell centres from geom::circumcentre (base/triangle_geometry.hpp) in the local
+// frame. p99 is the nearest-rank 99th percentile over the interior edges.
 // `threads` > 1 measures two halves of the triangles at once (same figures).
 OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, unsigned threads = 1);
 

@@ -133,8 +133,8 @@ struct TriangleValues {
 // Throws fdr::Error(kInternal) if a triangle references a vertex that does not exist.
 // `f_at_vertices`, when given, holds (*f)(m.vertices[i]) already evaluated (used instead of
 // evaluating f again; must be exactly those values). `fill_f_at_vertices`, when given (and f is
-// not null), gets those values here instead: evaluated on the calling thread while a second
-// thread measures what does not need f (f is only ever evaluated on the calling thread).
+// not null), gets those values here instead (a spacing that is not thread-safe is only ever
+// evaluated on the calling thread).
 QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField* f, double bound_B,
                               double alpha, const RunInfo& run, TriangleValues* per_triangle = nullptr,
                               const std::vector<double>* f_at_vertices = nullptr,
@@ -144,7 +144,7 @@ QualityReport compute_quality(const mesh::MeshView& m, const sizing::SizingField
 // +inf when the mesh has a single vertex.
 std::vector<double> nearest_neighbour_distances(const std::vector<Point2>& pts);
 
-// JSON report (schema in README "Quality report"); non-applicable or non-finite values are null.
+// JSON report; non-applicable or non-finite values are null.
 void write_json(const QualityReport& r, std::ostream& out);
 // Writes the JSON report to `path` atomically (temporary file, then rename); Error(kOutputError).
 void write_json_file(const QualityReport& r, const std::string& path);

@@ -1,4 +1,4 @@
-// The TIN's vertical error against the DEM (moved from pipeline/gis_stage.cpp: issue 8).
+// The TIN's vertical error against the DEM.
 #include "quality/tin_error.hpp"
 #include <algorithm>
 #include <cmath>

@@ -2,19 +2,18 @@
 #include "refine/smooth.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <stdexcept>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "base/point_cells.hpp"
 #include "base/step_laps.hpp"
+#include "base/parallel.hpp"
 #include "base/threads.hpp"
+#include "base/triangle_geometry.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::refine {
@@ -22,28 +21,6 @@ namespace {
 
 using mesh::next_he;
 using mesh::prev_he;
-
-constexpr double kSqrt3x4 = 6.928203230275509;  // 4 sqrt(3)
-
-// 4 sqrt(3) area / sum of squared edges: 1 for an equilateral triangle, 0 when degenerate.
-double tri_quality(Point2 a, Point2 b, Point2 c) {
-  const double ar = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-  const double s = norm2(b - a) + norm2(c - b) + norm2(a - c);
-  return s > 0 ? kSqrt3x4 * ar / s : 0.0;
-}
-
-// sin^2 of the smallest angle of a triangle: monotone in that angle (always <= 60 degrees), so
-// it compares angles without trigonometry. The smallest angle is opposite the shortest side:
-// sin^2 = (2 area)^2 / (product of the squares of the two other sides).
-double min_angle_key(Point2 a, Point2 b, Point2 c) {
-  const double cr = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  const double la = norm2(c - b), lb = norm2(a - c), lc = norm2(b - a);
-  double p;
-  if (la <= lb && la <= lc) p = lb * lc;
-  else if (lb <= lc) p = la * lc;
-  else p = la * lb;
-  return p > 0 ? cr * cr / p : 0.0;
-}
 
 constexpr std::uint32_t kAnyBlock = 0xffffffffu;  // serial phase: no block restriction
 constexpr std::uint32_t kNoBlock = 0xfffffffeu;   // super or dead vertices: in no block
@@ -54,7 +31,7 @@ struct Shared {
   mesh::Triangulation& t;
   const sizing::SizingField& f;
   SmoothOptions o;
-  double floor_key = 0;              // min_angle_key of --min-angle
+  double floor_key = 0;              // geom::min_angle_sin2 of --min-angle
   // Per vertex, its block in each of the two blockings (see smooth(): the edges of the second lie
   // inside the blocks of the first, so the vertices the first defers mostly lie inside one of the
   // second).
@@ -219,20 +196,19 @@ class Smoother {
     // does not gain is skipped before any flip (Lawson flips rarely rescue it).
     auto star_sum = [&](Point2 p) {
       double sum = 0;
-      for (HalfEdge h : hs_) sum += tri_quality(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]);
+      for (HalfEdge h : hs_) sum += geom::mean_ratio_quality(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]);
       return sum;
     };
     const double sum0 = star_sum(p0);
     {
       // First a step up the gradient of the star's summed quality (what the smoothing raises),
-      // at 0.3, 0.1, 0.03 of the mean spoke length; then the ODT target (below). The gradient
-      // step raised west_norway_h's mean quality from 0.952 to 0.961 where ODT alone had
-      // converged.
+      // at 0.3, 0.1, 0.03 of the mean spoke length; then the ODT target (below). Why: the gradient
+      // step keeps raising the mean quality where ODT alone has converged.
       Point2 g{0, 0};
       double lsum = 0;
       for (HalfEdge h : hs_) {
         const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
-        const double A = 0.5 * ((a.x - p0.x) * (b.y - p0.y) - (a.y - p0.y) * (b.x - p0.x));
+        const double A = 0.5 * geom::cross2(p0, a, b);
         const double S = norm2(a - p0) + norm2(b - p0) + norm2(a - b);
         const Point2 gA{0.5 * (a.y - b.y), 0.5 * (b.x - a.x)};
         const Point2 gS = 2.0 * (2.0 * p0 - a - b);
@@ -266,8 +242,8 @@ class Smoother {
     double wsum = 0;
     for (HalfEdge h : hs_) {
       const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
-      const double ar = 0.5 * ((a.x - p0.x) * (b.y - p0.y) - (a.y - p0.y) * (b.x - p0.x));
-      acc = acc + ar * predicates::circumcenter(p0, a, b);
+      const double ar = 0.5 * geom::cross2(p0, a, b);
+      acc = acc + ar * geom::circumcentre(p0, a, b);
       wsum += ar;
     }
     if (!(wsum > 0)) return false;
@@ -371,17 +347,17 @@ class Smoother {
   void add_before(TriangleId t, double& qmin, double& qsum, double& angle, double& len2,
                   std::vector<double>* lens) const {
     const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
-    const double q = tri_quality(a, b, c);
+    const double q = geom::mean_ratio_quality(a, b, c);
     qmin = std::min(qmin, q);
     qsum += q;
-    angle = std::min(angle, min_angle_key(a, b, c));
+    angle = std::min(angle, geom::min_angle_sin2(a, b, c));
     const double l0 = norm2(b - a), l1 = norm2(c - b), l2 = norm2(a - c);
     len2 = std::min({len2, l0, l1, l2});
     lens->insert(lens->end(), {l0, l1, l2});
   }
 
-  // The star's triangles before any move, once per star (an attempt used to measure them again:
-  // up to six attempts per vertex).
+  // The star's triangles before any move, once per star (not once per attempt: up to six
+  // attempts per vertex).
   void star_before() {
     star_min_ = 1e300;
     star_sum_ = 0;
@@ -402,11 +378,11 @@ class Smoother {
       const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
       // Without flips the touched triangles are the star's, whose orientation attempt() tested.
       if (!flips_.empty() && predicates::orient2d(a, b, c) <= 0) return false;
-      const double q = tri_quality(a, b, c);
+      const double q = geom::mean_ratio_quality(a, b, c);
       nmin = std::min(nmin, q);
       nsum += q;
       nlen2 = std::min({nlen2, norm2(b - a), norm2(c - b), norm2(a - c)});
-      if (min_angle_key(a, b, c) < floor_angle) return false;
+      if (geom::min_angle_sin2(a, b, c) < floor_angle) return false;
     }
     // The worst touched triangle may get worse only while it stays above 0.8 (a 40-70-70 triangle):
     // the sum is what the smoothing raises.
@@ -452,7 +428,7 @@ class Smoother {
           return false;
       }
       double r2 = 0;
-      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const Point2 cc = geom::circumcentre(a, b, c, &r2);
       if (lipschitz_ >= 0) {
         // f is L-Lipschitz: f(cc) >= f(p) - L |cc - p| at the moved vertex p, so R <= B (f(p) -
         // L |cc - p|) implies R <= B f(cc) without evaluating f there (one evaluation per move
@@ -532,16 +508,264 @@ class Smoother {
   std::vector<std::pair<Index, Index>> flips_;  // new diagonals (org, dst) in flip order
   mutable bool open_ = false;  // the last star() was an open fan
   std::vector<TriangleId> touched_;
-  double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as min_angle_key
+  double before_min_ = 0, before_sum_ = 0, before_angle_ = 0, before_len2_ = 0;  // angles as geom::min_angle_sin2
   double star_min_ = 0, star_sum_ = 0, star_angle_ = 0, star_len2_ = 0;  // the same over the star (star_before)
   std::vector<double> before_lens_, star_lens_;  // squared edge lengths of the touched / star triangles
-  double floor_key_ = 0;  // min_angle_key of --min-angle
+  double floor_key_ = 0;  // geom::min_angle_sin2 of --min-angle
   double lipschitz_ = -1;  // of f, when known (else negative)
   Index moved_ = 0;  // the vertex of the current attempt
   Point2 moved_from_{0, 0};  // its position before
   std::uint32_t block_ = kAnyBlock;  // the block of the current try
   const std::vector<std::uint32_t>* blocks_ = nullptr;  // the blocking it belongs to (Shared::block or block2)
   mutable bool deferred_ = false;  // the current try needs a triangle outside block_
+};
+
+// The two blockings of the live vertices (Shared::block, block2) and the movable vertices of each
+// block of the first, in index order. Each blocking cuts a Morton order of the vertices at whole
+// cells of a quadtree level (at least half as many cells as vertices, at most 2^10 a side): a
+// vertex's block is the number of live vertices in the cells before its own divided by the block
+// size, so a block is a run of cells (a cell of more vertices is a block of its own), found by
+// counting, without a sort. Why Morton: neighbours in the mesh are then mostly neighbours in
+// memory. The second blocking takes the cells of the level above of the positions shifted by
+// S = 0b0101...01: blocks of either are runs of quadtree cells, and S mod 2^k is about a third or
+// two thirds of 2^k at every level k, so the edges of the second lie well inside the blocks of
+// the first (shifting the cut along the first order would leave every edge between blocks that
+// are far apart in that order where it is). Inside a block the vertices go in index order
+// (refinement's insertion order), which smooths better than Morton order. The blocks depend only
+// on the mesh, never on the thread count.
+struct Blocking {
+  Box2 box;                              // of the live vertices
+  std::size_t nblocks = 0, nblocks2 = 0;
+  std::vector<std::vector<Index>> free;  // movable vertices of each block of the first, index order
+  std::size_t candidates = 0;
+};
+
+bool live(const mesh::Triangulation& tri, Index v) {
+  return tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper;
+}
+
+Blocking make_blocks(const mesh::Triangulation& tri, std::size_t block_vertices, Shared& sh) {
+  Blocking bl;
+  const std::size_t kBlock = std::max<std::size_t>(1, block_vertices);
+  const std::size_t n = tri.pts.size();
+  std::size_t nlive = 0;
+  for (Index v = 0; v < n; ++v)
+    if (live(tri, v)) {
+      bl.box.add(tri.pts[v]);
+      ++nlive;
+    }
+  int level = 2;  // cells per side 2^level
+  while (level < 10 && 2 * (std::size_t{1} << (2 * level)) < nlive) ++level;
+  std::vector<std::uint32_t> count((std::size_t{1} << (2 * level)) + 1);
+  std::vector<std::uint32_t> cell(n);
+  const Box2& box = bl.box;
+  // Cuts the blocking whose cell of a vertex at grid coordinates (x, y) in [0, 1] is key(x, y).
+  auto cut = [&](std::vector<std::uint32_t>& block, const auto& key) {
+    std::fill(count.begin(), count.end(), 0u);
+    const double w = box.width() > 0 ? 1.0 / box.width() : 0.0, h = box.height() > 0 ? 1.0 / box.height() : 0.0;
+    for (Index v = 0; v < n; ++v) {
+      if (!live(tri, v)) continue;
+      const double x = std::clamp((tri.pts[v].x - box.lo.x) * w, 0.0, 1.0);
+      const double y = std::clamp((tri.pts[v].y - box.lo.y) * h, 0.0, 1.0);
+      cell[v] = key(x, y);
+      ++count[cell[v] + 1];
+    }
+    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+    std::uint32_t last = 0;
+    block.assign(n, kNoBlock);
+    for (Index v = 0; v < n; ++v)
+      if (live(tri, v)) {
+        block[v] = static_cast<std::uint32_t>(count[cell[v]] / kBlock);
+        last = std::max(last, block[v]);
+      }
+    return static_cast<std::size_t>(last) + 1;
+  };
+  const auto side = static_cast<double>((std::uint32_t{1} << level) - 1);
+  bl.nblocks = cut(sh.block, [side](double x, double y) {
+    return static_cast<std::uint32_t>(morton(static_cast<std::uint32_t>(x * side), static_cast<std::uint32_t>(y * side)));
+  });
+  const std::uint32_t shift = 0x55555555u & ((std::uint32_t{1} << (level - 1)) - 1);
+  const auto half = static_cast<double>((std::uint32_t{1} << (level - 1)) - 1);
+  bl.nblocks2 = cut(sh.block2, [half, shift](double x, double y) {
+    return static_cast<std::uint32_t>(morton(static_cast<std::uint32_t>(x * half) + shift,
+                                             static_cast<std::uint32_t>(y * half) + shift));
+  });
+  bl.free.resize(bl.nblocks);
+  for (Index v = 0; v < n; ++v)
+    if (live(tri, v) && (tri.vkind[v] == mesh::VertexKind::kFree || tri.vkind[v] == mesh::VertexKind::kSegment)) {
+      bl.free[sh.block[v]].push_back(v);
+      ++bl.candidates;
+    }
+  return bl;
+}
+
+// The vertices of the star of v, both ways from vhe[v] (with repeats).
+void star_vertices(const mesh::Triangulation& tri, Index v, std::vector<Index>& nbr) {
+  nbr.clear();
+  const HalfEdge h0 = tri.vhe[v];
+  for (HalfEdge h = h0, guard = 0; guard < 1024; ++guard) {
+    nbr.push_back(tri.dst(h));
+    nbr.push_back(tri.apex(h));
+    const HalfEdge tw = tri.twin[prev_he(h)];
+    if (tw == kNoId || tw == h0) break;
+    h = tw;
+  }
+  for (HalfEdge g = h0, guard = 0; guard < 1024; ++guard) {
+    const HalfEdge tw = tri.twin[g];
+    if (tw == kNoId) break;
+    g = next_he(tw);
+    if (g == h0) break;
+    nbr.push_back(tri.dst(g));
+    nbr.push_back(tri.apex(g));
+  }
+}
+
+// Shared::hidden: for every segment vertex, the vertices within f of it that are not its mesh
+// neighbours. Why: such a vertex lies across a constraint, where no test of a move sees it, and a
+// slide along the segment could bring the two nearer than Theorem 4.4 allows. Found once: both
+// may move a little, which only the rule in improved() needs to follow (it reads their positions).
+void find_hidden_pairs(const mesh::Triangulation& tri, const sizing::SizingField& f, const Box2& box, Shared& sh,
+                       StepLaps& lap) {
+  const std::size_t n = tri.pts.size();
+  // f at the segment vertices; the cells as long as its median there.
+  std::vector<std::pair<Index, double>> seg;
+  for (Index v = 0; v < n; ++v)
+    if (tri.vhe[v] != kNoId && tri.vkind[v] == mesh::VertexKind::kSegment) seg.push_back({v, f(tri.pts[v])});
+  std::vector<double> fs;  // the usable values (NaN has no order)
+  fs.reserve(seg.size());
+  for (const auto& sv : seg)
+    if (sv.second > 0 && std::isfinite(sv.second)) fs.push_back(sv.second);
+  const auto mid = fs.begin() + static_cast<std::ptrdiff_t>(fs.size() / 2);
+  if (!fs.empty()) std::nth_element(fs.begin(), mid, fs.end());
+  const PointCells cells(tri.pts, [&](Index v) { return live(tri, v); }, box, fs.empty() ? 0.0 : *mid);
+  fs = {};
+  lap("point cells");
+  std::vector<Index> nbr;
+  std::vector<std::pair<Index, Index>> pairs;  // both ways: either of the two may move
+  for (const auto& [v, fv] : seg) {
+    star_vertices(tri, v, nbr);
+    cells.for_each_within(tri.pts[v], fv * fv, [&](Index u) {
+      if (u != v && std::find(nbr.begin(), nbr.end(), u) == nbr.end()) {
+        pairs.push_back({v, u});
+        pairs.push_back({u, v});
+      }
+    });
+  }
+  if (pairs.empty()) return;
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  sh.hidden_at.assign(n + 1, 0);
+  for (const auto& pr : pairs) ++sh.hidden_at[pr.first + 1];
+  for (std::size_t k = 0; k < n; ++k) sh.hidden_at[k + 1] += sh.hidden_at[k];
+  sh.hidden.reserve(pairs.size());
+  for (const auto& pr : pairs) sh.hidden.push_back(pr.second);
+}
+
+// The sweeps. Each: first every block on its own (concurrently when f may be evaluated from
+// several threads), each trying its vertices whose star and flips stay inside it; then the
+// vertices deferred because they did not, in the blocks of the second blocking (most of them lie
+// inside one), again concurrently; then, on one thread, those deferred again, in block order.
+// Same result for any thread count.
+class Sweeps {
+ public:
+  Sweeps(Shared& sh, const Blocking& bl, SmoothStats& st)
+      : sh_(sh), tri_(sh.t), bl_(bl), st_(st),
+        threads_(sh.f.thread_safe() ? static_cast<unsigned>(std::max<std::size_t>(
+                                          1, std::min<std::size_t>(max_threads(), bl.nblocks)))
+                                    : 1u),
+        deferred_(bl.nblocks), in_block2_(bl.nblocks2), deferred2_(bl.nblocks2),
+        moved_in_(std::max(bl.nblocks, bl.nblocks2)), seg_moved_in_(moved_in_.size()) {
+    for (unsigned k = 0; k < threads_; ++k) workers_.emplace_back(sh);
+  }
+
+  // One sweep; returns the number of moves.
+  std::size_t sweep(StepLaps& lap) {
+    run_blocks(bl_.nblocks, [&](Smoother& w, std::size_t b) { sweep_list(w, bl_.free[b], b, sh_.block, deferred_[b]); });
+    std::size_t moved = tally(bl_.nblocks);
+    lap("parallel sweep");
+    for (auto& l : in_block2_) l.clear();
+    for (std::size_t b = 0; b < bl_.nblocks; ++b) {
+      for (Index v : deferred_[b]) in_block2_[sh_.block2[v]].push_back(v);
+      st_.shifted += deferred_[b].size();  // each still dirty: tried there
+    }
+    run_blocks(bl_.nblocks2,
+               [&](Smoother& w, std::size_t b) { sweep_list(w, in_block2_[b], b, sh_.block2, deferred2_[b]); });
+    moved += tally(bl_.nblocks2);
+    lap("shifted sweep");
+    moved += serial_sweep();
+    lap("serial sweep");
+    return moved;
+  }
+
+ private:
+  // A kept move makes the vertices of every triangle it touched dirty (tried again).
+  void touched_dirty(const Smoother& w) {
+    for (TriangleId t : w.touched())
+      for (int k = 0; k < 3; ++k) sh_.dirty[tri_.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
+  }
+  // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred ones
+  // listed in `out`.
+  void sweep_list(Smoother& w, const std::vector<Index>& list, std::size_t b, const std::vector<std::uint32_t>& blocks,
+                  std::vector<Index>& out) {
+    out.clear();
+    moved_in_[b] = seg_moved_in_[b] = 0;
+    for (Index v : list) {
+      if (!sh_.dirty[v]) continue;
+      sh_.dirty[v] = 0;
+      const Smoother::Result r = w.try_move(v, static_cast<std::uint32_t>(b), &blocks);
+      if (r == Smoother::Result::kDeferred) {
+        sh_.dirty[v] = 1;
+        out.push_back(v);
+      } else if (r == Smoother::Result::kKept) {
+        ++moved_in_[b];
+        if (tri_.vkind[v] == mesh::VertexKind::kSegment) ++seg_moved_in_[b];
+        touched_dirty(w);
+      }
+    }
+  }
+  // Runs sweep(worker, b) for the blocks [0, count), concurrently when threads allow.
+  template <class Sweep>
+  void run_blocks(std::size_t count, const Sweep& sweep) {
+    if (threads_ <= 1) {
+      for (std::size_t b = 0; b < count; ++b) sweep(workers_[0], b);
+      return;
+    }
+    parallel_chunks(count, [&](std::size_t b, unsigned w) { sweep(workers_[w], b); }, threads_);
+  }
+  std::size_t tally(std::size_t count) {
+    std::size_t moved = 0;
+    for (std::size_t b = 0; b < count; ++b) {
+      moved += moved_in_[b];
+      st_.segment_moves += seg_moved_in_[b];
+    }
+    return moved;
+  }
+  // The vertices both blockings deferred, on this thread in block order.
+  std::size_t serial_sweep() {
+    std::size_t moved = 0;
+    for (std::size_t b = 0; b < bl_.nblocks2; ++b)
+      for (Index v : deferred2_[b]) {
+        if (!sh_.dirty[v]) continue;
+        sh_.dirty[v] = 0;
+        ++st_.deferred;
+        if (workers_[0].try_move(v, kAnyBlock) != Smoother::Result::kKept) continue;
+        ++moved;
+        if (tri_.vkind[v] == mesh::VertexKind::kSegment) ++st_.segment_moves;
+        touched_dirty(workers_[0]);
+      }
+    return moved;
+  }
+
+  Shared& sh_;
+  mesh::Triangulation& tri_;
+  const Blocking& bl_;
+  SmoothStats& st_;
+  unsigned threads_;
+  std::vector<Smoother> workers_;
+  // Per block: the vertices deferred by the first blocking, those of them (grouped by their block
+  // of the second) tried there, and those deferred again.
+  std::vector<std::vector<Index>> deferred_, in_block2_, deferred2_;
+  std::vector<std::size_t> moved_in_, seg_moved_in_;
 };
 
 }  // namespace
@@ -552,240 +776,22 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   tri.rebuild_vertex_map();
   lap("vertex map");
   Shared sh{tri, f, options, 0.0, {}, {}, {}, {}, {}};
-  const double sn = std::sin(std::clamp(options.min_angle_deg, 0.0, 60.0) * 0.017453292519943295);
+  const double sn = std::sin(std::clamp(options.min_angle_deg, 0.0, 60.0) * geom::kRadPerDeg);
   sh.floor_key = sn * sn;
-  const std::size_t n = tri.pts.size();
-
-  // Blocks of vertices near each other (neighbours in the mesh are mostly neighbours in memory
-  // traffic: Morton order alone made the sweeps 1.4x faster than index order on the Gulf of
-  // Maine), about kBlock live vertices each, in two blockings. Each cuts a Morton order of the
-  // vertices at whole cells of a quadtree level (at least half as many cells as vertices, at most
-  // 2^10 a side): a vertex's block is the number of live vertices in the cells before its own
-  // divided by kBlock, so a block is a run of cells (a cell of more than kBlock vertices is a
-  // block of its own), found by counting, without a sort. The second blocking takes the cells of the level
-  // above of the positions shifted by S = 0b0101...01: blocks of either are runs of quadtree cells,
-  // and S mod 2^k is about a third or two thirds of 2^k at every level k, so the edges of the
-  // second lie well inside the blocks of the first (shifting the cut along the first order would
-  // leave every edge between blocks that are far apart in that order where it is). Inside a block
-  // the vertices go in index order (refinement's insertion order): visiting them in Morton order
-  // too gave 0.0004-0.0005 lower mean quality on all four regions after 4 sweeps. The blocks
-  // depend only on the mesh, never on the thread count.
-  const std::size_t kBlock = std::max<std::size_t>(1, options.block_vertices);
-  auto live = [&tri](Index v) { return tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper; };
-  Box2 box;
-  std::size_t nlive = 0;
-  for (Index v = 0; v < n; ++v)
-    if (live(v)) {
-      box.add(tri.pts[v]);
-      ++nlive;
-    }
-  int level = 2;  // cells per side 2^level
-  while (level < 10 && 2 * (std::size_t{1} << (2 * level)) < nlive) ++level;
-  std::vector<std::uint32_t> count((std::size_t{1} << (2 * level)) + 1);
-  std::vector<std::uint32_t> cell(n);
-  // Cuts the blocking whose cell of a vertex at grid coordinates (x, y) in [0, 1] is key(x, y).
-  auto cut = [&](std::vector<std::uint32_t>& block, const auto& key) {
-    std::fill(count.begin(), count.end(), 0u);
-    const double w = box.width() > 0 ? 1.0 / box.width() : 0.0, h = box.height() > 0 ? 1.0 / box.height() : 0.0;
-    for (Index v = 0; v < n; ++v) {
-      if (!live(v)) continue;
-      const double x = std::clamp((tri.pts[v].x - box.lo.x) * w, 0.0, 1.0);
-      const double y = std::clamp((tri.pts[v].y - box.lo.y) * h, 0.0, 1.0);
-      cell[v] = key(x, y);
-      ++count[cell[v] + 1];
-    }
-    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
-    std::uint32_t last = 0;
-    block.assign(n, kNoBlock);
-    for (Index v = 0; v < n; ++v)
-      if (live(v)) {
-        block[v] = static_cast<std::uint32_t>(count[cell[v]] / kBlock);
-        last = std::max(last, block[v]);
-      }
-    return static_cast<std::size_t>(last) + 1;
-  };
-  const auto side = static_cast<double>((std::uint32_t{1} << level) - 1);
-  const std::size_t nblocks = cut(sh.block, [side](double x, double y) {
-    return static_cast<std::uint32_t>(morton(static_cast<std::uint32_t>(x * side), static_cast<std::uint32_t>(y * side)));
-  });
-  const std::uint32_t shift = 0x55555555u & ((std::uint32_t{1} << (level - 1)) - 1);
-  const auto half = static_cast<double>((std::uint32_t{1} << (level - 1)) - 1);
-  const std::size_t nblocks2 = cut(sh.block2, [half, shift](double x, double y) {
-    return static_cast<std::uint32_t>(morton(static_cast<std::uint32_t>(x * half) + shift,
-                                             static_cast<std::uint32_t>(y * half) + shift));
-  });
-  count = {};
-  cell = {};
-  std::vector<std::vector<Index>> free(nblocks);  // movable vertices of each block, index order
-  for (Index v = 0; v < n; ++v)
-    if (live(v) && (tri.vkind[v] == mesh::VertexKind::kFree || tri.vkind[v] == mesh::VertexKind::kSegment)) {
-      free[sh.block[v]].push_back(v);
-      ++st.candidates;
-    }
+  const Blocking bl = make_blocks(tri, options.block_vertices, sh);
+  st.candidates = bl.candidates;
   lap("blocks");
-  // Segment vertices: the vertices within f of them that are not mesh neighbours (Shared::hidden).
-  // Why: such a vertex lies across a constraint, where no test of a move sees it, and a slide
-  // along the segment could bring the two nearer than Theorem 4.4 allows (Chesapeake mouth: a
-  // coast vertex slid to 0.19 f of a vertex across a thin strip of land). Found once: both may
-  // move a little, which only the rule in improved() needs to follow (it reads their positions).
-  {
-    // f at the segment vertices; the cells as long as its median there.
-    std::vector<std::pair<Index, double>> seg;
-    for (Index v = 0; v < n; ++v)
-      if (tri.vhe[v] != kNoId && tri.vkind[v] == mesh::VertexKind::kSegment) seg.push_back({v, f(tri.pts[v])});
-    std::vector<double> fs;  // the usable values (NaN has no order)
-    fs.reserve(seg.size());
-    for (const auto& sv : seg)
-      if (sv.second > 0 && std::isfinite(sv.second)) fs.push_back(sv.second);
-    const auto mid = fs.begin() + static_cast<std::ptrdiff_t>(fs.size() / 2);
-    if (!fs.empty()) std::nth_element(fs.begin(), mid, fs.end());
-    const PointCells cells(
-        tri.pts, [&](Index v) { return tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper; }, box,
-        fs.empty() ? 0.0 : *mid);
-    fs = {};
-    lap("point cells");
-    std::vector<Index> nbr;
-    std::vector<std::pair<Index, Index>> pairs;  // both ways: either of the two may move
-    for (const auto& [v, fv] : seg) {
-      nbr.clear();
-      const HalfEdge h0 = tri.vhe[v];
-      for (HalfEdge h = h0, guard = 0; guard < 1024; ++guard) {  // the star, both ways from vhe
-        nbr.push_back(tri.dst(h));
-        nbr.push_back(tri.apex(h));
-        const HalfEdge tw = tri.twin[prev_he(h)];
-        if (tw == kNoId || tw == h0) break;
-        h = tw;
-      }
-      for (HalfEdge g = h0, guard = 0; guard < 1024; ++guard) {
-        const HalfEdge tw = tri.twin[g];
-        if (tw == kNoId) break;
-        g = next_he(tw);
-        if (g == h0) break;
-        nbr.push_back(tri.dst(g));
-        nbr.push_back(tri.apex(g));
-      }
-      cells.for_each_within(tri.pts[v], fv * fv, [&](Index u) {
-        if (u != v && std::find(nbr.begin(), nbr.end(), u) == nbr.end()) {
-          pairs.push_back({v, u});
-          pairs.push_back({u, v});
-        }
-      });
-    }
-    if (!pairs.empty()) {
-      std::sort(pairs.begin(), pairs.end());
-      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-      sh.hidden_at.assign(n + 1, 0);
-      for (const auto& pr : pairs) ++sh.hidden_at[pr.first + 1];
-      for (std::size_t k = 0; k < n; ++k) sh.hidden_at[k + 1] += sh.hidden_at[k];
-      sh.hidden.reserve(pairs.size());
-      for (const auto& pr : pairs) sh.hidden.push_back(pr.second);
-    }
-  }
+  find_hidden_pairs(tri, f, bl.box, sh, lap);
   lap("hidden pairs");
   // A vertex whose star nothing has touched since it last failed would fail again: it is
-  // retried only after a move changed a triangle around it (the vertices of every triangle a
-  // kept move touched become dirty). Why: after the first sweep most of a converged mesh is
-  // clean, and each try costs up to six attempts with flips and f evaluations.
-  sh.dirty.assign(n, 1);
-
-  // Each sweep: first every block on its own (concurrently when f may be evaluated from several
-  // threads), each trying its vertices whose star and flips stay inside it; then the vertices
-  // deferred because they did not, in the blocks of the second blocking (most of them lie inside
-  // one), again concurrently; then, on one thread, those deferred again, in block order. Same
-  // result for any thread count.
-  const std::size_t threads =
-      f.thread_safe() ? std::max<std::size_t>(1, std::min<std::size_t>(max_threads(), nblocks)) : 1;
-  std::vector<Smoother> workers;
-  for (std::size_t k = 0; k < threads; ++k) workers.emplace_back(sh);
-  // Per block: the vertices deferred by the first blocking, those of them (grouped by their block
-  // of the second) tried there, and those deferred again.
-  std::vector<std::vector<Index>> deferred(nblocks), in_block2(nblocks2), deferred2(nblocks2);
-  std::vector<std::size_t> moved_in(std::max(nblocks, nblocks2)), seg_moved_in(moved_in.size());
-  // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred
-  // ones listed in `out`.
-  auto sweep_list = [&](Smoother& w, const std::vector<Index>& list, std::size_t b,
-                        const std::vector<std::uint32_t>& blocks, std::vector<Index>& out) {
-    out.clear();
-    moved_in[b] = seg_moved_in[b] = 0;
-    for (Index v : list) {
-      if (!sh.dirty[v]) continue;
-      sh.dirty[v] = 0;
-      const Smoother::Result r = w.try_move(v, static_cast<std::uint32_t>(b), &blocks);
-      if (r == Smoother::Result::kDeferred) {
-        sh.dirty[v] = 1;
-        out.push_back(v);
-      } else if (r == Smoother::Result::kKept) {
-        ++moved_in[b];
-        if (tri.vkind[v] == mesh::VertexKind::kSegment) ++seg_moved_in[b];
-        for (TriangleId t : w.touched())
-          for (int k = 0; k < 3; ++k) sh.dirty[tri.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
-      }
-    }
-  };
-  // Runs sweep(worker, b) for the blocks [0, count), concurrently when threads allow.
-  auto run_blocks = [&](std::size_t count, const auto& sweep) {
-    if (threads <= 1) {
-      for (std::size_t b = 0; b < count; ++b) sweep(workers[0], b);
-      return;
-    }
-    std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> errors(threads);
-    std::vector<predicates::Counters> calls(threads);  // the helper threads' predicate counts
-    auto work = [&](std::size_t k) {
-      try {
-        for (std::size_t b; (b = next.fetch_add(1)) < count;) sweep(workers[k], b);
-      } catch (...) {
-        errors[k] = std::current_exception();
-      }
-      if (k > 0) calls[k] = predicates::counters();
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work, k);
-    work(0);
-    for (auto& th : pool) th.join();
-    // Counted on this thread as if it had made every call: the report's predicate counts do
-    // not depend on the thread count either.
-    for (std::size_t k = 1; k < threads; ++k) {
-      predicates::counters().filtered += calls[k].filtered;
-      predicates::counters().exact += calls[k].exact;
-    }
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
-  };
-  auto tally = [&](std::size_t count) {
-    std::size_t moved = 0;
-    for (std::size_t b = 0; b < count; ++b) {
-      moved += moved_in[b];
-      st.segment_moves += seg_moved_in[b];
-    }
-    return moved;
-  };
+  // retried only after a move changed a triangle around it. Why: after the first sweep most of a
+  // converged mesh is clean, and each try costs up to six attempts with flips and f evaluations.
+  sh.dirty.assign(tri.pts.size(), 1);
+  Sweeps sweeps(sh, bl, st);
   for (int pass = 0; pass < options.passes; ++pass) {
-    run_blocks(nblocks, [&](Smoother& w, std::size_t b) { sweep_list(w, free[b], b, sh.block, deferred[b]); });
-    std::size_t moved = tally(nblocks);
-    lap("parallel sweep");
-    for (auto& l : in_block2) l.clear();
-    for (std::size_t b = 0; b < nblocks; ++b) {
-      for (Index v : deferred[b]) in_block2[sh.block2[v]].push_back(v);
-      st.shifted += deferred[b].size();  // each still dirty: tried there
-    }
-    run_blocks(nblocks2, [&](Smoother& w, std::size_t b) { sweep_list(w, in_block2[b], b, sh.block2, deferred2[b]); });
-    moved += tally(nblocks2);
-    lap("shifted sweep");
-    for (std::size_t b = 0; b < nblocks2; ++b)
-      for (Index v : deferred2[b]) {
-        if (!sh.dirty[v]) continue;
-        sh.dirty[v] = 0;
-        ++st.deferred;
-        if (workers[0].try_move(v, kAnyBlock) != Smoother::Result::kKept) continue;
-        ++moved;
-        if (tri.vkind[v] == mesh::VertexKind::kSegment) ++st.segment_moves;
-        for (TriangleId t : workers[0].touched())
-          for (int k = 0; k < 3; ++k) sh.dirty[tri.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
-      }
+    const std::size_t moved = sweeps.sweep(lap);
     st.moves += moved;
     ++st.passes;
-    lap("serial sweep");
     if (lap.on()) std::fprintf(stderr, "smooth pass %d: %zu moves\n", pass, moved);
     if (moved * 200 < st.candidates) break;  // converged: under 0.5 % still moving
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "quality/report.hpp"
@@ -12,7 +13,7 @@
 namespace fdr::quality {
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+constexpr double kDeg = 180.0 / std::numbers::pi;
 
 double angle_at(Point2 apex, Point2 p, Point2 q) {  // as report.cpp
   const Point2 u = p - apex, v = q - apex;

@@ -5,6 +5,7 @@
 #include "quality/tests/grid_cells.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -17,7 +18,7 @@
 namespace fdr::quality {
 namespace {
 
-const double kPi = 3.14159265358979323846;
+const double kPi = std::numbers::pi;
 const double kSqrt3 = std::sqrt(3.0);
 
 // (n+1)^2 vertices on [0,n]^2 scaled by `h`, each square cut along its (i,j)-(i+1,j+1) diagonal.
