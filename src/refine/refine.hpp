@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 #include "base/progress.hpp"
 #include "cdt/insert.hpp"
@@ -122,7 +121,6 @@ class Refiner {
   bool shell_apex_equal(Index p, Index q) const;
   bool same_cluster(Index v, Index a, Index b) const;
   bool cluster_pair(Index s1, Index s2) const;
-  Index segment_of_vertex(Index v) const;
   Point2 split_point(Index a, Index b, Index* apex, int* shell_exp) const;
   bool may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const;
   void record_conforming();
@@ -143,10 +141,16 @@ class Refiner {
   std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
   Point2 zlo_{0, 0};
   double zscale_ = 0;
-  // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
-  std::unordered_map<Index, std::pair<Index, int>> shell_;
-  // Input segment of every segment vertex (for small-angle clusters).
-  std::unordered_map<Index, Index> seg_vertex_;
+  // Per Steiner point on a segment (Triangulation::segment_vertex_index), the concentric shell
+  // it was placed on: the input vertex at the centre and the radius's power of two (apex kNoId:
+  // a midpoint).
+  struct Shell {
+    Index apex = kNoId;
+    int exp = 0;
+  };
+  const Shell* shell_of(Index v) const;  // nullptr: v was not placed on a shell
+  void mark_clusters();
+  std::vector<Shell> shell_;
   std::vector<bool> in_cluster_;  // per input segment
 };
 
