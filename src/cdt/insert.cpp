@@ -190,9 +190,9 @@ void Inserter::commit_vertex(Index v) {
 
 // Why: the cavity of a point placed "on" an edge by rounding, or grown by the repair loop, can
 // hold a triangle whose circumcircle does not contain p; the fan is then not constrained
-// Delaunay (fuzz: testdata/regress/fuzz_pslg_mesh_21..). Lawson flips over every unconstrained
-// edge of the new triangles and of the triangles they flip restore it (the flip algorithm
-// terminates on any triangulation). Flipped triangles join new_tris_ for re-evaluation.
+// Delaunay. Lawson flips over every unconstrained edge of the new triangles and of the triangles
+// they flip restore it (the flip algorithm terminates on any triangulation). Flipped triangles
+// join new_tris_ for re-evaluation.
 void Inserter::restore_delaunay() {
   auto& T = tri_;
   std::vector<std::pair<Index, Index>> stack;

@@ -22,9 +22,9 @@ using predicates::diametral;
 namespace {
 // Queue order: largest R/f(c) first, by buckets. One bucket per doubling of (R/f(c))^2 (a factor
 // sqrt(2) in R/f(c)), except the last doubling before the bound, 1 < (R/f(c))^2 <= 2, which is split
-// into kFineSub buckets. Why: where the final vertices go is decided there; buckets of a factor
-// sqrt(2) made 8.4 % more triangles than the exact largest-first order on 0.025*paper-f1, four fine
-// buckets at the end 0.5 % more (sixteen everywhere: 0.3 %, but 1.4-1.6x the refinement time).
+// into kFineSub buckets. Why: where the final vertices go is decided there; coarse buckets there
+// make clearly more triangles than the exact largest-first order, fine buckets everywhere cost
+// refinement time for little gain.
 constexpr int kFineSub = 4;
 constexpr int kBuckets = 2048 + kFineSub;
 constexpr double kPi = 3.14159265358979323846;
@@ -37,7 +37,7 @@ std::string pt(Point2 p) {
 }
 
 int bucket_of(double key2) {
-  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent (fuzz_pslg_mesh_1)
+  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
   const int idx = e <= 1 ? static_cast<int>((m - 0.5) * (2.0 * kFineSub)) : kFineSub + (e - 2);
@@ -448,8 +448,8 @@ RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
       double r2;
       const Point2 cc = predicates::circumcenter(a, b, c, &r2);
       // Bad by R/f(c) first (those are not counted as bad by angle); without that count, f only
-      // where the angle test holds (a GIS run's raster spacing at every circumcentre: 55-75 ms of
-      // 1 M triangles, for a count of a few dozen).
+      // where the angle test holds (a raster spacing at every circumcentre costs more than the
+      // whole count).
       const auto rf_bad = [&] {
         const double fc = f_(cc);
         return fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;
@@ -626,7 +626,7 @@ void Refiner::run() {
 
 double estimate_triangles(const Triangulation& T, const sizing::SizingField& f, double bound) {
   // Calibration: FDR at bound B produces about kC / (B f)^2 triangles per unit area (measured on
-  // the paper's square cases; see README "Work estimate").
+  // the paper's square cases).
   const double kC = 1.5;  // measured/estimated = 0.95..1.1 on f1, f2 (B = 0.5..1.41), constant f
   double total = 0;
   struct Tri { Point2 a, b, c; int depth; };

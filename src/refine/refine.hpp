@@ -23,7 +23,7 @@ struct RefineOptions {
   // if both halves are at least angle_split_min_f times f at the split point; else it is left
   // (counted as exempt). 0: always split (Triangle's -q). Why: near narrow water the angle bound
   // alone would split the banks to a fraction of f, and the smallest element sets a model's time
-  // step; the GIS pipeline uses 0.5 (README, Model-ready meshes). R/f(c)-bad triangles always split.
+  // step; the GIS pipeline uses 0.5. R/f(c)-bad triangles always split.
   double angle_split_min_f = 0.0;
   // ... except for triangles with an angle under this (they split as Triangle would): the rule
   // trades angles between this and min_angle_deg for edges, never worse ones.
@@ -65,7 +65,7 @@ struct RefineLeftovers {
 class Refiner {
  public:
   Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
-  ~Refiner();  // the queue's buffers give back their huge-page advice (base/memory.hpp)
+  ~Refiner();
   Refiner(const Refiner&) = delete;
   Refiner& operator=(const Refiner&) = delete;
   // Reserves arrays for about this many triangles (from estimate_triangles), avoiding
@@ -92,8 +92,8 @@ class Refiner {
   struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
   // A bucket of the queue: its entries in chunks of kChunkEntries taken from the refiner's pool
   // and given back when the bucket shrinks. Why: grown by doubling, every bucket copied its entries
-  // into fresh pages and freed the old ones (at 1 M triangles 6.5 k of the run's 17.5 k page
-  // faults, about 10 us each on this machine); a chunk another bucket gave back has its pages.
+  // into fresh pages and freed the old ones, a large share of the run's page faults; a chunk
+  // another bucket gave back has its pages.
   static constexpr std::size_t kChunkShift = 10;  // 1 024 entries, 12 KiB
   static constexpr std::size_t kChunkEntries = std::size_t{1} << kChunkShift;
   struct Bucket {
