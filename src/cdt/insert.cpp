@@ -110,7 +110,7 @@ bool Inserter::build_cavity(Point2 p, Location loc) {
         const HalfEdge n = T.twin(h);
         if (n != kNoId && T.marked(mesh::tri_of(n), Triangulation::kMarkA) && !T.constrained(h)) continue;
         boundary_.push_back(h);
-        if (bad == kNoId && orient2d(T.point(T.org(h)), T.point(T.dst(h)), p) <= 0) bad = h;
+        if (bad == kNoId && orient2d(T.point(T.corner(t, k)), T.point(T.corner(t, (k + 1) % 3)), p) <= 0) bad = h;
       }
     }
     if (bad == kNoId) return true;

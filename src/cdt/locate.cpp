@@ -31,7 +31,7 @@ Location locate_visibility(const mesh::Triangulation& tri, TriangleId t, Point2 
     for (int i = 0; i < 3; ++i) {
       const int k = (r + i) % 3;
       const HalfEdge h = 3 * t + static_cast<Index>(k);
-      o[k] = orient2d(tri.point(tri.org(h)), tri.point(tri.dst(h)), p);
+      o[k] = orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
       if (o[k] < 0 && tri.twin(h) != kNoId) {
         t = mesh::tri_of(tri.twin(h));
         moved = true;
@@ -56,13 +56,13 @@ Location locate_straight(const mesh::Triangulation& tri, TriangleId t, Point2 p,
     bool inside = true;
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + static_cast<Index>(k);
-      o[k] = (h == entry) ? 1 : orient2d(tri.point(tri.org(h)), tri.point(tri.dst(h)), p);
+      o[k] = (h == entry) ? 1 : orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
       if (o[k] < 0) inside = false;
     }
     if (inside) {
       if (entry != kNoId) {  // the entry edge was skipped: p may lie on it
         const int k = static_cast<int>(entry % 3);
-        o[k] = orient2d(tri.point(tri.org(entry)), tri.point(tri.dst(entry)), p);
+        o[k] = orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
       }
       return classify_inside(tri, t, p, o);
     }
