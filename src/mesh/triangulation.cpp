@@ -1,5 +1,6 @@
 // Triangulation helpers: edge lookup, vertex map, area, compaction to MeshView.
 #include "mesh/triangulation.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace fdr::mesh {
@@ -78,6 +79,11 @@ void Triangulation::rebuild_vertex_map() {
     if (dead(t)) continue;
     for (int k = 0; k < 3; ++k) vhe_[corners_[t][k]] = 3 * t + k;
   }
+}
+
+void Triangulation::grow_regions() {
+  if (region_.capacity() < num_slots()) region_.reserve(std::max(corners_.capacity(), 2 * region_.capacity()));
+  region_.resize(num_slots(), -1);
 }
 
 void Triangulation::reserve(std::size_t triangles, std::size_t vertices) {

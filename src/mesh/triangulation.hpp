@@ -138,7 +138,7 @@ class Triangulation {
   // Starts the regions: -1 for every slot.
   void init_regions() { region_.assign(num_slots(), -1); }
   void set_region(TriangleId t, std::int32_t r) {
-    if (region_.size() <= t) region_.resize(num_slots(), -1);
+    if (region_.size() <= t) grow_regions();
     region_[t] = r;
   }
 
@@ -207,6 +207,7 @@ class Triangulation {
   };
   Index input_edge(Index a, Index b) const;  // the entry of a-b in input_edges_, or kNoId
   void add_input_edge(Index a, Index b, Index s);
+  void grow_regions();  // to num_slots(), the buffer grown geometrically (one slot at a time is quadratic)
 
   // Vertices.
   LargeArray<Point2> pts_;

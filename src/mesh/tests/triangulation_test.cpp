@@ -50,6 +50,22 @@ TEST(Triangulation, KilledSlotsAreReusedLastFreedFirst) {
   EXPECT_EQ(t.num_live_triangles(), 3u);
 }
 
+TEST(Triangulation, RegionsGrowWithTheSlots) {
+  Triangulation t = square();
+  EXPECT_FALSE(t.has_regions());
+  EXPECT_EQ(t.region(1), -1);
+  t.init_regions();
+  t.set_region(1, 4);
+  for (int i = 0; i < 100; ++i) {
+    const TriangleId n = t.new_triangle(0, 1, 2);
+    t.set_region(n, i % 3);
+  }
+  EXPECT_EQ(t.region(0), -1);
+  EXPECT_EQ(t.region(1), 4);
+  EXPECT_EQ(t.region(101), 99 % 3);
+  EXPECT_EQ(t.region(500), -1);  // beyond the slots
+}
+
 TEST(Triangulation, HalfEdgeCornersAndMarks) {
   Triangulation t = square();
   EXPECT_EQ(t.org(4), 2u);
