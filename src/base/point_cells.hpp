@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 #include "base/types.hpp"
 
@@ -19,7 +20,7 @@ namespace fdr {
 class PointCells {
  public:
   template <class Keep>
-  PointCells(const std::vector<Point2>& p, Keep&& keep, const Box2& box, double cell) : p_(p) {
+  PointCells(std::span<const Point2> p, Keep&& keep, const Box2& box, double cell) : p_(p) {
     std::size_t n = 0;
     for (Index i = 0; i < p.size(); ++i) n += keep(i) ? 1 : 0;
     const double span = std::max(box.width(), box.height());
@@ -68,7 +69,7 @@ class PointCells {
     return !(c > 0) ? 0 : c >= static_cast<double>(n - 1) ? n - 1 : static_cast<std::size_t>(c);
   }
   std::size_t cell_of(Point2 q) const { return ix(q.y, lo_.y, ny_) * nx_ + ix(q.x, lo_.x, nx_); }
-  const std::vector<Point2>& p_;
+  std::span<const Point2> p_;
   Point2 lo_{0, 0};
   double inv_ = 0;
   std::size_t nx_ = 0, ny_ = 0;

@@ -1,14 +1,14 @@
-// CDT construction: Hilbert-ordered incremental insertion, segment recovery by cavity
-// re-triangulation (Anglada's pseudo-polygon algorithm), region removal by seeds or parity.
+// CDT construction: Hilbert-ordered incremental insertion, segment recovery by edge flips
+// (regions.cpp then removes the regions outside the domain).
 #include "cdt/cdt.hpp"
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <sstream>
-#include <unordered_map>
 #include "base/error.hpp"
 #include "cdt/insert.hpp"
 #include "cdt/locate.hpp"
+#include "cdt/steps.hpp"
 #include "predicates/predicates.hpp"
 
 namespace fdr::cdt {
@@ -43,33 +43,33 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
 
 [[noreturn]] void crossing_error(const Triangulation& T, Index a, Index b, Index sid, HalfEdge h,
                                  const std::string& source) {
-  auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
+  const Index other = T.segment_of(T.org(h), T.dst(h));
   std::ostringstream s;
-  s << source << ": segment " << sid << " " << pt(T.pts[a]) << "-" << pt(T.pts[b]) << " crosses ";
-  if (it != T.seg_of.end())
-    s << "segment " << it->second << " " << pt(T.pts[T.input_segments[it->second].a]) << "-"
-      << pt(T.pts[T.input_segments[it->second].b]);
+  s << source << ": segment " << sid << " " << pt(T.point(a)) << "-" << pt(T.point(b)) << " crosses ";
+  if (other < T.input_segments().size())
+    s << "segment " << other << " " << pt(T.point(T.input_segments()[other].a)) << "-"
+      << pt(T.point(T.input_segments()[other].b));
   else
     s << "a constrained edge";
-  s << " near " << pt(T.pts[T.org(h)]) << "-" << pt(T.pts[T.dst(h)]);
+  s << " near " << pt(T.point(T.org(h))) << "-" << pt(T.point(T.dst(h)));
   throw Error(ExitCode::kInvalidGeometry, s.str());
 }
 
 void mark_constrained(Triangulation& T, HalfEdge h, Index sid, const std::string& source) {
   if (T.constrained(h)) {
     // Already part of another input segment: the two segments overlap (or repeat).
-    auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
-    if (it != T.seg_of.end() && it->second != sid && it->second < T.input_segments.size()) {
-      const auto& o = T.input_segments[it->second];
+    const Index other = T.segment_of(T.org(h), T.dst(h));
+    if (other != sid && other < T.input_segments().size()) {
+      const auto& o = T.input_segments()[other];
       throw Error(ExitCode::kInvalidGeometry,
-                  source + ": segment " + std::to_string(sid) + " overlaps segment " + std::to_string(it->second) +
-                      " " + pt(T.pts[o.a]) + "-" + pt(T.pts[o.b]) + " along " + pt(T.pts[T.org(h)]) + "-" +
-                      pt(T.pts[T.dst(h)]));
+                  source + ": segment " + std::to_string(sid) + " overlaps segment " + std::to_string(other) +
+                      " " + pt(T.point(o.a)) + "-" + pt(T.point(o.b)) + " along " + pt(T.point(T.org(h))) + "-" +
+                      pt(T.point(T.dst(h))));
     }
   }
   T.set_constrained(h, true);
-  if (T.twin[h] != kNoId) T.set_constrained(T.twin[h], true);
-  T.seg_of[mesh::edge_key(T.org(h), T.dst(h))] = sid;
+  if (T.twin(h) != kNoId) T.set_constrained(T.twin(h), true);
+  T.set_segment(T.org(h), T.dst(h), sid);
 }
 
 }  // namespace
@@ -77,25 +77,25 @@ void mark_constrained(Triangulation& T, HalfEdge h, Index sid, const std::string
 void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::string& source, CdtStats* stats) {
   std::size_t guard = 0;
   while (a != b) {
-    if (++guard > T.pts.size() + 2) throw Error(ExitCode::kInternal, source + ": segment insertion did not finish");
+    if (++guard > T.num_vertices() + 2) throw Error(ExitCode::kInternal, source + ": segment insertion did not finish");
     // Rotate around a to find the edge a-b, a vertex on the segment, or the wedge containing b.
-    const HalfEdge h0 = T.vhe[a];
+    const HalfEdge h0 = T.vertex_edge(a);
     HalfEdge h = h0, start = kNoId;
     Index next_a = kNoId;
     do {
       const Index u = T.dst(h), w = T.apex(h);
       if (u == b) { mark_constrained(T, h, sid, source); return; }
-      if (orient2d(T.pts[a], T.pts[b], T.pts[u]) == 0 && diametral(T.pts[a], T.pts[b], T.pts[u]) > 0) {
+      if (orient2d(T.point(a), T.point(b), T.point(u)) == 0 && diametral(T.point(a), T.point(b), T.point(u)) > 0) {
         mark_constrained(T, h, sid, source);  // u lies on the segment: split it there
         if (stats) ++stats->segments_split_at_vertices;
         next_a = u;
         break;
       }
-      if (orient2d(T.pts[a], T.pts[u], T.pts[b]) > 0 && orient2d(T.pts[a], T.pts[w], T.pts[b]) < 0) {
+      if (orient2d(T.point(a), T.point(u), T.point(b)) > 0 && orient2d(T.point(a), T.point(w), T.point(b)) < 0) {
         start = h;
         break;
       }
-      h = T.twin[mesh::prev_he(h)];
+      h = T.twin(mesh::prev_he(h));
     } while (h != h0 && h != kNoId);
     if (next_a != kNoId) { a = next_a; continue; }
     if (start == kNoId) throw Error(ExitCode::kInternal, source + ": segment " + std::to_string(sid) + " start not found");
@@ -107,11 +107,11 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     while (true) {
       if (T.constrained(cur)) crossing_error(T, a, b, sid, cur, source);
       crossing.push_back({T.org(cur), T.dst(cur)});
-      const HalfEdge n = T.twin[cur];
+      const HalfEdge n = T.twin(cur);
       if (n == kNoId) throw Error(ExitCode::kInternal, source + ": segment walk left the mesh");
       const Index o = T.apex(n);
       if (o == b) { end = b; break; }
-      const int s = orient2d(T.pts[a], T.pts[b], T.pts[o]);
+      const int s = orient2d(T.point(a), T.point(b), T.point(o));
       if (s == 0) { end = o; if (stats) ++stats->segments_split_at_vertices; break; }
       cur = s > 0 ? mesh::next_he(n) : mesh::prev_he(n);
     }
@@ -120,7 +120,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     // constrained Delaunay property around the new edges. Unlike re-triangulating the two
     // pseudo-polygons, this needs no simple-polygon assumption (a vertex whose whole star is
     // crossed, with its edges hanging into the cavity, is handled like any other).
-    const Point2 pa = T.pts[a], pe = T.pts[end];
+    const Point2 pa = T.point(a), pe = T.point(end);
     std::vector<std::pair<Index, Index>> fresh;
     std::size_t stall = 0;
     while (!crossing.empty()) {
@@ -130,15 +130,15 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
       crossing.pop_front();
       const HalfEdge e = T.find_edge(u, w);
       if (e == kNoId) continue;
-      const Index c = T.apex(e), d = T.apex(T.twin[e]);
+      const Index c = T.apex(e), d = T.apex(T.twin(e));
       // Convex iff the diagonal c-d separates u and w strictly.
-      if (orient2d(T.pts[c], T.pts[d], T.pts[u]) * orient2d(T.pts[c], T.pts[d], T.pts[w]) >= 0) {
+      if (orient2d(T.point(c), T.point(d), T.point(u)) * orient2d(T.point(c), T.point(d), T.point(w)) >= 0) {
         crossing.push_back({u, w});
         continue;
       }
       flip_edge(T, e);
       stall = 0;
-      const int sc = orient2d(pa, pe, T.pts[c]), sd = orient2d(pa, pe, T.pts[d]);
+      const int sc = orient2d(pa, pe, T.point(c)), sd = orient2d(pa, pe, T.point(d));
       if ((c == a || c == end || d == a || d == end) || sc * sd >= 0) fresh.push_back({c, d});
       else crossing.push_back({c, d});
     }
@@ -150,9 +150,9 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
       const auto [u, w] = fresh.back();
       fresh.pop_back();
       const HalfEdge e = T.find_edge(u, w);
-      if (e == kNoId || T.constrained(e) || T.twin[e] == kNoId) continue;
-      const Index c = T.apex(e), d = T.apex(T.twin[e]);
-      if (incircle(T.pts[u], T.pts[w], T.pts[c], T.pts[d]) <= 0) continue;
+      if (e == kNoId || T.constrained(e) || T.twin(e) == kNoId) continue;
+      const Index c = T.apex(e), d = T.apex(T.twin(e));
+      if (incircle(T.point(u), T.point(w), T.point(c), T.point(d)) <= 0) continue;
       flip_edge(T, e);
       fresh.push_back({u, c});
       fresh.push_back({c, w});
@@ -163,32 +163,31 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
   }
 }
 
-Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* stats) {
-  if (opt.resolve) {
-    pslg::ResolveOptions ro;
-    ro.source = opt.source;
-    const pslg::Pslg resolved = pslg::resolve(in, ro, opt.repairs);
-    CdtOptions o2 = opt;
-    o2.resolve = false;
-    return build_cdt(resolved, o2, stats);
-  }
-  CdtStats local;
-  if (!stats) stats = &local;
-  Triangulation T;
-  T.origin = in.origin;
+namespace {
+
+// The bounding box of the input points; throws on too few points or a non-finite coordinate.
+Box2 check_points(const pslg::Pslg& in, const std::string& source) {
   const std::size_t n = in.points.size();
-  if (n < 3) throw Error(ExitCode::kInvalidGeometry, opt.source + ": needs at least 3 vertices, got " + std::to_string(n));
+  if (n < 3) throw Error(ExitCode::kInvalidGeometry, source + ": needs at least 3 vertices, got " + std::to_string(n));
   Box2 box;
   for (std::size_t i = 0; i < n; ++i) {
     const Point2 p = in.points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      throw Error(ExitCode::kInvalidGeometry, opt.source + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+      throw Error(ExitCode::kInvalidGeometry, source + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
     box.add(p);
   }
-  T.pts.reserve(n + 3);
+  return box;
+}
+
+}  // namespace
+
+void start_triangulation(Triangulation& T, const pslg::Pslg& in, const Box2& box) {
+  const std::size_t n = in.points.size();
+  T.origin = in.origin;
+  T.reserve(0, n + 3);
   for (std::size_t i = 0; i < n; ++i) {
     T.add_vertex(in.points[i], VertexKind::kInput);
-    if (!in.point_markers.empty()) T.point_marker[i] = in.point_markers[i];
+    if (!in.point_markers.empty()) T.set_point_marker(static_cast<Index>(i), in.point_markers[i]);
   }
   // Super-triangle far outside the box; exact predicates make its size irrelevant to correctness.
   double d = std::max(box.width(), box.height());
@@ -198,7 +197,11 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
   const Index s1 = T.add_vertex({c.x + 64 * d, c.y - 48 * d}, VertexKind::kSuper);
   const Index s2 = T.add_vertex({c.x, c.y + 96 * d}, VertexKind::kSuper);
   T.new_triangle(s0, s1, s2);
+}
 
+std::vector<Index> insert_points(Triangulation& T, const pslg::Pslg& in, const Box2& box, const std::string& source,
+                                 CdtStats* stats) {
+  const std::size_t n = in.points.size();
   std::vector<std::pair<std::uint64_t, Index>> order(n);
   const double sx = box.width() > 0 ? 65535.0 / box.width() : 0, sy = box.height() > 0 ? 65535.0 / box.height() : 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -216,194 +219,51 @@ Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* s
     Location loc = locate_visibility(T, last, p);
     if (loc.kind == LocateKind::kOnVertex) {
       alias[i] = T.org(loc.he);
-      ++stats->duplicate_points;
+      if (stats) ++stats->duplicate_points;
       continue;
     }
     if (!ins.build_cavity(p, loc))
-      throw Error(ExitCode::kInternal, opt.source + ": could not insert vertex " + std::to_string(i) + " " + pt(p));
-    // commit appends a new vertex id; re-point the fan to vertex i instead.
-    const Index v = ins.commit(p, VertexKind::kInput);
-    for (TriangleId t : ins.new_triangles()) {
-      T.tv[3 * t + 2] = i;
-      T.vhe[i] = 3 * t + 2;
-    }
-    (void)v;
-    T.pts.pop_back(); T.vkind.pop_back(); T.vhe.pop_back(); T.point_marker.pop_back();
+      throw Error(ExitCode::kInternal, source + ": could not insert vertex " + std::to_string(i) + " " + pt(p));
+    ins.commit_vertex(i);
     last = ins.new_triangles().front();
   }
-  // Segments.
-  T.input_segments.reserve(in.segments.size());
+  return alias;
+}
+
+void insert_segments(Triangulation& T, const pslg::Pslg& in, const std::vector<Index>& alias,
+                     const std::string& source, CdtStats* stats) {
+  const std::size_t n = in.points.size();
+  T.reserve_input_segments(in.segments.size());
   for (std::size_t s = 0; s < in.segments.size(); ++s) {
     const auto& sg = in.segments[s];
     if (sg.a >= n || sg.b >= n)
-      throw Error(ExitCode::kInvalidGeometry, opt.source + ": segment " + std::to_string(s) + " has a vertex index out of range");
-    T.input_segments.push_back({alias[sg.a], alias[sg.b], sg.marker, sg.part});
+      throw Error(ExitCode::kInvalidGeometry, source + ": segment " + std::to_string(s) + " has a vertex index out of range");
+    T.add_input_segment({alias[sg.a], alias[sg.b], sg.marker, sg.part});
   }
-  for (std::size_t s = 0; s < T.input_segments.size(); ++s) {
-    const auto sg = T.input_segments[s];
+  for (std::size_t s = 0; s < T.input_segments().size(); ++s) {
+    const auto sg = T.input_segments()[s];
     if (sg.a == sg.b) continue;
-    insert_segment(T, sg.a, sg.b, static_cast<Index>(s), opt.source, stats);
+    insert_segment(T, sg.a, sg.b, static_cast<Index>(s), source, stats);
   }
-  // Regions: connected components of triangles across unconstrained edges.
-  const std::size_t nt = T.num_slots();
-  std::vector<Index> comp(nt, kNoId);
-  std::vector<std::vector<std::pair<Index, int>>> comp_adj;  // neighbour, depth step
-  std::vector<bool> comp_super;
-  std::vector<TriangleId> stack;
-  Index ncomp = 0;
-  for (TriangleId t0 = 0; t0 < nt; ++t0) {
-    if (T.dead(t0) || comp[t0] != kNoId) continue;
-    comp_adj.emplace_back();
-    comp_super.push_back(false);
-    comp[t0] = ncomp;
-    stack.push_back(t0);
-    while (!stack.empty()) {
-      const TriangleId t = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        if (T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper) comp_super[ncomp] = true;
-        const HalfEdge h = 3 * t + static_cast<Index>(k);
-        const HalfEdge w = T.twin[h];
-        if (w == kNoId || T.constrained(h)) continue;
-        const TriangleId u = mesh::tri_of(w);
-        if (comp[u] == kNoId) { comp[u] = ncomp; stack.push_back(u); }
-      }
-    }
-    ++ncomp;
+}
+
+Triangulation build_cdt(const pslg::Pslg& in, const CdtOptions& opt, CdtStats* stats) {
+  if (opt.resolve) {
+    pslg::ResolveOptions ro;
+    ro.source = opt.source;
+    const pslg::Pslg resolved = pslg::resolve(in, ro, opt.repairs);
+    CdtOptions o2 = opt;
+    o2.resolve = false;
+    return build_cdt(resolved, o2, stats);
   }
-  for (TriangleId t = 0; t < nt; ++t) {
-    if (T.dead(t)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdge h = 3 * t + static_cast<Index>(k);
-      const HalfEdge w = T.twin[h];
-      if (w == kNoId || !T.constrained(h) || comp[mesh::tri_of(w)] == comp[t]) continue;
-      // Breaklines (marker 4) are interior constraints: crossing one does not change the depth.
-      auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
-      const bool breakline = it != T.seg_of.end() && it->second < T.input_segments.size() &&
-                             T.input_segments[it->second].marker == pslg::kBreaklineMarker;
-      comp_adj[comp[t]].push_back({comp[mesh::tri_of(w)], breakline ? 0 : 1});
-    }
-  }
-  // Nesting depth: fewest boundary (non-breakline) constraints crossed from the outside
-  // (0-1 breadth-first search).
-  std::vector<int> depth(ncomp, -1);
-  std::deque<Index> q;
-  for (Index k = 0; k < ncomp; ++k)
-    if (comp_super[k]) { depth[k] = 0; q.push_back(k); }
-  while (!q.empty()) {
-    const Index k = q.front();
-    q.pop_front();
-    for (const auto& [j, step] : comp_adj[k]) {
-      if (depth[j] >= 0 && depth[j] <= depth[k] + step) continue;
-      depth[j] = depth[k] + step;
-      if (step == 0) q.push_front(j); else q.push_back(j);
-    }
-  }
-  auto mode = opt.regions;
-  if (mode == CdtOptions::Regions::kAuto) {
-    if (in.segments.empty()) mode = CdtOptions::Regions::kNone;
-    else if (!in.holes.empty()) mode = CdtOptions::Regions::kSeeds;
-    else mode = CdtOptions::Regions::kParity;
-  }
-  std::vector<bool> remove(ncomp, false);
-  for (Index k = 0; k < ncomp; ++k) {
-    if (mode == CdtOptions::Regions::kParity) remove[k] = depth[k] < 0 || depth[k] % 2 == 0;
-    else if (mode == CdtOptions::Regions::kHull) remove[k] = false;  // super triangles go below
-    else remove[k] = depth[k] == 0 || depth[k] < 0;
-  }
-  if (mode == CdtOptions::Regions::kSeeds || mode == CdtOptions::Regions::kHull) {
-    for (std::size_t h = 0; h < in.holes.size(); ++h) {
-      const Point2 hp = in.holes[h];
-      auto hole_error = [&](const std::string& what) {
-        throw Error(ExitCode::kInvalidGeometry, opt.source + ": hole " + std::to_string(h) + " seed at " +
-                                                    pt(T.origin + hp) + " " + what);
-      };
-      if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) hole_error("has a non-finite coordinate");
-      TriangleId start = 0;
-      while (T.dead(start)) ++start;
-      const Location loc = locate_visibility(T, start, hp);
-      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked)
-        hole_error("lies outside the domain (outside the convex hull of the vertices)");
-      if (loc.kind == LocateKind::kOnVertex) hole_error("lies on vertex " + std::to_string(T.org(loc.he)));
-      if (loc.kind == LocateKind::kOnEdge && T.constrained(loc.he)) {
-        auto it = T.seg_of.find(mesh::edge_key(T.org(loc.he), T.dst(loc.he)));
-        hole_error("lies on segment " +
-                   (it != T.seg_of.end() ? std::to_string(it->second) : std::string("(a constrained edge)")) +
-                   " (a seed must be strictly inside the region to remove)");
-      }
-      const TriangleId t = mesh::tri_of(loc.he);
-      bool sup = false;
-      for (int k = 0; k < 3; ++k) sup |= T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper;
-      const Index k = comp[t];
-      if (sup || (mode == CdtOptions::Regions::kSeeds && depth[k] <= 0))
-        hole_error(mode == CdtOptions::Regions::kHull
-                       ? "lies outside the domain (outside the convex hull of the vertices)"
-                       : "lies outside the domain (in no region enclosed by segments)");
-      remove[k] = true;
-    }
-  }
-  // Regional attributes / area constraints (Triangle semantics): a seed marks the whole region
-  // bounded by segments around it; a later seed in the same region wins. Seeds outside every
-  // triangle are ignored, as Triangle does.
-  if (!in.regions.empty()) {
-    std::vector<std::int32_t> region_of_comp(ncomp, -1);
-    TriangleId start = 0;
-    while (T.dead(start)) ++start;
-    for (std::size_t r = 0; r < in.regions.size(); ++r) {
-      const Point2 rp = in.regions[r].seed;
-      if (!std::isfinite(rp.x) || !std::isfinite(rp.y)) continue;
-      const Location loc = locate_visibility(T, start, rp);
-      if (loc.he == kNoId || loc.kind == LocateKind::kBlocked) continue;
-      region_of_comp[comp[mesh::tri_of(loc.he)]] = static_cast<std::int32_t>(r);
-    }
-    T.region.assign(nt, -1);
-    for (TriangleId t = 0; t < nt; ++t)
-      if (!T.dead(t)) T.region[t] = region_of_comp[comp[t]];
-  }
-  // Delete removed triangles; touching super-vertex triangles always go.
-  auto removed = [&](TriangleId t) {
-    if (remove[comp[t]]) return true;
-    for (int k = 0; k < 3; ++k)
-      if (T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper) return true;
-    return false;
-  };
-  // An input segment with an edge between two removed triangles lies (partly) outside the
-  // domain, e.g. a boundary segment between two even-depth regions (parity) or between a hole and
-  // the exterior: it is marked gone (b = a), so checkers and refinement ignore it.
-  for (TriangleId t = 0; t < nt; ++t) {
-    if (T.dead(t) || !removed(t)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdge h = 3 * t + static_cast<Index>(k);
-      if (!T.constrained(h) || T.twin[h] == kNoId || !removed(mesh::tri_of(T.twin[h]))) continue;
-      auto it = T.seg_of.find(mesh::edge_key(T.org(h), T.dst(h)));
-      if (it != T.seg_of.end() && it->second < T.input_segments.size())
-        T.input_segments[it->second].b = T.input_segments[it->second].a;
-    }
-  }
-  for (TriangleId t = 0; t < nt; ++t) {
-    if (T.dead(t)) continue;
-    bool sup = false;
-    for (int k = 0; k < 3; ++k) sup |= T.vkind[T.tv[3 * t + k]] == VertexKind::kSuper;
-    if (!remove[comp[t]] && !sup) continue;
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdge w = T.twin[3 * t + k];
-      if (w != kNoId) T.twin[w] = kNoId;
-    }
-    T.kill_triangle(t);
-    ++stats->removed_triangles;
-  }
-  // A removed region can leave an unconstrained boundary edge only for kNone (convex hull):
-  // mark such edges constrained so refinement treats the hull as a boundary.
-  for (TriangleId t = 0; t < nt; ++t) {
-    if (T.dead(t)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const HalfEdge h = 3 * t + static_cast<Index>(k);
-      if (T.twin[h] == kNoId && !T.constrained(h)) {
-        T.set_constrained(h, true);
-        T.seg_of[mesh::edge_key(T.org(h), T.dst(h))] = kNoId;
-      }
-    }
-  }
+  CdtStats local;
+  if (!stats) stats = &local;
+  const Box2 box = check_points(in, opt.source);
+  Triangulation T;
+  start_triangulation(T, in, box);
+  const std::vector<Index> alias = insert_points(T, in, box, opt.source, stats);
+  insert_segments(T, in, alias, opt.source, stats);
+  remove_regions(T, in, opt, stats);
   T.rebuild_vertex_map();
   return T;
 }

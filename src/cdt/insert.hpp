@@ -34,6 +34,9 @@ class Inserter {
   // the created triangles. Splitting a constrained edge keeps both halves constrained and
   // updates the segment map.
   Index commit(Point2 p, mesh::VertexKind kind);
+  // The same for a vertex already in the triangulation but in no triangle yet (the CDT adds its
+  // input vertices first, so that vertex i of the input is vertex i of the triangulation).
+  void commit_vertex(Index v);
   void abort();
   const std::vector<TriangleId>& new_triangles() const { return new_tris_; }
 

@@ -13,7 +13,7 @@ Location classify_inside(const mesh::Triangulation& tri, TriangleId t, Point2 p,
   int zeros = (o[0] == 0) + (o[1] == 0) + (o[2] == 0);
   if (zeros == 0) return {LocateKind::kInTriangle, 3 * t};
   for (int k = 0; k < 3; ++k)
-    if (tri.pts[tri.tv[3 * t + k]] == p) return {LocateKind::kOnVertex, 3 * t + static_cast<Index>(k)};
+    if (tri.point(tri.corner(t, k)) == p) return {LocateKind::kOnVertex, 3 * t + static_cast<Index>(k)};
   for (int k = 0; k < 3; ++k)
     if (o[k] == 0) return {LocateKind::kOnEdge, 3 * t + static_cast<Index>(k)};
   return {LocateKind::kInTriangle, 3 * t};
@@ -31,9 +31,9 @@ Location locate_visibility(const mesh::Triangulation& tri, TriangleId t, Point2 
     for (int i = 0; i < 3; ++i) {
       const int k = (r + i) % 3;
       const HalfEdge h = 3 * t + static_cast<Index>(k);
-      o[k] = orient2d(tri.pts[tri.org(h)], tri.pts[tri.dst(h)], p);
-      if (o[k] < 0 && tri.twin[h] != kNoId) {
-        t = mesh::tri_of(tri.twin[h]);
+      o[k] = orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
+      if (o[k] < 0 && tri.twin(h) != kNoId) {
+        t = mesh::tri_of(tri.twin(h));
         moved = true;
         break;
       }
@@ -48,7 +48,7 @@ Location locate_visibility(const mesh::Triangulation& tri, TriangleId t, Point2 
 }
 
 Location locate_straight(const mesh::Triangulation& tri, TriangleId t, Point2 p, std::size_t max_steps) {
-  const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+  const Point2 a = tri.point(tri.corner(t, 0)), b = tri.point(tri.corner(t, 1)), c = tri.point(tri.corner(t, 2));
   const Point2 g{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
   HalfEdge entry = kNoId;
   for (std::size_t steps = 0; steps < max_steps; ++steps) {
@@ -56,13 +56,13 @@ Location locate_straight(const mesh::Triangulation& tri, TriangleId t, Point2 p,
     bool inside = true;
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + static_cast<Index>(k);
-      o[k] = (h == entry) ? 1 : orient2d(tri.pts[tri.org(h)], tri.pts[tri.dst(h)], p);
+      o[k] = (h == entry) ? 1 : orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
       if (o[k] < 0) inside = false;
     }
     if (inside) {
       if (entry != kNoId) {  // the entry edge was skipped: p may lie on it
         const int k = static_cast<int>(entry % 3);
-        o[k] = orient2d(tri.pts[tri.org(entry)], tri.pts[tri.dst(entry)], p);
+        o[k] = orient2d(tri.point(tri.corner(t, k)), tri.point(tri.corner(t, (k + 1) % 3)), p);
       }
       return classify_inside(tri, t, p, o);
     }
@@ -70,7 +70,7 @@ Location locate_straight(const mesh::Triangulation& tri, TriangleId t, Point2 p,
     // among edges that p lies beyond. Falls back to any edge p lies beyond (visibility step).
     HalfEdge exit = kNoId;
     int side[3];
-    for (int k = 0; k < 3; ++k) side[k] = orient2d(g, p, tri.pts[tri.tv[3 * t + k]]);
+    for (int k = 0; k < 3; ++k) side[k] = orient2d(g, p, tri.point(tri.corner(t, k)));
     for (int k = 0; k < 3; ++k) {
       const int k1 = (k + 1) % 3;
       if (o[k] < 0 && side[k] <= 0 && side[k1] > 0) { exit = 3 * t + static_cast<Index>(k); break; }
@@ -78,8 +78,8 @@ Location locate_straight(const mesh::Triangulation& tri, TriangleId t, Point2 p,
     if (exit == kNoId)
       for (int k = 0; k < 3; ++k)
         if (o[k] < 0) { exit = 3 * t + static_cast<Index>(k); break; }
-    if (tri.constrained(exit) || tri.twin[exit] == kNoId) return {LocateKind::kBlocked, exit};
-    entry = tri.twin[exit];
+    if (tri.constrained(exit) || tri.twin(exit) == kNoId) return {LocateKind::kBlocked, exit};
+    entry = tri.twin(exit);
     t = mesh::tri_of(entry);
   }
   return {LocateKind::kBlocked, kNoId};

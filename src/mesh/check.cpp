@@ -18,25 +18,25 @@ std::string fmt_pt(Point2 p) {
 
 CheckResult check_topology(const Triangulation& tri) {
   CheckResult r;
-  const std::size_t nv = tri.pts.size();
+  const std::size_t nv = tri.num_vertices();
   for (TriangleId t = 0; t < tri.num_slots(); ++t) {
     if (tri.dead(t)) continue;
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + k;
-      if (tri.tv[h] >= nv) { r.add("triangle " + std::to_string(t) + " has an invalid vertex id"); continue; }
-      const HalfEdge w = tri.twin[h];
+      if (tri.org(h) >= nv) { r.add("triangle " + std::to_string(t) + " has an invalid vertex id"); continue; }
+      const HalfEdge w = tri.twin(h);
       if (w == kNoId) continue;
-      if (w >= tri.twin.size() || tri.dead(tri_of(w))) {
+      if (w >= 3 * tri.num_slots() || tri.dead(tri_of(w))) {
         r.add("half-edge " + std::to_string(h) + " points to a dead or invalid twin");
         continue;
       }
-      if (tri.twin[w] != h) r.add("twin asymmetry at half-edge " + std::to_string(h));
+      if (tri.twin(w) != h) r.add("twin asymmetry at half-edge " + std::to_string(h));
       if (tri.org(w) != tri.dst(h) || tri.dst(w) != tri.org(h))
         r.add("twin endpoints mismatch at half-edge " + std::to_string(h));
       if (tri.constrained(w) != tri.constrained(h))
         r.add("constraint bit asymmetric at half-edge " + std::to_string(h));
     }
-    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    const Point2 a = tri.point(tri.corner(t, 0)), b = tri.point(tri.corner(t, 1)), c = tri.point(tri.corner(t, 2));
     if (predicates::orient2d(a, b, c) <= 0)
       r.add("triangle " + std::to_string(t) + " is not counter-clockwise: " + fmt_pt(a) + " " + fmt_pt(b) + " " + fmt_pt(c));
   }
@@ -49,12 +49,12 @@ CheckResult check_delaunay(const Triangulation& tri) {
     if (tri.dead(t)) continue;
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + k;
-      const HalfEdge w = tri.twin[h];
+      const HalfEdge w = tri.twin(h);
       if (w == kNoId || w < h || tri.constrained(h)) continue;
-      const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
-      const Point2 d = tri.pts[tri.apex(w)];
+      const Point2 a = tri.point(tri.corner(t, 0)), b = tri.point(tri.corner(t, 1)), c = tri.point(tri.corner(t, 2));
+      const Point2 d = tri.point(tri.apex(w));
       if (predicates::incircle(a, b, c, d) > 0)
-        r.add("edge " + fmt_pt(tri.pts[tri.org(h)]) + "-" + fmt_pt(tri.pts[tri.dst(h)]) + " is not locally Delaunay");
+        r.add("edge " + fmt_pt(tri.point(tri.org(h))) + "-" + fmt_pt(tri.point(tri.dst(h))) + " is not locally Delaunay");
     }
   }
   return r;
@@ -69,17 +69,17 @@ CheckResult check_segments(const Triangulation& tri) {
     for (int k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + static_cast<Index>(k);
       if (!tri.constrained(h)) continue;
-      auto it = tri.seg_of.find(edge_key(tri.org(h), tri.dst(h)));
-      if (it == tri.seg_of.end() || it->second == kNoId) continue;
-      by_seg[it->second].push_back({tri.org(h), tri.dst(h)});
+      const Index s = tri.segment_of(tri.org(h), tri.dst(h));
+      if (s == kNoId) continue;
+      by_seg[s].push_back({tri.org(h), tri.dst(h)});
     }
   }
-  std::vector<bool> in_mesh(tri.pts.size(), false);
+  std::vector<bool> in_mesh(tri.num_vertices(), false);
   for (TriangleId t = 0; t < tri.num_slots(); ++t)
     if (!tri.dead(t))
-      for (int k = 0; k < 3; ++k) in_mesh[tri.tv[3 * t + k]] = true;
-  for (Index s = 0; s < tri.input_segments.size(); ++s) {
-    const auto& seg = tri.input_segments[s];
+      for (int k = 0; k < 3; ++k) in_mesh[tri.corner(t, k)] = true;
+  for (Index s = 0; s < tri.input_segments().size(); ++s) {
+    const auto& seg = tri.input_segments()[s];
     if (seg.a == seg.b || !in_mesh[seg.a] || !in_mesh[seg.b]) continue;  // removed with a hole
     std::unordered_map<Index, std::vector<Index>> adj;
     for (const auto& [u, w] : by_seg[s]) {
@@ -98,7 +98,7 @@ CheckResult check_segments(const Triangulation& tri) {
       cur = nxt;
     }
     if (!ok)
-      r.add("input segment " + std::to_string(s) + " " + fmt_pt(tri.pts[seg.a]) + "-" + fmt_pt(tri.pts[seg.b]) +
+      r.add("input segment " + std::to_string(s) + " " + fmt_pt(tri.point(seg.a)) + "-" + fmt_pt(tri.point(seg.b)) +
             " is not a chain of mesh edges");
   }
   return r;
@@ -108,7 +108,7 @@ CheckResult check_spacing(const Triangulation& tri, const std::function<double(P
   CheckResult r;
   for (TriangleId t = 0; t < tri.num_slots(); ++t) {
     if (tri.dead(t)) continue;
-    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    const Point2 a = tri.point(tri.corner(t, 0)), b = tri.point(tri.corner(t, 1)), c = tri.point(tri.corner(t, 2));
     double r2 = 0;
     const Point2 cc = geom::circumcentre(a, b, c, &r2);
     const double fc = f(cc);

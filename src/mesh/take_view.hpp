@@ -6,7 +6,7 @@
 namespace fdr::mesh {
 
 // Same MeshView as t.to_view() (same vertex, triangle and edge order, same markers), built in
-// place: the positions, the corners (Triangulation::tv) and the twins are compacted and
+// place: the positions, the corners and the twins are compacted and
 // renumbered in their own arrays, which the view then takes over; the other arrays are freed.
 // No second copy of the mesh, so no fresh pages and no rise of the peak. `t` is left empty.
 MeshView take_view(Triangulation& t);

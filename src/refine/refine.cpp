@@ -10,7 +10,6 @@
 #include <sstream>
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
-#include "base/memory.hpp"
 #include "base/parallel.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
@@ -23,9 +22,9 @@ using predicates::diametral;
 namespace {
 // Queue order: largest R/f(c) first, by buckets. One bucket per doubling of (R/f(c))^2 (a factor
 // sqrt(2) in R/f(c)), except the last doubling before the bound, 1 < (R/f(c))^2 <= 2, which is split
-// into kFineSub buckets. Why: where the final vertices go is decided there; buckets of a factor
-// sqrt(2) made 8.4 % more triangles than the exact largest-first order on 0.025*paper-f1, four fine
-// buckets at the end 0.5 % more (sixteen everywhere: 0.3 %, but 1.4-1.6x the refinement time).
+// into kFineSub buckets. Why: where the final vertices go is decided there; coarse buckets there
+// make clearly more triangles than the exact largest-first order, fine buckets everywhere cost
+// refinement time for little gain.
 constexpr int kFineSub = 4;
 constexpr int kBuckets = 2048 + kFineSub;
 constexpr double kPi = 3.14159265358979323846;
@@ -38,7 +37,7 @@ std::string pt(Point2 p) {
 }
 
 int bucket_of(double key2) {
-  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent (fuzz_pslg_mesh_1)
+  if (!(key2 <= 1e300)) return kBuckets - 1;  // inf (R/f overflows) or NaN: most urgent
   int e;
   const double m = std::frexp(key2, &e);  // key2 = m * 2^e, m in [0.5, 1)
   const int idx = e <= 1 ? static_cast<int>((m - 0.5) * (2.0 * kFineSub)) : kFineSub + (e - 2);
@@ -51,9 +50,9 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
-  if (!tri_.pts.empty()) {
-    Point2 lo = tri_.pts[0], hi = tri_.pts[0];
-    for (const Point2& q : tri_.pts) {
+  if (tri_.num_vertices() > 0) {
+    Point2 lo = tri_.point(0), hi = tri_.point(0);
+    for (const Point2& q : tri_.points()) {
       lo.x = std::min(lo.x, q.x);
       lo.y = std::min(lo.y, q.y);
       hi.x = std::max(hi.x, q.x);
@@ -63,17 +62,7 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
     const double w = std::max(hi.x - lo.x, hi.y - lo.y);
     zscale_ = w > 0 ? 65535.0 / w : 0.0;
   }
-  // Input segments that meet another at an input vertex at less than 60 degrees (a cluster).
-  in_cluster_.assign(tri_.input_segments.size(), false);
-  std::unordered_map<Index, std::vector<Index>> at_vertex;
-  for (Index s = 0; s < tri_.input_segments.size(); ++s) {
-    at_vertex[tri_.input_segments[s].a].push_back(s);
-    at_vertex[tri_.input_segments[s].b].push_back(s);
-  }
-  for (const auto& [v, list] : at_vertex)
-    for (std::size_t i = 0; i < list.size(); ++i)
-      for (std::size_t j = i + 1; j < list.size(); ++j)
-        if (cluster_pair(list[i], list[j])) in_cluster_[list[i]] = in_cluster_[list[j]] = true;
+  mark_clusters();
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
     const double s = std::sin(opt_.min_angle_deg * kPi / 180.0);
@@ -82,14 +71,41 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   }
 }
 
+// Input segments that meet another at an input vertex at less than 60 degrees (a cluster). Each
+// pair of segments at a vertex is tested once (the flags are an "or": their order is immaterial).
+void Refiner::mark_clusters() {
+  const auto& segs = tri_.input_segments();
+  in_cluster_.assign(segs.size(), false);
+  std::vector<std::pair<Index, Index>> at_vertex;  // (vertex, segment), sorted
+  at_vertex.reserve(2 * segs.size());
+  for (Index s = 0; s < segs.size(); ++s) {
+    at_vertex.push_back({segs[s].a, s});
+    at_vertex.push_back({segs[s].b, s});
+  }
+  std::sort(at_vertex.begin(), at_vertex.end());
+  for (std::size_t lo = 0, hi = 0; lo < at_vertex.size(); lo = hi) {
+    while (hi < at_vertex.size() && at_vertex[hi].first == at_vertex[lo].first) ++hi;
+    for (std::size_t i = lo; i < hi; ++i)
+      for (std::size_t j = i + 1; j < hi; ++j)
+        if (cluster_pair(at_vertex[i].second, at_vertex[j].second))
+          in_cluster_[at_vertex[i].second] = in_cluster_[at_vertex[j].second] = true;
+  }
+}
+
 bool Refiner::shell_apex_equal(Index p, Index q) const {
-  auto ip = shell_.find(p), iq = shell_.find(q);
-  return ip != shell_.end() && iq != shell_.end() && ip->second == iq->second;
+  const Shell* sp = shell_of(p);
+  const Shell* sq = shell_of(q);
+  return sp != nullptr && sq != nullptr && sp->apex == sq->apex && sp->exp == sq->exp;
+}
+
+const Refiner::Shell* Refiner::shell_of(Index v) const {
+  const Index i = tri_.segment_vertex_index(v);
+  return i < shell_.size() && shell_[i].apex != kNoId ? &shell_[i] : nullptr;
 }
 
 double Refiner::badness(TriangleId t, bool* exempt) const {
   const auto& T = tri_;
-  const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+  const Point2 a = T.point(T.corner(t, 0)), b = T.point(T.corner(t, 1)), c = T.point(T.corner(t, 2));
   const double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
   const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
   const double inv = 0.5 / (bx * cy - by * cx);
@@ -121,11 +137,11 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
     if (ka > 1 && ka > kf) {
       // Why exempt: an angle forced by two input segments (or by two shell vertices around the
       // same input apex) cannot be improved by splitting; Triangle leaves these alone too.
-      const Index vo = T.tv[3 * t + opp];
+      const Index vo = T.corner(t, opp);
       const HalfEdge h_in = 3 * t + static_cast<Index>((opp + 2) % 3);  // edge ending at vo
       const HalfEdge h_out = 3 * t + static_cast<Index>(opp);           // edge leaving vo
-      const Index p = T.tv[3 * t + (opp + 1) % 3], q = T.tv[3 * t + (opp + 2) % 3];
-      const bool input_angle = T.vkind[vo] == VertexKind::kInput && T.constrained(h_in) && T.constrained(h_out);
+      const Index p = T.org(3 * t + (opp + 1) % 3), q = T.org(3 * t + (opp + 2) % 3);
+      const bool input_angle = T.kind(vo) == VertexKind::kInput && T.constrained(h_in) && T.constrained(h_out);
       if (input_angle || shell_apex_equal(p, q)) {
         if (exempt) *exempt = true;
         return kf > 1 ? kf : 0;
@@ -133,8 +149,8 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
       key = ka;
     }
   }
-  if (!opt_.region_max_area.empty() && t < T.region.size()) {  // regional area constraint
-    const std::int32_t r = T.region[t];
+  if (!opt_.region_max_area.empty()) {  // regional area constraint
+    const std::int32_t r = T.region(t);
     if (r >= 0 && static_cast<std::size_t>(r) < opt_.region_max_area.size() && opt_.region_max_area[r] > 0) {
       const double area = 0.5 * std::fabs(bx * cy - by * cx);
       if (area > opt_.region_max_area[r]) key = std::max(key, std::max(area / opt_.region_max_area[r], 1.0 + 1e-9));
@@ -180,13 +196,13 @@ void Refiner::pop_entry(Bucket& b) {
 
 void Refiner::push_bad(TriangleId t, double key2) {
   const int b = bucket_of(key2);
-  const Index a = tri_.tv[3 * t];
+  const Index a = tri_.corner(t, 0);
   // Morton code of the first corner (the triangle is in cache now), for the spatial sort below.
-  const Point2 p = tri_.pts[a];
+  const Point2 p = tri_.point(a);
   const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
   const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
   const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
-  push_entry(buckets_[b], {t, tri_.tv[3 * t + 2], z});
+  push_entry(buckets_[b], {t, tri_.corner(t, 2), z});
   if (b > top_) top_ = b;
 }
 
@@ -205,27 +221,21 @@ void Refiner::evaluate(TriangleId t) {
 bool Refiner::cluster_pair(Index s1i, Index s2i) const {
   if (s1i == kNoId || s2i == kNoId || s1i == s2i) return false;
   const auto& T = tri_;
-  const auto& s1 = T.input_segments[s1i];
-  const auto& s2 = T.input_segments[s2i];
+  const auto& s1 = T.input_segments()[s1i];
+  const auto& s2 = T.input_segments()[s2i];
   Index apex = kNoId, o1 = kNoId, o2 = kNoId;
   if (s1.a == s2.a) { apex = s1.a; o1 = s1.b; o2 = s2.b; }
   else if (s1.a == s2.b) { apex = s1.a; o1 = s1.b; o2 = s2.a; }
   else if (s1.b == s2.a) { apex = s1.b; o1 = s1.a; o2 = s2.b; }
   else if (s1.b == s2.b) { apex = s1.b; o1 = s1.a; o2 = s2.a; }
   if (apex == kNoId) return false;
-  const Point2 u = T.pts[o1] - T.pts[apex], w = T.pts[o2] - T.pts[apex];
+  const Point2 u = T.point(o1) - T.point(apex), w = T.point(o2) - T.point(apex);
   const double cross = std::fabs(u.x * w.y - u.y * w.x), d = dot(u, w);
   return d > 0 && cross < std::sqrt(3.0) * d;  // angle < 60 degrees
 }
 
-Index Refiner::segment_of_vertex(Index v) const {
-  auto it = seg_vertex_.find(v);
-  return it == seg_vertex_.end() ? kNoId : it->second;
-}
-
 bool Refiner::same_cluster(Index v, Index a, Index b) const {
-  auto is = tri_.seg_of.find(mesh::edge_key(a, b));
-  return is != tri_.seg_of.end() && cluster_pair(segment_of_vertex(v), is->second);
+  return cluster_pair(tri_.segment_of_vertex(v), tri_.segment_of(a, b));
 }
 
 void Refiner::check_encroached_edges(TriangleId t) {
@@ -234,7 +244,7 @@ void Refiner::check_encroached_edges(TriangleId t) {
     const HalfEdge h = 3 * t + static_cast<Index>(k);
     if (!T.constrained(h)) continue;
     const Index a = T.org(h), b = T.dst(h), c = T.apex(h);
-    if (diametral(T.pts[a], T.pts[b], T.pts[c]) > 0 && !same_cluster(c, a, b)) enc_.push_back({a, b});
+    if (diametral(T.point(a), T.point(b), T.point(c)) > 0 && !same_cluster(c, a, b)) enc_.push_back({a, b});
   }
 }
 
@@ -242,20 +252,7 @@ void Refiner::reserve(double expected_triangles) {
   if (!(expected_triangles > 0) || expected_triangles > 4e9) return;
   // Why: growing by doubling would briefly hold old and new arrays (3x peak memory).
   const auto nt = static_cast<std::size_t>(expected_triangles * 1.1) + 64;
-  tri_.tv.slots().reserve(nt);
-  tri_.twin.reserve(3 * nt);
-  tri_.flags.reserve(nt);
-  const std::size_t nv = nt / 2 + 64;
-  tri_.pts.reserve(nv);
-  tri_.vkind.reserve(nv);
-  tri_.vhe.reserve(nv);
-  tri_.point_marker.reserve(nv);
-  advise_huge_pages(tri_.tv.slots());
-  advise_huge_pages(tri_.twin);
-  advise_huge_pages(tri_.flags);
-  advise_huge_pages(tri_.pts);
-  advise_huge_pages(tri_.vhe);
-  advise_huge_pages(tri_.point_marker);
+  tri_.reserve(nt, nt / 2 + 64);
 }
 
 void Refiner::init() {
@@ -268,8 +265,8 @@ void Refiner::init() {
 
 Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const {
   const auto& T = tri_;
-  const Point2 pa = T.pts[a], pb = T.pts[b];
-  const bool ia = T.vkind[a] == VertexKind::kInput, ib = T.vkind[b] == VertexKind::kInput;
+  const Point2 pa = T.point(a), pb = T.point(b);
+  const bool ia = T.kind(a) == VertexKind::kInput, ib = T.kind(b) == VertexKind::kInput;
   *apex = kNoId;
   if (ia != ib) {
     // Concentric shells (Ruppert; Shewchuk's Triangle): split at a power-of-two distance from
@@ -287,11 +284,9 @@ Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const
 
 void Refiner::split_subsegment(Index a, Index b) {
   auto& T = tri_;
-  // A stale entry (the subsegment was split meanwhile) is no longer in the segment map.
-  if (T.seg_of.find(mesh::edge_key(a, b)) == T.seg_of.end()) return;
-  const HalfEdge h = T.find_edge_anywhere(a, b);
-  if (h == kNoId || !T.constrained(h)) return;
-  const Point2 pa = T.pts[a], pb = T.pts[b];
+  const HalfEdge h = T.find_subsegment(a, b);
+  if (h == kNoId) return;  // a stale entry: the subsegment was split meanwhile
+  const Point2 pa = T.point(a), pb = T.point(b);
   Index apex = kNoId;
   int shell_exp = 0;
   const Point2 m = split_point(a, b, &apex, &shell_exp);
@@ -307,11 +302,12 @@ void Refiner::split_subsegment(Index a, Index b) {
                                             "has features near floating-point resolution there)");
     throw Error(ExitCode::kInternal, "could not split subsegment at " + pt(T.origin + m));
   }
-  auto sid = T.seg_of.find(mesh::edge_key(a, b));
-  const Index seg_id = sid != T.seg_of.end() ? sid->second : kNoId;
   const Index v = ins_.commit(m, VertexKind::kSegment);
-  if (apex != kNoId) shell_[v] = {apex, shell_exp};
-  if (seg_id != kNoId) seg_vertex_[v] = seg_id;
+  if (apex != kNoId) {
+    const Index i = T.segment_vertex_index(v);
+    if (shell_.size() <= i) shell_.resize(i + 1);
+    shell_[i] = {apex, shell_exp};
+  }
   ++stats_.segment_splits;
   for (TriangleId t : ins_.new_triangles()) {
     check_encroached_edges(t);
@@ -327,24 +323,24 @@ void Refiner::split_subsegment(Index a, Index b) {
 // Triangles bad by R/f(c) > B are always split: that is the FDR guarantee.
 bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const {
   const auto& T = tri_;
-  const Index ea = T.tv[3 * e.t], eb = T.tv[3 * e.t + 1], ec = e.c;
-  const Point2 a = T.pts[ea], b = T.pts[eb], c = T.pts[ec];
+  const Index ea = T.org(3 * e.t), eb = T.org(3 * e.t + 1), ec = e.c;
+  const Point2 a = T.point(ea), b = T.point(eb), c = T.point(ec);
   double r2;
   const Point2 cc = predicates::circumcenter(a, b, c, &r2);
   const double fc = f_(cc);
   if (!(fc > 0) || r2 / (fc * fc) * b2_inv_ > 1) return true;  // R/f-bad (or f undefined there)
   // A triangle spanning the strip between two segments of a small-angle cluster is skinny
   // because of the input; it is left alone (refining it would march into the apex forever).
-  const Index sa = segment_of_vertex(ea), sb = segment_of_vertex(eb), sc = segment_of_vertex(ec);
+  const Index sa = T.segment_of_vertex(ea), sb = T.segment_of_vertex(eb), sc = T.segment_of_vertex(ec);
   if (cluster_pair(sa, sb) || cluster_pair(sb, sc) || cluster_pair(sc, sa)) return false;
   const double lmin = std::sqrt(std::min({norm2(b - a), norm2(c - b), norm2(a - c)}));
   for (const auto& [p, q] : segs) {
-    auto it = T.seg_of.find(mesh::edge_key(p, q));
-    if (it == T.seg_of.end() || it->second == kNoId || !in_cluster_[it->second]) continue;
+    const Index s = T.segment_of(p, q);
+    if (s == kNoId || !in_cluster_[s]) continue;
     Index apex;
     int ex;
     const Point2 m = split_point(p, q, &apex, &ex);
-    if (std::min(dist(T.pts[p], m), dist(m, T.pts[q])) < lmin) return false;
+    if (std::min(dist(T.point(p), m), dist(m, T.point(q))) < lmin) return false;
   }
   return true;
 }
@@ -392,7 +388,7 @@ Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only)
 
 void Refiner::split_triangle(const BadEntry& e) {
   auto& T = tri_;
-  const Point2 a = T.pts[T.tv[3 * e.t]], b = T.pts[T.tv[3 * e.t + 1]], c = T.pts[e.c];
+  const Point2 a = T.point(T.org(3 * e.t)), b = T.point(T.org(3 * e.t + 1)), c = T.point(e.c);
   const bool angle = angle_only(a, b, c);  // bad only by the angle bound
   const Point2 cc = steiner_point(a, b, c, angle);
   const cdt::Location loc = cdt::locate_straight(T, e.t, cc);
@@ -409,7 +405,7 @@ void Refiner::split_triangle(const BadEntry& e) {
   } else {
     if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
     for (HalfEdge h : ins_.boundary())
-      if (T.constrained(h) && diametral(T.pts[T.org(h)], T.pts[T.dst(h)], cc) > 0)
+      if (T.constrained(h) && diametral(T.point(T.org(h)), T.point(T.dst(h)), cc) > 0)
         seg_tmp_.push_back({T.org(h), T.dst(h)});
     if (seg_tmp_.empty()) {
       ins_.commit(cc, VertexKind::kFree);
@@ -427,7 +423,7 @@ void Refiner::split_triangle(const BadEntry& e) {
       Index apex;
       int ex;
       const Point2 m = split_point(p, q, &apex, &ex);
-      if (std::min(dist(T.pts[p], m), dist(m, T.pts[q])) < opt_.angle_split_min_f * f_(m)) {
+      if (std::min(dist(T.point(p), m), dist(m, T.point(q))) < opt_.angle_split_min_f * f_(m)) {
         ++stats_.exempt_small_angle;
         return;
       }
@@ -448,12 +444,12 @@ RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
   auto count = [&](TriangleId lo, TriangleId hi, RefineLeftovers& r) {
     for (TriangleId t = lo; t < hi; ++t) {
       if (T.dead(t)) continue;
-      const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+      const Point2 a = T.point(T.corner(t, 0)), b = T.point(T.corner(t, 1)), c = T.point(T.corner(t, 2));
       double r2;
       const Point2 cc = predicates::circumcenter(a, b, c, &r2);
       // Bad by R/f(c) first (those are not counted as bad by angle); without that count, f only
-      // where the angle test holds (a GIS run's raster spacing at every circumcentre: 55-75 ms of
-      // 1 M triangles, for a count of a few dozen).
+      // where the angle test holds (a raster spacing at every circumcentre costs more than the
+      // whole count).
       const auto rf_bad = [&] {
         const double fc = f_(cc);
         return fc > 0 && r2 / (fc * fc) * b2_inv_ > 1;
@@ -566,16 +562,13 @@ bool Refiner::step() {
     constexpr std::size_t kAhead = 6;
     if (bk.size() >= kAhead) {
       const BadEntry& n = bk[bk.size() - kAhead];
-      __builtin_prefetch(&tri_.tv[3 * n.t]);
-      __builtin_prefetch(&tri_.twin[3 * n.t]);
-      __builtin_prefetch(&tri_.flags[n.t]);
-      __builtin_prefetch(&tri_.pts[n.c]);
+      tri_.prefetch(n.t, n.c);
     }
     const auto& T = tri_;
     // Stale entry: the triangle was destroyed (and its slot maybe reused). During refinement every
     // triangle is made by Inserter::commit with the new vertex as third corner, so slot and third
     // corner identify a triangle (the CDT's own triangles are never made again).
-    if (T.dead(e.t) || T.tv[3 * e.t + 2] != e.c) continue;
+    if (T.dead(e.t) || T.org(3 * e.t + 2) != e.c) continue;
     split_triangle(e);
     return true;
   }
@@ -589,8 +582,8 @@ void Refiner::record_conforming() {
   conforming_done_ = true;
   const Triangulation& T = tri_;
   std::vector<Point2> pts;
-  for (std::size_t v = 0; v < T.pts.size(); ++v)
-    if (T.vkind[v] != VertexKind::kSuper && T.vhe[v] != kNoId) pts.push_back(T.pts[v]);
+  for (std::size_t v = 0; v < T.num_vertices(); ++v)
+    if (T.kind(v) != VertexKind::kSuper && T.vertex_edge(v) != kNoId) pts.push_back(T.point(v));
   stats_.conforming_vertices = pts.size();
   if (pts.size() < 2) return;
   const KdTree tree(pts);
@@ -633,14 +626,14 @@ void Refiner::run() {
 
 double estimate_triangles(const Triangulation& T, const sizing::SizingField& f, double bound) {
   // Calibration: FDR at bound B produces about kC / (B f)^2 triangles per unit area (measured on
-  // the paper's square cases; see README "Work estimate").
+  // the paper's square cases).
   const double kC = 1.5;  // measured/estimated = 0.95..1.1 on f1, f2 (B = 0.5..1.41), constant f
   double total = 0;
   struct Tri { Point2 a, b, c; int depth; };
   std::vector<Tri> stack;
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
-    stack.push_back({T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], 0});
+    stack.push_back({T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), 0});
     // Why adaptive: a coarse CDT triangle may span a wide range of f; subdivide where the
     // estimate inside one piece is large, so the sum tracks the integral of 1/f^2.
     while (!stack.empty()) {

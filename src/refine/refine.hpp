@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 #include "base/progress.hpp"
 #include "cdt/insert.hpp"
@@ -24,7 +23,7 @@ struct RefineOptions {
   // if both halves are at least angle_split_min_f times f at the split point; else it is left
   // (counted as exempt). 0: always split (Triangle's -q). Why: near narrow water the angle bound
   // alone would split the banks to a fraction of f, and the smallest element sets a model's time
-  // step; the GIS pipeline uses 0.5 (README, Model-ready meshes). R/f(c)-bad triangles always split.
+  // step; the GIS pipeline uses 0.5. R/f(c)-bad triangles always split.
   double angle_split_min_f = 0.0;
   // ... except for triangles with an angle under this (they split as Triangle would): the rule
   // trades angles between this and min_angle_deg for edges, never worse ones.
@@ -66,7 +65,7 @@ struct RefineLeftovers {
 class Refiner {
  public:
   Refiner(mesh::Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt);
-  ~Refiner();  // the queue's buffers give back their huge-page advice (base/memory.hpp)
+  ~Refiner();
   Refiner(const Refiner&) = delete;
   Refiner& operator=(const Refiner&) = delete;
   // Reserves arrays for about this many triangles (from estimate_triangles), avoiding
@@ -93,8 +92,8 @@ class Refiner {
   struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
   // A bucket of the queue: its entries in chunks of kChunkEntries taken from the refiner's pool
   // and given back when the bucket shrinks. Why: grown by doubling, every bucket copied its entries
-  // into fresh pages and freed the old ones (at 1 M triangles 6.5 k of the run's 17.5 k page
-  // faults, about 10 us each on this machine); a chunk another bucket gave back has its pages.
+  // into fresh pages and freed the old ones, a large share of the run's page faults; a chunk
+  // another bucket gave back has its pages.
   static constexpr std::size_t kChunkShift = 10;  // 1 024 entries, 12 KiB
   static constexpr std::size_t kChunkEntries = std::size_t{1} << kChunkShift;
   struct Bucket {
@@ -122,7 +121,6 @@ class Refiner {
   bool shell_apex_equal(Index p, Index q) const;
   bool same_cluster(Index v, Index a, Index b) const;
   bool cluster_pair(Index s1, Index s2) const;
-  Index segment_of_vertex(Index v) const;
   Point2 split_point(Index a, Index b, Index* apex, int* shell_exp) const;
   bool may_split_for(const BadEntry& e, const std::vector<std::pair<Index, Index>>& segs) const;
   void record_conforming();
@@ -143,10 +141,16 @@ class Refiner {
   std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
   Point2 zlo_{0, 0};
   double zscale_ = 0;
-  // Shell data of segment vertices created by a concentric-shell split: apex vertex, exponent.
-  std::unordered_map<Index, std::pair<Index, int>> shell_;
-  // Input segment of every segment vertex (for small-angle clusters).
-  std::unordered_map<Index, Index> seg_vertex_;
+  // Per Steiner point on a segment (Triangulation::segment_vertex_index), the concentric shell
+  // it was placed on: the input vertex at the centre and the radius's power of two (apex kNoId:
+  // a midpoint).
+  struct Shell {
+    Index apex = kNoId;
+    int exp = 0;
+  };
+  const Shell* shell_of(Index v) const;  // nullptr: v was not placed on a shell
+  void mark_clusters();
+  std::vector<Shell> shell_;
   std::vector<bool> in_cluster_;  // per input segment
 };
 

@@ -88,12 +88,12 @@ class Smoother {
     open_ = false;
     // Counter-clockwise from vhe[v]; only a fan that turns out open (v on the boundary of the
     // mesh) is walked again from its clockwise end.
-    HalfEdge h0 = t_.vhe[v];
+    HalfEdge h0 = t_.vertex_edge(v);
     HalfEdge h = h0;
     for (std::size_t guard = 0; guard < 1024; ++guard) {
-      if (t_.vkind[t_.dst(h)] == mesh::VertexKind::kSuper) return false;
+      if (t_.kind(t_.dst(h)) == mesh::VertexKind::kSuper) return false;
       hs.push_back(h);
-      const HalfEdge back = t_.twin[prev_he(h)];
+      const HalfEdge back = t_.twin(prev_he(h));
       if (back == kNoId) { open_ = true; break; }
       h = back;
       if (h == h0) return in_block(hs);
@@ -101,15 +101,15 @@ class Smoother {
     if (!open_) return false;
     hs.clear();
     for (std::size_t guard = 0; guard < 1024; ++guard) {  // to the clockwise end of the fan
-      const HalfEdge tw = t_.twin[h0];
+      const HalfEdge tw = t_.twin(h0);
       if (tw == kNoId) break;
       h0 = next_he(tw);
     }
     h = h0;
     for (std::size_t guard = 0; guard < 1024; ++guard) {
-      if (t_.vkind[t_.dst(h)] == mesh::VertexKind::kSuper) return false;
+      if (t_.kind(t_.dst(h)) == mesh::VertexKind::kSuper) return false;
       hs.push_back(h);
-      const HalfEdge back = t_.twin[prev_he(h)];
+      const HalfEdge back = t_.twin(prev_he(h));
       if (back == kNoId) return in_block(hs);
       h = back;
     }
@@ -147,10 +147,9 @@ class Smoother {
       if (!t_.constrained(h)) return true;
       if (n == 2) return false;
       const Index u = t_.dst(h);
-      const auto it = t_.seg_of.find(mesh::edge_key(v, u));
-      if (it == t_.seg_of.end()) return false;
-      if (n == 1 && it->second != seg) return false;
-      seg = it->second;
+      const Index s = t_.segment_of(v, u);
+      if (n == 1 && s != seg) return false;
+      seg = s;
       nb[n++] = u;
       return true;
     };
@@ -160,19 +159,19 @@ class Smoother {
       const HalfEdge last = prev_he(hs_.back());
       if (t_.constrained(last)) {
         const Index u = t_.org(last);
-        const auto it = t_.seg_of.find(mesh::edge_key(v, u));
-        if (it == t_.seg_of.end() || n == 2 || (n == 1 && it->second != seg)) return false;
-        seg = it->second;
+        const Index s = t_.segment_of(v, u);
+        if (n == 2 || (n == 1 && s != seg)) return false;
+        seg = s;
         nb[n++] = u;
       }
     }
-    if (n != 2 || seg >= t_.input_segments.size()) return false;
-    *a = t_.pts[t_.input_segments[seg].a];
-    *b = t_.pts[t_.input_segments[seg].b];
+    if (n != 2 || seg >= t_.input_segments().size()) return false;
+    *a = t_.point(t_.input_segments()[seg].a);
+    *b = t_.point(t_.input_segments()[seg].b);
     const Point2 d = *b - *a;
     const double l2 = norm2(d);
     if (!(l2 > 0)) return false;
-    const double t0 = dot(t_.pts[nb[0]] - *a, d) / l2, t1 = dot(t_.pts[nb[1]] - *a, d) / l2;
+    const double t0 = dot(t_.point(nb[0]) - *a, d) / l2, t1 = dot(t_.point(nb[1]) - *a, d) / l2;
     const double lo = std::min(t0, t1), hi = std::max(t0, t1);
     // Keep a margin of a tenth of the neighbour distance on each side.
     *t_lo = lo + 0.1 * (hi - lo);
@@ -183,7 +182,7 @@ class Smoother {
   bool try_vertex(Index v) {
     if (!star(v, hs_)) return false;
     star_before();
-    const bool on_segment = t_.vkind[v] == mesh::VertexKind::kSegment;
+    const bool on_segment = t_.kind(v) == mesh::VertexKind::kSegment;
     Point2 la, lb;
     double t_lo = 0, t_hi = 0;
     if (on_segment) {
@@ -191,12 +190,12 @@ class Smoother {
     } else if (open_) {
       return false;
     }
-    const Point2 p0 = t_.pts[v];
+    const Point2 p0 = t_.point(v);
     // The star's summed quality with v at p, in the present topology: an attempt whose star
     // does not gain is skipped before any flip (Lawson flips rarely rescue it).
     auto star_sum = [&](Point2 p) {
       double sum = 0;
-      for (HalfEdge h : hs_) sum += geom::mean_ratio_quality(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]);
+      for (HalfEdge h : hs_) sum += geom::mean_ratio_quality(p, t_.point(t_.dst(h)), t_.point(t_.apex(h)));
       return sum;
     };
     const double sum0 = star_sum(p0);
@@ -207,7 +206,7 @@ class Smoother {
       Point2 g{0, 0};
       double lsum = 0;
       for (HalfEdge h : hs_) {
-        const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
+        const Point2 a = t_.point(t_.dst(h)), b = t_.point(t_.apex(h));
         const double A = 0.5 * geom::cross2(p0, a, b);
         const double S = norm2(a - p0) + norm2(b - p0) + norm2(a - b);
         const Point2 gA{0.5 * (a.y - b.y), 0.5 * (b.x - a.x)};
@@ -241,7 +240,7 @@ class Smoother {
     Point2 acc{0, 0};
     double wsum = 0;
     for (HalfEdge h : hs_) {
-      const Point2 a = t_.pts[t_.dst(h)], b = t_.pts[t_.apex(h)];
+      const Point2 a = t_.point(t_.dst(h)), b = t_.point(t_.apex(h));
       const double ar = 0.5 * geom::cross2(p0, a, b);
       acc = acc + ar * geom::circumcentre(p0, a, b);
       wsum += ar;
@@ -279,7 +278,7 @@ class Smoother {
     flips_.clear();
     // The move itself must keep every star triangle counter-clockwise (p in the star's kernel).
     for (HalfEdge h : hs_)
-      if (predicates::orient2d(p, t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]) <= 0) return false;
+      if (predicates::orient2d(p, t_.point(t_.dst(h)), t_.point(t_.apex(h))) <= 0) return false;
     // The star's triangles as touch() would record them, from the values star_before() kept
     // (the same numbers in the same order: v is back at p0 after every undone attempt).
     touched_.clear();
@@ -289,7 +288,7 @@ class Smoother {
     before_angle_ = star_angle_;
     before_len2_ = star_len2_;
     before_lens_.assign(star_lens_.begin(), star_lens_.end());
-    t_.pts[v] = p;
+    t_.set_point(v, p);
     moved_ = v;
     moved_from_ = p0;
     stack_.clear();
@@ -302,9 +301,9 @@ class Smoother {
       const HalfEdge e = stack_.back();
       stack_.pop_back();
       if (t_.constrained(e)) continue;
-      const HalfEdge g = t_.twin[e];
+      const HalfEdge g = t_.twin(e);
       if (g == kNoId) continue;
-      const Point2 a = t_.pts[t_.org(e)], b = t_.pts[t_.dst(e)], c = t_.pts[t_.apex(e)], d = t_.pts[t_.apex(g)];
+      const Point2 a = t_.point(t_.org(e)), b = t_.point(t_.dst(e)), c = t_.point(t_.apex(e)), d = t_.point(t_.apex(g));
       if (predicates::incircle(a, b, c, d) <= 0) continue;
       if (predicates::orient2d(c, a, d) <= 0 || predicates::orient2d(d, b, c) <= 0) { ok = false; break; }
       if (block_ != kAnyBlock && (*blocks_)[t_.apex(g)] != block_) {  // the flip leaves the block
@@ -317,7 +316,7 @@ class Smoother {
       touch(mesh::tri_of(g));
       const HalfEdge nd = flip(e);
       flips_.push_back({t_.org(nd), t_.dst(nd)});
-      const TriangleId t1 = mesh::tri_of(nd), t2 = mesh::tri_of(t_.twin[nd]);
+      const TriangleId t1 = mesh::tri_of(nd), t2 = mesh::tri_of(t_.twin(nd));
       stack_.push_back(3 * t1);
       stack_.push_back(3 * t1 + 1);
       stack_.push_back(3 * t2);
@@ -329,7 +328,7 @@ class Smoother {
       // the two triangles exchanged between their slots, so a half-edge id kept from an
       // earlier flip may no longer name that flip's diagonal.
       for (std::size_t k = flips_.size(); k-- > 0;) flip(find_half_edge(flips_[k].first, flips_[k].second));
-      t_.pts[v] = p0;
+      t_.set_point(v, p0);
     }
     return ok;
   }
@@ -346,7 +345,7 @@ class Smoother {
   // shortest squared edge of the triangles before a move.
   void add_before(TriangleId t, double& qmin, double& qsum, double& angle, double& len2,
                   std::vector<double>* lens) const {
-    const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+    const Point2 a = t_.point(t_.corner(t, 0)), b = t_.point(t_.corner(t, 1)), c = t_.point(t_.corner(t, 2));
     const double q = geom::mean_ratio_quality(a, b, c);
     qmin = std::min(qmin, q);
     qsum += q;
@@ -375,7 +374,7 @@ class Smoother {
     double nmin = 1e300, nsum = 0, nlen2 = 1e300;
     const double floor_angle = std::min(before_angle_, floor_key_);
     for (TriangleId t : touched_) {
-      const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+      const Point2 a = t_.point(t_.corner(t, 0)), b = t_.point(t_.corner(t, 1)), c = t_.point(t_.corner(t, 2));
       // Without flips the touched triangles are the star's, whose orientation attempt() tested.
       if (!flips_.empty() && predicates::orient2d(a, b, c) <= 0) return false;
       const double q = geom::mean_ratio_quality(a, b, c);
@@ -394,37 +393,37 @@ class Smoother {
     // edge below f/2 next to one that already was.
     double fp = -1;  // f(p) at the moved vertex p once needed
     if (nlen2 < before_len2_) {
-      fp = f_(t_.pts[moved_]);
+      fp = f_(t_.point(moved_));
       if (!(nlen2 >= 0.25 * fp * fp)) return false;
     } else {
-      fp = f_(t_.pts[moved_]);
+      fp = f_(t_.point(moved_));
       const double thr = 0.25 * fp * fp;
       if (nlen2 < thr) {
         std::size_t nb = 0, na = 0;
         for (double l : before_lens_) nb += l < thr;
         for (TriangleId t : touched_) {
-          const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+          const Point2 a = t_.point(t_.corner(t, 0)), b = t_.point(t_.corner(t, 1)), c = t_.point(t_.corner(t, 2));
           na += (norm2(b - a) < thr) + (norm2(c - b) < thr) + (norm2(a - c) < thr);
         }
         if (na > nb) return false;
       }
     }
-    const Point2 p = t_.pts[moved_];
+    const Point2 p = t_.point(moved_);
     // Nor may it come nearer to a vertex across a constraint (Shared::hidden), unless it stays
     // above f/2 from it: the report's nn (Theorem 4.4) is over all vertices.
     if (!sh_.hidden_at.empty())
       for (std::uint32_t k = sh_.hidden_at[moved_]; k < sh_.hidden_at[moved_ + 1]; ++k) {
-        const Point2 u = t_.pts[sh_.hidden[k]];
+        const Point2 u = t_.point(sh_.hidden[k]);
         const double dn = norm2(p - u);
         if (!(dn < norm2(moved_from_ - u))) continue;
         if (!(fp >= 0)) fp = f_(p);
         if (!(dn >= 0.25 * fp * fp)) return false;
       }
     for (TriangleId t : touched_) {
-      const Point2 a = t_.pts[t_.tv[3 * t]], b = t_.pts[t_.tv[3 * t + 1]], c = t_.pts[t_.tv[3 * t + 2]];
+      const Point2 a = t_.point(t_.corner(t, 0)), b = t_.point(t_.corner(t, 1)), c = t_.point(t_.corner(t, 2));
       for (int k = 0; k < 3; ++k) {
         const HalfEdge h = 3 * t + static_cast<HalfEdge>(k);
-        if (t_.constrained(h) && predicates::encroaches(t_.pts[t_.org(h)], t_.pts[t_.dst(h)], t_.pts[t_.apex(h)]))
+        if (t_.constrained(h) && predicates::encroaches(t_.point(t_.org(h)), t_.point(t_.dst(h)), t_.point(t_.apex(h))))
           return false;
       }
       double r2 = 0;
@@ -447,17 +446,17 @@ class Smoother {
 
   // The half-edge from u to w (an interior edge of the triangulation, found around u).
   HalfEdge find_half_edge(Index u, Index w) const {
-    const HalfEdge h0 = t_.vhe[u];
+    const HalfEdge h0 = t_.vertex_edge(u);
     HalfEdge h = h0;
     for (std::size_t guard = 0; guard < 4096; ++guard) {  // counter-clockwise
       if (t_.dst(h) == w) return h;
-      const HalfEdge back = t_.twin[prev_he(h)];
+      const HalfEdge back = t_.twin(prev_he(h));
       if (back == kNoId || back == h0) break;
       h = back;
     }
     h = h0;
     for (std::size_t guard = 0; guard < 4096; ++guard) {  // clockwise
-      const HalfEdge tw = t_.twin[h];
+      const HalfEdge tw = t_.twin(h);
       if (tw == kNoId) break;
       h = next_he(tw);
       if (h == h0) break;
@@ -476,27 +475,31 @@ class Smoother {
   //       \ /               \|/   .
   //        d                 d
   HalfEdge flip(HalfEdge e) {
-    const HalfEdge g = t_.twin[e];
+    const HalfEdge g = t_.twin(e);
     const TriangleId t1 = mesh::tri_of(e), t2 = mesh::tri_of(g);
     const Index a = t_.org(e), b = t_.dst(e), c = t_.apex(e), d = t_.apex(g);
     const HalfEdge h1 = next_he(e), h2 = prev_he(e);  // b->c, c->a
     const HalfEdge g1 = next_he(g), g2 = prev_he(g);  // a->d, d->b
-    const HalfEdge th1 = t_.twin[h1], th2 = t_.twin[h2], tg1 = t_.twin[g1], tg2 = t_.twin[g2];
+    const HalfEdge th1 = t_.twin(h1), th2 = t_.twin(h2), tg1 = t_.twin(g1), tg2 = t_.twin(g2);
     const bool ch1 = t_.constrained(h1), ch2 = t_.constrained(h2), cg1 = t_.constrained(g1), cg2 = t_.constrained(g2);
     // t1 = (c, a, d), t2 = (d, b, c)
-    t_.tv[3 * t1] = c; t_.tv[3 * t1 + 1] = a; t_.tv[3 * t1 + 2] = d;
-    t_.tv[3 * t2] = d; t_.tv[3 * t2 + 1] = b; t_.tv[3 * t2 + 2] = c;
-    t_.flags[t1] = static_cast<std::uint8_t>((t_.flags[t1] & ~7u) | (ch2 ? 1u : 0u) | (cg1 ? 2u : 0u));
-    t_.flags[t2] = static_cast<std::uint8_t>((t_.flags[t2] & ~7u) | (cg2 ? 1u : 0u) | (ch1 ? 2u : 0u));
+    t_.set_corners(t1, c, a, d);
+    t_.set_corners(t2, d, b, c);
+    t_.clear_constraints(t1);
+    t_.set_constrained(3 * t1, ch2);
+    t_.set_constrained(3 * t1 + 1, cg1);
+    t_.clear_constraints(t2);
+    t_.set_constrained(3 * t2, cg2);
+    t_.set_constrained(3 * t2 + 1, ch1);
     t_.link(3 * t1, th2);
     t_.link(3 * t1 + 1, tg1);
     t_.link(3 * t2, tg2);
     t_.link(3 * t2 + 1, th1);
     t_.link(3 * t1 + 2, 3 * t2 + 2);
-    t_.vhe[c] = 3 * t1;
-    t_.vhe[a] = 3 * t1 + 1;
-    t_.vhe[d] = 3 * t2;
-    t_.vhe[b] = 3 * t2 + 1;
+    t_.set_vertex_edge(c, 3 * t1);
+    t_.set_vertex_edge(a, 3 * t1 + 1);
+    t_.set_vertex_edge(d, 3 * t2);
+    t_.set_vertex_edge(b, 3 * t2 + 1);
     return 3 * t1 + 2;
   }
 
@@ -541,17 +544,17 @@ struct Blocking {
 };
 
 bool live(const mesh::Triangulation& tri, Index v) {
-  return tri.vhe[v] != kNoId && tri.vkind[v] != mesh::VertexKind::kSuper;
+  return tri.vertex_edge(v) != kNoId && tri.kind(v) != mesh::VertexKind::kSuper;
 }
 
 Blocking make_blocks(const mesh::Triangulation& tri, std::size_t block_vertices, Shared& sh) {
   Blocking bl;
   const std::size_t kBlock = std::max<std::size_t>(1, block_vertices);
-  const std::size_t n = tri.pts.size();
+  const std::size_t n = tri.num_vertices();
   std::size_t nlive = 0;
   for (Index v = 0; v < n; ++v)
     if (live(tri, v)) {
-      bl.box.add(tri.pts[v]);
+      bl.box.add(tri.point(v));
       ++nlive;
     }
   int level = 2;  // cells per side 2^level
@@ -565,8 +568,8 @@ Blocking make_blocks(const mesh::Triangulation& tri, std::size_t block_vertices,
     const double w = box.width() > 0 ? 1.0 / box.width() : 0.0, h = box.height() > 0 ? 1.0 / box.height() : 0.0;
     for (Index v = 0; v < n; ++v) {
       if (!live(tri, v)) continue;
-      const double x = std::clamp((tri.pts[v].x - box.lo.x) * w, 0.0, 1.0);
-      const double y = std::clamp((tri.pts[v].y - box.lo.y) * h, 0.0, 1.0);
+      const double x = std::clamp((tri.point(v).x - box.lo.x) * w, 0.0, 1.0);
+      const double y = std::clamp((tri.point(v).y - box.lo.y) * h, 0.0, 1.0);
       cell[v] = key(x, y);
       ++count[cell[v] + 1];
     }
@@ -592,7 +595,7 @@ Blocking make_blocks(const mesh::Triangulation& tri, std::size_t block_vertices,
   });
   bl.free.resize(bl.nblocks);
   for (Index v = 0; v < n; ++v)
-    if (live(tri, v) && (tri.vkind[v] == mesh::VertexKind::kFree || tri.vkind[v] == mesh::VertexKind::kSegment)) {
+    if (live(tri, v) && (tri.kind(v) == mesh::VertexKind::kFree || tri.kind(v) == mesh::VertexKind::kSegment)) {
       bl.free[sh.block[v]].push_back(v);
       ++bl.candidates;
     }
@@ -602,16 +605,16 @@ Blocking make_blocks(const mesh::Triangulation& tri, std::size_t block_vertices,
 // The vertices of the star of v, both ways from vhe[v] (with repeats).
 void star_vertices(const mesh::Triangulation& tri, Index v, std::vector<Index>& nbr) {
   nbr.clear();
-  const HalfEdge h0 = tri.vhe[v];
+  const HalfEdge h0 = tri.vertex_edge(v);
   for (HalfEdge h = h0, guard = 0; guard < 1024; ++guard) {
     nbr.push_back(tri.dst(h));
     nbr.push_back(tri.apex(h));
-    const HalfEdge tw = tri.twin[prev_he(h)];
+    const HalfEdge tw = tri.twin(prev_he(h));
     if (tw == kNoId || tw == h0) break;
     h = tw;
   }
   for (HalfEdge g = h0, guard = 0; guard < 1024; ++guard) {
-    const HalfEdge tw = tri.twin[g];
+    const HalfEdge tw = tri.twin(g);
     if (tw == kNoId) break;
     g = next_he(tw);
     if (g == h0) break;
@@ -626,25 +629,25 @@ void star_vertices(const mesh::Triangulation& tri, Index v, std::vector<Index>& 
 // may move a little, which only the rule in improved() needs to follow (it reads their positions).
 void find_hidden_pairs(const mesh::Triangulation& tri, const sizing::SizingField& f, const Box2& box, Shared& sh,
                        StepLaps& lap) {
-  const std::size_t n = tri.pts.size();
+  const std::size_t n = tri.num_vertices();
   // f at the segment vertices; the cells as long as its median there.
   std::vector<std::pair<Index, double>> seg;
   for (Index v = 0; v < n; ++v)
-    if (tri.vhe[v] != kNoId && tri.vkind[v] == mesh::VertexKind::kSegment) seg.push_back({v, f(tri.pts[v])});
+    if (tri.vertex_edge(v) != kNoId && tri.kind(v) == mesh::VertexKind::kSegment) seg.push_back({v, f(tri.point(v))});
   std::vector<double> fs;  // the usable values (NaN has no order)
   fs.reserve(seg.size());
   for (const auto& sv : seg)
     if (sv.second > 0 && std::isfinite(sv.second)) fs.push_back(sv.second);
   const auto mid = fs.begin() + static_cast<std::ptrdiff_t>(fs.size() / 2);
   if (!fs.empty()) std::nth_element(fs.begin(), mid, fs.end());
-  const PointCells cells(tri.pts, [&](Index v) { return live(tri, v); }, box, fs.empty() ? 0.0 : *mid);
+  const PointCells cells(tri.points(), [&](Index v) { return live(tri, v); }, box, fs.empty() ? 0.0 : *mid);
   fs = {};
   lap("point cells");
   std::vector<Index> nbr;
   std::vector<std::pair<Index, Index>> pairs;  // both ways: either of the two may move
   for (const auto& [v, fv] : seg) {
     star_vertices(tri, v, nbr);
-    cells.for_each_within(tri.pts[v], fv * fv, [&](Index u) {
+    cells.for_each_within(tri.point(v), fv * fv, [&](Index u) {
       if (u != v && std::find(nbr.begin(), nbr.end(), u) == nbr.end()) {
         pairs.push_back({v, u});
         pairs.push_back({u, v});
@@ -701,7 +704,7 @@ class Sweeps {
   // A kept move makes the vertices of every triangle it touched dirty (tried again).
   void touched_dirty(const Smoother& w) {
     for (TriangleId t : w.touched())
-      for (int k = 0; k < 3; ++k) sh_.dirty[tri_.tv[3 * t + static_cast<TriangleId>(k)]] = 1;
+      for (int k = 0; k < 3; ++k) sh_.dirty[tri_.org(3 * t + static_cast<TriangleId>(k))] = 1;
   }
   // Tries the vertices of `list` (block b of `blocks`): the moved ones counted, the deferred ones
   // listed in `out`.
@@ -718,7 +721,7 @@ class Sweeps {
         out.push_back(v);
       } else if (r == Smoother::Result::kKept) {
         ++moved_in_[b];
-        if (tri_.vkind[v] == mesh::VertexKind::kSegment) ++seg_moved_in_[b];
+        if (tri_.kind(v) == mesh::VertexKind::kSegment) ++seg_moved_in_[b];
         touched_dirty(w);
       }
     }
@@ -750,7 +753,7 @@ class Sweeps {
         ++st_.deferred;
         if (workers_[0].try_move(v, kAnyBlock) != Smoother::Result::kKept) continue;
         ++moved;
-        if (tri_.vkind[v] == mesh::VertexKind::kSegment) ++st_.segment_moves;
+        if (tri_.kind(v) == mesh::VertexKind::kSegment) ++st_.segment_moves;
         touched_dirty(workers_[0]);
       }
     return moved;
@@ -786,7 +789,7 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   // A vertex whose star nothing has touched since it last failed would fail again: it is
   // retried only after a move changed a triangle around it. Why: after the first sweep most of a
   // converged mesh is clean, and each try costs up to six attempts with flips and f evaluations.
-  sh.dirty.assign(tri.pts.size(), 1);
+  sh.dirty.assign(tri.num_vertices(), 1);
   Sweeps sweeps(sh, bl, st);
   for (int pass = 0; pass < options.passes; ++pass) {
     const std::size_t moved = sweeps.sweep(lap);

@@ -25,8 +25,8 @@ Triangulation kite(double y) {
   // Boundary segments (outer ring), each its own input segment, constrained.
   const Index ring[4][2] = {{1, 2}, {2, 0}, {0, 3}, {3, 1}};
   for (Index s = 0; s < 4; ++s) {
-    t.input_segments.push_back({ring[s][0], ring[s][1], 1, 0});
-    t.seg_of[edge_key(ring[s][0], ring[s][1])] = s;
+    t.add_input_segment({ring[s][0], ring[s][1], 1, 0});
+    t.set_segment(ring[s][0], ring[s][1], s);
     t.set_constrained(t.find_edge(ring[s][0], ring[s][1]), true);
   }
   return t;
@@ -41,7 +41,7 @@ TEST(MeshCheck, ValidMeshPasses) {
 
 TEST(MeshCheck, FlippedOrientation) {
   Triangulation t = kite(5);
-  std::swap(t.tv[0], t.tv[1]);  // triangle 0 becomes clockwise (and its twin endpoints mismatch)
+  t.set_corners(0, t.corner(0, 1), t.corner(0, 0), t.corner(0, 2));  // triangle 0 becomes clockwise (and its twin endpoints mismatch)
   const CheckResult r = check_topology(t);
   ASSERT_FALSE(r.ok());
   bool orientation = false;
@@ -51,7 +51,7 @@ TEST(MeshCheck, FlippedOrientation) {
 
 TEST(MeshCheck, BrokenTwin) {
   Triangulation t = kite(5);
-  t.twin[3] = 1;  // half-edge 3 claims half-edge 1 as its twin; half-edge 1 does not agree
+  t.set_twin(3, 1);  // half-edge 3 claims half-edge 1 as its twin; half-edge 1 does not agree
   const CheckResult r = check_topology(t);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.problems[0].find("twin"), std::string::npos);
@@ -74,7 +74,7 @@ TEST(MeshCheck, NonDelaunayEdge) {
 TEST(MeshCheck, MissingSegment) {
   Triangulation t = kite(5);
   // Input segment 2-3 (through the middle, crossing edge 0-1): not a chain of mesh edges.
-  t.input_segments.push_back({2, 3, 4, 1});
+  t.add_input_segment({2, 3, 4, 1});
   const CheckResult r = check_segments(t);
   ASSERT_EQ(r.count, 1u);
   EXPECT_NE(r.problems[0].find("input segment 4"), std::string::npos);

@@ -26,7 +26,7 @@ inline double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingFie
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
     double r2;
-    const Point2 c = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
+    const Point2 c = predicates::circumcenter(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
     worst = std::max(worst, std::sqrt(r2) / f(c));
   }
   return worst;

@@ -40,7 +40,7 @@ TEST(RefineStress, ThousandsOfRandomPslgs) {
     for (TriangleId t = 0; t < T.num_slots(); ++t) {
       if (T.dead(t)) continue;
       double r2;
-      const Point2 cc = predicates::circumcenter(T.pts[T.tv[3 * t]], T.pts[T.tv[3 * t + 1]], T.pts[T.tv[3 * t + 2]], &r2);
+      const Point2 cc = predicates::circumcenter(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
       ASSERT_LE(std::sqrt(r2) / f(cc), o.bound * (1 + 1e-12)) << "seed " << seed;
     }
   }

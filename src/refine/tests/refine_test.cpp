@@ -25,7 +25,7 @@ double min_angle_deg(const mesh::Triangulation& T) {
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
     for (int k = 0; k < 3; ++k) {
-      Point2 a = T.pts[T.tv[3 * t + k]], b = T.pts[T.tv[3 * t + (k + 1) % 3]], c = T.pts[T.tv[3 * t + (k + 2) % 3]];
+      Point2 a = T.point(T.corner(t, k)), b = T.point(T.org(3 * t + (k + 1) % 3)), c = T.point(T.org(3 * t + (k + 2) % 3));
       Point2 u = b - a, v = c - a;
       double ang = std::atan2(std::fabs(u.x * v.y - u.y * v.x), dot(u, v)) * 180 / M_PI;
       worst = std::min(worst, ang);
@@ -195,7 +195,7 @@ double shortest_edge(const mesh::Triangulation& T, bool constrained_only) {
     if (T.dead(t)) continue;
     for (int k = 0; k < 3; ++k)
       if (!constrained_only || T.constrained(3 * t + k))
-        m = std::min(m, dist(T.pts[T.tv[3 * t + k]], T.pts[T.tv[3 * t + (k + 1) % 3]]));
+        m = std::min(m, dist(T.point(T.corner(t, k)), T.point(T.org(3 * t + (k + 1) % 3))));
   }
   return m;
 }
@@ -345,11 +345,11 @@ TEST(Refine, ConformingMeshConstantD) {
   EXPECT_NEAR(st.conforming_D_at.x, 5.0, 1e-12);
   EXPECT_NEAR(st.conforming_D_at.y, 0.0, 0.3 + 1e-12);
   double nn = 1e300;
-  for (std::size_t a = 0; a < T.pts.size(); ++a)
-    for (std::size_t b = a + 1; b < T.pts.size(); ++b)
-      if (T.vkind[a] != mesh::VertexKind::kSuper && T.vkind[b] != mesh::VertexKind::kSuper && T.vhe[a] != kNoId &&
-          T.vhe[b] != kNoId)
-        nn = std::min(nn, dist(T.pts[a], T.pts[b]));
+  for (std::size_t a = 0; a < T.num_vertices(); ++a)
+    for (std::size_t b = a + 1; b < T.num_vertices(); ++b)
+      if (T.kind(a) != mesh::VertexKind::kSuper && T.kind(b) != mesh::VertexKind::kSuper && T.vertex_edge(a) != kNoId &&
+          T.vertex_edge(b) != kNoId)
+        nn = std::min(nn, dist(T.point(a), T.point(b)));
   EXPECT_GE(nn, std::min(1 / std::sqrt(2.0), 0.3) - 1e-12);
   // Without close input vertices D is that of the square's corners and midpoints (f = 1: 5).
   pslg::Pslg q = p;

@@ -358,14 +358,14 @@ TEST(Regions, AreaConstraintBoundsTriangleAreaInItsRegionOnly) {
   refiner.init();
   refiner.run();
   ASSERT_TRUE(mesh::check_all(tri).ok());
-  ASSERT_EQ(tri.region.size(), tri.num_slots());
+  ASSERT_TRUE(tri.has_regions());
   double inner_max = 0, outer_max = 0, inner_area = 0;
   for (TriangleId t = 0; t < tri.num_slots(); ++t) {
     if (tri.dead(t)) continue;
-    const Point2 a = tri.pts[tri.tv[3 * t]], b = tri.pts[tri.tv[3 * t + 1]], c = tri.pts[tri.tv[3 * t + 2]];
+    const Point2 a = tri.point(tri.corner(t, 0)), b = tri.point(tri.corner(t, 1)), c = tri.point(tri.corner(t, 2));
     const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-    ASSERT_GE(tri.region[t], 0);
-    if (tri.region[t] == 0) inner_max = std::max(inner_max, area), inner_area += area;
+    ASSERT_GE(tri.region(t), 0);
+    if (tri.region(t) == 0) inner_max = std::max(inner_max, area), inner_area += area;
     else outer_max = std::max(outer_max, area);
   }
   EXPECT_LE(inner_max, 0.02);

@@ -27,7 +27,7 @@ double quality_sum(const mesh::Triangulation& T) {
   double s = 0;
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
-    const Point2 a = T.pts[T.tv[3 * t]], b = T.pts[T.tv[3 * t + 1]], c = T.pts[T.tv[3 * t + 2]];
+    const Point2 a = T.point(T.corner(t, 0)), b = T.point(T.corner(t, 1)), c = T.point(T.corner(t, 2));
     const double ar = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
     s += 6.928203230275509 * ar / (norm2(b - a) + norm2(c - b) + norm2(a - c));
   }
@@ -86,8 +86,8 @@ std::size_t edges_shorter_than(const mesh::Triangulation& T, double l) {
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
     for (int k = 0; k < 3; ++k) {
-      const Index a = T.tv[3 * t + k], b = T.tv[3 * t + (k + 1) % 3];
-      if (dist(T.pts[a], T.pts[b]) < l) e.insert({std::min(a, b), std::max(a, b)});
+      const Index a = T.corner(t, k), b = T.org(3 * t + (k + 1) % 3);
+      if (dist(T.point(a), T.point(b)) < l) e.insert({std::min(a, b), std::max(a, b)});
     }
   }
   return e.size();
@@ -137,7 +137,7 @@ TEST(Smooth, SameMeshForEveryThreadCount) {
   const auto p = fdr::testing::random_pslg(5, 60, 8);
   FnField f([](Point2 q) { return 0.03 * (1 + 0.15 * q.x + 0.05 * std::sin(2 * q.y)); });
   const auto base = refined(p, f, 1.0, 30.0);
-  ASSERT_GT(base.pts.size(), 10000u);
+  ASSERT_GT(base.num_vertices(), 10000u);
   for (std::size_t block : {std::size_t{512}, std::size_t{4096}, refine::SmoothOptions{}.block_vertices}) {
     std::vector<mesh::MeshView> views;
     std::vector<std::size_t> moves, calls;
@@ -191,15 +191,15 @@ TEST(Smooth, NoVertexComesNearerAcrossAThinStripOfLand) {
     for (TriangleId t = 0; t < M.num_slots(); ++t)
       if (!M.dead(t))
         for (int k = 0; k < 3; ++k) {
-          const Index a = M.tv[3 * t + k], b = M.tv[3 * t + (k + 1) % 3];
+          const Index a = M.corner(t, k), b = M.org(3 * t + (k + 1) % 3);
           edges.insert({std::min(a, b), std::max(a, b)});
         }
     std::map<std::pair<Index, Index>, double> d;
-    for (Index a = 0; a < M.pts.size(); ++a)
-      for (Index b = a + 1; b < M.pts.size(); ++b)
-        if (M.vhe[a] != kNoId && M.vhe[b] != kNoId && M.vkind[a] != mesh::VertexKind::kSuper &&
-            M.vkind[b] != mesh::VertexKind::kSuper && dist(M.pts[a], M.pts[b]) < 1 && !edges.count({a, b}))
-          d[{a, b}] = dist(M.pts[a], M.pts[b]);
+    for (Index a = 0; a < M.num_vertices(); ++a)
+      for (Index b = a + 1; b < M.num_vertices(); ++b)
+        if (M.vertex_edge(a) != kNoId && M.vertex_edge(b) != kNoId && M.kind(a) != mesh::VertexKind::kSuper &&
+            M.kind(b) != mesh::VertexKind::kSuper && dist(M.point(a), M.point(b)) < 1 && !edges.count({a, b}))
+          d[{a, b}] = dist(M.point(a), M.point(b));
     return d;
   };
   const auto before = hidden_pairs(T);
