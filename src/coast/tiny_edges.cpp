@@ -2,6 +2,7 @@
 #include "coast/tiny_edges.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -88,7 +89,7 @@ bool tiny_pass(Rings& cleaned, const std::unordered_set<std::uint64_t>& input_ve
       // less (22.5 degrees at most), and dropping one next to a long edge would tilt that edge
       const Point2 e0 = v - pv, e1 = nv - v;
       const double cr = e0.x * e1.y - e0.y * e1.x, dt = e0.x * e1.x + e0.y * e1.y;
-      if (!(std::atan2(std::fabs(cr), dt) > 0.5235987755982988)) continue;  // pi / 6
+      if (!(std::atan2(std::fabs(cr), dt) > std::numbers::pi / 6)) continue;
       if (!drop_ok(rk, i, pv, v, nv)) continue;
       drop[i] = 1;
       ++drops;

@@ -1,5 +1,6 @@
 // Internals shared by the io writers and readers: temp files, boundary chains, number formatting.
 #include "io/detail.hpp"
+#include "base/triangle_geometry.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -206,35 +207,24 @@ void validate_for_output(const mesh::MeshView& m, const std::string& path) {
 
 double triangle_area(const mesh::MeshView& m, std::size_t t) {
   const auto& tr = m.triangles[t];
-  Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];
-  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  return 0.5 * geom::cross2(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]);
 }
 
 double triangle_min_angle_deg(const mesh::MeshView& m, std::size_t t) {
   const auto& tr = m.triangles[t];
-  double best = 180.0;
-  for (int k = 0; k < 3; ++k) {
-    Point2 p = m.vertices[tr[k]], q = m.vertices[tr[(k + 1) % 3]], r = m.vertices[tr[(k + 2) % 3]];
-    Point2 u = q - p, v = r - p;
-    double ang = std::atan2(std::fabs(u.x * v.y - u.y * v.x), dot(u, v)) * (180.0 / M_PI);
-    best = std::min(best, ang);
-  }
-  return best;
+  return geom::min_angle_deg(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]);
 }
 
 double circumradius(const mesh::MeshView& m, std::size_t t, Point2& centre) {
   const auto& tr = m.triangles[t];
-  Point2 a = m.vertices[tr[0]];
-  Point2 b = m.vertices[tr[1]] - a, c = m.vertices[tr[2]] - a;
-  double d = 2.0 * (b.x * c.y - b.y * c.x);
-  double b2 = norm2(b), c2 = norm2(c);
-  if (d == 0) {
+  const Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];
+  if (geom::cross2(a, b, c) == 0) {  // the writers place a degenerate triangle's centre at its first corner
     centre = a;
     return std::numeric_limits<double>::infinity();
   }
-  Point2 u{(c.y * b2 - b.y * c2) / d, (b.x * c2 - c.x * b2) / d};
-  centre = a + u;
-  return std::sqrt(norm2(u));
+  double r2 = 0;
+  centre = geom::circumcentre(a, b, c, &r2);
+  return std::sqrt(r2);
 }
 
 std::vector<double> nearest_neighbour_distance(const mesh::MeshView& m) {

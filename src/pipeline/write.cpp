@@ -1,5 +1,6 @@
 // Write stage (write.hpp).
 #include "pipeline/write.hpp"
+#include "base/triangle_geometry.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,14 +42,10 @@ MetricTriangleValues metric_triangle_values(const mesh::MeshView& m, const sizin
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
     double r2;
-    const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+    const Point2 cc = geom::circumcentre(a, b, c, &r2);
     v.r_over_f[t] = std::sqrt(r2) / f(cc);
-    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
-    auto ang = [](double x, double y, double z) {  // angle opposite x
-      return std::acos(std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
-    };
-    v.min_angle[t] = std::min({ang(la, lb, lc), ang(lb, lc, la), ang(lc, la, lb)});
-    v.area[t] = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    v.min_angle[t] = geom::min_angle_deg(a, b, c);
+    v.area[t] = 0.5 * geom::cross2(a, b, c);
   }
   return v;
 }

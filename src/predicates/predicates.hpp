@@ -91,17 +91,4 @@ inline int diametral(Point2 a, Point2 b, Point2 p) {
 // True if p encroaches segment ab: p lies strictly inside its diametral circle.
 inline bool encroaches(Point2 a, Point2 b, Point2 p) { return diametral(a, b, p) > 0; }
 
-// Constructions (inexact by nature, never used for a combinatorial decision).
-// Circumcenter of a,b,c computed relative to a for accuracy.
-inline Point2 circumcenter(Point2 a, Point2 b, Point2 c, double* r2 = nullptr) {
-  const double bx = b.x - a.x, by = b.y - a.y;
-  const double cx = c.x - a.x, cy = c.y - a.y;
-  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  const double d = 2.0 * (bx * cy - by * cx);
-  const double ux = (cy * b2 - by * c2) / d;
-  const double uy = (bx * c2 - cx * b2) / d;
-  if (r2) *r2 = ux * ux + uy * uy;
-  return {a.x + ux, a.y + uy};
-}
-
 }  // namespace fdr::predicates

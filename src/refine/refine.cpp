@@ -2,10 +2,12 @@
 // triangulation: rule 1 (encroached subsegments, split at midpoints or concentric shells) before
 // rule 3 (B-bad triangles by R/f(c), split at circumcenters unless that encroaches a subsegment).
 #include "refine/refine.hpp"
+#include "base/triangle_geometry.hpp"
 #include <algorithm>
 #include <type_traits>
 #include <utility>
 #include <cmath>
+#include <numbers>
 #include <cstdlib>
 #include <sstream>
 #include "base/error.hpp"
@@ -27,7 +29,6 @@ namespace {
 // refinement time for little gain.
 constexpr int kFineSub = 4;
 constexpr int kBuckets = 2048 + kFineSub;
-constexpr double kPi = 3.14159265358979323846;
 
 std::string pt(Point2 p) {
   std::ostringstream s;
@@ -65,9 +66,9 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   mark_clusters();
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
-    const double s = std::sin(opt_.min_angle_deg * kPi / 180.0);
+    const double s = std::sin(opt_.min_angle_deg * std::numbers::pi / 180.0);
     rho2_inv_ = 4.0 * s * s;  // R/l > 1/(2 sin theta)  <=>  (R^2/l^2) * 4 sin^2 > 1
-    off_cot_ = 1.0 / std::tan(0.5 * opt_.min_angle_deg * kPi / 180.0);
+    off_cot_ = 1.0 / std::tan(0.5 * opt_.min_angle_deg * std::numbers::pi / 180.0);
   }
 }
 
@@ -326,7 +327,7 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
   const Index ea = T.org(3 * e.t), eb = T.org(3 * e.t + 1), ec = e.c;
   const Point2 a = T.point(ea), b = T.point(eb), c = T.point(ec);
   double r2;
-  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+  const Point2 cc = geom::circumcentre(a, b, c, &r2);
   const double fc = f_(cc);
   if (!(fc > 0) || r2 / (fc * fc) * b2_inv_ > 1) return true;  // R/f-bad (or f undefined there)
   // A triangle spanning the strip between two segments of a small-angle cluster is skinny
@@ -349,9 +350,9 @@ bool Refiner::may_split_for(const BadEntry& e, const std::vector<std::pair<Index
 bool Refiner::below_floor(Point2 a, Point2 b, Point2 c) const {
   if (!(opt_.angle_split_floor_deg > 0)) return false;
   double r2;
-  predicates::circumcenter(a, b, c, &r2);
+  geom::circumcentre(a, b, c, &r2);
   const double l2 = std::min({norm2(b - a), norm2(c - b), norm2(a - c)});
-  const double s = std::sin(opt_.angle_split_floor_deg * kPi / 180.0);
+  const double s = std::sin(opt_.angle_split_floor_deg * std::numbers::pi / 180.0);
   return l2 < 4.0 * s * s * r2;
 }
 
@@ -359,7 +360,7 @@ bool Refiner::below_floor(Point2 a, Point2 b, Point2 c) const {
 bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
   if (!(rho2_inv_ > 0) || !opt_.region_max_area.empty()) return false;
   double r2;
-  const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+  const Point2 cc = geom::circumcentre(a, b, c, &r2);
   const double fc = f_(cc);
   return fc > 0 && std::isfinite(fc) && !(r2 / (fc * fc) * b2_inv_ > 1);
 }
@@ -373,7 +374,7 @@ bool Refiner::angle_only(Point2 a, Point2 b, Point2 c) const {
 // the angle needs (Triangle 1.6 does the same by default). The FDR bound is untouched: no
 // R/f(c)-bad triangle is split anywhere but at its circumcenter.
 Point2 Refiner::steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const {
-  const Point2 cc = predicates::circumcenter(a, b, c);
+  const Point2 cc = geom::circumcentre(a, b, c);
   if (!angle_bad_only || !opt_.off_centers) return cc;
   Point2 p = a, q = b;
   double l2 = norm2(b - a);
@@ -446,7 +447,7 @@ RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
       if (T.dead(t)) continue;
       const Point2 a = T.point(T.corner(t, 0)), b = T.point(T.corner(t, 1)), c = T.point(T.corner(t, 2));
       double r2;
-      const Point2 cc = predicates::circumcenter(a, b, c, &r2);
+      const Point2 cc = geom::circumcentre(a, b, c, &r2);
       // Bad by R/f(c) first (those are not counted as bad by angle); without that count, f only
       // where the angle test holds (a raster spacing at every circumcentre costs more than the
       // whole count).

@@ -3,6 +3,7 @@
 // makes: random points, constraints that hide the nearest vertex, holes, narrow gaps across the
 // exterior, a vertex where two parts touch, and meshes that are not constrained Delaunay.
 #include <gtest/gtest.h>
+#include <numbers>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -188,7 +189,7 @@ TEST(NearestNeighbour, CoastsCombsAndIslands) {
     std::vector<Point2> ring;
     const int n = 160;
     for (int i = 0; i < n; ++i) {
-      const double a = 2 * 3.14159265358979323846 * i / n, r = 8 + 2 * u(rng);
+      const double a = 2 * std::numbers::pi * i / n, r = 8 + 2 * u(rng);
       ring.push_back({10 + r * std::cos(a), 10 + r * std::sin(a)});
     }
     fdr::Pslg g = polygon(ring);
@@ -200,7 +201,7 @@ TEST(NearestNeighbour, CoastsCombsAndIslands) {
         const Index b = static_cast<Index>(g.points.size());
         const int k = 3 + static_cast<int>(3 * u(rng));
         for (int q = 0; q < k; ++q) {
-          const double a = 2 * 3.14159265358979323846 * q / k + u(rng) * 0.5;
+          const double a = 2 * std::numbers::pi * q / k + u(rng) * 0.5;
           g.points.push_back({c.x + s * std::cos(a), c.y + s * std::sin(a)});
         }
         for (int q = 0; q < k; ++q) g.segments.push_back({b + q, b + (q + 1) % k, 2, 0});

@@ -1,6 +1,7 @@
 // Shared generators of test PSLGs (random, lattice, wedges) for cdt and refine tests.
 #pragma once
 #include <cmath>
+#include <numbers>
 #include <functional>
 #include <random>
 #include <string>
@@ -82,7 +83,7 @@ inline pslg::Pslg lattice_square(int n) {
 // Two segments from the origin at `deg` degrees inside a box, closed by an arc-free polygon:
 // a wedge-shaped domain with a small input angle at (0,0).
 inline pslg::Pslg wedge(double deg, double len = 10) {
-  const double t = deg * 3.14159265358979323846 / 180.0;
+  const double t = deg * std::numbers::pi / 180.0;
   pslg::Pslg p;
   p.points = {{0, 0}, {len, 0}, {len * std::cos(t), len * std::sin(t)}};
   p.segments = {{0, 1, 1, 0}, {1, 2, 1, 0}, {2, 0, 1, 0}};

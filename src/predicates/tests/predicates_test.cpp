@@ -4,6 +4,7 @@
 #include <random>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include "predicates/predicates.hpp"
+#include "base/triangle_geometry.hpp"
 
 using namespace fdr;
 using namespace fdr::predicates;
@@ -85,7 +86,7 @@ TEST(Predicates, DiametralMatchesExact) {
 
 TEST(Predicates, CircumcenterIsEquidistant) {
   double r2;
-  Point2 c = circumcenter({0, 0}, {2, 0}, {0, 2}, &r2);
+  Point2 c = geom::circumcentre({0, 0}, {2, 0}, {0, 2}, &r2);
   EXPECT_DOUBLE_EQ(c.x, 1);
   EXPECT_DOUBLE_EQ(c.y, 1);
   EXPECT_DOUBLE_EQ(r2, 2);

@@ -1,5 +1,6 @@
 // Tests of the quality metrics, FDR guarantees and report writers on hand-built meshes.
 #include <gtest/gtest.h>
+#include <numbers>
 
 #include <cmath>
 #include <cstdio>
@@ -255,7 +256,7 @@ TEST(Guarantees, HandValuesAlpha01B1) {
   // el/f <= 2 / 1.1
   EXPECT_NEAR(g.el_over_f_max, 1.8181818, 1e-7);
   // The min-angle bound is the R/l bound restated: R/l = 1 / (2 sin theta).
-  EXPECT_NEAR(1.0 / (2.0 * std::sin(g.min_angle_deg * M_PI / 180)), g.R_over_l_max, 1e-12);
+  EXPECT_NEAR(1.0 / (2.0 * std::sin(g.min_angle_deg * std::numbers::pi / 180)), g.R_over_l_max, 1e-12);
 }
 
 TEST(Guarantees, ConstantSpacingGivesSqrt2) {
@@ -282,7 +283,7 @@ TEST(Guarantees, ConformingMeshDLimitsBeta) {
   EXPECT_NEAR(g.beta_B, g0.beta, 1e-15);
   EXPECT_NEAR(g.R_over_l_max, 1.0 / (2 * beta * 0.9), 1e-9);
   EXPECT_NEAR(g.nn_over_f_min, 2 * beta / (1 + 0.1 * beta), 1e-15);
-  EXPECT_NEAR(1.0 / (2.0 * std::sin(g.min_angle_deg * M_PI / 180)), g.R_over_l_max, 1e-9);
+  EXPECT_NEAR(1.0 / (2.0 * std::sin(g.min_angle_deg * std::numbers::pi / 180)), g.R_over_l_max, 1e-9);
   EXPECT_EQ(g.el_over_f_max, g0.el_over_f_max);  // Theorem 4.5 does not use beta
   EXPECT_NE(g.note.find("D/(2+alpha*D) <"), std::string::npos) << g.note;
   const auto z = compute_guarantees(0.1, 1.0, 0.0);  // two vertices at one point

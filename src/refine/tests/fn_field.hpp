@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 #include "mesh/triangulation.hpp"
+#include "base/triangle_geometry.hpp"
 #include "predicates/predicates.hpp"
 #include "sizing/sizing_field.hpp"
 
@@ -26,7 +27,7 @@ inline double max_r_over_f(const mesh::Triangulation& T, const sizing::SizingFie
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
     double r2;
-    const Point2 c = predicates::circumcenter(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
+    const Point2 c = geom::circumcentre(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
     worst = std::max(worst, std::sqrt(r2) / f(c));
   }
   return worst;

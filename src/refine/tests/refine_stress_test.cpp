@@ -5,6 +5,7 @@
 #include <functional>
 #include <random>
 #include "cdt/cdt.hpp"
+#include "base/triangle_geometry.hpp"
 #include "cdt/tests/test_inputs.hpp"
 #include "refine/tests/fn_field.hpp"
 #include "mesh/check.hpp"
@@ -40,7 +41,7 @@ TEST(RefineStress, ThousandsOfRandomPslgs) {
     for (TriangleId t = 0; t < T.num_slots(); ++t) {
       if (T.dead(t)) continue;
       double r2;
-      const Point2 cc = predicates::circumcenter(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
+      const Point2 cc = geom::circumcentre(T.point(T.corner(t, 0)), T.point(T.corner(t, 1)), T.point(T.corner(t, 2)), &r2);
       ASSERT_LE(std::sqrt(r2) / f(cc), o.bound * (1 + 1e-12)) << "seed " << seed;
     }
   }

@@ -8,6 +8,7 @@
 // vertex rounded to doubles, are the resolved segments (exactly where no snap/hot-vertex repair
 // moved a cut point, within 1e-9 of the extent otherwise).
 #include <gtest/gtest.h>
+#include <numbers>
 #include <cmath>
 #include <map>
 #include <random>
@@ -97,7 +98,7 @@ std::vector<Case> cases() {
     Case d = boxed("star_around_vertex");
     const Index centre = add(d, {0.5, 0.5});
     for (int k = 0; k < 12; ++k) {
-      const double t = k * 0.5235987755982988;
+      const double t = k * (std::numbers::pi / 6);
       d.segs.push_back({centre, add(d, {0.5 + 0.4 * std::cos(t), 0.5 + 0.4 * std::sin(t)})});
       seg(d, {0.5 + 0.2 * std::cos(t + 0.1), 0.5 + 0.2 * std::sin(t + 0.1)}, {0.5 + 0.45 * std::cos(t - 0.3), 0.5 + 0.45 * std::sin(t - 0.3)});
     }

@@ -99,10 +99,10 @@ Row run_fdr(double k) {
   double amin = 180;
   for (TriangleId t = 0; t < T.num_slots(); ++t) {
     if (T.dead(t)) continue;
-    const auto& a = T.pts[T.tv[3 * t]]; const auto& b = T.pts[T.tv[3 * t + 1]]; const auto& c = T.pts[T.tv[3 * t + 2]];
+    const Point2 a = T.point(T.corner(t, 0)), b = T.point(T.corner(t, 1)), c = T.point(T.corner(t, 2));
     amin = std::min(amin, min_angle_of(a.x, a.y, b.x, b.y, c.x, c.y));
   }
-  Row row{"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.pts.size() - 3, vm_hwm_kb() / 1024.0, amin, {}};
+  Row row{"fdrmesh", k, secs(t0, t1), T.num_live_triangles(), T.num_vertices() - 3, vm_hwm_kb() / 1024.0, amin, {}};
   row.note = "in-process CDT + refine (bench process peak)";
   return row;
 }
