@@ -64,6 +64,7 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   auto work = [&] {
     for (std::size_t k; (k = next.fetch_add(1)) < n;) {
       const std::size_t i = order[k];
+      if (formats[i] == Format::kPostgis) continue;  // after the files, below
       try {
         if (formats[i] == Format::kUgrid) {
           // The netCDF library is not thread-safe: one UGRID file at a time.
@@ -84,10 +85,23 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   for (unsigned k = 1; k < t; ++k) pool.emplace_back(work);
   work();
   for (auto& th : pool) th.join();
+  // Database outputs last, one at a time, and only once every file is written: a committed
+  // transaction cannot be taken back when a file fails, a file can be removed when one fails.
+  const bool files_ok = std::none_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
+  for (std::size_t i = 0; i < n && files_ok; ++i) {
+    if (formats[i] != Format::kPostgis) continue;
+    try {
+      write_mesh(mesh, paths[i], formats[i], *opts);
+      done[i] = 1;
+    } catch (...) {
+      errors[i] = std::current_exception();
+      break;
+    }
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (!errors[i]) continue;
     for (std::size_t j = 0; j < n; ++j)
-      if (done[j])
+      if (done[j] && formats[j] != Format::kPostgis)
         for (const auto& p : files_of(paths[j], formats[j])) std::remove(p.c_str());
     std::rethrow_exception(errors[i]);
   }

@@ -8,6 +8,7 @@
 #include "api/stages.hpp"
 #include "base/error.hpp"
 #include "base/memory.hpp"
+#include "base/redact.hpp"
 #include "base/step_laps.hpp"
 #include "base/threads.hpp"
 #include "base/version.hpp"
@@ -57,7 +58,7 @@ bool is_poly_input(const std::string& path) {
 
 bool stores_triangle_values(const std::vector<io::Format>& formats) {
   return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid || fm == io::Format::kPostgis;
   });
 }
 
@@ -118,7 +119,8 @@ namespace {
 // D-Flow FM net file).
 bool stores_metadata(const std::vector<io::Format>& formats) {
   return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm ||
+           fm == io::Format::kPostgis;
   });
 }
 
@@ -200,7 +202,8 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
   io::WriteOptions wo;
   wo.f = &f;
   wo.bound_B = opt.bound;
-  wo.title = plan.source;
+  wo.title = redact_passwords(plan.source);  // a PostGIS source names its server, not its password
+  wo.postgis = {opt.pg_prefix, opt.pg_schema, opt.pg_overwrite};
   wo.slf_double = opt.slf_double;
   wo.telemac_open_codes = plan.telemac_codes;
   // The writers' metadata, for the formats that store it (GPKG, UGRID, D-Flow FM net file); the
@@ -209,8 +212,8 @@ std::vector<std::string> write_outputs(Result& result, const PreparedInput& in, 
     std::ostringstream js;
     quality::write_json(result.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
-                   {"command_line", opt.command_line},
-                   {"input", plan.source},
+                   {"command_line", redact_passwords(opt.command_line)},
+                   {"input", redact_passwords(plan.source)},
                    {"spacing", f.describe()},
                    {"bound_B", std::to_string(opt.bound)},
                    {"min_angle_deg", std::to_string(plan.triangulate.min_angle_deg)},
