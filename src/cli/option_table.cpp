@@ -112,7 +112,8 @@ const std::vector<OptSpec>& option_table() {
   static const std::vector<OptSpec> t = {
       // mesh: input
       {"mesh", "input", "input", field<&MeshOptions::input>, "vector_in", "INPUT", "", "Input",
-       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes); "
+       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes), "
+       "a PostGIS table or view among them (\"PG:dbname=... \" with --layer schema.table); "
        "not needed with --land and --extent",
        false, false, {}, true},
       {"mesh", "--layer", "layer", field<&MeshOptions::layer>, "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},

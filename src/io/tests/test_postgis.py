@@ -59,7 +59,8 @@ def coast_tables():
     assert r.returncode == 0, r.stderr
     sql("CREATE OR REPLACE VIEW coast.water_view AS SELECT * FROM coast.water;"
         "DROP TABLE IF EXISTS coast.no_geometry; CREATE TABLE coast.no_geometry (id int, name text);"
-        "INSERT INTO coast.no_geometry VALUES (1, 'a')")
+        "INSERT INTO coast.no_geometry VALUES (1, 'a');"
+        "GRANT SELECT ON ALL TABLES IN SCHEMA coast TO fdr_pw")
     yield
 
 
@@ -195,3 +196,37 @@ def test_errors_give_exit_codes_and_no_password(tmp_path):
     code, msg = error_of(GPKG, "--layer", "water", "--spacing", "4000", "--pg-schema", "no_such_schema", "-o", CONN)
     assert code == 8 and "no_such_schema" in msg, msg
     assert sql("SELECT count(*) FROM pg_tables WHERE schemaname = 'public' AND tablename LIKE 'mesh\\_%'") in ("0", "5")
+
+
+def test_qgis_plugin_passes_a_postgis_layer_through(tmp_path):
+    """A PostGIS layer chosen in QGIS reaches fdrmesh as PG: + --layer schema.table (+ --where
+    for a layer filter), not as an exported copy; the logged command shows no password."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    qgis_core = pytest.importorskip("qgis.core")
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "..", "plugins", "qgis"))
+    from fdrmesh import fdrmesh_algorithm as fa
+    app = qgis_core.QgsApplication([], False)
+    app.initQgis()
+    uri = ("dbname='fdrtest' host=%s port=5432 user='fdr_pw' password='%s' key='fid' srid=4326 type=Polygon "
+           "checkPrimaryKeyUnicity='0' table=\"coast\".\"water\" (geom) sql=fid >= 1" % (host(), PASSWORD))
+    layer = qgis_core.QgsVectorLayer(uri, "water", "postgres")
+    assert layer.isValid()
+    os.environ["FDRMESH"] = FDRMESH
+    alg = fa.FdrmeshMeshCoastalAlgorithm().create()
+    out = tmp_path / "q.gpkg"
+    context = qgis_core.QgsProcessingContext()
+    args, _ = alg.build_command({"INPUT": layer, "OUTPUT": str(out)}, context, qgis_core.QgsProcessingFeedback())
+    assert args[2].startswith("PG:") and "dbname=fdrtest" in args[2] and "user=fdr_pw" in args[2], args
+    assert args[args.index("--layer") + 1] == "coast.water" and args[args.index("--where") + 1] == "fid >= 1", args
+    logged = fa.redact_passwords(" ".join(fa._quote(a) for a in args))
+    assert PASSWORD not in logged and "user=fdr_pw" in logged, logged
+    # The CLI reads what the plugin passes: the same mesh as from the GeoPackage.
+    a, b = tmp_path / "q.2dm", tmp_path / "g.2dm"
+    r = subprocess.run([FDRMESH, "mesh", *args[2:3], "--layer", "coast.water", "--where", "fid >= 1", "-q", "-o",
+                        str(a)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    r = run(GPKG, "--layer", "water", "-q", "-o", str(b))
+    assert r.returncode == 0, r.stderr
+    assert body(a) == body(b)
+    del layer
