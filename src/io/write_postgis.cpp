@@ -8,6 +8,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -139,20 +140,27 @@ std::vector<std::string> existing_tables(GDALDataset& ds, const std::string& sch
   return out;
 }
 
+// A column; real numbers travel as text written here (double precision in the table, see
+// set_real) because the driver's own formatting (printf %.18g) is what the rows cost most.
 struct Column {
   const char* name;
   OGRFieldType type;
   OGRFieldSubType sub = OFSTNone;
+  bool real = false;  // double precision, filled by set_real
 };
+const Column real_column(const char* name) { return {name, OFTString, OFSTNone, true}; }
 
 OGRLayer* create_table(GDALDataset& ds, const std::string& schema, const std::string& name,
                        const OGRSpatialReference* srs, OGRwkbGeometryType geom, const std::vector<Column>& cols,
                        const Target& t, GdalErrors& errs) {
   const std::string schema_opt = "SCHEMA=" + schema;
+  std::string types = "COLUMN_TYPES=";
+  for (const Column& c : cols)
+    if (c.real) types += std::string(types.back() == '=' ? "" : ",") + c.name + "=float8";
   // GiST indexes are built once the rows are in (faster than growing them row by row);
   // LAUNDER=NO keeps the GeoPackage's column names (R_over_f).
   const char* opts[] = {"GEOMETRY_NAME=geom", "FID=fid", "FID64=TRUE", "SPATIAL_INDEX=NONE", "LAUNDER=NO",
-                        "PRECISION=NO", "DIM=2", schema_opt.c_str(), nullptr};
+                        "PRECISION=NO", "DIM=2", schema_opt.c_str(), types.c_str(), nullptr};
   errs.clear();
   OGRLayer* l = ds.CreateLayer(name.c_str(), const_cast<OGRSpatialReference*>(srs), geom, const_cast<char**>(opts));
   if (!l) t.fail("cannot create table " + schema + "." + name, &errs);
@@ -161,7 +169,30 @@ OGRLayer* create_table(GDALDataset& ds, const std::string& schema, const std::st
     d.SetSubType(c.sub);
     if (l->CreateField(&d) != OGRERR_NONE) t.fail("cannot add column " + std::string(c.name) + " to " + name, &errs);
   }
+  // The primary key is built once the rows are in (finish_table): kept up row by row it costs
+  // as much as a third of the load. Running a statement also makes the driver create the table.
+  exec(ds, "ALTER TABLE " + quote_ident(schema) + "." + quote_ident(name) + " DROP CONSTRAINT IF EXISTS " +
+               quote_ident(name + "_pkey"), t, errs, "cannot create table " + schema + "." + name);
   return l;
+}
+
+// Primary key, spatial index, the fid sequence past the rows, planner statistics (QGIS asks
+// for extents).
+void finish_table(GDALDataset& ds, const std::string& schema, const std::string& name, bool spatial, const Target& t,
+                  GdalErrors& errs) {
+  const std::string table = quote_ident(schema) + "." + quote_ident(name);
+  const std::string what = schema + "." + name;
+  // (Unless the driver named its key otherwise and it is still there.)
+  exec(ds, "DO $$ BEGIN IF NOT EXISTS (SELECT 1 FROM pg_constraint WHERE contype = 'p' AND conrelid = " +
+               quote_literal(table) + "::regclass) THEN ALTER TABLE " + table + " ADD CONSTRAINT " +
+               quote_ident(name + "_pkey") + " PRIMARY KEY (fid); END IF; END $$",
+       t, errs, "cannot build the primary key of " + what);
+  if (spatial)
+    exec(ds, "CREATE INDEX " + quote_ident(name + "_geom_idx") + " ON " + table + " USING GIST (geom)", t, errs,
+         "cannot build the spatial index of " + what);
+  exec(ds, "SELECT setval(pg_get_serial_sequence(" + quote_literal(table) + ", 'fid'), (SELECT COALESCE(max(fid), 0) + 1 FROM " +
+               table + "), false)", t, errs, "cannot set the fid sequence of " + what);
+  exec(ds, "ANALYZE " + table, t, errs, "cannot analyze " + what);
 }
 
 // Streams one feature per row (the PG driver sends them with COPY).
@@ -170,8 +201,9 @@ class Rows {
   Rows(OGRLayer& l, const Target& t, GdalErrors& errs, const std::string& table)
       : l_(l), t_(t), errs_(errs), table_(table), f_(new OGRFeature(l.GetLayerDefn())) {}
   OGRFeature& feature() { return *f_; }
+  // Rows are numbered 1, 2, ... as the GeoPackage's (the fid sequence is set past them after).
   void put() {
-    f_->SetFID(OGRNullFID);
+    f_->SetFID(++fid_);
     if (l_.CreateFeature(f_.get()) != OGRERR_NONE) t_.fail("writing the rows of " + table_ + " failed", &errs_);
   }
   // Flushes the COPY stream, so a failure shows here and not in the next table.
@@ -186,11 +218,18 @@ class Rows {
   GdalErrors& errs_;
   std::string table_;
   std::unique_ptr<OGRFeature> f_;
+  GIntBig fid_ = 0;
 };
 
+// The shortest text that reads back as the same double (std::to_chars), NULL when not finite.
 void set_real(OGRFeature& f, int i, double v) {
-  if (std::isfinite(v)) f.SetField(i, v);
-  else f.SetFieldNull(i);
+  if (!std::isfinite(v)) {
+    f.SetFieldNull(i);
+    return;
+  }
+  char buf[32];
+  *std::to_chars(buf, buf + sizeof buf - 1, v).ptr = '\0';
+  f.SetField(i, buf);
 }
 
 // geom, id, z, f, conformity, marker: as the GeoPackage's nodes.
@@ -419,14 +458,14 @@ void write_tables(const mesh::MeshView& m, const Target& t, const WriteOptions& 
     clear_target(*ds, schema, p, t, errs);
     const std::string& pre = p.prefix;
     OGRLayer* nodes = create_table(*ds, schema, pre + "nodes", crs, wkbPoint,
-                                   {{"id", OFTInteger64}, {"z", OFTReal}, {"f", OFTReal}, {"conformity", OFTReal},
+                                   {{"id", OFTInteger64}, real_column("z"), real_column("f"), real_column("conformity"),
                                     {"marker", OFTInteger}}, t, errs);
     write_nodes(*nodes, m, o, t, errs);
     done("nodes");
     OGRLayer* tris = create_table(*ds, schema, pre + "triangles", crs, wkbPolygon,
                                   {{"id", OFTInteger64}, {"n1", OFTInteger64}, {"n2", OFTInteger64},
-                                   {"n3", OFTInteger64}, {"area", OFTReal}, {"min_angle", OFTReal},
-                                   {"R_over_f", OFTReal}, {"quality", OFTReal}}, t, errs);
+                                   {"n3", OFTInteger64}, real_column("area"), real_column("min_angle"),
+                                   real_column("R_over_f"), real_column("quality")}, t, errs);
     write_triangles(*tris, m, o, t, errs);
     done("triangles");
     OGRLayer* bnd = create_table(*ds, schema, pre + "boundaries", crs, wkbLineString,
@@ -436,7 +475,7 @@ void write_tables(const mesh::MeshView& m, const Target& t, const WriteOptions& 
     write_boundaries(*bnd, m, t, errs);
     done("boundaries");
     OGRLayer* rep = create_table(*ds, schema, pre + "repairs", crs, wkbPoint,
-                                 {{"kind", OFTString}, {"size", OFTReal}, {"reason", OFTString}, {"part", OFTInteger}},
+                                 {{"kind", OFTString}, real_column("size"), {"reason", OFTString}, {"part", OFTInteger}},
                                  t, errs);
     write_repairs(*rep, o, t, errs);
     done("repairs");
@@ -444,13 +483,9 @@ void write_tables(const mesh::MeshView& m, const Target& t, const WriteOptions& 
                                   {{"key", OFTString}, {"value", OFTString}}, t, errs);
     write_metadata(*meta, o, t, errs);
     done("metadata");
-    // Spatial indexes over the loaded rows, and planner statistics (QGIS asks for extents).
-    for (const char* n : {"nodes", "triangles", "boundaries", "repairs"}) {
-      const std::string table = quote_ident(schema) + "." + quote_ident(pre + n);
-      exec(*ds, "CREATE INDEX " + quote_ident(pre + n + "_geom_idx") + " ON " + table + " USING GIST (geom)", t, errs,
-           "cannot build the spatial index of " + schema + "." + pre + n);
-      exec(*ds, "ANALYZE " + table, t, errs, "cannot analyze " + schema + "." + pre + n);
-    }
+    // Keys and spatial indexes over the loaded rows (GiST sorts more in memory than the default).
+    exec(*ds, "SET LOCAL maintenance_work_mem = '256MB'", t, errs, "cannot set maintenance_work_mem");
+    for (const char* n : kTables) finish_table(*ds, schema, pre + n, std::string(n) != "metadata", t, errs);
     tx.commit(t, errs);
   }
 }

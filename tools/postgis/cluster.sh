@@ -19,8 +19,8 @@
 #
 # The database `fdrtest` has the postgis extension, a schema `coast`, and a role `fdr_pw` with
 # password `fdr-secret` (password login over the socket: the wrong-password tests need one).
-# Without --durable the server runs with fsync off (a test cluster loses nothing that matters);
-# --durable keeps PostgreSQL's defaults, for honest write timings.
+# Without --durable the server runs with fsync off and minimal WAL (a test cluster loses nothing
+# that matters); --durable keeps PostgreSQL's defaults, for honest write timings.
 set -uo pipefail
 
 cmd="${1:-}"
@@ -116,8 +116,8 @@ do_start() {
   # Password login for the test role, trust for everyone else (over this private socket only).
   as_owner sh -c "printf 'local all $PW_ROLE scram-sha-256\nlocal all all trust\n' > '$dir/data/pg_hba.conf'"
   local opts="-c listen_addresses='' -c unix_socket_directories='$dir' -c port=$PORT -c max_connections=20"
-  opts="$opts -c shared_buffers=64MB -c max_wal_size=2GB -c wal_level=minimal -c max_wal_senders=0"
-  [ "$mode" = "--durable" ] || opts="$opts -c fsync=off -c synchronous_commit=off -c full_page_writes=off"
+  [ "$mode" = "--durable" ] ||
+    opts="$opts -c fsync=off -c synchronous_commit=off -c full_page_writes=off -c wal_level=minimal -c max_wal_senders=0"
   as_owner "$bindir/pg_ctl" -D "$dir/data" -l "$dir/server.log" -o "$opts" -w -t 60 start > /dev/null 2>&1 ||
     { cat "$dir/server.log" >> "$state/log" 2>/dev/null; skip "the server did not start (see $state/log)"; }
   local psql="$bindir/psql"
