@@ -24,4 +24,4 @@ add_test(NAME postgis_cli
          COMMAND /bin/sh -c "/usr/bin/python3 -c 'import pytest' 2>/dev/null || exit 77; exec /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider \"$0\"" ${CMAKE_CURRENT_SOURCE_DIR}/tests/test_postgis.py)
 set_tests_properties(postgis_cli PROPERTIES FIXTURES_REQUIRED postgis_server RESOURCE_LOCK postgis_db SKIP_RETURN_CODE 77
                      SKIP_REGULAR_EXPRESSION "PostgreSQL test server not available"
-                     ENVIRONMENT "FDRMESH=$<TARGET_FILE:fdrmesh>;FDR_PG_STATE=${FDR_PG_STATE};FDR_TESTDATA=${PROJECT_SOURCE_DIR}/testdata")
+                     ENVIRONMENT "FDRMESH=$<TARGET_FILE:fdrmesh>;FDR_PG_STATE=${FDR_PG_STATE};FDR_TESTDATA=${PROJECT_SOURCE_DIR}/testdata;PYTHONPATH=${PROJECT_BINARY_DIR}/python;PYTHONDONTWRITEBYTECODE=1")

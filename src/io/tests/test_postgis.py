@@ -204,8 +204,18 @@ def test_qgis_plugin_passes_a_postgis_layer_through(tmp_path):
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     qgis_core = pytest.importorskip("qgis.core")
     import sys
-    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "..", "plugins", "qgis"))
-    from fdrmesh import fdrmesh_algorithm as fa
+    plugins = os.path.join(os.path.dirname(__file__), "..", "..", "..", "plugins", "qgis")
+    saved = {k: v for k, v in sys.modules.items() if k == "fdrmesh" or k.startswith("fdrmesh.")}
+    for k in saved:
+        del sys.modules[k]
+    sys.path.insert(0, plugins)
+    try:
+        from fdrmesh import fdrmesh_algorithm as fa  # the plugin's package, named as the Python module
+    finally:
+        sys.path.remove(plugins)
+        for k in [k for k in sys.modules if k == "fdrmesh" or k.startswith("fdrmesh.")]:
+            del sys.modules[k]
+        sys.modules.update(saved)
     app = qgis_core.QgsApplication([], False)
     app.initQgis()
     uri = ("dbname='fdrtest' host=%s port=5432 user='fdr_pw' password='%s' key='fid' srid=4326 type=Polygon "
@@ -230,3 +240,21 @@ def test_qgis_plugin_passes_a_postgis_layer_through(tmp_path):
     assert r.returncode == 0, r.stderr
     assert body(a) == body(b)
     del layer
+
+
+def test_python_reads_and_writes_the_database(tmp_path):
+    """fdrmesh.mesh takes the same options: a table in, tables out; errors without password."""
+    fdrmesh = pytest.importorskip("fdrmesh")
+    if not hasattr(fdrmesh, "mesh"):
+        pytest.skip("the fdrmesh Python module is not built")
+    drop_mesh("py_")
+    pw_conn = "PG:host=%s dbname=fdrtest user=fdr_pw password=%s" % (host(), PASSWORD)
+    m = fdrmesh.mesh(pw_conn, layer="coast.water", spacing="4000", output=[pw_conn], pg_prefix="py_")
+    assert int(sql("SELECT count(*) FROM py_triangles")) == len(m.triangles)
+    with pytest.raises(fdrmesh.OutputError) as e:
+        fdrmesh.mesh(CONN, layer="coast.water", spacing="4000", output=[pw_conn], pg_prefix="py_")
+    assert "--overwrite" in str(e.value) and PASSWORD not in str(e.value)
+    with pytest.raises(fdrmesh.InputUnreadableError) as e:
+        fdrmesh.mesh(pw_conn.replace(PASSWORD, "wrong-" + PASSWORD), layer="coast.water", spacing="4000")
+    assert "user=fdr_pw" in str(e.value) and PASSWORD not in str(e.value), str(e.value)
+    drop_mesh("py_")
