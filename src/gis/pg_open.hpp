@@ -3,6 +3,7 @@
 #include <string>
 
 #include "gis/gdal_util.hpp"
+#include "gis/pg_source.hpp"
 
 class OGRLayer;
 

@@ -18,7 +18,6 @@
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
 #include "gis/pg_open.hpp"
-#include "gis/pg_source.hpp"
 #include "base/edge_kind.hpp"
 #include "predicates/predicates.hpp"
 
@@ -152,11 +151,8 @@ void check_coordinates(const OGRGeometry* g, const CoordLimits& lim, const std::
 
 LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* option) {
   GdalQuiet quiet;
-  // A "PG:" connection string names a database, not a file (no existence check); messages name
-  // it without its password.
-  const bool pg = is_pg_connection(ref.path);
-  const std::string name = source_label(ref.path);
-  DatasetPtr ds = pg ? open_pg_vector(ref.path) : open_vector(ref.path);
+  const std::string name = source_label(ref.path);  // a "PG:" database without its password
+  DatasetPtr ds = is_pg_connection(ref.path) ? open_pg_vector(ref.path) : open_vector(ref.path);
   OGRLayer* lyr = nullptr;
   if (ref.layer.empty()) {
     if (ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, name + ": no layers");
@@ -170,7 +166,7 @@ LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* 
       throw Error(ExitCode::kInputUnreadable, name + ": no layer '" + ref.layer + "' (layers: " + names + ")");
     }
   }
-  if (pg) check_pg_layer(*lyr, ref.path);
+  if (is_pg_connection(ref.path)) check_pg_layer(*lyr, ref.path);
   LayerData out;
   out.file = name;
   out.layer = lyr->GetName();
