@@ -2,17 +2,23 @@
 # Whole-write time of a 1 M-triangle mesh into PostGIS (tables, COPY, GiST indexes, ANALYZE,
 # commit) beside the GeoPackage writer, on a throw-away server with PostgreSQL's durable
 # defaults (fsync on; tools/postgis/cluster.sh --durable).
-#   tools/bench/postgis_write.sh [FDRMESH] [RUNS]      (default build/bin/fdrmesh, 3 runs)
+#   tools/bench/postgis_write.sh [FDRMESH] [RUNS] [durable|fast]   (default build/bin/fdrmesh, 3, durable)
+# fast: the tests' server settings (fsync off, minimal WAL), for comparison.
 # Prints, per output, the writer's time from the report (timings_s.write) and the whole
 # process's wall time, each run and the median.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 fdrmesh="${1:-$root/build/bin/fdrmesh}"
 runs="${2:-3}"
+mode="${3:-durable}"
 work="$(mktemp -d "${TMPDIR:-/tmp}/fdrbench.XXXXXX")"
 state="$work/pg"
 trap 'bash "$root/tools/postgis/cluster.sh" stop "$state" > /dev/null 2>&1 || true; rm -rf "$work"' EXIT
-bash "$root/tools/postgis/cluster.sh" start "$state" --durable
+if [ "$mode" = fast ]; then
+  bash "$root/tools/postgis/cluster.sh" start "$state"
+else
+  bash "$root/tools/postgis/cluster.sh" start "$state" --durable
+fi
 conn="$(cat "$state/conninfo")"
 case "$conn" in SKIP:*) echo "no PostgreSQL server: $conn" >&2; exit 77 ;; esac
 input=("$root/testdata/poly/square10.poly" --spacing "0.025*paper-f1" -q)
@@ -45,4 +51,4 @@ for target in gpkg postgis; do
   done
   echo "$target median: write $(cut -d' ' -f1 "$work/$target.txt" | median) s, whole process $(cut -d' ' -f2 "$work/$target.txt" | median) s"
 done
-echo "(machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "(server settings: $mode; machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg))"
