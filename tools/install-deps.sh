@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages fdrmesh needs to build, test and benchmark.
+# Installs the Debian 12 packages fdrmesh needs to build, test and benchmark (PostgreSQL + PostGIS:
+# the PostGIS tests start a throw-away server of their own, tools/postgis/cluster.sh).
 # Usage: tools/install-deps.sh [--no-qgis] [--fuzz]   (root, or sudo available)
 #   --fuzz also installs clang and libFuzzer for tools/fuzz/run.sh (not needed by CI).
 set -euo pipefail
@@ -15,7 +16,8 @@ pkgs=(build-essential cmake ninja-build pkg-config git
       libgtest-dev libgmock-dev libbenchmark-dev
       libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev libjemalloc-dev
       gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4 python3-pytest
-      python3-dev python3-pybind11 pybind11-dev)
+      python3-dev python3-pybind11 pybind11-dev
+      postgresql-15 postgresql-15-postgis-3 postgresql-client-15)
 [ "$want_qgis" = 1 ] && pkgs+=(qgis python3-qgis)
 [ "$want_fuzz" = 1 ] && pkgs+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev)
 missing=()

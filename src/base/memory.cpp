@@ -202,7 +202,6 @@ ArenaDecay::~ArenaDecay() {
   }
 }
 
-EagerMemoryRelease::EagerMemoryRelease() : ArenaDecay(0) { release_free_memory(); }
 
 OwnArena::OwnArena() {
   if (!mallctl) return;

@@ -97,13 +97,6 @@ class ArenaDecay {
   std::vector<ssize_t> dirty_, muzzy_;             // arena.<i>.*_decay_ms
 };
 
-// Decay 0, and what was freed before goes back at once. Why: where a few large arrays are freed,
-// pages kept lazily by one stage would add to the next stage's peak.
-class EagerMemoryRelease : public ArenaDecay {
- public:
-  EagerMemoryRelease();
-};
-
 // Decay -1 while it lives (freed pages stay with the allocator and serve the next allocations),
 // and every freed page goes back to the system when it ends. Why: where millions of small objects
 // are allocated and freed, pages purged by the default decay would be faulted in again.

@@ -9,6 +9,7 @@
 #include <sstream>
 #include "base/error.hpp"
 #include "base/progress.hpp"
+#include "base/redact.hpp"
 #include "base/version.hpp"
 #include "cli/option_table.hpp"
 #include "pipeline/quality_run.hpp"
@@ -44,7 +45,7 @@ class DelayedProgress {
 
 int fail(const Error& e) {
   std::fflush(stdout);
-  std::fprintf(stderr, "ERROR %d: %s\n", e.exit_code(), e.what());
+  std::fprintf(stderr, "ERROR %d: %s\n", e.exit_code(), redact_passwords(e.what()).c_str());
   return e.exit_code();
 }
 
@@ -163,7 +164,8 @@ int run(int argc, char** argv) {
     o.report_only_if_read = true;  // -q without --report: no quality report nobody reads
 
     DelayedProgress progress(o.quiet);
-    auto log = [&](LogLevel lvl, std::string_view msg) {
+    auto log = [&](LogLevel lvl, std::string_view raw) {
+      const std::string msg = redact_passwords(raw);  // a PostGIS source's password is never printed
       if (lvl == LogLevel::kWarning || lvl == LogLevel::kError) {
         std::fprintf(stderr, "Warning: %.*s\n", static_cast<int>(msg.size()), msg.data());
       } else if (lvl == LogLevel::kInfo && !o.quiet) {
@@ -174,7 +176,9 @@ int run(int argc, char** argv) {
     pipeline::Result r = pipeline::run(o, [&](double f, std::string_view s) { return progress(f, s); }, log);
     progress.finish();
     if (!o.quiet) {
-      pipeline::write_summary(r, std::cout);
+      std::ostringstream summary;
+      pipeline::write_summary(r, summary);
+      std::cout << redact_passwords(summary.str());
     }
     return 0;
   } catch (const Error& e) {

@@ -112,7 +112,8 @@ const std::vector<OptSpec>& option_table() {
   static const std::vector<OptSpec> t = {
       // mesh: input
       {"mesh", "input", "input", field<&MeshOptions::input>, "vector_in", "INPUT", "", "Input",
-       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes); "
+       "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes), "
+       "a PostGIS table or view among them (\"PG:dbname=... \" with --layer schema.table); "
        "not needed with --land and --extent",
        false, false, {}, true},
       {"mesh", "--layer", "layer", field<&MeshOptions::layer>, "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
@@ -173,6 +174,12 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--slf-double", "slf-double", field<&MeshOptions::slf_double>, "flag", "", "", "Output", "Write Selafin (.slf) in double precision (SERAFIND)"},
       {"mesh", "--telemac-open", "telemac-open", field<&MeshOptions::telemac_open>, "string", "L,U,V", "5,4,4", "Output",
        "Telemac .cli codes LIHBOR,LIUBOR,LIVBOR of open-boundary nodes (5,4,4 prescribed elevation; 4,5,5 prescribed velocity)"},
+      {"mesh", "--pg-prefix", "pg-prefix", field<&MeshOptions::pg_prefix>, "string", "PREFIX", "mesh_", "Output",
+       "PostGIS output (-o PG:...): prefix of the tables PREFIXnodes, PREFIXtriangles, PREFIXboundaries, PREFIXrepairs, PREFIXmetadata"},
+      {"mesh", "--pg-schema", "pg-schema", field<&MeshOptions::pg_schema>, "string", "SCHEMA", "the connection's schemas=, else the current schema", "Output",
+       "PostGIS output: schema of the tables"},
+      {"mesh", "--overwrite", "overwrite", field<&MeshOptions::pg_overwrite>, "flag", "", "", "Output",
+       "PostGIS output: replace an existing mesh with the same table prefix (in the same transaction); files are always replaced"},
       {"mesh", "--report", "report", field<&MeshOptions::report_json>, "file_out", "FILE.json", "", "Output", "Write the quality report as JSON"},
       {"mesh", "-q,--quiet", "quiet", field<&MeshOptions::quiet>, "flag", "", "", "Output", "No progress and no report on stdout"},
       // quality

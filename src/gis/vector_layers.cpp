@@ -10,6 +10,7 @@
 
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
+#include "gis/pg_open.hpp"
 
 namespace fdr::gis {
 
@@ -128,10 +129,11 @@ void check_coordinates(const OGRGeometry* g, const CoordLimits& lim, const std::
 
 LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* option) {
   GdalQuiet quiet;
-  DatasetPtr ds = open_vector(ref.path);
+  const std::string name = source_label(ref.path);  // a "PG:" database without its password
+  DatasetPtr ds = is_pg_connection(ref.path) ? open_pg_vector(ref.path) : open_vector(ref.path);
   OGRLayer* lyr = nullptr;
   if (ref.layer.empty()) {
-    if (ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, ref.path + ": no layers");
+    if (ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, name + ": no layers");
     lyr = ds->GetLayer(0);
   } else {
     lyr = ds->GetLayerByName(ref.layer.c_str());
@@ -139,11 +141,12 @@ LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* 
       std::string names;
       for (int i = 0; i < ds->GetLayerCount(); ++i)
         names += (i ? ", " : "") + std::string(ds->GetLayer(i)->GetName());
-      throw Error(ExitCode::kInputUnreadable, ref.path + ": no layer '" + ref.layer + "' (layers: " + names + ")");
+      throw Error(ExitCode::kInputUnreadable, name + ": no layer '" + ref.layer + "' (layers: " + names + ")");
     }
   }
+  if (is_pg_connection(ref.path)) check_pg_layer(*lyr, ref.path);
   LayerData out;
-  out.file = ref.path;
+  out.file = name;
   out.layer = lyr->GetName();
   if (!ref.where.empty() && lyr->SetAttributeFilter(ref.where.c_str()) != OGRERR_NONE)
     throw Error(ExitCode::kUsage, out.label() + ": invalid " + option + " where clause '" + ref.where +

@@ -47,6 +47,8 @@ const std::vector<FormatInfo>& format_infos() {
       {Format::kMsh, "MSH", ".msh", "Gmsh 4.1 mesh", "z positive up; boundary physical groups; no CRS"},
       {Format::kNode, "NODE", ".node .ele", "Triangle node/ele", "z, f attributes; vertex markers; no CRS"},
       {Format::kVtu, "VTU", ".vtu", "VTK unstructured grid", "z, f point data; no boundaries; no CRS"},
+      {Format::kPostgis, "POSTGRESQL", "PG:", "PostGIS tables (nodes, triangles, boundaries, repairs, metadata)",
+       "the GeoPackage's layers as tables <prefix>nodes ... in one transaction; CRS as SRID"},
   };
   return t;
 }
@@ -76,6 +78,8 @@ Format format_from_path(const std::string& path, const std::string& of_override)
       if (up == i.name) return i.format;
     throw Error(ExitCode::kUsage, "unknown output format '" + of_override + "'; known formats: " + known_list());
   }
+  // A GDAL PostgreSQL connection string ("PG:dbname=... "), not a file name.
+  if (path.size() >= 3 && lower(path.substr(0, 3)) == "pg:") return Format::kPostgis;
   std::string name = lower(base_name(path));
   if (name == "fort.14") return Format::kFort14;
   if (name.size() > 7 && name.compare(name.size() - 7, 7, "_net.nc") == 0) return Format::kDflowfm;

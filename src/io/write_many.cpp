@@ -58,11 +58,13 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost_rank(formats[a]) < cost_rank(formats[b]); });
-  // One chunk per file, claimed in `order`; each file's outcome goes to its own slot.
+  // One chunk per file, claimed in `order`; each file's outcome goes to its own slot. Database
+  // outputs wait until every file is written (below).
   parallel_chunks(
       n,
       [&](std::size_t k, unsigned) {
         const std::size_t i = order[k];
+        if (formats[i] == Format::kPostgis) return;
         try {
           if (formats[i] == Format::kUgrid) {
             // The netCDF library is not thread-safe: one UGRID file at a time.
@@ -78,10 +80,23 @@ void write_meshes(const mesh::MeshView& mesh, const std::vector<std::string>& pa
         }
       },
       std::max(1u, threads));
+  // Database outputs last, one at a time, and only once every file is written: a committed
+  // transaction cannot be taken back when a file fails, a file can be removed when one fails.
+  const bool files_ok = std::none_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
+  for (std::size_t i = 0; i < n && files_ok; ++i) {
+    if (formats[i] != Format::kPostgis) continue;
+    try {
+      write_mesh(mesh, paths[i], formats[i], *opts);
+      done[i] = 1;
+    } catch (...) {
+      errors[i] = std::current_exception();
+      break;
+    }
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (!errors[i]) continue;
     for (std::size_t j = 0; j < n; ++j)
-      if (done[j])
+      if (done[j] && formats[j] != Format::kPostgis)
         for (const auto& p : files_of(paths[j], formats[j])) std::remove(p.c_str());
     std::rethrow_exception(errors[i]);
   }

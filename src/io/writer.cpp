@@ -10,6 +10,7 @@
 
 #include "base/error.hpp"
 #include "io/detail.hpp"
+#include "io/write_postgis.hpp"
 
 namespace fdr::io {
 
@@ -271,6 +272,8 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
 }  // namespace
 
 void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format format, const WriteOptions& options) {
+  // A database, not a file; it names itself without its password in every message.
+  if (format == Format::kPostgis) return detail::write_postgis(mesh, path, options);
   detail::validate_for_output(mesh, path);
   // Writers throw kOutputError themselves; anything else (out of memory, a sizing field that
   // throws) is reported as an output error too, after the temp file has been removed.
@@ -287,6 +290,7 @@ void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format form
       case Format::kLl: detail::write_adcirc(mesh, path, options, detail::BoundaryFlavor::kLl); return;
       case Format::kSelafin: detail::write_selafin(mesh, path, options); return;
       case Format::kDflowfm: detail::write_dflowfm_net(mesh, path, options); return;
+      case Format::kPostgis: break;  // written above
     }
   } catch (const Error&) {
     throw;

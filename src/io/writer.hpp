@@ -7,12 +7,13 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "io/postgis_options.hpp"
 #include "mesh/mesh_view.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::io {
 
-enum class Format { kGpkg, k2dm, kMsh, kNode, kVtu, kFort14, kUgrid, kSelafin, kGr3, kLl, kDflowfm };
+enum class Format { kGpkg, k2dm, kMsh, kNode, kVtu, kFort14, kUgrid, kSelafin, kGr3, kLl, kDflowfm, kPostgis };
 
 // What the option table publishes about each format (--help, --json-usage, the QGIS plugin).
 struct FormatInfo {
@@ -30,7 +31,7 @@ const char* format_name(Format f);
 
 // Format from the file name (.gpkg .2dm .msh .node/.ele .vtu .14/.grd/fort.14 .nc .slf .gr3 .ll,
 // *_net.nc), or from `of_override` (GPKG, 2DM, MSH, NODE, VTU, FORT14, UGRID, SELAFIN, GR3, LL,
-// DFLOWFM; case-insensitive) when non-empty.
+// DFLOWFM, POSTGRESQL; case-insensitive) when non-empty. A "PG:" connection string is PostGIS.
 // Unknown name or extension -> Error(kUsage) listing the known ones.
 Format format_from_path(const std::string& path, const std::string& of_override = "");
 
@@ -73,6 +74,8 @@ struct WriteOptions {
   // Boundary loops shared by the writers of one mesh (write_meshes sets it when several outputs
   // carry boundaries, so they are extracted once); null: each writer extracts its own.
   BoundaryCache* boundary_cache = nullptr;
+  // PostGIS output ("PG:..." path): table prefix, schema, replacing an existing mesh.
+  PostgisOptions postgis;
 };
 
 // Parses --telemac-open "L,U,V" (three Telemac boundary codes 0..6, comma or blank separated);

@@ -22,11 +22,9 @@ MemoryPolicy policy_for(MemoryPhase phase, bool gis) {
         // given back interrupts that thread too; kept pages also serve the report's and the
         // writers' temporary arrays.
         p.keep_freed = true;
-      } else {
-        // A .poly run has no thread beside its refinement, and its few large arrays freed lazily by
-        // one stage would add to the next stage's peak.
-        p.release_eagerly = true;
       }
+      // A .poly run keeps the allocator's defaults: giving freed pages back at once neither sped
+      // it up nor lowered its peak.
       break;
   }
   return p;
@@ -35,7 +33,6 @@ MemoryPolicy policy_for(MemoryPhase phase, bool gis) {
 PhaseMemory::PhaseMemory(MemoryPhase phase, bool gis) {
   const MemoryPolicy p = policy_for(phase, gis);
   if (p.huge_pages) huge_.emplace();
-  if (p.release_eagerly) eager_.emplace();
   if (p.keep_freed) keep_.emplace();
 }
 

@@ -14,7 +14,6 @@ enum class MemoryPhase {
 
 // What the allocator does while a phase runs.
 struct MemoryPolicy {
-  bool release_eagerly = false;  // freed pages go back to the system at once
   bool keep_freed = false;       // freed pages stay with the allocator for reuse
   bool huge_pages = false;       // the allocator's new mappings are backed by huge pages
 };
@@ -34,7 +33,6 @@ class PhaseMemory {
   // Declared in this order so that the huge-page hooks are in place before the decay changes and
   // removed after them.
   std::optional<HugePageArenas> huge_;
-  std::optional<EagerMemoryRelease> eager_;
   std::optional<KeepFreedPages> keep_;
 };
 

@@ -27,6 +27,11 @@ struct Options {
   bool slf_double = false;               // Selafin in double precision (SERAFIND)
   std::string telemac_open;              // LIHBOR,LIUBOR,LIVBOR of open nodes in the .cli ("" = 5,4,4)
   bool overwrite = true;
+  // PostGIS output (-o "PG:..."): table name prefix, schema ("" = the connection's schemas=,
+  // else the current schema), and whether an existing mesh with that prefix may be replaced.
+  std::string pg_prefix = "mesh_";
+  std::string pg_schema;
+  bool pg_overwrite = false;
 
   // Spacing.
   std::string spacing;                   // expression / preset / constant (world coordinates)

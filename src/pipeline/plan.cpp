@@ -60,6 +60,7 @@ WriteParams write_params(const Options& opt, const Plan& p, std::vector<io::Form
   w.bound = opt.bound;
   w.min_angle_deg = p.triangulate.min_angle_deg;
   w.slf_double = opt.slf_double;
+  w.postgis = {opt.pg_prefix, opt.pg_schema, opt.pg_overwrite};
   if (!opt.telemac_open.empty()) w.telemac_codes = io::parse_telemac_codes(opt.telemac_open);
   return w;
 }

@@ -1,6 +1,7 @@
 // Write stage (write.hpp).
 #include "pipeline/write.hpp"
 #include "base/triangle_geometry.hpp"
+#include "base/redact.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -56,15 +57,16 @@ io::WriteOptions write_options(const WriteInput& w, const WriteParams& p) {
   io::WriteOptions wo;
   wo.f = &f;
   wo.bound_B = p.bound;
-  wo.title = p.source;
+  wo.title = redact_passwords(p.source);  // a PostGIS source names its server, not its password
+  wo.postgis = p.postgis;
   wo.slf_double = p.slf_double;
   wo.telemac_open_codes = p.telemac_codes;
   if (stores_metadata(p.formats)) {
     std::ostringstream js;
     quality::write_json(w.report, js);
     wo.metadata = {{"software", std::string("fdrmesh ") + kVersion},
-                   {"command_line", p.command_line},
-                   {"input", p.source},
+                   {"command_line", redact_passwords(p.command_line)},
+                   {"input", redact_passwords(p.source)},
                    {"spacing", f.describe()},
                    {"bound_B", std::to_string(p.bound)},
                    {"min_angle_deg", std::to_string(p.min_angle_deg)},
@@ -96,13 +98,14 @@ void write_meshes(const mesh::MeshView& m, const io::WriteOptions& wo, const Wri
 
 bool stores_triangle_values(const std::vector<io::Format>& formats) {
   return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid;
+    return fm == io::Format::kGpkg || fm == io::Format::kVtu || fm == io::Format::kUgrid || fm == io::Format::kPostgis;
   });
 }
 
 bool stores_metadata(const std::vector<io::Format>& formats) {
   return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
-    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm;
+    return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm ||
+           fm == io::Format::kPostgis;
   });
 }
 

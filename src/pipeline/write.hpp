@@ -27,6 +27,7 @@ struct WriteParams {
   double min_angle_deg = 0;               // the angle bound used
   bool slf_double = false;
   std::array<int, 3> telemac_codes{5, 4, 4};
+  io::PostgisOptions postgis;             // -o PG:...: table prefix, schema, --overwrite
 };
 
 // The finished run that the write stage writes.

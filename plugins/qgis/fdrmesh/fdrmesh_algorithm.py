@@ -24,6 +24,7 @@ from qgis.core import (
     Qgis,
     QgsCategorizedSymbolRenderer,
     QgsCoordinateReferenceSystem,
+    QgsDataSourceUri,
     QgsGradientColorRamp,
     QgsGraduatedSymbolRenderer,
     QgsMarkerSymbol,
@@ -33,6 +34,7 @@ from qgis.core import (
     QgsProcessingAlgorithm,
     QgsProcessingContext,
     QgsProcessingException,
+    QgsProcessingFeatureSourceDefinition,
     QgsProcessingLayerPostProcessorInterface,
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
@@ -85,6 +87,8 @@ def mesh_outputs(usage):
         return list(_MESH_OUTPUTS)
     out = []
     for f in fmts:
+        if is_database_format(f):
+            continue  # a database target is a connection string, not a file to choose
         name = "OUTPUT" if f["name"] == "GPKG" else "OUTPUT_" + f["name"]
         pats = " ".join(e if not e.startswith((".", "_")) else "*" + e for e in f.get("extensions", []))
         desc = "Output %s" % f.get("label", f["name"])
@@ -193,6 +197,45 @@ def _number_default(opt):
         return float(opt.get("default", ""))
     except ValueError:
         return None
+
+
+def is_database_format(fmt):
+    """True for an output format written into a database (its "extension" is a prefix such as PG:)."""
+    return any(e.endswith(":") for e in fmt.get("extensions", []))
+
+
+def redact_passwords(text):
+    """`text` without the password=... parts of database connection strings (for the log)."""
+    text = re.sub(r"(?i)(^|[\s?&:'\"])password\s*=\s*('(?:[^'\\]|\\.)*'|[^\s&'\"]*)[ &]?", r"\1", text)
+    return re.sub(r"(?i)(postgres(?:ql)?://[^:/@\s]*):[^@/\s]*@", r"\1@", text)
+
+
+def _libpq_value(v):
+    """A libpq connection-string value, quoted when it has blanks or quotes."""
+    v = str(v)
+    if v and not re.search(r"[\s'\\]", v):
+        return v
+    return "'" + v.replace("\\", "\\\\").replace("'", "\\'") + "'"
+
+
+def postgis_source(layer):
+    """(GDAL "PG:" connection string, "schema.table", subset SQL) of a PostGIS layer, so fdrmesh
+    reads the table itself; None when QGIS must export the features instead (another provider,
+    credentials kept in QGIS's authentication database, or a layer made from an SQL query)."""
+    if layer is None or layer.providerType() != "postgres":
+        return None
+    uri = QgsDataSourceUri(layer.source())
+    if uri.authConfigId() or not uri.table() or uri.table().startswith("("):
+        return None
+    parts = []
+    for key, value in (("service", uri.service()), ("host", uri.host()), ("port", uri.port()),
+                       ("dbname", uri.database()), ("user", uri.username()), ("password", uri.password())):
+        if value:
+            parts.append("%s=%s" % (key, _libpq_value(value)))
+    if uri.sslMode() not in (QgsDataSourceUri.SslPrefer,):
+        parts.append("sslmode=%s" % QgsDataSourceUri.encodeSslMode(uri.sslMode()))
+    table = "%s.%s" % (uri.schema(), uri.table()) if uri.schema() else uri.table()
+    return "PG:" + " ".join(parts), table, uri.sql()
 
 
 def layer_option_key(usage_opts, opt):
@@ -472,16 +515,21 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             t, flag = opt["type"], opt["names"][-1]
             value = None
             if t == "vector_in":
-                if layer_key:
+                pg = self._postgis_value(parameters, name, context, opt, layer_key)
+                if pg:
+                    value, extra = pg
+                    args += extra
+                elif layer_key:
                     path, layer = self.parameterAsCompatibleSourceLayerPathAndLayerName(
                         parameters, name, context, _OGR_FORMATS, "gpkg", feedback)
                 else:
                     path, layer = self.parameterAsCompatibleSourceLayerPath(
                         parameters, name, context, _OGR_FORMATS, "gpkg", feedback), ""
-                if not path:
+                if not pg and not path:
                     continue
-                value = path
-                if layer_key and layer:
+                if not pg:
+                    value = path
+                if not pg and layer_key and layer:
                     lk = next(o for o in self._usage_opts() if o["key"] == layer_key)
                     args += [lk["names"][-1], layer]
             elif t == "raster_in":
@@ -543,6 +591,27 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             raise QgsProcessingException("an output GeoPackage (OUTPUT) is required")
         return args[:2] + positional + args[2:], outputs
 
+    def _postgis_value(self, parameters, name, context, opt, layer_key):
+        """(connection string, [layer and where options]) for a PostGIS layer fdrmesh can read
+        itself, else None (the layer is then exported to a file as any other)."""
+        if not layer_key:
+            return None  # no option names the table (e.g. --land)
+        value = parameters.get(name)
+        if isinstance(value, QgsProcessingFeatureSourceDefinition) and value.selectedFeaturesOnly:
+            return None  # only QGIS knows the selection
+        pg = postgis_source(self.parameterAsVectorLayer(parameters, name, context))
+        if pg is None:
+            return None
+        conn, table, subset = pg
+        where_key = "where" if opt.get("positional") else None
+        if subset and not where_key:
+            return None  # a filtered layer where fdrmesh has no --where: export the filtered features
+        opts = {o["key"]: o for o in self._usage_opts()}
+        extra = [opts[layer_key]["names"][-1], table]
+        if subset:
+            extra += [opts[where_key]["names"][-1], subset]
+        return conn, extra
+
     def _usage_opts(self):
         mesh = next(c for c in self.status()["usage"]["commands"] if c["name"] == "mesh")
         return mesh["options"]
@@ -560,7 +629,7 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             os.close(fd)
             report = tmp_report
             args += ["--report", report]
-        feedback.pushCommandInfo(" ".join(_quote(a) for a in args))
+        feedback.pushCommandInfo(redact_passwords(" ".join(_quote(a) for a in args)))
         try:
             paths = list(outputs.values())
             # A Selafin output comes with its .cli boundary file beside it.

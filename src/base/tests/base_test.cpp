@@ -48,7 +48,7 @@ TEST(Base, TermProgressPrintsGdalPattern) {
 #include "base/memory.hpp"
 #include "base/tests/smaps_flags.hpp"
 TEST(Memory, NoOpWithoutJemalloc) {
-  fdr::EagerMemoryRelease eager;
+  fdr::ArenaDecay eager(0);
   EXPECT_FALSE(eager.active());
   fdr::release_free_memory();
 }

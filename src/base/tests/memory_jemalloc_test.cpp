@@ -1,4 +1,4 @@
-// EagerMemoryRelease, KeepFreedPages and HugePageArenas in a process whose allocator is jemalloc
+// ArenaDecay, KeepFreedPages and HugePageArenas in a process whose allocator is jemalloc
 // (this test links it, as the fdrmesh program does, with the same compiled-in options): every
 // arena's decay is 0 (-1) while it lives, the previous values after; the extent hooks wrapped and
 // restored.
@@ -31,13 +31,13 @@ ssize_t read_ssize(const std::string& name) {
 }
 }  // namespace
 
-TEST(EagerMemoryRelease, DecayZeroWhileItLivesThenTheHostsSettings) {
+TEST(ArenaDecay, DecayZeroWhileItLivesThenTheHostsSettings) {
   std::vector<std::unique_ptr<char[]>> keep;
   for (int i = 0; i < 100; ++i) keep.emplace_back(new char[1000 + i]);  // arena 0 in use
   const ssize_t dirty0 = read_ssize("arenas.dirty_decay_ms"), arena0 = read_ssize("arena.0.dirty_decay_ms");
   ASSERT_GT(dirty0, 0);  // jemalloc's default (10 s)
   {
-    fdr::EagerMemoryRelease eager;
+    fdr::ArenaDecay eager(0);
     EXPECT_TRUE(eager.active());
     EXPECT_EQ(read_ssize("arenas.dirty_decay_ms"), 0);
     EXPECT_EQ(read_ssize("arenas.muzzy_decay_ms"), 0);
@@ -126,7 +126,7 @@ TEST(HugePageArenas, AdvisesTheExtentItAllocatesBeforeWrappingTheHooks) {
   EXPECT_FALSE(fdr::test::advised_huge(grid.get() + (std::size_t{8} << 20)));  // the advice taken back
 }
 
-// An OwnArena keeps its decay at -1 while an EagerMemoryRelease sets every other arena's to 0,
+// An OwnArena keeps its decay at -1 while an ArenaDecay(0) sets every other arena's to 0,
 // the bound thread allocates from it, release_free_memory() leaves its pages, and its end
 // purges them.
 TEST(OwnArena, KeepsItsPagesUnderEagerReleaseAndIsBound) {
@@ -144,7 +144,7 @@ TEST(OwnArena, KeepsItsPagesUnderEagerReleaseAndIsBound) {
   const std::string a = "arena." + std::to_string(mine) + ".";
   EXPECT_EQ(read_ssize(a + "dirty_decay_ms"), -1);
   {
-    fdr::EagerMemoryRelease eager;
+    fdr::ArenaDecay eager(0);
     EXPECT_EQ(read_ssize("arena.0.dirty_decay_ms"), 0);
     EXPECT_EQ(read_ssize(a + "dirty_decay_ms"), -1);  // left alone
     blocks.clear();  // freed into the own arena: kept

@@ -1060,6 +1060,7 @@ std::string ext_of(Format f) {
     case Format::kGr3: return ".gr3";
     case Format::kLl: return ".ll";
     case Format::kDflowfm: return "_net.nc";
+    case Format::kPostgis: return "";  // a database, not a file (postgis_test.cpp)
   }
   return "";
 }

@@ -90,13 +90,13 @@ TEST(Plan, ReportReadOnlyWhenSomethingReadsIt) {
 }
 
 TEST(MemoryPolicy, OneChoicePerPhase) {
-  auto flags = [](MemoryPolicy p) { return int(p.release_eagerly) + int(p.keep_freed) + int(p.huge_pages); };
-  EXPECT_TRUE(policy_for(MemoryPhase::kMesh, false).release_eagerly);
+  auto flags = [](MemoryPolicy p) { return int(p.keep_freed) + int(p.huge_pages); };
+  EXPECT_EQ(flags(policy_for(MemoryPhase::kMesh, false)), 0);
   EXPECT_TRUE(policy_for(MemoryPhase::kMesh, true).keep_freed);
   EXPECT_TRUE(policy_for(MemoryPhase::kGisRead, true).keep_freed);
   EXPECT_TRUE(policy_for(MemoryPhase::kGisInput, true).huge_pages);
   for (auto ph : {MemoryPhase::kMesh, MemoryPhase::kGisRead, MemoryPhase::kGisInput})
-    for (bool gis : {false, true}) EXPECT_EQ(flags(policy_for(ph, gis)), 1);
+    EXPECT_EQ(flags(policy_for(ph, true)), 1);
   const PhaseMemory held(MemoryPhase::kMesh, false);  // a no-op under glibc's malloc
 }
 
