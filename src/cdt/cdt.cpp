@@ -12,6 +12,13 @@
 #include "predicates/predicates.hpp"
 
 namespace fdr::cdt {
+
+std::string point_text(Point2 p) {
+  std::ostringstream s;
+  s.precision(15);
+  s << "(" << p.x << ", " << p.y << ")";
+  return s.str();
+}
 using mesh::Triangulation;
 using mesh::VertexKind;
 using predicates::diametral;
@@ -20,12 +27,6 @@ using predicates::orient2d;
 
 namespace {
 
-std::string pt(Point2 p) {
-  std::ostringstream s;
-  s.precision(15);
-  s << "(" << p.x << ", " << p.y << ")";
-  return s.str();
-}
 
 // Hilbert index of (x, y) in a 2^16 grid: insertion order with good locality for walking.
 std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
@@ -45,13 +46,13 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
                                  const std::string& source) {
   const Index other = T.segment_of(T.org(h), T.dst(h));
   std::ostringstream s;
-  s << source << ": segment " << sid << " " << pt(T.point(a)) << "-" << pt(T.point(b)) << " crosses ";
+  s << source << ": segment " << sid << " " << point_text(T.point(a)) << "-" << point_text(T.point(b)) << " crosses ";
   if (other < T.input_segments().size())
-    s << "segment " << other << " " << pt(T.point(T.input_segments()[other].a)) << "-"
-      << pt(T.point(T.input_segments()[other].b));
+    s << "segment " << other << " " << point_text(T.point(T.input_segments()[other].a)) << "-"
+      << point_text(T.point(T.input_segments()[other].b));
   else
     s << "a constrained edge";
-  s << " near " << pt(T.point(T.org(h))) << "-" << pt(T.point(T.dst(h)));
+  s << " near " << point_text(T.point(T.org(h))) << "-" << point_text(T.point(T.dst(h)));
   throw Error(ExitCode::kInvalidGeometry, s.str());
 }
 
@@ -63,8 +64,8 @@ void mark_constrained(Triangulation& T, HalfEdge h, Index sid, const std::string
       const auto& o = T.input_segments()[other];
       throw Error(ExitCode::kInvalidGeometry,
                   source + ": segment " + std::to_string(sid) + " overlaps segment " + std::to_string(other) +
-                      " " + pt(T.point(o.a)) + "-" + pt(T.point(o.b)) + " along " + pt(T.point(T.org(h))) + "-" +
-                      pt(T.point(T.dst(h))));
+                      " " + point_text(T.point(o.a)) + "-" + point_text(T.point(o.b)) + " along " + point_text(T.point(T.org(h))) + "-" +
+                      point_text(T.point(T.dst(h))));
     }
   }
   T.set_constrained(h, true);
@@ -223,7 +224,7 @@ std::vector<Index> insert_points(Triangulation& T, const pslg::Pslg& in, const B
       continue;
     }
     if (!ins.build_cavity(p, loc))
-      throw Error(ExitCode::kInternal, source + ": could not insert vertex " + std::to_string(i) + " " + pt(p));
+      throw Error(ExitCode::kInternal, source + ": could not insert vertex " + std::to_string(i) + " " + point_text(p));
     ins.commit_vertex(i);
     last = ins.new_triangles().front();
   }

@@ -13,12 +13,6 @@ using mesh::VertexKind;
 
 namespace {
 
-std::string pt(Point2 p) {
-  std::ostringstream s;
-  s.precision(15);
-  s << "(" << p.x << ", " << p.y << ")";
-  return s.str();
-}
 
 bool has_super_corner(const Triangulation& T, TriangleId t) {
   for (int k = 0; k < 3; ++k)
@@ -45,7 +39,7 @@ Index hole_component(const Triangulation& T, const pslg::Pslg& in, const CdtOpti
   const Point2 hp = in.holes[h];
   auto hole_error = [&](const std::string& what) {
     throw Error(ExitCode::kInvalidGeometry,
-                opt.source + ": hole " + std::to_string(h) + " seed at " + pt(T.origin + hp) + " " + what);
+                opt.source + ": hole " + std::to_string(h) + " seed at " + point_text(T.origin + hp) + " " + what);
   };
   if (!std::isfinite(hp.x) || !std::isfinite(hp.y)) hole_error("has a non-finite coordinate");
   const Location loc = locate_visibility(T, first_live(T), hp);

@@ -8,6 +8,9 @@
 
 namespace fdr::cdt {
 
+// A point as "(x, y)" with 15 significant digits, for error messages.
+std::string point_text(Point2 p);
+
 // The input points as vertices 0..n-1 (with their markers) and a super-triangle of three more
 // vertices around `box`, their bounding box.
 void start_triangulation(mesh::Triangulation& T, const pslg::Pslg& in, const Box2& box);

@@ -2,6 +2,7 @@
 // coast deviation both ways, connected pieces, gravity-wave time step, removed features.
 // Measurements only (double precision); no combinatorial decision is taken here.
 #include "quality/compensated_sum.hpp"
+#include "quality/text_format.hpp"
 #include "quality/model_ready.hpp"
 
 #include <algorithm>
@@ -654,18 +655,6 @@ Json deviation_json(const std::optional<CoastDeviation>& d, std::optional<double
           {"p99_over_hmin", num(over(d->p99_m, hmin))},
           {"max_at", xy(d->max_at)},
           {"samples", d->samples}};
-}
-std::string fmt(std::optional<double> v, const char* spec) {
-  if (!v) return "n/a";
-  if (!std::isfinite(*v)) return *v > 0 ? "inf" : "nan";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, spec, *v);
-  return buf;
-}
-void line(std::ostream& out, const char* label, const std::string& value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "  %-30s: ", label);
-  out << buf << value << '\n';
 }
 }  // namespace
 

@@ -5,24 +5,11 @@
 #include <ostream>
 #include <string>
 #include "quality/report.hpp"
+#include "quality/text_format.hpp"
 
 namespace fdr::quality {
 namespace {
 
-std::string fmt(std::optional<double> v, const char* spec = "%.6g") {
-  if (!v) return "n/a";
-  if (std::isinf(*v)) return *v > 0 ? "inf" : "-inf";
-  if (std::isnan(*v)) return "nan";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, spec, *v);
-  return buf;
-}
-
-void line(std::ostream& out, const char* label, const std::string& value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "  %-30s: ", label);
-  out << buf << value << '\n';
-}
 
 }  // namespace
 
