@@ -205,6 +205,22 @@ void validate_for_output(const mesh::MeshView& m, const std::string& path) {
   }
 }
 
+std::vector<std::pair<std::string, std::string>> metadata_rows(const WriteOptions& o) {
+  std::vector<std::pair<std::string, std::string>> rows = o.metadata;
+  bool has_title = false, has_b = false;
+  for (const auto& [k, v] : o.metadata) {
+    has_title |= k == "title";
+    has_b |= k == "bound_B";
+  }
+  if (!has_title && !o.title.empty()) rows.emplace_back("title", o.title);
+  if (!has_b && o.bound_B > 0 && std::isfinite(o.bound_B)) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", o.bound_B);
+    rows.emplace_back("bound_B", buf);
+  }
+  return rows;
+}
+
 double triangle_area(const mesh::MeshView& m, std::size_t t) {
   const auto& tr = m.triangles[t];
   return 0.5 * geom::cross2(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]);

@@ -99,6 +99,10 @@ void edges_from_chain(mesh::MeshView& m, const std::vector<Index>& nodes, bool c
 void validate_for_output(const mesh::MeshView& m, const std::string& path);
 
 // Per-triangle geometry in the local frame.
+// The metadata table's rows (GeoPackage, PostGIS): the caller's, then the title and the bound B
+// when the caller's rows lack them.
+std::vector<std::pair<std::string, std::string>> metadata_rows(const WriteOptions& o);
+
 double triangle_area(const mesh::MeshView& m, std::size_t t);
 double triangle_min_angle_deg(const mesh::MeshView& m, std::size_t t);
 // Circumradius and circumcentre (local frame); R = +inf for a degenerate triangle.

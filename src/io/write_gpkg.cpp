@@ -256,18 +256,10 @@ void write_repairs(SqliteDb& db, GeomBlob& gb, const std::vector<RepairRow>& rep
 // metadata: key, value; the title and bound B added when the caller's rows lack them.
 void write_metadata(SqliteDb& db, const WriteOptions& o) {
   BatchInsert ins(db, "metadata", {"key", "value"}, 16);
-  auto row = [&](const std::string& k, const std::string& v) {
+  for (const auto& [k, v] : metadata_rows(o)) {
     ins.add_text(k).add_text(v);
     ins.end_row();
-  };
-  bool has_title = false, has_b = false;
-  for (const auto& [k, v] : o.metadata) {
-    has_title |= k == "title";
-    has_b |= k == "bound_B";
-    row(k, v);
   }
-  if (!has_title && !o.title.empty()) row("title", o.title);
-  if (!has_b && o.bound_B > 0) row("bound_B", real_or_null(o.bound_B));
   ins.finish();
 }
 

@@ -147,18 +147,25 @@ void define_net_coordinates(NetFile& n) {
 }
 
 // Edge nodes and types, face nodes.
+// A UGRID <location>_node_connectivity variable (1-based, fill -999) of dimensions (rows, cols).
+void connectivity_var(NetFile& n, const char* name, int rows, int cols, const char* location, const char* long_name,
+                      int* var) {
+  const Nc& nc = n.nc;
+  const int id = n.id, fill_id = -999;
+  int dims[2] = {rows, cols};
+  nc.check(nc_def_var(id, name, NC_INT, 2, dims, var), (std::string("variable ") + name).c_str());
+  nc.text(id, *var, "cf_role", std::string(location) + "_node_connectivity");
+  nc.text(id, *var, "mesh", "mesh2d");
+  nc.text(id, *var, "location", location);
+  nc.text(id, *var, "long_name", long_name);
+  nc.integer(id, *var, "start_index", 1);
+  nc.check(nc_put_att_int(id, *var, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+}
+
 void define_net_connectivity(NetFile& n) {
   const Nc& nc = n.nc;
   const int id = n.id;
-  const int fill_id = -999;
-  int dims_e[2] = {n.d_edge, n.d_two};
-  nc.check(nc_def_var(id, "mesh2d_edge_nodes", NC_INT, 2, dims_e, &n.en), "variable mesh2d_edge_nodes");
-  nc.text(id, n.en, "cf_role", "edge_node_connectivity");
-  nc.text(id, n.en, "mesh", "mesh2d");
-  nc.text(id, n.en, "location", "edge");
-  nc.text(id, n.en, "long_name", "Start and end nodes of mesh edges");
-  nc.integer(id, n.en, "start_index", 1);
-  nc.check(nc_put_att_int(id, n.en, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+  connectivity_var(n, "mesh2d_edge_nodes", n.d_edge, n.d_two, "edge", "Start and end nodes of mesh edges", &n.en);
 
   nc.check(nc_def_var(id, "mesh2d_edge_type", NC_INT, 1, &n.d_edge, &n.et), "variable mesh2d_edge_type");
   nc.text(id, n.et, "long_name", "edge type (relation between edge and flow geometry)");
@@ -167,14 +174,8 @@ void define_net_connectivity(NetFile& n) {
   nc.check(nc_put_att_int(id, n.et, "flag_values", NC_INT, 4, flags), "flag_values");
   nc.text(id, n.et, "flag_meanings", "internal_closed internal boundary boundary_closed");
 
-  int dims_f[2] = {n.d_face, n.d_max};
-  nc.check(nc_def_var(id, "mesh2d_face_nodes", NC_INT, 2, dims_f, &n.fn), "variable mesh2d_face_nodes");
-  nc.text(id, n.fn, "cf_role", "face_node_connectivity");
-  nc.text(id, n.fn, "mesh", "mesh2d");
-  nc.text(id, n.fn, "location", "face");
-  nc.text(id, n.fn, "long_name", "Vertex nodes of mesh faces (counterclockwise)");
-  nc.integer(id, n.fn, "start_index", 1);
-  nc.check(nc_put_att_int(id, n.fn, "_FillValue", NC_INT, 1, &fill_id), "_FillValue");
+  connectivity_var(n, "mesh2d_face_nodes", n.d_face, n.d_max, "face", "Vertex nodes of mesh faces (counterclockwise)",
+                   &n.fn);
 }
 
 void write_net_data(const NetFile& n, const mesh::MeshView& m, const NetEdges& edges) {

@@ -345,22 +345,10 @@ void write_repairs(OGRLayer& l, const WriteOptions& o, const Target& t, GdalErro
 void write_metadata(OGRLayer& l, const WriteOptions& o, const Target& t, GdalErrors& errs) {
   Rows rows(l, t, errs, "metadata");
   OGRFeature& f = rows.feature();
-  auto row = [&](const std::string& k, const std::string& v) {
+  for (const auto& [k, v] : metadata_rows(o)) {
     f.SetField(0, k.c_str());
     f.SetField(1, redact_passwords(v).c_str());
     rows.put();
-  };
-  bool has_title = false, has_b = false;
-  for (const auto& [k, v] : o.metadata) {
-    has_title |= k == "title";
-    has_b |= k == "bound_B";
-    row(k, v);
-  }
-  if (!has_title && !o.title.empty()) row("title", o.title);
-  if (!has_b && o.bound_B > 0) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", o.bound_B);
-    row("bound_B", buf);
   }
   rows.finish();
 }

@@ -14,6 +14,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs"))
+from generated_page import write_or_check  # noqa: E402
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 HEADER_KEYS = ("command", "machine", "date", "source")
 
@@ -258,16 +261,7 @@ def main(argv):
     except (OSError, ValueError) as e:
         print(f"ERROR: {e}", file=sys.stderr)
         return 1
-    if check:
-        old = open(target, encoding="utf-8").read() if os.path.exists(target) else ""
-        if old != text:
-            print(f"{target} is stale: regenerate it with python3 tools/bench/make_benchmarks_md.py", file=sys.stderr)
-            return 1
-        print(f"{target} is up to date")
-        return 0
-    with open(target, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    return 0
+    return write_or_check(target, text, check, "regenerate it with python3 tools/bench/make_benchmarks_md.py")
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ.setdefault("GDAL_PAM_ENABLED", "NO")
 root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(root, "plugins", "qgis"))
+sys.path.insert(0, os.path.join(root, "tools", "qgis"))
 
 
 def sh(*cmd):
@@ -29,11 +30,9 @@ def sh(*cmd):
 
 
 def render(conn, out_png, width):
-    from qgis.core import QgsApplication, QgsDataSourceUri, QgsMapRendererParallelJob, QgsMapSettings, \
-        QgsRectangle, QgsVectorLayer
-    from qgis.PyQt.QtCore import QSize
-    from qgis.PyQt.QtGui import QColor
+    from qgis.core import QgsApplication, QgsDataSourceUri, QgsVectorLayer
     from fdrmesh.fdrmesh_algorithm import style_layer
+    from render_screenshot import render_png
     host = re.search(r"host=(\S+)", conn).group(1)
     with tempfile.TemporaryDirectory() as prof:
         os.environ["QGIS_CUSTOM_CONFIG_PATH"] = prof
@@ -49,27 +48,10 @@ def render(conn, out_png, width):
                 sys.exit("QGIS cannot open %s from the database" % name)
             style_layer(lyr, name, 1.0)
             layers[name] = lyr
-        ext = QgsRectangle(layers["triangles"].extent())
-        ext.scale(1.03)
-        ms = QgsMapSettings()
-        ms.setLayers([layers["boundaries"], layers["triangles"]])  # top first
-        ms.setDestinationCrs(layers["triangles"].crs())
-        ms.setBackgroundColor(QColor("#f4efe4"))
-        ms.setOutputSize(QSize(width, int(width * ext.height() / ext.width())))
-        ms.setExtent(ext)
-        job = QgsMapRendererParallelJob(ms)
-        job.start()
-        job.waitForFinished()
-        img = job.renderedImage()
-        img.save(out_png, "PNG")
-        try:  # a 48-colour palette keeps the picture small
-            from PIL import Image
-            Image.open(out_png).convert("RGB").quantize(colors=48).save(out_png, optimize=True)
-        except ImportError:
-            pass
-        print("%s: %d x %d, %d triangles from PostGIS" % (out_png, img.width(), img.height(),
+        width_px, height_px = render_png([layers["boundaries"], layers["triangles"]], out_png, width)
+        print("%s: %d x %d, %d triangles from PostGIS" % (out_png, width_px, height_px,
                                                          layers["triangles"].featureCount()))
-        del job, ms, layers, img
+        del layers
 
 
 def main():

@@ -12,11 +12,36 @@ root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(root, "plugins", "qgis"))
 
 
-def main():
-    from qgis.core import (QgsApplication, QgsMapRendererParallelJob, QgsMapSettings, QgsProcessingContext,
-                           QgsProcessingFeedback, QgsProject, QgsRectangle)
+def render_png(layers_top_first, out_png, width):
+    """Draws the layers (the last one sets the extent and CRS) to out_png, width px wide, on the
+    plugin's paper background; a 48-colour palette keeps the picture small. Returns (width, height)."""
+    from qgis.core import QgsMapRendererParallelJob, QgsMapSettings, QgsRectangle
     from qgis.PyQt.QtCore import QSize
     from qgis.PyQt.QtGui import QColor
+    base = layers_top_first[-1]
+    ext = QgsRectangle(base.extent())
+    ext.scale(1.03)
+    ms = QgsMapSettings()
+    ms.setLayers(layers_top_first)
+    ms.setDestinationCrs(base.crs())
+    ms.setBackgroundColor(QColor("#f4efe4"))
+    ms.setOutputSize(QSize(width, int(width * ext.height() / ext.width())))
+    ms.setExtent(ext)
+    job = QgsMapRendererParallelJob(ms)
+    job.start()
+    job.waitForFinished()
+    img = job.renderedImage()
+    img.save(out_png, "PNG")
+    try:
+        from PIL import Image
+        Image.open(out_png).convert("RGB").quantize(colors=48).save(out_png, optimize=True)
+    except ImportError:
+        pass
+    return img.width(), img.height()
+
+
+def main():
+    from qgis.core import QgsApplication, QgsProcessingContext, QgsProcessingFeedback, QgsProject
     out_png = os.path.abspath(sys.argv[1])
     width = int(sys.argv[2]) if len(sys.argv) > 2 else 1000
     with tempfile.TemporaryDirectory() as prof, tempfile.TemporaryDirectory() as work:
@@ -38,26 +63,9 @@ def main():
         store = context.temporaryLayerStore()
         layers = {store.mapLayer(i).name().split()[-1]: store.mapLayer(i) for i in context.layersToLoadOnCompletion()}
         shown = [layers["boundaries"], layers["triangles"]]  # top first
-        ext = QgsRectangle(layers["triangles"].extent())
-        ext.scale(1.03)
-        ms = QgsMapSettings()
-        ms.setLayers(shown)
-        ms.setDestinationCrs(layers["triangles"].crs())
-        ms.setBackgroundColor(QColor("#f4efe4"))
-        ms.setOutputSize(QSize(width, int(width * ext.height() / ext.width())))
-        ms.setExtent(ext)
-        job = QgsMapRendererParallelJob(ms)
-        job.start()
-        job.waitForFinished()
-        img = job.renderedImage()
-        img.save(out_png, "PNG")
-        try:  # a 48-colour palette keeps the README picture small (< 300 KB)
-            from PIL import Image
-            Image.open(out_png).convert("RGB").quantize(colors=48).save(out_png, optimize=True)
-        except ImportError:
-            pass
-        print("%s: %d x %d, %d triangles" % (out_png, img.width(), img.height(), results["TRIANGLES"]))
-        del job, ms, shown, layers, img
+        width_px, height_px = render_png(shown, out_png, width)
+        print("%s: %d x %d, %d triangles" % (out_png, width_px, height_px, results["TRIANGLES"]))
+        del shown, layers
         store.removeAllMapLayers()
         del store, context
         app.exitQgis()
