@@ -18,6 +18,7 @@
 #include "gis/reproject.hpp"
 #include "gis/vector_input.hpp"
 #include "pipeline/memory_policy.hpp"
+#include "pipeline/plan.hpp"
 #include "pslg/poly_io.hpp"
 #include "pslg/resample.hpp"
 #include "pslg/snap_loose_ends.hpp"
@@ -68,12 +69,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
   if (!opt.open_boundary.empty()) d.open_boundary = {opt.open_boundary, opt.open_boundary_layer, ""};
   if (!opt.breaklines.empty()) d.breaklines = {opt.breaklines, opt.breaklines_layer, ""};
   if (!opt.points.empty()) d.points = {opt.points, opt.points_layer, ""};
-  if (opt.open_boundary.empty() && !opt.open_boundary_layer.empty())
-    throw Error(ExitCode::kUsage, "--open-boundary-layer needs --open-boundary FILE");
-  if (opt.breaklines.empty() && !opt.breaklines_layer.empty())
-    throw Error(ExitCode::kUsage, "--breaklines-layer needs --breaklines FILE");
-  if (opt.points.empty() && !opt.points_layer.empty())
-    throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
+  check_layer_options(opt);
   d.s_srs = opt.s_srs;
   d.t_srs = opt.t_srs;
   d.densify_deg = opt.densify_deg;

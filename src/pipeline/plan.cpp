@@ -13,12 +13,7 @@ namespace {
 // GIS options that need another option (checked again where they are used).
 void check_gis_options(const Options& opt) {
   if (!opt.land.empty() && !opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
-  if (opt.open_boundary.empty() && !opt.open_boundary_layer.empty())
-    throw Error(ExitCode::kUsage, "--open-boundary-layer needs --open-boundary FILE");
-  if (opt.breaklines.empty() && !opt.breaklines_layer.empty())
-    throw Error(ExitCode::kUsage, "--breaklines-layer needs --breaklines FILE");
-  if (opt.points.empty() && !opt.points_layer.empty())
-    throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
+  check_layer_options(opt);
   auto negative = [](const std::optional<double>& v) { return v && !(*v >= 0); };
   if (negative(opt.close_width) || negative(opt.min_feature) || negative(opt.min_island_factor))
     throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");
@@ -66,6 +61,15 @@ WriteParams write_params(const Options& opt, const Plan& p, std::vector<io::Form
 }
 
 }  // namespace
+
+void check_layer_options(const Options& opt) {
+  if (opt.open_boundary.empty() && !opt.open_boundary_layer.empty())
+    throw Error(ExitCode::kUsage, "--open-boundary-layer needs --open-boundary FILE");
+  if (opt.breaklines.empty() && !opt.breaklines_layer.empty())
+    throw Error(ExitCode::kUsage, "--breaklines-layer needs --breaklines FILE");
+  if (opt.points.empty() && !opt.points_layer.empty())
+    throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
+}
 
 bool is_poly_input(const std::string& path) {
   const std::string e = lower_ext(path);

@@ -20,6 +20,11 @@ struct Plan {
 };
 Plan plan_run(const Options& opt);
 
+// Error(kUsage) when a layer option (--open-boundary-layer, --breaklines-layer, --points-layer)
+// is given without its input. plan_run checks it; the GIS read does too, for callers that start
+// there.
+void check_layer_options(const Options& opt);
+
 // Whether anything reads the quality report: always, unless Options::report_only_if_read, and then
 // when it is printed (not quiet), written (--report) or stored by an output (GPKG, VTU, UGRID,
 // D-Flow FM net file).
