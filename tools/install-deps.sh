@@ -17,6 +17,7 @@ pkgs=(build-essential cmake ninja-build pkg-config git
       libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev libjemalloc-dev
       gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4 python3-pytest
       python3-dev python3-pybind11 pybind11-dev
+      tetgen python3-meshio python3-scipy
       postgresql-15 postgresql-15-postgis-3 postgresql-client-15)
 [ "$want_qgis" = 1 ] && pkgs+=(qgis python3-qgis)
 [ "$want_fuzz" = 1 ] && pkgs+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev)
