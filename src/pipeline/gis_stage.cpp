@@ -16,6 +16,7 @@
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/reproject.hpp"
+#include "gis/united_domain.hpp"
 #include "gis/vector_input.hpp"
 #include "pipeline/memory_policy.hpp"
 #include "pipeline/plan.hpp"
@@ -261,9 +262,19 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   PreparedInput out;
   out.hmin = hmin;
   out.coast_figures = std::move(coast_figures);
-  for (const auto& poly : (g.input_polygons.empty() ? g.domain_polygons : g.input_polygons))
-    for (const auto& ring : poly)
-      for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  // The report's coast deviation against the boundary of the domain the mesher meshes: the input
+  // polygons united (borders between adjacent polygons are no coast and have no mesh edges).
+  {
+    const auto& input = g.input_polygons.empty() ? g.domain_polygons : g.input_polygons;
+    const std::optional<coast::Polygons> united = gis::united_domain(input, g.features.united > 0);
+    const coast::Polygons& boundary = united ? *united : input;
+    out.coast_figures.push_back({"input_polygons", static_cast<double>(input.size())});
+    out.coast_figures.push_back({"input_polygons_united", static_cast<double>(boundary.size())});
+    for (const auto& poly : boundary)
+      for (const auto& ring : poly)
+        for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    if (input.size() > 1) clock.lap("united input");
+  }
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();
