@@ -16,6 +16,7 @@
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "gis/reproject.hpp"
+#include "gis/united_domain.hpp"
 #include "gis/vector_input.hpp"
 #include "pipeline/memory_policy.hpp"
 #include "pipeline/plan.hpp"
@@ -235,9 +236,23 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     rec.repair.where = frame.to_world(rec.repair.where);
     g.repairs.push_back(std::move(rec));
   }
+  // The report's coast deviation against the boundary of the domain the mesher meshes: the input
+  // polygons united (borders between adjacent polygons are no coast and have no mesh edges).
+  // Timed with the repair: both make the input the domain the mesher meshes.
+  std::vector<std::pair<Point2, Point2>> input_boundary;
+  std::vector<std::pair<std::string, double>> coast_figures;
+  {
+    const auto& input = g.input_polygons.empty() ? g.domain_polygons : g.input_polygons;
+    const std::optional<coast::Polygons> united = gis::united_domain(input, g.features.united > 0);
+    const coast::Polygons& boundary = united ? *united : input;
+    coast_figures.push_back({"input_polygons", static_cast<double>(input.size())});
+    coast_figures.push_back({"input_polygons_united", static_cast<double>(boundary.size())});
+    for (const auto& poly : boundary)
+      for (const auto& ring : poly)
+        for (std::size_t i = 0; i < ring.size(); ++i) input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  }
   clock.lap("repair");
   // Boundaries resampled to f (model-ready coast) unless --keep-coast.
-  std::vector<std::pair<std::string, double>> coast_figures;
   if (!opt.keep_coast) {
     if (!(opt.coast_tol >= 0)) throw Error(ExitCode::kUsage, "--coast-tol must be >= 0");
     pslg::ResampleOptions ro;
@@ -261,9 +276,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   PreparedInput out;
   out.hmin = hmin;
   out.coast_figures = std::move(coast_figures);
-  for (const auto& poly : (g.input_polygons.empty() ? g.domain_polygons : g.input_polygons))
-    for (const auto& ring : poly)
-      for (std::size_t i = 0; i < ring.size(); ++i) out.input_boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  out.input_boundary = std::move(input_boundary);
   out.pslg = std::move(g.pslg);
   out.f = f;
   out.crs_name = frame.name();

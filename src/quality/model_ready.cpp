@@ -259,6 +259,16 @@ static ModelReadiness readiness_from_inputs(const ModelReadyInputs& in) {
   return r;
 }
 
+// A mesh with z but no vertex below sea level is land only: no water, so no gravity-wave time
+// step (every depth would be the --min-depth clamp, and the figure would look like a real limit).
+static void drop_land_time_step(ModelReadiness& r, const mesh::MeshView& m) {
+  if (m.z.empty() || m.z.size() != m.num_vertices()) return;
+  for (const double z : m.z)
+    if (z < 0) return;
+  r.land_only = true;
+  r.time_step.reset();
+}
+
 ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const ModelReadyInputs& in) {
   ModelReadiness r = readiness_from_inputs(in);
   const double hmin = r.hmin_m.value_or(0.0);
@@ -358,6 +368,7 @@ ModelReadiness compute_model_readiness_plain(const mesh::MeshView& m, const Mode
   for (std::size_t t = 0; t < nt; ++t)
     if (pieces.find(static_cast<Index>(t)) == t) ++r.mesh_pieces;
   r.mesh_boundary_edges = boundary.size();
+  drop_land_time_step(r, m);
 
   coast_deviation(r, boundary, in, hmin, m.origin);
   return r;
@@ -597,6 +608,7 @@ ModelReadiness compute_model_readiness(const mesh::MeshView& m, const ModelReady
   r.mesh_area_m2 = area.value();
   r.mesh_pieces = pieces;
   r.mesh_boundary_edges = boundary.size();
+  drop_land_time_step(r, m);
   L("boundary");
   coast_deviation(r, boundary, in, hmin, m.origin);
   L("deviation");
@@ -624,6 +636,7 @@ std::optional<double> ModelReadiness::pct_edges_below_tenth_hmin() const {
 }
 double ModelReadiness::pct_triangles_below_20() const { return pct(triangles_below_20_deg, triangles).value_or(0); }
 double ModelReadiness::pct_triangles_below_30() const { return pct(triangles_below_30_deg, triangles).value_or(0); }
+bool ModelReadiness::time_step_depth_clamped() const { return time_step && time_step->depth_m <= min_depth_m; }
 std::optional<double> ModelReadiness::area_change_pct() const {
   if (!input_area_m2 || !(*input_area_m2 > 0)) return std::nullopt;
   return 100.0 * (mesh_area_m2 - *input_area_m2) / *input_area_m2;
@@ -646,6 +659,14 @@ Json xy(Point2 p) { return Json::array({p.x, p.y}); }
 std::optional<double> over(std::optional<double> v, std::optional<double> h) {
   if (!v || !h || !(*h > 0)) return std::nullopt;
   return *v / *h;
+}
+constexpr const char* kLandOnly = "no vertex below sea level (land-only mesh): no gravity-wave time step";
+// What the input->mesh deviation measures against, in words.
+std::string boundary_label(const ModelReadiness& r) {
+  const auto n = r.figure("input_polygons"), u = r.figure("input_polygons_united");
+  if (n && u && *u < *n)
+    return "boundary of the united input domain (" + fmt(n, "%.0f") + " polygons united into " + fmt(u, "%.0f") + ")";
+  return "boundary of the input domain";
 }
 Json deviation_json(const std::optional<CoastDeviation>& d, std::optional<double> hmin) {
   if (!d) return nullptr;
@@ -678,17 +699,20 @@ nlohmann::ordered_json model_ready_json(const ModelReadiness& r) {
   j["pieces"] = {{"mesh", r.mesh_pieces}, {"input", figure_json(r.input_pieces)}};
   j["coast_deviation"] = {{"input_to_mesh", deviation_json(r.input_to_mesh, r.hmin_m)},
                           {"mesh_to_input", deviation_json(r.mesh_to_input, r.hmin_m)},
-                          {"mesh_boundary_edges", r.mesh_boundary_edges}};
+                          {"mesh_boundary_edges", r.mesh_boundary_edges},
+                          {"measured_against", r.input_to_mesh ? Json(boundary_label(r)) : Json(nullptr)}};
   if (r.time_step) {
     j["time_step"] = {{"dt_s", num(r.time_step->dt_s)},
                       {"at", xy(r.time_step->at)},
                       {"h_m", num(r.time_step->h_m)},
                       {"depth_m", num(r.time_step->depth_m)},
                       {"h", "shortest altitude"},
-                      {"min_depth_m", num(r.min_depth_m)}};
+                      {"min_depth_m", num(r.min_depth_m)},
+                      {"depth_clamped", r.time_step_depth_clamped()}};
   } else {
     j["time_step"] = nullptr;
   }
+  if (r.land_only) j["time_step_omitted"] = kLandOnly;
   j["area"] = {{"mesh_m2", num(r.mesh_area_m2)}, {"input_m2", num(r.input_area_m2)},
                {"change_pct", num(r.area_change_pct())}};
   j["features_removed"] = {{"water_closed", figure_json(r.figure("narrow_water_closed"))},
@@ -721,24 +745,31 @@ void write_model_ready_text(const ModelReadiness& r, std::ostream& out) {
       s += " = " + fmt(over(d->max_m, r.hmin_m), "%.3g") + " / " + fmt(over(d->p99_m, r.hmin_m), "%.3g") + " hmin";
     line(out, label, s);
   };
+  if (r.input_to_mesh) line(out, "coast measured against", boundary_label(r));
   dev("coast in->mesh max / p99", r.input_to_mesh);
   dev("coast mesh->in max / p99", r.mesh_to_input);
   if (r.time_step) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%.4g s at (%.1f, %.1f): h %.4g m, depth %.4g m", r.time_step->dt_s,
-                  r.time_step->at.x, r.time_step->at.y, r.time_step->h_m, r.time_step->depth_m);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%.4g s at (%.1f, %.1f): h %.4g m, depth %.4g m%s", r.time_step->dt_s,
+                  r.time_step->at.x, r.time_step->at.y, r.time_step->h_m, r.time_step->depth_m,
+                  r.time_step_depth_clamped() ? " (the --min-depth clamp)" : "");
     line(out, "time step h/sqrt(g depth)", buf);
+  } else if (r.land_only) {
+    line(out, "time step h/sqrt(g depth)", "n/a: no vertex below sea level (land-only mesh)");
   }
   if (auto a = r.area_change_pct()) line(out, "area change vs input", fmt(a, "%+.4f") + " %");
   auto removed = [&](const char* label, const char* count, const char* area) {
     if (auto n = r.figure(count))
       line(out, label, fmt(n, "%.0f") + " (" + fmt(r.figure(area).value_or(0) / 1e6, "%.4g") + " km^2)");
   };
-  removed("narrow water closed", "narrow_water_closed", "water_removed_m2");
-  removed("islands removed", "islands_removed", "islands_removed_m2");
-  removed("narrow water widened", "water_widened", "water_widened_m2");
+  // The generalisation treats the domain as water; on a land-only mesh its figures are about the
+  // domain's own narrow parts and holes.
+  const bool land = r.land_only;
+  removed(land ? "narrow domain parts closed" : "narrow water closed", "narrow_water_closed", "water_removed_m2");
+  removed(land ? "holes removed" : "islands removed", "islands_removed", "islands_removed_m2");
+  removed(land ? "narrow domain parts widened" : "narrow water widened", "water_widened", "water_widened_m2");
   if (auto a = r.figure("thin_land_removed_m2"))
-    line(out, "thin land removed, tips kept",
+    line(out, land ? "thin gaps filled, tips kept" : "thin land removed, tips kept",
          fmt(*a / 1e6, "%.4g") + " km^2, " + fmt(r.figure("tips_kept").value_or(0), "%.0f"));
 }
 

@@ -20,9 +20,11 @@ namespace fdr::quality {
 struct ModelReadyInputs {
   double hmin = 0;         // metres (0: unknown)
   double min_depth_m = 1;  // depth clamp for the time step (--min-depth)
-  // Input domain boundary segments (before any change), in the mesh's local frame.
+  // Input domain boundary segments (before any change), in the mesh's local frame: the boundary
+  // of the domain the mesher meshes, adjacent or overlapping input polygons united.
   const std::vector<std::pair<Point2, Point2>>* input_boundary = nullptr;
-  // GIS-stage figures (name, value): input_pieces, water_removed_m2, islands_removed, ...
+  // GIS-stage figures (name, value): input_pieces, water_removed_m2, islands_removed, ...;
+  // input_polygons and input_polygons_united say how the input boundary was united.
   const std::vector<std::pair<std::string, double>>* coast_figures = nullptr;
 };
 
@@ -68,8 +70,10 @@ struct ModelReadiness {
   std::optional<CoastDeviation> input_to_mesh, mesh_to_input;
   std::size_t mesh_boundary_edges = 0;  // triangle edges used by one triangle
 
-  // Time step (only when the mesh has z).
+  // Time step (only when the mesh has z and some vertex below sea level: an explicit ocean
+  // model's limit, meaningless on a land-only mesh whose every depth would be the clamp).
   std::optional<TimeStep> time_step;
+  bool land_only = false;  // z given, no vertex below sea level (z < 0)
 
   // Areas: the mesh's, the input's (GIS stage) and the relative change in percent.
   double mesh_area_m2 = 0;
@@ -85,6 +89,7 @@ struct ModelReadiness {
   double pct_triangles_below_20() const;
   double pct_triangles_below_30() const;
   std::optional<double> area_change_pct() const;
+  bool time_step_depth_clamped() const;  // the limiting triangle's depth is the --min-depth clamp
 };
 
 // Measures `m` (local frame, triangles counter-clockwise; z positive up when present). Linear in

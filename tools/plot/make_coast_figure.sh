@@ -7,12 +7,14 @@
 #   FDRMESH  path to the fdrmesh binary
 #   OUT.png  default docs/img/coast_detail.png
 # Environment: PYTHON (default /usr/bin/python3), DATA (default ../shared/data/chesapeake_mouth
-#   next to the repository), HMIN (150), HMAX (5000), BBOX_LONLAT (-75.80,37.47,-75.68,37.57),
-#   KEEP (a folder: keep the meshes and JSON reports there), COLORS (PNG palette size, 128).
+#   next to the repository), NAME (chesapeake_mouth: DATA holds NAME.gpkg, layers water and
+#   open_boundary, and NAME_etopo5.tif), HMIN (150), HMAX (5000), BBOX_LONLAT
+#   (-75.80,37.47,-75.68,37.57), KEEP (a folder: keep the meshes and JSON reports there), COLORS
+#   (PNG palette size, 128).
 set -euo pipefail
 
 if [[ $# -lt 1 || $# -gt 2 || "$1" == "-h" || "$1" == "--help" ]]; then
-  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 FDRMESH=$1
@@ -21,6 +23,7 @@ ROOT=$(cd "$HERE/../.." && pwd)
 OUT=${2:-$ROOT/docs/img/coast_detail.png}
 PYTHON=${PYTHON:-/usr/bin/python3}
 DATA=${DATA:-$ROOT/../shared/data/chesapeake_mouth}
+NAME=${NAME:-chesapeake_mouth}
 HMIN=${HMIN:-150}
 HMAX=${HMAX:-5000}
 BBOX_LONLAT=${BBOX_LONLAT:--75.80,37.47,-75.68,37.57}
@@ -30,8 +33,8 @@ if [[ ! -x "$FDRMESH" ]]; then
   echo "ERROR: fdrmesh binary '$FDRMESH' not found or not executable" >&2
   exit 2
 fi
-SRC=$DATA/chesapeake_mouth.gpkg
-RASTER=$DATA/chesapeake_mouth_etopo5.tif
+SRC=$DATA/$NAME.gpkg
+RASTER=$DATA/${NAME}_etopo5.tif
 for f in "$SRC" "$RASTER"; do
   if [[ ! -f "$f" ]]; then
     echo "ERROR: input '$f' missing (set DATA)" >&2

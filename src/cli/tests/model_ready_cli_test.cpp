@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -101,5 +102,44 @@ TEST(ModelReadyCli, ChesapeakeReportAndQualityCommand) {
   EXPECT_NEAR(q["mean_quality"].get<double>(), mr["mean_quality"].get<double>(), 1e-9);
   ASSERT_TRUE(q["time_step"].is_object());  // 2DM keeps z
   EXPECT_NEAR(q["time_step"]["dt_s"].get<double>(), ts["dt_s"].get<double>(), 1e-6 * ts["dt_s"].get<double>());
+  fs::remove_all(dir);
+}
+
+// From what the CLI writes: the 12 districts of lux.shp are meshed as one domain,
+// so the coast deviation is measured against their union's boundary (their shared borders are no
+// coast) and stays within hmin/2; the DEM lies above sea level everywhere, so the report gives
+// no gravity-wave time step (every depth would be the 1 m clamp) and says why.
+TEST(ModelReadyCli, LuxembourgDistrictsMeasuredAsOneLandDomain) {
+  const fs::path dir = fdr::cli_test::fresh_dir("fdrmesh_model_ready_lux");
+  const std::string t = std::string(FDR_TESTDATA_DIR) + "/luxembourg/";
+  const std::string cmd = std::string(FDR_BINARY) + " mesh " + t + "lux.shp --raster " + t + "elev.tif -o " +
+                          (dir / "lux.gpkg").string() + " --report " + (dir / "lux.json").string() + " > " +
+                          (dir / "report.txt").string() + " 2> /dev/null";
+  const int st = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
+  const auto mr = load(dir / "lux.json")["model_ready"];
+  EXPECT_EQ(mr["coast_figures"]["input_polygons"], 12);
+  EXPECT_EQ(mr["coast_figures"]["input_polygons_united"], 1);
+  const auto& dev = mr["coast_deviation"];
+  EXPECT_NE(dev["measured_against"].get<std::string>().find("united input domain (12 polygons united into 1)"),
+            std::string::npos);
+  // Both ways within hmin/2 at the 99th percentile and within one hmin at most (the shared
+  // borders, kilometres inside the country, have no counterpart in the mesh).
+  for (const char* d : {"input_to_mesh", "mesh_to_input"}) {
+    EXPECT_LE(dev[d]["p99_over_hmin"].get<double>(), 0.5) << d;
+    EXPECT_LE(dev[d]["max_over_hmin"].get<double>(), 1.0) << d;
+  }
+  EXPECT_TRUE(mr["time_step"].is_null());
+  EXPECT_NE(mr["time_step_omitted"].get<std::string>().find("no vertex below sea level"), std::string::npos);
+  const std::string text = fdr::cli_test::slurp(dir / "report.txt");
+  EXPECT_NE(text.find("coast measured against        : boundary of the united input domain"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("time step h/sqrt(g depth)     : n/a: no vertex below sea level (land-only mesh)"),
+            std::string::npos)
+      << text;
+  const std::string block = text.substr(std::min(text.find("Model readiness"), text.size()));
+  EXPECT_EQ(block.find("depth 1 m"), std::string::npos) << block;
+  EXPECT_EQ(block.find("narrow water"), std::string::npos) << block;  // worded for a land domain
+  EXPECT_NE(block.find("narrow domain parts widened"), std::string::npos) << block;
   fs::remove_all(dir);
 }

@@ -267,6 +267,74 @@ TEST(ModelReady, TimeStepFromShortestAltitudeAndClampedDepth) {
   EXPECT_EQ(r.time_step->triangle, 0u);  // ties: the first triangle
 }
 
+// The time step is an ocean model's limit: on a mesh with z but no vertex below sea level (a DEM
+// of land) every depth would be the --min-depth clamp, so it is left out and said so; where the
+// limiting triangle's depth is the clamp, the report says that too. Both paths agree.
+TEST(ModelReady, TimeStepLeftOutOnLandAndClampLabelled) {
+  mesh::MeshView m = grid(3, 10.0);
+  m.z.assign(m.vertices.size(), 250.0);
+  m.z[0] = 0.0;  // at sea level is not below it
+  ModelReadyInputs in;
+  in.hmin = 10;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) m.neighbours = half_edge_neighbours(m);
+    const ModelReadiness r = compute_model_readiness(m, in);
+    EXPECT_FALSE(r.time_step) << pass;
+    EXPECT_TRUE(r.land_only) << pass;
+    const auto j = model_ready_json(r);
+    EXPECT_TRUE(j["time_step"].is_null());
+    EXPECT_NE(j["time_step_omitted"].get<std::string>().find("land-only"), std::string::npos);
+    std::ostringstream txt;
+    write_model_ready_text(r, txt);
+    EXPECT_NE(txt.str().find("time step h/sqrt(g depth)     : n/a: no vertex below sea level"), std::string::npos)
+        << txt.str();
+  }
+  m.neighbours.clear();
+  // One vertex 0.3 m below sea level: a wet mesh, its limiting triangle clamped to 1 m.
+  m.z[5] = -0.3;
+  ModelReadiness r = compute_model_readiness(m, in);
+  ASSERT_TRUE(r.time_step);
+  EXPECT_FALSE(r.land_only);
+  EXPECT_TRUE(r.time_step_depth_clamped());
+  EXPECT_TRUE(model_ready_json(r)["time_step"]["depth_clamped"].get<bool>());
+  EXPECT_FALSE(model_ready_json(r).contains("time_step_omitted"));
+  std::ostringstream txt;
+  write_model_ready_text(r, txt);
+  EXPECT_NE(txt.str().find("depth 1 m (the --min-depth clamp)"), std::string::npos) << txt.str();
+  // Deep water everywhere: not clamped.
+  m.z.assign(m.vertices.size(), -40.0);
+  r = compute_model_readiness(m, in);
+  ASSERT_TRUE(r.time_step);
+  EXPECT_FALSE(r.time_step_depth_clamped());
+  EXPECT_FALSE(model_ready_json(r)["time_step"]["depth_clamped"].get<bool>());
+}
+
+// The coast deviation says what it measured against: the input domain's boundary, and when the
+// GIS stage united adjacent or overlapping input polygons, how many into how many.
+TEST(ModelReady, DeviationSaysWhatItMeasuresAgainst) {
+  const auto input = square(0, 3);
+  mesh::MeshView m = grid(3);
+  ModelReadyInputs in;
+  in.hmin = 1;
+  in.input_boundary = &input;
+  auto j = model_ready_json(compute_model_readiness(m, in));
+  EXPECT_EQ(j["coast_deviation"]["measured_against"], "boundary of the input domain");
+  const std::vector<std::pair<std::string, double>> figs = {{"input_polygons", 12}, {"input_polygons_united", 1}};
+  in.coast_figures = &figs;
+  const ModelReadiness r = compute_model_readiness(m, in);
+  j = model_ready_json(r);
+  EXPECT_EQ(j["coast_deviation"]["measured_against"],
+            "boundary of the united input domain (12 polygons united into 1)");
+  std::ostringstream txt;
+  write_model_ready_text(r, txt);
+  EXPECT_NE(txt.str().find("coast measured against        : boundary of the united input domain (12 polygons "
+                           "united into 1)"),
+            std::string::npos)
+      << txt.str();
+  // Without an input boundary nothing is measured and nothing is said.
+  EXPECT_TRUE(model_ready_json(compute_model_readiness(m, {}))["coast_deviation"]["measured_against"].is_null());
+}
+
 TEST(ModelReady, FiguresAreaChangeAndJson) {
   const std::vector<std::pair<std::string, double>> figs = {
       {"input_pieces", 3}, {"input_area_m2", 4.04}, {"narrow_water_closed", 2}, {"water_removed_m2", 0.03},

@@ -1,6 +1,8 @@
-// bench_gis: one end-to-end GIS run (Gulf of Maine + ETOPO5 distance sizing, ~1M triangles by
-// default) printing wall time and peak memory (VmHWM) per pipeline stage, and for the whole
-// process: wall clock from main() to exit and the process's VmHWM (not an increase).
+// bench_gis: one end-to-end GIS run (by default Gulf of Maine + ETOPO5 distance sizing, ~1M
+// triangles) printing wall time and peak memory (VmHWM) per pipeline stage, and for the whole
+// process: wall clock from main() to exit and the process's VmHWM (not an increase). --case picks
+// one of the shared regions or the continental case (the Baltic Sea) instead; one case per
+// process, so that the whole-process figures are that case's.
 #include <chrono>
 #include <sys/resource.h>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include "base/error.hpp"
 #include "pipeline/pipeline.hpp"
@@ -16,12 +19,41 @@
 namespace {
 void usage() {
   std::fprintf(stderr,
-               "usage: bench_gis [--data DIR] [--hmin M] [--dist-grade G] [--out FILE.gpkg] [--formats LIST] [--no-write]\n"
-               "                 [--check]\n"
+               "usage: bench_gis [--case NAME] [--data DIR] [--hmin M] [--hmax M] [--dist-grade G] [--out FILE.gpkg]\n"
+               "                 [--formats LIST] [--no-write] [--check]\n"
+               "  NAME: gulf_of_maine (default), chesapeake_mouth, west_norway, west_norway_h, baltic\n"
                "  LIST: comma-separated output extensions written to temporary files, e.g. gpkg,2dm,14 (default gpkg)\n"
-               "  DIR holds gulf_of_maine.gpkg (layers water, open_boundary) and gulf_of_maine_etopo5.tif\n"
-               "  defaults: DIR = testdata/gulf_of_maine, hmin 120 m, dist-grade 0.04 (about 1.1M triangles),\n"
+               "  DIR holds NAME.gpkg (layers water, open_boundary) and NAME_etopo5.tif; default\n"
+               "  testdata/gulf_of_maine for gulf_of_maine, else ../shared/data/NAME\n"
+               "  defaults per case: gulf_of_maine hmin 120 m, dist-grade 0.04 (about 1.1M triangles);\n"
+               "  chesapeake_mouth hmin 150, hmax 5000; west_norway(_h) hmin 100; baltic hmin 1000, hmax 25000\n"
+               "  (the shared regions as the pinned meshes run them, with their open boundary; the Baltic with\n"
+               "  --raster --hmin --hmax only, every boundary coast, as the continental targets are stated);\n"
                "  out = a temporary GPKG removed at the end\n");
+}
+
+// A case's input and the options the defaults are measured with.
+struct Case {
+  const char* name;
+  const char* title;
+  bool in_testdata;    // testdata/NAME rather than ../shared/data/NAME
+  bool open_boundary;  // the open_boundary layer given (else every boundary is coast)
+  double hmin;
+  std::optional<double> hmax, dist_grade;
+};
+
+const Case kCases[] = {
+    {"gulf_of_maine", "Gulf of Maine", true, true, 120, std::nullopt, 0.04},
+    {"chesapeake_mouth", "Chesapeake Bay mouth", false, true, 150, 5000, std::nullopt},
+    {"west_norway", "West Norway (GSHHG f)", false, true, 100, std::nullopt, std::nullopt},
+    {"west_norway_h", "West Norway (GSHHG h)", false, true, 100, std::nullopt, std::nullopt},
+    {"baltic", "Baltic Sea (continental)", false, false, 1000, 25000, std::nullopt},
+};
+
+const Case* find_case(const std::string& name) {
+  for (const Case& c : kCases)
+    if (name == c.name) return &c;
+  return nullptr;
 }
 }  // namespace
 
@@ -40,8 +72,9 @@ int main(int argc, char** argv) {
   using namespace fdr;
   const auto t_main = std::chrono::steady_clock::now();
   std::string formats = "gpkg";
-  std::string data = std::string(FDR_TESTDATA_DIR) + "/gulf_of_maine";
-  double hmin = 120, grade = 0.04;
+  const Case* bench = &kCases[0];
+  std::string data;
+  std::optional<double> hmin, hmax, grade;
   std::string out;
   bool write = true, check = false;
   for (int i = 1; i < argc; ++i) {
@@ -50,8 +83,13 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc) { usage(); std::exit(2); }
       return argv[++i];
     };
-    if (a == "--data") data = next();
+    if (a == "--case") {
+      bench = find_case(next());
+      if (!bench) { usage(); return 2; }
+    }
+    else if (a == "--data") data = next();
     else if (a == "--hmin") hmin = std::atof(next().c_str());
+    else if (a == "--hmax") hmax = std::atof(next().c_str());
     else if (a == "--dist-grade") grade = std::atof(next().c_str());
     else if (a == "--out") out = next();
     else if (a == "--no-write") write = false;
@@ -75,20 +113,33 @@ int main(int argc, char** argv) {
     }
   };
 
+  if (data.empty())
+    data = std::string(bench->in_testdata ? FDR_TESTDATA_DIR : FDR_SHARED_DATA_DIR) + "/" + bench->name;
+  const std::string name = bench->name;
   pipeline::Options o;
-  o.input = data + "/gulf_of_maine.gpkg";
+  o.input = data + "/" + name + ".gpkg";
   o.layer = "water";
-  o.open_boundary = o.input;
-  o.open_boundary_layer = "open_boundary";
-  o.raster = data + "/gulf_of_maine_etopo5.tif";
-  o.hmin = hmin;
-  o.dist_grade = grade;
+  if (bench->open_boundary) {
+    o.open_boundary = o.input;
+    o.open_boundary_layer = "open_boundary";
+  }
+  o.raster = data + "/" + name + "_etopo5.tif";
+  o.hmin = hmin.value_or(bench->hmin);
+  o.hmax = hmax ? hmax : bench->hmax;
+  o.dist_grade = grade ? grade : bench->dist_grade;
   o.check = check;
   o.quiet = true;
   if (write) o.outputs = outs;
   try {
     const pipeline::Result r = pipeline::run(o, nullptr, nullptr);
-    std::printf("bench_gis: Gulf of Maine, hmin %g m, dist-grade %g, %s\n", hmin, grade, r.crs_name.c_str());
+    auto opt = [](std::optional<double> v, const char* unit) {
+      if (!v) return std::string("default");
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%g%s", *v, unit);
+      return std::string(buf);
+    };
+    std::printf("bench_gis: %s, hmin %g m, hmax %s, dist-grade %s, %s\n", bench->title, *o.hmin,
+                opt(o.hmax, " m").c_str(), opt(o.dist_grade, "").c_str(), r.crs_name.c_str());
     std::printf("  vertices %zu, triangles %zu, repairs %zu\n", r.mesh.num_vertices(), r.mesh.num_triangles(), r.repairs);
     std::printf("  %-8s %9s %12s %13s\n", "stage", "seconds", "peak MiB", "minor faults");
     double total = 0;
