@@ -1,6 +1,9 @@
 // Cells cut out by the facets: sides joined around edges and along rays, all decided exactly.
 #include "plc/cells.hpp"
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -17,16 +20,28 @@ namespace fdr::plc {
 
 using predicates::orient3d;
 
-struct SurfaceCells::Crossing {
-  CGAL::Exact_predicates_exact_constructions_kernel::FT t;  // where along p r, 0 at p, exact
-  std::size_t tri;
-  bool p_positive;  // whether p lies on the triangle's positive side
-};
-
 namespace {
 
 using FT = CGAL::Exact_predicates_exact_constructions_kernel::FT;
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using TriangleList = std::vector<Epick::Triangle_3>;
+using Primitive = CGAL::AABB_triangle_primitive<Epick, TriangleList::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Epick, Primitive>>;
+
+}  // namespace
+
+struct SurfaceCells::Crossing {
+  FT t;             // where along p r, 0 at p, exact
+  std::size_t tri;
+  bool p_positive;  // whether p lies on the triangle's positive side
+};
+
+struct SurfaceCells::RayIndex {
+  TriangleList tris;
+  Tree tree;
+};
+
+namespace {
 
 Epick::Point_3 cg(Point3 p) { return {p.x, p.y, p.z}; }
 
@@ -65,12 +80,18 @@ SurfaceCells::SurfaceCells(const Plc& plc, const FacetTriangulation& ft) : plc_(
       facet_of_.push_back(static_cast<std::uint32_t>(f));
       for (VertexId v : t) box_.add(plc.points[v]);
     }
+  rays_ = std::make_unique<RayIndex>();
+  for (const Triangle& t : tris_) rays_->tris.emplace_back(cg(plc.points[t[0]]), cg(plc.points[t[1]]), cg(plc.points[t[2]]));
+  rays_->tree.insert(rays_->tris.cbegin(), rays_->tris.cend());
+  rays_->tree.build();
   parent_.resize(2 * tris_.size() + 1);
   std::iota(parent_.begin(), parent_.end(), std::size_t{0});
   if (!box_.empty()) reach_ = 2 * dist(box_.lo, box_.hi) + 1;
   join_around_edges();
   place_pieces();
 }
+
+SurfaceCells::~SurfaceCells() = default;
 
 std::size_t SurfaceCells::find(std::size_t s) {
   while (parent_[s] != s) s = parent_[s] = parent_[parent_[s]];
@@ -146,15 +167,14 @@ Point3 SurfaceCells::far_point(Point3 through, std::uint64_t attempt, double sig
 bool SurfaceCells::crossings(Point3 p, Point3 r, std::vector<Crossing>& out, const std::string& what) const {
   out.clear();
   const auto& P = plc_.points;
-  Box3 seg;
-  seg.add(p);
-  seg.add(r);
-  for (std::size_t k = 0; k < tris_.size(); ++k) {
+  // Candidates: the triangles the closed segment meets at all (exact), in index order.
+  std::vector<Primitive::Id> hits;
+  rays_->tree.all_intersected_primitives(Epick::Segment_3(cg(p), cg(r)), std::back_inserter(hits));
+  std::vector<std::size_t> ks;
+  for (const auto& h : hits) ks.push_back(static_cast<std::size_t>(h - rays_->tris.cbegin()));
+  std::sort(ks.begin(), ks.end());
+  for (std::size_t k : ks) {
     const Point3 a = P[tris_[k][0]], b = P[tris_[k][1]], c = P[tris_[k][2]];
-    const Point3 lo{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})};
-    const Point3 hi{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})};
-    if (hi.x < seg.lo.x || lo.x > seg.hi.x || hi.y < seg.lo.y || lo.y > seg.hi.y || hi.z < seg.lo.z || lo.z > seg.hi.z)
-      continue;
     const int op = orient3d(a, b, c, p), orr = orient3d(a, b, c, r);
     if (op == 0 && CGAL::do_intersect(cg(p), Epick::Triangle_3(cg(a), cg(b), cg(c))))
       throw Error(ExitCode::kInvalidGeometry, what + " " + point_text(p) + " lies on facet " +

@@ -2,6 +2,7 @@
 // facets close a volume, and which cell a point lies in (outside the domain or not).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 #include "plc/plc.hpp"
@@ -14,11 +15,15 @@ namespace fdr::plc {
 // (orient3d), and the sides facing one wedge join; then rays between points far outside the
 // facets' box join the sides that face each other along them, one ray through every connected
 // piece of the surface, so that pieces nested in others or beside them are placed. One class, the
-// unbounded one, holds what lies outside every volume.
+// unbounded one, holds what lies outside every volume. A segment query costs O(log n + hits)
+// (CGAL's AABB tree), so the whole is O(n log n) for a surface of few pieces.
 // Expects a PLC whose facets passed check_intersections (no overlaps or crossings).
 class SurfaceCells {
  public:
   SurfaceCells(const Plc& plc, const FacetTriangulation& ft);
+  ~SurfaceCells();
+  SurfaceCells(const SurfaceCells&) = delete;
+  SurfaceCells& operator=(const SurfaceCells&) = delete;
 
   // Throws Error(kInvalidGeometry) when the facets bound no volume or leave a hole in its surface
   // (an edge used by a single triangle with the outside on both of its sides), naming the edge,
@@ -40,6 +45,7 @@ class SurfaceCells {
 
  private:
   struct Crossing;
+  struct RayIndex;  // an AABB tree of the triangles: a segment query visits only those it meets
   std::size_t find(std::size_t s);
   void join(std::size_t a, std::size_t b);
   void join_around_edges();
@@ -57,6 +63,7 @@ class SurfaceCells {
   std::vector<Triangle> tris_;
   std::vector<std::uint32_t> facet_of_;
   std::vector<std::size_t> parent_;  // 2 per triangle (negative, positive side), then the unbounded class
+  std::unique_ptr<RayIndex> rays_;
   Box3 box_;
   double reach_ = 1;                 // far points lie this far from the box
 };

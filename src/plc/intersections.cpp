@@ -54,6 +54,9 @@ std::string triangle_text(const Triangle& t) {
   return "triangle " + std::to_string(t[0]) + "-" + std::to_string(t[1]) + "-" + std::to_string(t[2]);
 }
 
+// Free segments against each other: the first bad pair in index order.
+void check_segment_pairs(const Plc& plc, std::vector<Box> boxes);
+
 }  // namespace
 
 bool improper_triangle_pair(const Plc& plc, const Triangle& s, const Triangle& t) {
@@ -96,6 +99,17 @@ bool improper_segment_triangle(const Plc& plc, const Edge& s, const Triangle& t)
          CGAL::do_intersect(cg(q), cg_triangle(plc, t));
 }
 
+bool improper_segment_pair(const Plc& plc, const Edge& s, const Edge& t) {
+  const auto& P = plc.points;
+  const int shared = (s[0] == t[0]) + (s[0] == t[1]) + (s[1] == t[0]) + (s[1] == t[1]);
+  if (shared == 2) return true;  // the same segment twice
+  if (shared == 0) return CGAL::do_intersect(cg_segment(plc, s[0], s[1]), cg_segment(plc, t[0], t[1]));
+  // One common end v: they overlap only when collinear and on the same side of v.
+  const VertexId v = (s[0] == t[0] || s[0] == t[1]) ? s[0] : s[1];
+  const Point3 a = P[s[0] == v ? s[1] : s[0]], b = P[t[0] == v ? t[1] : t[0]];
+  return collinear(P[v], a, b) && dot(a - P[v], b - P[v]) > 0;
+}
+
 void check_intersections(const Plc& plc, const FacetTriangulation& ft) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> tri_at;  // box info -> (facet, triangle)
   std::vector<Box> boxes;
@@ -128,9 +142,11 @@ void check_intersections(const Plc& plc, const FacetTriangulation& ft) {
                     triangle_text(t) + " near " + point_text(plc.points[t[0]]) +
                     " (a shared edge must be a polygon edge of both facets)");
   }
-  if (plc.segments.empty() || boxes.empty()) return;
+  if (plc.segments.empty()) return;
   std::vector<Box> seg_boxes;
   for (std::size_t s = 0; s < plc.segments.size(); ++s) seg_boxes.push_back(box_of(plc, plc.segments[s].data(), 2, s));
+  check_segment_pairs(plc, seg_boxes);
+  if (boxes.empty()) return;
   std::tuple<std::size_t, std::size_t, std::size_t> first_seg{};  // segment, facet, triangle
   CGAL::box_intersection_d(seg_boxes.begin(), seg_boxes.end(), boxes.begin(), boxes.end(),
                            [&](const Box& x, const Box& y) {
@@ -153,5 +169,29 @@ void check_intersections(const Plc& plc, const FacetTriangulation& ft) {
                     point_text(plc.points[ft.triangles[f][k][0]]));
   }
 }
+
+namespace {
+
+void check_segment_pairs(const Plc& plc, std::vector<Box> boxes) {
+  bool found = false;
+  std::pair<std::size_t, std::size_t> first{};
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    const std::pair<std::size_t, std::size_t> key{std::min(x.info(), y.info()), std::max(x.info(), y.info())};
+    const auto& s = plc.segments[key.first];
+    const auto& t = plc.segments[key.second];
+    if ((found && !(key < first)) || !improper_segment_pair(plc, {s[0], s[1]}, {t[0], t[1]})) return;
+    first = key, found = true;
+  });
+  if (!found) return;
+  const auto& s = plc.segments[first.first];
+  const auto& t = plc.segments[first.second];
+  throw Error(ExitCode::kInvalidGeometry,
+              (plc.source.empty() ? std::string("input") : plc.source) + ": segment " + std::to_string(first.first) +
+                  " " + std::to_string(s[0]) + "-" + std::to_string(s[1]) + " from " + point_text(plc.points[s[0]]) +
+                  " meets segment " + std::to_string(first.second) + " " + std::to_string(t[0]) + "-" +
+                  std::to_string(t[1]) + " from " + point_text(plc.points[t[0]]) + " other than at a shared end");
+}
+
+}  // namespace
 
 }  // namespace fdr::plc

@@ -139,6 +139,25 @@ TEST(PlcCheck, IntersectingFacets) {
   p = unit_cube();
   p.segments.push_back({add_point(p, {0.5, 0.5, 0.5}), add_point(p, {0.5, 0.5, 1.5})});
   expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"segment 0", "meets facet 1"});
+  // Free segments crossing each other, or overlapping from a common end.
+  p = unit_cube();
+  const VertexId a = add_point(p, {0.25, 0.5, 0.5}), b = add_point(p, {0.75, 0.5, 0.5});
+  const VertexId c = add_point(p, {0.5, 0.25, 0.5}), d = add_point(p, {0.5, 0.75, 0.5});
+  const VertexId e = add_point(p, {0.5, 0.5, 0.5});
+  p.segments = {{a, e}, {c, d}};  // ending inside another segment is bad input too
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"segment 0", "meets segment 1"});
+  p.segments = {{a, b}, {c, d}};
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"segment 0", "meets segment 1", "shared end"});
+  p.segments = {{a, b}, {a, e}};
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"segment 0", "meets segment 1"});
+  p.segments = {{a, e}, {e, b}, {c, e}};
+  EXPECT_NO_THROW(check(p));
+}
+
+TEST(PlcCheck, PolygonsCrossingInsideAFacet) {
+  Plc p = unit_cube();
+  p.facets[0].polygons[0] = {0, 3, 2, 1};  // a bow tie: 0-3 crosses 2-1
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"cube.poly: facet 0 (marker 0)", "crosses"});
 }
 
 TEST(PlcCheck, PairTests) {
