@@ -12,6 +12,7 @@
 #include "sizing/spacing3d.hpp"
 #include "sizing/spacing3d_expression.hpp"
 #include "sizing/spacing3d_limiter.hpp"
+#include "sizing/spacing3d_make.hpp"
 
 namespace fdr::sizing {
 namespace {
@@ -71,6 +72,23 @@ TEST(Spacing3d, ExpressionThreadSafe) {
     for (std::size_t i = lo; i < hi; ++i) many[i] = f(at(i));
   }, 64, 2);
   EXPECT_EQ(one, many);
+}
+
+TEST(Spacing3d, MakeSpacing3) {
+  EXPECT_EQ(make_spacing3(" 0.5 ")->describe(), "constant 0.5");
+  const auto f1 = make_spacing3("paper-f1"), f2 = make_spacing3("2 * paper-f2"), e = make_spacing3("x + 2*z + 1");
+  const ExpressionField3 g1("(abs(x-5)+abs(y-5)+abs(z-5))*0.1+0.1");
+  const ExpressionField3 g2("(abs(sin(x+y+z))+abs(cos(x+y+z)))*0.1");
+  for (Point3 p : {Point3{0, 0, 0}, Point3{1.5, 7.25, 3}, Point3{10, 2, 9.5}}) {
+    EXPECT_DOUBLE_EQ((*f1)(p), g1(p));
+    EXPECT_DOUBLE_EQ((*f2)(p), 2 * g2(p));
+    EXPECT_DOUBLE_EQ((*e)(p), p.x + 2 * p.z + 1);
+  }
+  EXPECT_NEAR(f1->lipschitz(), 0.1 * std::sqrt(3.0), 1e-15);
+  EXPECT_EQ(code_of([] { make_spacing3(""); }), ExitCode::kUsage);
+  EXPECT_EQ(code_of([] { make_spacing3("-1"); }), ExitCode::kInvalidSpacing);
+  EXPECT_EQ(code_of([] { make_spacing3("0 * paper-f1"); }), ExitCode::kInvalidSpacing);
+  EXPECT_EQ(code_of([] { make_spacing3("x +"); }), ExitCode::kUsage);
 }
 
 Grid3 random_grid(std::size_t nx, std::size_t ny, std::size_t nz, double dx, double dy, double dz, unsigned seed) {
