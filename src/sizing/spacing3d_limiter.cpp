@@ -2,12 +2,14 @@
 // octant sweeps).
 #include "sizing/spacing3d_limiter.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "sizing/fields.hpp"
 
 namespace fdr::sizing {
@@ -45,7 +47,9 @@ struct Limiter3 {
   }
 
   // One raster sweep, each axis in the direction of its sign (+1 increasing, -1 decreasing); every
-  // cell takes offers from all 26 neighbours.
+  // cell takes offers from the 13 neighbours the sweep has already visited (the previous slab,
+  // the previous row of its slab, the previous cell of its row). Each of the 26 directions is
+  // upstream in some of the eight sweep orders, so a round that changes nothing has tried them all.
   void sweep(int sx, int sy, int sz) {
     for (std::int64_t kk = 0; kk < nz; ++kk) {
       const std::int64_t k = sz > 0 ? kk : nz - 1 - kk;
@@ -55,21 +59,57 @@ struct Limiter3 {
           const std::int64_t i = sx > 0 ? ii : nx - 1 - ii;
           const std::size_t c = static_cast<std::size_t>((k * ny + j) * nx + i);
           if (std::isnan(g.v[c])) continue;
-          for (std::int64_t dk = -1; dk <= 1; ++dk) {
-            if (k + dk < 0 || k + dk >= nz) continue;
-            for (std::int64_t dj = -1; dj <= 1; ++dj) {
-              if (j + dj < 0 || j + dj >= ny) continue;
-              for (std::int64_t di = -1; di <= 1; ++di) {
-                if (i + di < 0 || i + di >= nx || (di == 0 && dj == 0 && dk == 0)) continue;
-                offer(i, j, k, c, static_cast<std::size_t>(((k + dk) * ny + j + dj) * nx + i + di));
-              }
-            }
-          }
+          auto take = [&](std::int64_t di, std::int64_t dj, std::int64_t dk) {
+            const std::int64_t a = i + di, b = j + dj, d = k + dk;
+            if (a < 0 || b < 0 || d < 0 || a >= nx || b >= ny || d >= nz) return;
+            offer(i, j, k, c, static_cast<std::size_t>((d * ny + b) * nx + a));
+          };
+          for (std::int64_t dj = -1; dj <= 1; ++dj)
+            for (std::int64_t di = -1; di <= 1; ++di) take(di, dj, -sz);
+          for (std::int64_t di = -1; di <= 1; ++di) take(di, -sy, 0);
+          take(-sx, 0, 0);
         }
       }
     }
   }
 };
+
+// Whether an offer from a neighbour of cell (i, j, k), with every source still the cell itself,
+// would lower it: the candidates and tests of Limiter3::offer, read-only.
+bool first_offer_lowers(const Grid3& g, double alpha, std::int64_t i, std::int64_t j, std::int64_t k) {
+  const auto nx = static_cast<std::int64_t>(g.nx), ny = static_cast<std::int64_t>(g.ny),
+             nz = static_cast<std::int64_t>(g.nz);
+  const double h = g.v[static_cast<std::size_t>((k * ny + j) * nx + i)];
+  if (std::isnan(h)) return false;
+  for (std::int64_t dk = -1; dk <= 1; ++dk)
+    for (std::int64_t dj = -1; dj <= 1; ++dj)
+      for (std::int64_t di = -1; di <= 1; ++di) {
+        const std::int64_t a = i + di, b = j + dj, c = k + dk;
+        if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
+        const double base = g.v[static_cast<std::size_t>((c * ny + b) * nx + a)];
+        if (!(base < h)) continue;  // also NaN neighbours and the cell itself
+        const double ex = g.dx * static_cast<double>(-di), ey = g.dy * static_cast<double>(-dj),
+                     ez = g.dz * static_cast<double>(-dk);
+        const double cand = base + alpha * std::sqrt(ex * ex + ey * ey + ez * ez);
+        if (cand < h && (std::isinf(h) || h - cand > kRelTol * std::abs(h))) return true;
+      }
+  return false;
+}
+
+// Whether any cell would be lowered in the first round, checked in slabs of z on every thread;
+// when none would, the sweeps would return the grid unchanged.
+bool any_offer_lowers(const Grid3& g, double alpha) {
+  std::vector<char> slab_hit(g.nz, 0);
+  parallel_bands(g.nz, [&](std::size_t k0, std::size_t k1) {
+    for (std::size_t k = k0; k < k1; ++k)
+      for (std::size_t j = 0; j < g.ny && !slab_hit[k]; ++j)
+        for (std::size_t i = 0; i < g.nx && !slab_hit[k]; ++i)
+          if (first_offer_lowers(g, alpha, static_cast<std::int64_t>(i), static_cast<std::int64_t>(j),
+                                 static_cast<std::int64_t>(k)))
+            slab_hit[k] = 1;
+  }, 4);
+  return std::find(slab_hit.begin(), slab_hit.end(), 1) != slab_hit.end();
+}
 
 }  // namespace
 
@@ -82,7 +122,7 @@ void limit_gradient3(Grid3& g, double alpha) {
                                          std::to_string(g.v.size()) + " values)");
   constexpr auto kMax = static_cast<std::size_t>(INT32_MAX);
   if (g.nx > kMax || g.ny > kMax || g.nz > kMax) throw Error(ExitCode::kInternal, "limit_gradient3: grid too large");
-  if (g.v.empty()) return;
+  if (g.v.empty() || !any_offer_lowers(g, alpha)) return;
   Limiter3 L{g, alpha, std::vector<Source>(g.v.size()), static_cast<std::int64_t>(g.nx),
              static_cast<std::int64_t>(g.ny), static_cast<std::int64_t>(g.nz)};
   for (std::size_t k = 0; k < g.nz; ++k)
