@@ -116,6 +116,9 @@ FacetTriangulation triangulate_facets(const Plc& plc) {
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     const FacetFrame frame = facet_frame(plc, f);
     std::vector<Triangle> tris = triangulate_in_projection(plc, f, frame, constrained);
+    if (tris.empty())
+      throw Error(ExitCode::kInvalidGeometry, facet_label(plc, f) + " has no area: its polygons enclose no region "
+                                                                    "(or its hole points remove all of it)");
     make_delaunay_in_plane(plc, frame, constrained, tris);
     if (frame.flip)
       for (Triangle& t : tris) std::swap(t[1], t[2]);

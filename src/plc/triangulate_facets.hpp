@@ -40,7 +40,8 @@ void make_delaunay_in_plane(const Plc& plc, const FacetFrame& frame, const std::
                             std::vector<Triangle>& tris);
 
 // Every facet (expects a PLC that passed check(); bad input that check() would report may throw
-// here from the 2D triangulation, with the facet named). Crossing polygons of different facets
+// here from the 2D triangulation, with the facet named). A facet left without triangles (no
+// closed polygon, or hole points removing all of it) is an Error(kInvalidGeometry). Crossing polygons of different facets
 // are not split here: check() reports them as bad input.
 FacetTriangulation triangulate_facets(const Plc& plc);
 

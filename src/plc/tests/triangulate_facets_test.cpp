@@ -211,5 +211,22 @@ TEST(TriangulateFacets, HoleOutsideItsFacetNamesTheFacet) {
   }
 }
 
+TEST(TriangulateFacets, FacetWithoutArea) {
+  // Three segments in a plane that close no polygon, and a square whose hole point removes it all.
+  Plc p;
+  const VertexId a = add_point(p, {0, 0, 0}), b = add_point(p, {1, 0, 0}), c = add_point(p, {0, 1, 0}),
+                 d = add_point(p, {1, 1, 0});
+  add_facet(p, {{a, b}, {a, c}, {b, d}}, 3);
+  try {
+    (void)triangulate_facets(p);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
+    EXPECT_NE(std::string(e.what()).find("facet 0 (marker 3) has no area"), std::string::npos) << e.what();
+  }
+  p.facets[0] = {{{a, b, d, c}}, {{0.5, 0.5, 0}}, 3};
+  EXPECT_THROW((void)triangulate_facets(p), Error);
+}
+
 }  // namespace
 }  // namespace fdr::plc
