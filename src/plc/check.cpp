@@ -37,9 +37,10 @@ void check_points(const Plc& plc) {
   }
   for (std::size_t r = 0; r < plc.regions.size(); ++r) {
     const Point3 q = plc.regions[r].point;
-    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(plc.regions[r].attribute) ||
+        std::isnan(plc.regions[r].max_volume))
       throw Error(ExitCode::kInvalidGeometry, source_of(plc) + ": region point " + std::to_string(r) + " " +
-                                                  point_text(q) + " has a non-finite coordinate");
+                                                  point_text(q) + " has a non-finite coordinate, attribute or volume bound");
   }
   std::vector<VertexId> order(P.size());
   std::iota(order.begin(), order.end(), VertexId{0});
@@ -59,6 +60,9 @@ void check_points(const Plc& plc) {
 
 void check_ids_and_polygons(const Plc& plc) {
   const std::size_t n = plc.points.size();
+  if (!plc.point_markers.empty() && plc.point_markers.size() != n)
+    throw Error(ExitCode::kInputMalformed, source_of(plc) + ": " + std::to_string(plc.point_markers.size()) +
+                                               " point markers for " + std::to_string(n) + " points");
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     const Facet& facet = plc.facets[f];
     if (facet.polygons.empty())

@@ -13,11 +13,12 @@ struct CheckOptions {
   bool closed = true;
 };
 
-// Coordinates of points, volume hole points and region points are finite, no two points
-// coincide (kInvalidGeometry).
+// Coordinates of points, volume hole points and region points, and region attributes are finite,
+// region volume bounds are numbers, no two points coincide (kInvalidGeometry).
 void check_points(const Plc& plc);
 
-// Vertex ids of facets and free segments are in range (kInputMalformed); polygons are not
+// Vertex ids of facets and free segments are in range and point markers, if any, one per point
+// (kInputMalformed); polygons are not
 // degenerate (no vertices, a vertex repeated consecutively, three or more vertices all on one
 // line) and free segments have two distinct ends (kInvalidGeometry).
 void check_ids_and_polygons(const Plc& plc);

@@ -45,6 +45,9 @@ TEST(PlcCheck, NonFiniteCoordinates) {
   p = unit_cube();
   p.regions.push_back({{0.5, INFINITY, 0.5}, 1, -1});
   expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"region point 0", "non-finite"});
+  p = unit_cube();
+  p.regions.push_back({{0.5, 0.5, 0.5}, 1, NAN});
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"region point 0", "volume bound"});
 }
 
 TEST(PlcCheck, IdsOutOfRange) {
@@ -54,6 +57,9 @@ TEST(PlcCheck, IdsOutOfRange) {
   p = unit_cube();
   p.segments.push_back({0, 8});
   expect_error([&] { check(p); }, ExitCode::kInputMalformed, {"segment 0", "vertex id 8"});
+  p = unit_cube();
+  p.point_markers = {1, 2, 3};
+  expect_error([&] { check(p); }, ExitCode::kInputMalformed, {"3 point markers for 8 points"});
 }
 
 TEST(PlcCheck, DuplicatePoints) {
