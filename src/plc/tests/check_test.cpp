@@ -38,6 +38,16 @@ TEST(PlcCheck, GoodInputsPass) {
   EXPECT_EQ(ft.triangles.size(), 6u);
 }
 
+TEST(PlcCheck, TiltedBox) {
+  const Point3 o{1, 2, 3}, e1{2, 0.5, 0.25}, e2{-0.5, 1.5, 0.75}, e3{0.25, -0.5, 2};
+  Plc p = parallelepiped(o, e1, e2, e3);
+  p.regions.push_back({o + 0.5 * (e1 + e2 + e3), 1, -1});
+  const FacetTriangulation ft = check_and_triangulate(p);
+  for (const auto& t : ft.triangles) EXPECT_EQ(t.size(), 2u);
+  p.holes.push_back(o + 1.25 * e1 + 0.5 * e2);
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"tilted.poly: volume hole point 0", "outside the domain"});
+}
+
 TEST(PlcCheck, NonFiniteCoordinates) {
   Plc p = unit_cube();
   p.points[3].y = NAN;

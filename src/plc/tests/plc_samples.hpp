@@ -31,6 +31,18 @@ inline void add_box_faces(Plc& p, const std::vector<VertexId>& c, std::int32_t m
     if (f != skip) add_facet(p, {{c[faces[f][0]], c[faces[f][1]], c[faces[f][2]], c[faces[f][3]]}}, marker + f);
 }
 
+// The parallelepiped o + s e1 + t e2 + u e3, s, t, u in [0, 1]: six tilted facets (dyadic edge
+// vectors, so every facet is exactly planar).
+inline Plc parallelepiped(Point3 o, Point3 e1, Point3 e2, Point3 e3) {
+  Plc p;
+  p.source = "tilted.poly";
+  std::vector<VertexId> c;
+  for (int k = 0; k < 8; ++k) c.push_back(add_point(p, o + (k & 1 ? 1.0 : 0.0) * e1 + (k & 2 ? 1.0 : 0.0) * e2 +
+                                                          (k & 4 ? 1.0 : 0.0) * e3));
+  add_box_faces(p, c);
+  return p;
+}
+
 inline Plc unit_cube() {
   Plc p;
   p.source = "cube.poly";
