@@ -40,7 +40,7 @@ std::unique_ptr<ExpressionField3::Evaluator> parse(const std::string& expr) {
     e->parser.DefineVar("y", &e->y);
     e->parser.DefineVar("z", &e->z);
     e->parser.SetExpr(expr);
-    e->parser.Eval();  // muparser parses lazily: force syntax errors out now
+    e->parser.Eval();  // muparser parses lazily: force syntax errors out at construction
   } catch (const mu::Parser::exception_type& ex) {
     throw_parse_error(expr, strip_position(ex.GetMsg()), static_cast<std::size_t>(ex.GetPos()));
   }

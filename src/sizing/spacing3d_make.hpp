@@ -5,7 +5,7 @@
 
 namespace fdr::sizing {
 
-// The test functions lifted to [0,10]^3, evaluated natively (thread-safe, no parser).
+// The paper's test functions lifted to [0,10]^3, evaluated natively (thread-safe, no parser).
 // f1 = k ((|x-5| + |y-5| + |z-5|) 0.1 + 0.1), Lipschitz k 0.1 sqrt(3).
 class PaperF1Field3 final : public SizingField3 {
  public:
