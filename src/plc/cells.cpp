@@ -13,7 +13,6 @@
 
 #include "base/error.hpp"
 #include "plc/facet_frame.hpp"
-#include "predicates/predicates.hpp"
 #include "predicates/predicates3d.hpp"
 
 namespace fdr::plc {
@@ -60,15 +59,6 @@ double unit_from(std::uint64_t& state) {
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;
   return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;  // [-1, 1)
-}
-
-// In-plane side of w relative to line u v, with ref on the positive side.
-int side_in_plane(Point3 u, Point3 v, Point3 ref, Point3 w) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const int o = predicates::orient2d(project(u, axis), project(v, axis), project(ref, axis));
-    if (o != 0) return o * predicates::orient2d(project(u, axis), project(v, axis), project(w, axis));
-  }
-  return 0;
 }
 
 }  // namespace

@@ -24,6 +24,14 @@ bool collinear(Point3 a, Point3 b, Point3 c) {
   return true;
 }
 
+int side_in_plane(Point3 u, Point3 v, Point3 ref, Point3 w) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int o = predicates::orient2d(project(u, axis), project(v, axis), project(ref, axis));
+    if (o != 0) return o * predicates::orient2d(project(u, axis), project(v, axis), project(w, axis));
+  }
+  return 0;
+}
+
 std::string point_text(Point3 p) {
   std::ostringstream s;
   s.precision(17);

@@ -25,6 +25,11 @@ Point2 project(Point3 p, int axis);
 // Exact: whether a, b, c lie on one line (also when two of them coincide).
 bool collinear(Point3 a, Point3 b, Point3 c);
 
+// For coplanar u, v, ref, w with u, v, ref not collinear: +1 when w lies on ref's side of the line
+// u v in their plane, 0 on the line, -1 on the other side; exact (decided in a projection that
+// keeps u, v, ref apart, an affine map of the plane). 0 when u, v, ref are collinear.
+int side_in_plane(Point3 u, Point3 v, Point3 ref, Point3 w);
+
 // The frame of facet f: p0 its first vertex, p1 the next vertex distinct from it, p2 the next
 // vertex off the line p0 p1; drop_axis the largest component of the normal (by a double estimate,
 // then confirmed exactly: the projected p0, p1, p2 are not collinear). Throws Error(kInvalidGeometry)

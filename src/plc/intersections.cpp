@@ -9,7 +9,6 @@
 
 #include "base/error.hpp"
 #include "plc/facet_frame.hpp"
-#include "predicates/predicates.hpp"
 #include "predicates/predicates3d.hpp"
 
 namespace fdr::plc {
@@ -39,15 +38,6 @@ Box box_of(const Plc& plc, const VertexId* v, int n, std::size_t info) {
     }
   }
   return Box(lo, hi, info);
-}
-
-// The in-plane side of w relative to the line u v, in a projection that keeps (u, v, ref) apart.
-int side_in_plane(Point3 u, Point3 v, Point3 ref, Point3 w) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const int o = predicates::orient2d(project(u, axis), project(v, axis), project(ref, axis));
-    if (o != 0) return o * predicates::orient2d(project(u, axis), project(v, axis), project(w, axis));
-  }
-  return 0;
 }
 
 std::string triangle_text(const Triangle& t) {

@@ -24,6 +24,15 @@ TEST(FacetFrame, ProjectAndCollinear) {
   EXPECT_TRUE(collinear({0, 0, 0}, {0.5, 0.25, 0.125}, {1, 0.5, 0.25}));
 }
 
+TEST(FacetFrame, SideInPlane) {
+  // In the plane x + y + z = 3 (dyadic points): the line through u, v and points on both sides.
+  const Point3 u{3, 0, 0}, v{0, 3, 0}, ref{0, 0, 3}, far{2, 2, -1}, on{1.5, 1.5, 0}, near{1, 1, 1};
+  EXPECT_EQ(side_in_plane(u, v, ref, near), 1);
+  EXPECT_EQ(side_in_plane(u, v, ref, far), -1);
+  EXPECT_EQ(side_in_plane(u, v, ref, on), 0);
+  EXPECT_EQ(side_in_plane(u, v, on, ref), 0);  // collinear u, v, on
+}
+
 TEST(FacetFrame, AxisAlignedAndTilted) {
   const Plc cube = unit_cube();
   for (std::size_t f = 0; f < cube.facets.size(); ++f) {
