@@ -8,7 +8,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 
 #include "base/error.hpp"
@@ -70,8 +69,15 @@ SurfaceCells::SurfaceCells(const Plc& plc, const FacetTriangulation& ft) : plc_(
       facet_of_.push_back(static_cast<std::uint32_t>(f));
       for (VertexId v : t) box_.add(plc.points[v]);
     }
+  for (std::size_t k = 0; k < tris_.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      const VertexId a = tris_[k][i], b = tris_[k][(i + 1) % 3];
+      edge_uses_.push_back({a < b ? Edge{a, b} : Edge{b, a}, k});
+    }
+  std::sort(edge_uses_.begin(), edge_uses_.end());
   rays_ = std::make_unique<RayIndex>();
-  for (const Triangle& t : tris_) rays_->tris.emplace_back(cg(plc.points[t[0]]), cg(plc.points[t[1]]), cg(plc.points[t[2]]));
+  for (const Triangle& t : tris_)
+    rays_->tris.emplace_back(cg(plc.points[t[0]]), cg(plc.points[t[1]]), cg(plc.points[t[2]]));
   rays_->tree.insert(rays_->tris.cbegin(), rays_->tris.cend());
   rays_->tree.build();
   parent_.resize(2 * tris_.size() + 1);
@@ -99,13 +105,11 @@ std::size_t SurfaceCells::unbounded_class() { return find(parent_.size() - 1); }
 
 void SurfaceCells::join_around_edges() {
   const auto& P = plc_.points;
-  std::map<Edge, std::vector<std::size_t>> around;
-  for (std::size_t k = 0; k < tris_.size(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const VertexId a = tris_[k][i], b = tris_[k][(i + 1) % 3];
-      around[a < b ? Edge{a, b} : Edge{b, a}].push_back(k);
-    }
-  for (auto& [e, ks] : around) {
+  std::vector<std::size_t> ks;
+  for (std::size_t r = 0; r < edge_uses_.size();) {
+    const Edge e = edge_uses_[r].first;
+    ks.clear();
+    for (; r < edge_uses_.size() && edge_uses_[r].first == e; ++r) ks.push_back(edge_uses_[r].second);
     const Point3 u = P[e[0]], v = P[e[1]];
     auto apex = [&](std::size_t k) {
       for (VertexId w : tris_[k])
@@ -205,16 +209,11 @@ void SurfaceCells::place_pieces() {
     while (piece[k] != k) k = piece[k] = piece[piece[k]];
     return k;
   };
-  std::map<Edge, std::size_t> first_on;
-  for (std::size_t k = 0; k < tris_.size(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const VertexId a = tris_[k][i], b = tris_[k][(i + 1) % 3];
-      auto [it, fresh] = first_on.try_emplace(a < b ? Edge{a, b} : Edge{b, a}, k);
-      if (!fresh) {
-        const std::size_t x = root(k), y = root(it->second);
-        if (x != y) piece[std::max(x, y)] = std::min(x, y);
-      }
-    }
+  for (std::size_t r = 1; r < edge_uses_.size(); ++r) {
+    if (edge_uses_[r].first != edge_uses_[r - 1].first) continue;
+    const std::size_t x = root(edge_uses_[r].second), y = root(edge_uses_[r - 1].second);
+    if (x != y) piece[std::max(x, y)] = std::min(x, y);
+  }
   const auto& P = plc_.points;
   std::vector<Crossing> cs;
   std::vector<char> placed(tris_.size(), 0);
@@ -253,18 +252,15 @@ bool SurfaceCells::outside(Point3 p, const std::string& what) {
 void SurfaceCells::check_closed() {
   const std::string src = plc_.source.empty() ? std::string("input") : plc_.source;
   if (tris_.empty()) throw Error(ExitCode::kInvalidGeometry, src + ": no facets, so no volume to mesh");
-  std::map<Edge, std::vector<std::size_t>> uses;
-  for (std::size_t k = 0; k < tris_.size(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const VertexId a = tris_[k][i], b = tris_[k][(i + 1) % 3];
-      uses[a < b ? Edge{a, b} : Edge{b, a}].push_back(k);
-    }
   const std::size_t unb = unbounded_class();
   const auto& P = plc_.points;
-  for (const auto& [e, ks] : uses) {
-    if (ks.size() != 1 || side_class(ks[0], true) != unb) continue;
+  for (std::size_t r = 0; r < edge_uses_.size(); ++r) {
+    const auto& [e, k] = edge_uses_[r];
+    const bool single = (r == 0 || edge_uses_[r - 1].first != e) &&
+                        (r + 1 == edge_uses_.size() || edge_uses_[r + 1].first != e);
+    if (!single || side_class(k, true) != unb) continue;
     throw Error(ExitCode::kInvalidGeometry,
-                facet_label(plc_, facet_of_[ks[0]]) + ": the boundary is not closed: edge " + std::to_string(e[0]) +
+                facet_label(plc_, facet_of_[k]) + ": the boundary is not closed: edge " + std::to_string(e[0]) +
                     "-" + std::to_string(e[1]) + " " + point_text(P[e[0]]) + "-" + point_text(P[e[1]]) +
                     " belongs to this facet only and has the outside on both sides");
   }

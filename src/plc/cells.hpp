@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 #include "plc/plc.hpp"
 #include "plc/triangulate_facets.hpp"
@@ -62,6 +63,7 @@ class SurfaceCells {
   const Plc& plc_;
   std::vector<Triangle> tris_;
   std::vector<std::uint32_t> facet_of_;
+  std::vector<std::pair<Edge, std::size_t>> edge_uses_;  // (edge, triangle) for every triangle edge, sorted
   std::vector<std::size_t> parent_;  // 2 per triangle (negative, positive side), then the unbounded class
   std::unique_ptr<RayIndex> rays_;
   Box3 box_;

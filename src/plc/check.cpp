@@ -40,7 +40,8 @@ void check_points(const Plc& plc) {
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(plc.regions[r].attribute) ||
         std::isnan(plc.regions[r].max_volume))
       throw Error(ExitCode::kInvalidGeometry, source_of(plc) + ": region point " + std::to_string(r) + " " +
-                                                  point_text(q) + " has a non-finite coordinate, attribute or volume bound");
+                                                  point_text(q) +
+                                                  " has a non-finite coordinate, attribute or volume bound");
   }
   std::vector<VertexId> order(P.size());
   std::iota(order.begin(), order.end(), VertexId{0});

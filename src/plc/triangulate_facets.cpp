@@ -119,7 +119,14 @@ FacetTriangulation triangulate_facets(const Plc& plc) {
     if (tris.empty())
       throw Error(ExitCode::kInvalidGeometry, facet_label(plc, f) + " has no area: its polygons enclose no region "
                                                                     "(or its hole points remove all of it)");
-    make_delaunay_in_plane(plc, frame, constrained, tris);
+    // A facet perpendicular to the dropped axis projects isometrically: its 2D CDT, decided by the
+    // same exact incircle, is already Delaunay in its plane.
+    auto along = [&](VertexId v) {
+      const Point3 q = plc.points[v];
+      return frame.drop_axis == 0 ? q.x : frame.drop_axis == 1 ? q.y : q.z;
+    };
+    if (along(frame.p0) != along(frame.p1) || along(frame.p0) != along(frame.p2))
+      make_delaunay_in_plane(plc, frame, constrained, tris);
     if (frame.flip)
       for (Triangle& t : tris) std::swap(t[1], t[2]);
     out.triangles[f] = std::move(tris);

@@ -30,6 +30,8 @@ TEST(PlcCheck, GoodInputsPass) {
   EXPECT_NO_THROW(check(unit_cube()));
   EXPECT_NO_THROW(check(stacked_layers(3)));
   EXPECT_NO_THROW(check(box_with_internal_facets()));
+  EXPECT_NO_THROW(check(wedge_prism(10)));
+  EXPECT_NO_THROW(check(wedge_prism(1)));
   Plc p = unit_cube();
   p.segments.push_back({add_point(p, {0.5, 0.5, 0.25}), add_point(p, {0.5, 0.5, 0.75})});
   p.holes.push_back({0.1, 0.1, 0.1});
@@ -63,7 +65,8 @@ TEST(PlcCheck, NonFiniteCoordinates) {
 TEST(PlcCheck, IdsOutOfRange) {
   Plc p = unit_cube();
   p.facets[2].polygons[0][1] = 99;
-  expect_error([&] { check(p); }, ExitCode::kInputMalformed, {"cube.poly: facet 2 (marker 2) polygon 0", "vertex id 99", "8 points"});
+  expect_error([&] { check(p); }, ExitCode::kInputMalformed,
+               {"cube.poly: facet 2 (marker 2) polygon 0", "vertex id 99", "8 points"});
   p = unit_cube();
   p.segments.push_back({0, 8});
   expect_error([&] { check(p); }, ExitCode::kInputMalformed, {"segment 0", "vertex id 8"});
@@ -103,7 +106,8 @@ TEST(PlcCheck, NonPlanarFacet) {
 TEST(PlcCheck, FacetHolePoints) {
   Plc p = unit_cube();
   p.facets[0].holes.push_back({0.5, 0.5, 0.25});
-  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"facet 0 (marker 0): hole point 0", "not in the facet's plane"});
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry,
+               {"facet 0 (marker 0): hole point 0", "not in the facet's plane"});
   p = unit_cube();
   p.facets[0].holes.push_back({1.5, 0.5, 0});
   expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"facet 0 (marker 0)", "hole 0", "outside"});
@@ -112,7 +116,8 @@ TEST(PlcCheck, FacetHolePoints) {
 TEST(PlcCheck, VolumePointsOutside) {
   Plc p = unit_cube();
   p.holes.push_back({0.5, 0.5, 1.5});
-  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"volume hole point 0 (0.5, 0.5, 1.5) lies outside the domain"});
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry,
+               {"volume hole point 0 (0.5, 0.5, 1.5) lies outside the domain"});
   p = unit_cube();
   p.regions.push_back({{-0.25, 0.5, 0.5}, 3, -1});
   expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"region point 0", "outside the domain"});

@@ -1,5 +1,6 @@
 // Small PLCs for the plc tests: boxes, stacked layers, internal facets, tilted facets.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
 #include "plc/plc.hpp"
@@ -43,6 +44,23 @@ inline Plc parallelepiped(Point3 o, Point3 e1, Point3 e2, Point3 e3) {
   return p;
 }
 
+// A prism over the triangle (0,0), (1,0), (cos a, sin a) in z in [0, 1]: two side facets meet
+// at the dihedral angle a along the z axis.
+inline Plc wedge_prism(double angle_deg) {
+  Plc p;
+  p.source = "wedge.poly";
+  const double a = angle_deg * 3.14159265358979323846 / 180;
+  std::vector<VertexId> lo, hi;
+  for (Point3 q : {Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{std::cos(a), std::sin(a), 0}}) {
+    lo.push_back(add_point(p, q));
+    hi.push_back(add_point(p, {q.x, q.y, 1}));
+  }
+  add_facet(p, {lo}, 1);
+  add_facet(p, {hi}, 2);
+  for (std::size_t i = 0; i < 3; ++i) add_facet(p, {{lo[i], lo[(i + 1) % 3], hi[(i + 1) % 3], hi[i]}}, 3);
+  return p;
+}
+
 inline Plc unit_cube() {
   Plc p;
   p.source = "cube.poly";
@@ -59,7 +77,8 @@ inline Plc stacked_layers(int layers) {
   for (int k = 0; k <= layers; ++k)
     for (Point3 q : {Point3{0, 0, 0}, Point3{2, 0, 0}, Point3{2, 1, 0}, Point3{0, 1, 0}})
       ring[static_cast<std::size_t>(k)].push_back(add_point(p, {q.x, q.y, static_cast<double>(k)}));
-  for (int k = 0; k <= layers; ++k) add_facet(p, {ring[static_cast<std::size_t>(k)]}, k == 0 ? 1 : k == layers ? 2 : 10 + k);
+  for (int k = 0; k <= layers; ++k)
+    add_facet(p, {ring[static_cast<std::size_t>(k)]}, k == 0 ? 1 : k == layers ? 2 : 10 + k);
   for (int k = 0; k < layers; ++k) {
     const auto& a = ring[static_cast<std::size_t>(k)];
     const auto& b = ring[static_cast<std::size_t>(k) + 1];
