@@ -18,7 +18,8 @@ namespace fdr::plc {
 // piece of the surface, so that pieces nested in others or beside them are placed. One class, the
 // unbounded one, holds what lies outside every volume. A segment query costs O(log n + hits)
 // (CGAL's AABB tree), so the whole is O(n log n) for a surface of few pieces.
-// Expects a PLC whose facets passed check_intersections (no overlaps or crossings).
+// Expects a PLC whose facets passed check_intersections (no overlaps or crossings). Not for use
+// from several threads at once (queries join classes as they learn about them).
 class SurfaceCells {
  public:
   SurfaceCells(const Plc& plc, const FacetTriangulation& ft);

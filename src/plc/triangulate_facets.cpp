@@ -130,6 +130,7 @@ FacetTriangulation triangulate_facets(const Plc& plc) {
     if (frame.flip)
       for (Triangle& t : tris) std::swap(t[1], t[2]);
     out.triangles[f] = std::move(tris);
+    out.frames.push_back(frame);
     for (const Edge& e : constrained) shared[e].push_back(static_cast<std::uint32_t>(f));
   }
   for (const auto& s : plc.segments) shared.try_emplace(edge_of(s[0], s[1]));

@@ -21,6 +21,7 @@ struct FacetTriangulation {
   // Per facet its triangles (ids of Plc::points), counter-clockwise seen from the side its frame's
   // normal (p1 - p0) x (p2 - p0) points to (facet_frame.hpp).
   std::vector<std::vector<Triangle>> triangles;
+  std::vector<FacetFrame> frames;  // per facet its plane and projection (facet_frame.hpp)
   // Every polygon edge once, split where a vertex of its facet lies on it, then every free
   // segment (Plc::segments) once; sorted by (a, b).
   std::vector<Subsegment> subsegments;

@@ -49,6 +49,8 @@ TEST(TriangulateFacets, UnitCube) {
   const Plc p = unit_cube();
   const FacetTriangulation ft = triangulate_facets(p);
   ASSERT_EQ(ft.triangles.size(), 6u);
+  ASSERT_EQ(ft.frames.size(), 6u);
+  EXPECT_EQ(ft.frames[4].drop_axis, 0);
   std::size_t total = 0;
   for (std::size_t f = 0; f < 6; ++f) {
     EXPECT_EQ(ft.triangles[f].size(), 2u);
