@@ -50,6 +50,19 @@ TEST(PlcCheck, TiltedBox) {
   expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"tilted.poly: volume hole point 0", "outside the domain"});
 }
 
+TEST(PlcCheck, BoxWithTunnel) {
+  Plc p = box_with_tunnel();
+  p.regions.push_back({{0.5, 0.5, 2}, 1, -1});
+  const FacetTriangulation ft = check_and_triangulate(p);
+  EXPECT_EQ(ft.triangles[0].size(), 8u);  // a square ring
+  p.regions.push_back({{2, 2, 2}, 2, -1});  // inside the tunnel: outside the domain
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"tunnel.poly: region point 1 (2, 2, 2)", "outside"});
+  // Without one tunnel wall the surface is open.
+  p = box_with_tunnel();
+  p.facets.pop_back();
+  expect_error([&] { check(p); }, ExitCode::kInvalidGeometry, {"not closed"});
+}
+
 TEST(PlcCheck, NonFiniteCoordinates) {
   Plc p = unit_cube();
   p.points[3].y = NAN;

@@ -111,4 +111,19 @@ inline Plc box_with_internal_facets() {
   return p;
 }
 
+// The box [0,4]^3 with a square tunnel [1,3]^2 through it along z: top and bottom facets with a
+// hole, four walls inside (a surface of genus one).
+inline Plc box_with_tunnel() {
+  Plc p;
+  p.source = "tunnel.poly";
+  const auto o = add_box_corners(p, {0, 0, 0}, {4, 4, 4});
+  const auto t = add_box_corners(p, {1, 1, 0}, {3, 3, 4});
+  add_facet(p, {{o[0], o[1], o[3], o[2]}, {t[0], t[1], t[3], t[2]}}, 1, {{2, 2, 0}});
+  add_facet(p, {{o[4], o[5], o[7], o[6]}, {t[4], t[5], t[7], t[6]}}, 2, {{2, 2, 4}});
+  const int sides[4][4] = {{0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : sides) add_facet(p, {{o[q[0]], o[q[1]], o[q[2]], o[q[3]]}}, 3);
+  for (const auto& q : sides) add_facet(p, {{t[q[0]], t[q[1]], t[q[2]], t[q[3]]}}, 4);
+  return p;
+}
+
 }  // namespace fdr::plc::samples
