@@ -1,6 +1,7 @@
 // Checks of a PLC before meshing: every defect of the input is an fdr::Error with a documented exit
 // code and a message naming the source file, the facet (index and marker), vertex ids and
-// coordinates. Each step is its own function; check() runs them all in order.
+// coordinates. Each step is its own function; check() runs them all in order. Inputs without
+// facets (a point set meshed as its convex hull) are checked with CheckOptions::closed = false.
 #pragma once
 #include "plc/plc.hpp"
 #include "plc/triangulate_facets.hpp"
@@ -18,9 +19,9 @@ struct CheckOptions {
 void check_points(const Plc& plc);
 
 // Vertex ids of facets and free segments are in range and point markers, if any, one per point
-// (kInputMalformed); polygons are not
-// degenerate (no vertices, a vertex repeated consecutively, three or more vertices all on one
-// line) and free segments have two distinct ends (kInvalidGeometry).
+// (kInputMalformed); every facet has a polygon, polygons are not degenerate (no vertices, a vertex
+// repeated consecutively, three or more vertices all on one line) and free segments have two
+// distinct ends (kInvalidGeometry).
 void check_ids_and_polygons(const Plc& plc);
 
 // Every facet is planar: each vertex against three non-collinear ones of it, exactly
