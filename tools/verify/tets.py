@@ -127,7 +127,8 @@ def inside_sphere_exact(a, b, c, d, e):
     for p in (a, b, c, d):
         q = [Fraction(float(p[k])) - Fraction(float(e[k])) for k in range(3)]
         rows.append(q + [q[0] * q[0] + q[1] * q[1] + q[2] * q[2]])
-    return _det_exact(rows)  # sign: positive inside for positive orientation
+    # det[p - e, |p - e|^2] is negative for e inside when det[b - a, c - a, d - a] > 0.
+    return -_det_exact(rows)
 
 
 # ------------------------------------------------------------------ checks
