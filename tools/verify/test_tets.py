@@ -163,6 +163,18 @@ def test_checker_exact_on_cospherical_points():
     assert abs(r["dihedral_min"] - 45) < 1e-9 and abs(r["dihedral_max"] - 90) < 1e-9
 
 
+@needs_convert
+def test_checker_compares_written_fields(tmp_path):
+    # The cube's cell data: radius_edge 0.866 written (sqrt(3)/2 = 0.8660254 computed), r_over_f made up.
+    convert("--cube", str(tmp_path / "c.vtu"))
+    r = subprocess.run([PY, os.path.join(HERE, "tets.py"), str(tmp_path / "c.vtu"), "--spacing", "0.1",
+                        "--fields-tol", "1e-3", "--json", str(tmp_path / "c.json")], capture_output=True, text=True)
+    with open(tmp_path / "c.json") as f:
+        d = json.load(f)["field_rel_diff"]
+    assert d["radius_edge"] == pytest.approx(abs(0.866 / (np.sqrt(3) / 2) - 1), rel=1e-6)
+    assert d["r_over_f"] > 0.5 and r.returncode == 1, r.stdout
+
+
 def _yardstick(path, spacing):
     out = path + ".ys.json"
     subprocess.run([PY, YARDSTICK, path, "--spacing", spacing, "--json", out], capture_output=True, timeout=300)

@@ -2,7 +2,7 @@
 """Independent checker of a written tetrahedral mesh (VTU), for the 3D mesher's tests.
 
 usage: tets.py MESH.vtu [--spacing EXPR] [--bound B] [--max-radius-edge Q] [--min-dihedral DEG]
-               [--no-delaunay] [--json OUT.json]
+               [--no-delaunay] [--fields-tol REL] [--json OUT.json]
 
 Reads the VTU itself (inline ASCII or base64 arrays, raw appended data; compressed or base64-appended
 files through meshio) with numpy/scipy only, and checks:
@@ -15,7 +15,9 @@ files through meshio) with numpy/scipy only, and checks:
   quality    radius-edge ratio (circumradius / shortest edge), R/f(c) with the spacing EXPR (x, y, z
              and numpy's abs, sin, cos, sqrt, exp, minimum, maximum, hypot; or a number) at the
              circumcentre, dihedral angles (min, max, tetrahedra whose smallest angle is under 5 and
-             10 degrees, a histogram of those smallest angles).
+             10 degrees, a histogram of those smallest angles);
+  fields     the mesher's own cell data r_over_f, radius_edge, min_dihedral_deg, when the VTU has
+             them, against the recomputed values (largest relative difference).
 Prints one line, writes the figures as JSON with --json, exits 1 when a check or a given bound fails.
 """
 import argparse
@@ -211,7 +213,18 @@ def spacing_at(expr, centre):
     return np.broadcast_to(np.asarray(value, np.float64), (len(centre),))
 
 
-def check(P, T, spacing=None, delaunay=True):
+def field_differences(cell_data, computed):
+    """Largest relative difference between the mesher's own per-tetrahedron figures in the VTU
+    (r_over_f, radius_edge, min_dihedral_deg) and this script's, for those present."""
+    out = {}
+    for name, mine in computed.items():
+        if name in cell_data and len(cell_data[name]) == len(mine) and len(mine):
+            theirs = np.asarray(cell_data[name], np.float64)
+            out[name] = float((np.abs(theirs - mine) / np.maximum(np.abs(mine), 1e-300)).max())
+    return out
+
+
+def check(P, T, spacing=None, delaunay=True, cell_data=None):
     det, sign = signed_volumes6(P, T)
     faces, per_face, counts = face_counts(T)
     centre, R = circumspheres(P, T)
@@ -237,8 +250,12 @@ def check(P, T, spacing=None, delaunay=True):
     if delaunay:
         r["not_delaunay"], r["not_delaunay_first"] = delaunay_violations(P, T, centre, R)
         r["not_delaunay_first"] = [int(i) for i in r["not_delaunay_first"]]
+    computed = {"radius_edge": R / edges.min(axis=1), "min_dihedral_deg": smallest}
     if spacing is not None:
-        r["r_over_f_max"] = float((R / spacing_at(spacing, centre)).max()) if len(T) else 0.0
+        computed["r_over_f"] = R / spacing_at(spacing, centre)
+        r["r_over_f_max"] = float(computed["r_over_f"].max()) if len(T) else 0.0
+    if cell_data is not None:
+        r["field_rel_diff"] = field_differences(cell_data, computed)
     return r
 
 
@@ -250,10 +267,13 @@ def main(argv=None):
     ap.add_argument("--max-radius-edge", type=float, help="fail when a radius-edge ratio exceeds Q")
     ap.add_argument("--min-dihedral", type=float, help="fail when a dihedral angle is under DEG degrees")
     ap.add_argument("--no-delaunay", action="store_true", help="skip the empty-circumsphere test")
+    ap.add_argument("--fields-tol", type=float,
+                    help="fail when the VTU's r_over_f / radius_edge / min_dihedral_deg cell data differ from "
+                         "the recomputed values by more than this relative amount")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
-    P, T, _ = read_vtu(a.mesh)
-    r = check(P, T, a.spacing, not a.no_delaunay)
+    P, T, cell_data = read_vtu(a.mesh)
+    r = check(P, T, a.spacing, not a.no_delaunay, cell_data)
     ok = r["valid"] and r.get("not_delaunay", 0) == 0
     if a.bound is not None and "r_over_f_max" in r:
         ok = ok and r["r_over_f_max"] <= a.bound * (1 + 1e-9)
@@ -261,6 +281,8 @@ def main(argv=None):
         ok = ok and r["radius_edge_max"] <= a.max_radius_edge * (1 + 1e-9)
     if a.min_dihedral is not None:
         ok = ok and r["dihedral_min"] >= a.min_dihedral
+    if a.fields_tol is not None:
+        ok = ok and all(d <= a.fields_tol for d in r["field_rel_diff"].values())
     r["ok"] = bool(ok)
     print(f'{a.mesh}: {r["tetrahedra"]} tetrahedra, {r["vertices"]} vertices; valid {r["valid"]}'
           + (f', delaunay {r["not_delaunay"] == 0} ({r["not_delaunay"]} violated)' if "not_delaunay" in r else "")
@@ -268,6 +290,7 @@ def main(argv=None):
           + (f', R/f max {r["r_over_f_max"]:.4f}' if "r_over_f_max" in r else "")
           + f', dihedral {r["dihedral_min"]:.2f}..{r["dihedral_max"]:.2f} deg'
           + f' (<5: {r["dihedral_lt5"]}, <10: {r["dihedral_lt10"]}), volume {r["volume"]:.9g}'
+          + "".join(f", {k} as written within {d:.1e}" for k, d in r["field_rel_diff"].items())
           + ("" if ok else "  FAILED"))
     if a.json:
         with open(a.json, "w") as f:
