@@ -87,6 +87,17 @@ TEST(ReadSmesh, PointsFromTheSiblingNodeFile) {
   EXPECT_EQ(p.facets[5].marker, 6);
 }
 
+TEST(ReadSmesh, MissingSiblingNodeFile) {
+  TempDir dir;
+  write_bytes(dir.file("lone.smesh"), "0 3 0 0\n1 0\n3 1 2 3\n0\n");
+  expect_error([&] { read_smesh(dir.file("lone.smesh")); }, ExitCode::kInputUnreadable, "lone.node: cannot open");
+  write_bytes(dir.file("lone.node"), "3 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n");
+  EXPECT_EQ(read_smesh(dir.file("lone.smesh")).facets.size(), 1u);
+  // The same file read as a .poly: its facet line "3 1 2 3" is 3 polygons with 1 hole.
+  expect_error([&] { read_poly(dir.file("lone.smesh")); }, ExitCode::kInputMalformed,
+               "lone.smesh:4: a polygon needs at least one corner");
+}
+
 TEST(ReadNode, PointSetOnly) {
   const plc::Plc p = read_plc(data("cube.node"));
   EXPECT_EQ(p.points.size(), 8u);

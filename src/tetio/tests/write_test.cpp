@@ -19,13 +19,6 @@ std::size_t count_of(const std::string& text, const std::string& part) {
   return n;
 }
 
-// A tetrahedron as its vertex set with the orientation's sign: equal for the same oriented tetrahedron.
-std::set<std::pair<std::set<VertexId>, bool>> oriented(const tet::TetMesh& m) {
-  std::set<std::pair<std::set<VertexId>, bool>> out;
-  for (const auto& t : m.tets) out.insert({{t.begin(), t.end()}, volume6(m, t) > 0});
-  return out;
-}
-
 }  // namespace
 
 TEST(CubeMesh, SixPositiveTetrahedraTwelveFaces) {
@@ -56,6 +49,16 @@ TEST(WriteTetgen, ReadsBackBitForBit) {
   EXPECT_EQ(r.face_marker, m.face_marker);
   const std::string ele = read_file_bytes(dir.file("cube.ele"));
   EXPECT_EQ(ele.substr(0, ele.find('\n')), "6 4 1");
+}
+
+TEST(ReadTetgenMesh, ZeroVolumeAndMissingFiles) {
+  TempDir dir;
+  write_bytes(dir.file("flat.node"), "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n");
+  write_bytes(dir.file("flat.ele"), "1 4 0\n1 1 2 3 4\n");
+  expect_error([&] { read_tetgen_mesh(dir.file("flat")); }, ExitCode::kInvalidGeometry, "flat.ele:2: tetrahedron 1 has zero volume");
+  write_bytes(dir.file("flat.ele"), "1 4 0\n1 1 2 3 5\n");
+  expect_error([&] { read_tetgen_mesh(dir.file("flat.node")); }, ExitCode::kInputMalformed, "vertex 5 out of range (points 1..4)");
+  expect_error([&] { read_tetgen_mesh(dir.file("none")); }, ExitCode::kInputUnreadable, "none.node: cannot open");
 }
 
 TEST(WriteTetgen, EleListsNegativeVolumeOrderAsTetgenDoes) {
