@@ -145,9 +145,10 @@ void read_smesh_facets(TextLines& in, plc::Plc& plc, std::int64_t base) {
   }
 }
 
-// Part 3 (volume holes, mandatory) and part 4 (regions, optional) of .poly and .smesh.
+// Part 3 (volume holes) and part 4 (regions) of .poly and .smesh. TetGen's format calls part 3
+// mandatory but TetGen itself reads a file that ends after the facets, so this reader does too.
 void read_holes_and_regions(TextLines& in, plc::Plc& plc) {
-  in.expect("the volume hole list header");
+  if (!in.next()) return;
   const std::int64_t nh = count_field(in, 0, "number of holes");
   for (std::int64_t h = 0; h < nh; ++h) {
     in.expect("volume hole " + std::to_string(h + 1) + " of " + std::to_string(nh));

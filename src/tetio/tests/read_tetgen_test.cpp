@@ -87,6 +87,14 @@ TEST(ReadSmesh, PointsFromTheSiblingNodeFile) {
   EXPECT_EQ(p.facets[5].marker, 6);
 }
 
+TEST(ReadPoly, EndingAfterTheFacetsMeansNoHolesNoRegions) {
+  TempDir dir;
+  write_bytes(dir.file("short.poly"), "3 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n1 0\n1\n3 1 2 3\n");
+  const plc::Plc p = read_poly(dir.file("short.poly"));
+  EXPECT_EQ(p.facets.size(), 1u);
+  EXPECT_TRUE(p.holes.empty() && p.regions.empty());
+}
+
 TEST(ReadSmesh, MissingSiblingNodeFile) {
   TempDir dir;
   write_bytes(dir.file("lone.smesh"), "0 3 0 0\n1 0\n3 1 2 3\n0\n");
