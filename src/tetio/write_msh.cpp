@@ -4,8 +4,7 @@
 #include <map>
 #include <span>
 #include "base/point3.hpp"
-#include "tetio/out_file.hpp"
-#include "tetio/write_tets.hpp"
+#include "tetio/write_parts.hpp"
 
 namespace fdr::tetio {
 namespace {
@@ -101,12 +100,13 @@ void write_nodes(OutFile& out, const std::vector<Point3>& pts, const Group* host
 
 }  // namespace
 
-void write_msh(const std::string& path, const tet::TetMesh& m) {
+Written prepare_msh(const std::string& path, const tet::TetMesh& m) {
   check_mesh_arrays(m);
   const auto vols = groups_of(3, m.tet_material, m.material_names, "material_");
   const auto surfs = groups_of(2, m.face_marker, m.marker_names, "marker_");
   const auto curves = groups_of(1, m.edge_marker, m.marker_names, "marker_");
-  OutFile out(path);
+  Written parts;
+  OutFile& out = *parts.emplace_back(std::make_unique<OutFile>(path));
   out.str("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
   write_physical_names(out, {&curves, &surfs, &vols});
   out.str("$Entities\n0 ").num(static_cast<std::int64_t>(curves.size())).sp().num(static_cast<std::int64_t>(surfs.size()));
@@ -125,7 +125,12 @@ void write_msh(const std::string& path, const tet::TetMesh& m) {
   write_element_blocks(out, surfs, m.faces, 2, tag);
   write_element_blocks(out, vols, m.tets, 4, tag);
   out.str("$EndElements\n");
-  out.commit();
+  return parts;
+}
+
+void write_msh(const std::string& path, const tet::TetMesh& mesh) {
+  Written parts = prepare_msh(path, mesh);
+  commit_written(parts);
 }
 
 }  // namespace fdr::tetio

@@ -1,8 +1,7 @@
 // TetGen mesh files: BASE.node, BASE.ele, BASE.face (and BASE.edge), committed together.
 #include <memory>
 #include "base/path_util.hpp"
-#include "tetio/out_file.hpp"
-#include "tetio/write_tets.hpp"
+#include "tetio/write_parts.hpp"
 
 namespace fdr::tetio {
 namespace {
@@ -46,22 +45,21 @@ void write_edge(OutFile& out, const tet::TetMesh& m) {
 
 }  // namespace
 
-void write_tetgen(const std::string& path, const tet::TetMesh& m) {
+Written prepare_tetgen(const std::string& path, const tet::TetMesh& m) {
   check_mesh_arrays(m);
   const std::string e = lower_ext(path);
   const std::string base = (e == "node" || e == "ele") ? path.substr(0, path.size() - e.size() - 1) : path;
-  OutFile node(base + ".node"), ele(base + ".ele"), face(base + ".face");
-  std::unique_ptr<OutFile> edge;
-  if (!m.edges.empty()) edge = std::make_unique<OutFile>(base + ".edge");
-  write_node(node, m);
-  write_ele(ele, m);
-  write_face(face, m);
-  std::vector<OutFile*> all{&node, &ele, &face};
-  if (edge) {
-    write_edge(*edge, m);
-    all.push_back(edge.get());
-  }
-  commit_all(all);
+  Written parts;
+  write_node(*parts.emplace_back(std::make_unique<OutFile>(base + ".node")), m);
+  write_ele(*parts.emplace_back(std::make_unique<OutFile>(base + ".ele")), m);
+  write_face(*parts.emplace_back(std::make_unique<OutFile>(base + ".face")), m);
+  if (!m.edges.empty()) write_edge(*parts.emplace_back(std::make_unique<OutFile>(base + ".edge")), m);
+  return parts;
+}
+
+void write_tetgen(const std::string& path, const tet::TetMesh& mesh) {
+  Written parts = prepare_tetgen(path, mesh);
+  commit_written(parts);
 }
 
 }  // namespace fdr::tetio

@@ -1,5 +1,6 @@
 // The 3D writer chosen by extension, and the consistency check every writer runs first.
 #include "tetio/write_tets.hpp"
+#include "tetio/write_parts.hpp"
 
 #include "base/error.hpp"
 #include "base/path_util.hpp"
@@ -37,12 +38,45 @@ void check_mesh_arrays(const tet::TetMesh& m) {
   check_ids(m.edges, m.points.size(), "edge");
 }
 
-void write_tets(const std::string& path, const tet::TetMesh& mesh) {
+bool is_tets_output_path(const std::string& path) {
   const std::string e = lower_ext(path);
-  if (e == "vtu") return write_vtu(path, mesh);
-  if (e == "msh") return write_msh(path, mesh);
-  if (e == "node" || e == "ele") return write_tetgen(path, mesh);
-  throw Error(ExitCode::kUsage, path + ": unknown 3D output format '." + e + "' (expected .vtu, .msh, .node or .ele)");
+  return e == "vtu" || e == "msh" || e == "node" || e == "ele";
+}
+
+namespace {
+
+[[noreturn]] void fail_format(const std::string& path) {
+  throw Error(ExitCode::kUsage,
+              path + ": unknown 3D output format '." + lower_ext(path) + "' (expected .vtu, .msh, .node or .ele)");
+}
+
+Written prepare(const std::string& path, const tet::TetMesh& mesh, VtuEncoding encoding) {
+  const std::string e = lower_ext(path);
+  if (e == "vtu") return prepare_vtu(path, mesh, encoding);
+  if (e == "msh") return prepare_msh(path, mesh);
+  if (e == "node" || e == "ele") return prepare_tetgen(path, mesh);
+  fail_format(path);
+}
+
+}  // namespace
+
+void commit_written(Written& parts) {
+  std::vector<OutFile*> files;
+  for (auto& f : parts) files.push_back(f.get());
+  commit_all(files);
+}
+
+void write_tets(const std::string& path, const tet::TetMesh& mesh) { write_tets_all({path}, mesh); }
+
+void write_tets_all(const std::vector<std::string>& paths, const tet::TetMesh& mesh, VtuEncoding encoding) {
+  for (const std::string& p : paths) {
+    if (!is_tets_output_path(p)) fail_format(p);  // before anything is written
+  }
+  Written all;
+  for (const std::string& p : paths) {
+    for (auto& f : prepare(p, mesh, encoding)) all.push_back(std::move(f));
+  }
+  commit_written(all);
 }
 
 }  // namespace fdr::tetio

@@ -2,6 +2,7 @@
 // Every writer is all-or-nothing (out_file.hpp): on any error nothing is left at the target.
 #pragma once
 #include <string>
+#include <vector>
 #include "tet/tet_mesh.hpp"
 
 namespace fdr::tetio {
@@ -29,6 +30,12 @@ void write_tetgen(const std::string& path, const tet::TetMesh& mesh);
 // The writer for the extension: .vtu, .msh, or .node/.ele (TetGen). Unknown extension:
 // Error(kUsage).
 void write_tets(const std::string& path, const tet::TetMesh& mesh);
+bool is_tets_output_path(const std::string& path);
+
+// Several outputs of one mesh (each by extension as write_tets) committed as one: when any of them
+// fails, none is left, not even those whose files were complete.
+void write_tets_all(const std::vector<std::string>& paths, const tet::TetMesh& mesh,
+                    VtuEncoding encoding = VtuEncoding::kAppendedRaw);
 
 // Throws Error(kInternal) when the mesh's arrays disagree (a per-tetrahedron array of the wrong
 // length, a vertex id out of range): a bug upstream, caught before anything is written.

@@ -7,8 +7,7 @@
 #include <functional>
 #include <string>
 #include <vector>
-#include "tetio/out_file.hpp"
-#include "tetio/write_tets.hpp"
+#include "tetio/write_parts.hpp"
 
 namespace fdr::tetio {
 namespace {
@@ -155,11 +154,12 @@ void write_section(OutFile& out, Sink& sink, const std::vector<Array>& arrays, b
 
 }  // namespace
 
-void write_vtu(const std::string& path, const tet::TetMesh& mesh, VtuEncoding encoding) {
+Written prepare_vtu(const std::string& path, const tet::TetMesh& mesh, VtuEncoding encoding) {
   check_mesh_arrays(mesh);
   const bool appended = encoding == VtuEncoding::kAppendedRaw;
   const Layout l = layout(mesh);
-  OutFile out(path);
+  Written parts;
+  OutFile& out = *parts.emplace_back(std::make_unique<OutFile>(path));
   Sink sink(out, !appended);
   std::uint64_t offset = 0;
   out.str("<?xml version=\"1.0\"?>\n");
@@ -181,7 +181,12 @@ void write_vtu(const std::string& path, const tet::TetMesh& mesh, VtuEncoding en
     out.str("\n  </AppendedData>\n");
   }
   out.str("</VTKFile>\n");
-  out.commit();
+  return parts;
+}
+
+void write_vtu(const std::string& path, const tet::TetMesh& mesh, VtuEncoding encoding) {
+  Written parts = prepare_vtu(path, mesh, encoding);
+  commit_written(parts);
 }
 
 }  // namespace fdr::tetio

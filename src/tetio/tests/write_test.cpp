@@ -135,6 +135,18 @@ TEST(WriteAll, NothingLeftOnFailure) {
   EXPECT_EQ(dir.count(), 0u);
 }
 
+TEST(WriteAll, SeveralOutputsAsOne) {
+  TempDir dir;
+  const tet::TetMesh m = cube_mesh();
+  expect_error([&] { write_tets_all({dir.file("a.vtu"), dir.file("a.msh"), dir.file("gone/a.node")}, m); },
+               ExitCode::kOutputError, "gone/a.node");
+  expect_error([&] { write_tets_all({dir.file("a.vtu"), dir.file("a.obj")}, m); }, ExitCode::kUsage, "a.obj");
+  EXPECT_EQ(dir.count(), 0u);
+  write_tets_all({dir.file("a.vtu"), dir.file("a.msh"), dir.file("a.ele")}, m, VtuEncoding::kBase64);
+  EXPECT_EQ(dir.count(), 6u);  // vtu, msh, node, ele, face, edge
+  EXPECT_NE(read_file_bytes(dir.file("a.vtu")).find("format=\"binary\""), std::string::npos);
+}
+
 TEST(WriteAll, ReplacesAnExistingFileWhole) {
   TempDir dir;
   write_bytes(dir.file("m.msh"), "old content");
