@@ -21,7 +21,7 @@ void write_ele(OutFile& out, const tet::TetMesh& m) {
   out.num(n64(m.tets.size())).str(" 4 1\n");
   for (std::size_t i = 0; i < m.tets.size(); ++i) {
     const auto& t = m.tets[i];
-    out.num(n64(i + 1)).sp().num(id(t[1])).sp().num(id(t[0])).sp().num(id(t[2])).sp().num(id(t[3]));
+    out.num(n64(i + 1)).sp().num(id(t[0])).sp().num(id(t[1])).sp().num(id(t[2])).sp().num(id(t[3]));
     out.sp().num(static_cast<std::int64_t>(m.tet_material[i])).nl();
   }
 }

@@ -24,7 +24,9 @@ void write_msh(const std::string& path, const tet::TetMesh& mesh);
 
 // TetGen: BASE.node, BASE.ele (material as the one attribute), BASE.face (with markers), and
 // BASE.edge when the mesh has subsegments; 1-based like TetGen's own output. `path` is BASE or
-// BASE.node / BASE.ele. Tetrahedra are listed in TetGen's order (first two vertices swapped).
+// BASE.node / BASE.ele. Tetrahedra keep their positive-volume order: TetGen 1.5 writes its own
+// .ele files that way (every tetrahedron of its meshes of testdata/3d has
+// dot(b - a, cross(c - a, d - a)) > 0; tools/verify/test_tets.py checks it).
 void write_tetgen(const std::string& path, const tet::TetMesh& mesh);
 
 // The writer for the extension: .vtu, .msh, or .node/.ele (TetGen). Unknown extension:

@@ -175,6 +175,47 @@ def test_checker_compares_written_fields(tmp_path):
     assert d["r_over_f"] > 0.5 and r.returncode == 1, r.stdout
 
 
+def test_conformity_of_the_cube_mesh(tmp_path):
+    import conformity
+    P = np.array([[i & 1, (i >> 1) & 1, (i >> 2) & 1] for i in range(8)], float)
+    T = np.array([[0, 1, 3, 7], [0, 1, 5, 7], [0, 2, 3, 7], [0, 2, 6, 7], [0, 4, 5, 7], [0, 4, 6, 7]])
+    cube = os.path.join(TESTDATA, "3d", "cube.poly")
+    r = conformity.conformity(P, T, cube)
+    assert r["facets_not_conforming"] == 0 and r["boundary_faces_off_facets"] == 0
+    assert [f["area"] for f in r["facets"]] == [1.0] * 6
+    # One tetrahedron less: two sides lose a triangle, two faces inside become boundary.
+    r = conformity.conformity(P, T[1:], cube)
+    assert r["facets_not_conforming"] == 2 and r["boundary_faces_off_facets"] == 2
+    # An internal facet at z = 1/2 that no mesh face follows.
+    mid = tmp_path / "mid.poly"
+    with open(cube) as f:
+        text = f.read()
+    text = text.replace("8 3 0 0", "12 3 0 0").replace("6 1\n", "7 1\n1 0 7\n4 9 10 11 12\n")
+    text = text.replace("8 0 1 1\n", "8 0 1 1\n9 0 0 0.5\n10 1 0 0.5\n11 1 1 0.5\n12 0 1 0.5\n")
+    mid.write_text(text)
+    r = conformity.conformity(P, T, str(mid))
+    assert r["facets_not_conforming"] == 1 and r["facets"][0]["mesh_area"] == 0
+
+
+@pytest.mark.skipif(shutil.which("tetgen") is None, reason="tetgen not installed")
+def test_tetgen_meshes_positive_and_conforming_to_the_test_plcs(tmp_path):
+    for name in ("layers.poly", "facet_hole.poly", "box_cavity.poly", "dihedral10.poly"):
+        src = str(tmp_path / name)
+        shutil.copy(os.path.join(TESTDATA, "3d", name), src)
+        subprocess.run(["tetgen", "-pq1.5a0.1Q", src], check=True, capture_output=True, timeout=120)
+        base = src[:-5] + ".1"
+        N = np.loadtxt(base + ".node", skiprows=1)
+        P = N[:, 1:4]
+        T = np.loadtxt(base + ".ele", skiprows=1, dtype=np.int64)[:, 1:5] - int(N[0, 0])
+        # TetGen's own .ele order has positive volume (tetio's writer relies on it), and its
+        # meshes are valid for this checker as they stand.
+        r = tets.check(P, T, delaunay=False)
+        assert r["valid"] and r["nonpositive_volume"] == 0, name
+        import conformity
+        c = conformity.conformity(P, T, os.path.join(TESTDATA, "3d", name))
+        assert c["facets_not_conforming"] == 0 and c["boundary_faces_off_facets"] == 0, (name, c)
+
+
 def _yardstick(path, spacing):
     out = path + ".ys.json"
     subprocess.run([PY, YARDSTICK, path, "--spacing", spacing, "--json", out], capture_output=True, timeout=300)

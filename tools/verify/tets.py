@@ -2,7 +2,7 @@
 """Independent checker of a written tetrahedral mesh (VTU), for the 3D mesher's tests.
 
 usage: tets.py MESH.vtu [--spacing EXPR] [--bound B] [--max-radius-edge Q] [--min-dihedral DEG]
-               [--no-delaunay] [--fields-tol REL] [--json OUT.json]
+               [--no-delaunay] [--fields-tol REL] [--plc IN.poly|IN.smesh|IN.off] [--json OUT.json]
 
 Reads the VTU itself (inline ASCII or base64 arrays, raw appended data; compressed or base64-appended
 files through meshio) with numpy/scipy only, and checks:
@@ -16,6 +16,8 @@ files through meshio) with numpy/scipy only, and checks:
              and numpy's abs, sin, cos, sqrt, exp, minimum, maximum, hypot; or a number) at the
              circumcentre, dihedral angles (min, max, tetrahedra whose smallest angle is under 5 and
              10 degrees, a histogram of those smallest angles);
+  conformity with --plc: every input facet is a union of mesh faces (the faces in it add up to its
+             area) and every boundary face lies in a facet (conformity.py);
   fields     the mesher's own cell data r_over_f, radius_edge, min_dihedral_deg, when the VTU has
              them, against the recomputed values (largest relative difference).
 Prints one line, writes the figures as JSON with --json, exits 1 when a check or a given bound fails.
@@ -30,6 +32,8 @@ from fractions import Fraction
 
 import numpy as np
 from scipy.spatial import cKDTree
+
+import conformity
 
 DTYPES = {"Int8": "i1", "UInt8": "u1", "Int16": "i2", "UInt16": "u2", "Int32": "i4", "UInt32": "u4",
           "Int64": "i8", "UInt64": "u8", "Float32": "f4", "Float64": "f8"}
@@ -270,11 +274,15 @@ def main(argv=None):
     ap.add_argument("--fields-tol", type=float,
                     help="fail when the VTU's r_over_f / radius_edge / min_dihedral_deg cell data differ from "
                          "the recomputed values by more than this relative amount")
+    ap.add_argument("--plc", help="the input PLC the mesh must conform to")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
     P, T, cell_data = read_vtu(a.mesh)
     r = check(P, T, a.spacing, not a.no_delaunay, cell_data)
     ok = r["valid"] and r.get("not_delaunay", 0) == 0
+    if a.plc:
+        c = r["conformity"] = conformity.conformity(P, T, a.plc)
+        ok = ok and c["facets_not_conforming"] == 0 and c["boundary_faces_off_facets"] == 0
     if a.bound is not None and "r_over_f_max" in r:
         ok = ok and r["r_over_f_max"] <= a.bound * (1 + 1e-9)
     if a.max_radius_edge is not None:
@@ -291,6 +299,9 @@ def main(argv=None):
           + f', dihedral {r["dihedral_min"]:.2f}..{r["dihedral_max"]:.2f} deg'
           + f' (<5: {r["dihedral_lt5"]}, <10: {r["dihedral_lt10"]}), volume {r["volume"]:.9g}'
           + "".join(f", {k} as written within {d:.1e}" for k, d in r["field_rel_diff"].items())
+          + (f', facets conforming {len(r["conformity"]["facets"]) - r["conformity"]["facets_not_conforming"]}'
+             f'/{len(r["conformity"]["facets"])} ({r["conformity"]["boundary_faces_off_facets"]} boundary faces '
+             f'off facets)' if "conformity" in r else "")
           + ("" if ok else "  FAILED"))
     if a.json:
         with open(a.json, "w") as f:
