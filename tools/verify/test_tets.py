@@ -161,6 +161,28 @@ def test_checker_exact_on_cospherical_points():
     assert r["valid"] and r["not_delaunay"] == 0
     assert abs(r["radius_edge_max"] - np.sqrt(3) / 2) < 1e-12 and abs(r["r_over_f_max"] - np.sqrt(3)) < 1e-12
     assert abs(r["dihedral_min"] - 45) < 1e-9 and abs(r["dihedral_max"] - 90) < 1e-9
+    # 19 edges: 12 of length 0.1, 6 face diagonals, 1 space diagonal; f = 0.05.
+    assert r["edge_over_f_min"] == pytest.approx(2) and r["edge_over_f_max"] == pytest.approx(2 * np.sqrt(3))
+    assert r["edge_over_f_mean"] == pytest.approx((12 * 2 + 6 * 2 * np.sqrt(2) + 2 * np.sqrt(3)) / 19)
+
+
+def test_reads_vtu_written_by_meshio(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    rng = np.random.default_rng(7)
+    from scipy.spatial import Delaunay
+    P = rng.random((60, 3))
+    T = Delaunay(P).simplices
+    T = np.array([t if tets.signed_volumes6(P, t[None])[1][0] > 0 else t[[1, 0, 2, 3]] for t in T])
+    ref = tets.check(P, T, "0.2")
+    for kw in ({"binary": False}, {"binary": True, "compression": None}, {}):  # ascii, base64, zlib
+        f = str(tmp_path / "m.vtu")
+        meshio.write(f, meshio.Mesh(P, [("tetra", T)], cell_data={"material": [np.ones(len(T), np.int32)]}), **kw)
+        Q, U, cd = tets.read_vtu(f)
+        assert np.array_equal(U, T) and cd["material"].tolist() == [1] * len(T)
+        if kw.get("binary", True):
+            assert np.array_equal(Q, P) and tets.check(Q, U, "0.2") == ref
+        else:  # meshio's ASCII rounds the coordinates
+            assert np.allclose(Q, P, rtol=1e-9, atol=0) and tets.check(Q, U, "0.2")["valid"]
 
 
 @needs_convert

@@ -14,7 +14,7 @@ files through meshio) with numpy/scipy only, and checks:
              confirmed with an exact in-sphere determinant;
   quality    radius-edge ratio (circumradius / shortest edge), R/f(c) with the spacing EXPR (x, y, z
              and numpy's abs, sin, cos, sqrt, exp, minimum, maximum, hypot; or a number) at the
-             circumcentre, dihedral angles (min, max, tetrahedra whose smallest angle is under 5 and
+             circumcentre, edge length / f at the edge's midpoint (min, max, mean), dihedral angles (min, max, tetrahedra whose smallest angle is under 5 and
              10 degrees, a histogram of those smallest angles);
   conformity with --plc: every input facet is a union of mesh faces (the faces in it add up to its
              area) and every boundary face lies in a facet (conformity.py);
@@ -228,6 +228,17 @@ def field_differences(cell_data, computed):
     return out
 
 
+def edge_over_f(P, T, spacing):
+    """Each mesh edge's length over f at its midpoint: min, max, mean (the size the mesh follows)."""
+    e = np.concatenate([T[:, [i, j]] for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))])
+    e = np.unique(np.sort(e, axis=1), axis=0)
+    if len(e) == 0:
+        return {}
+    ratio = np.linalg.norm(P[e[:, 0]] - P[e[:, 1]], axis=1) / spacing_at(spacing, 0.5 * (P[e[:, 0]] + P[e[:, 1]]))
+    return {"edge_over_f_min": float(ratio.min()), "edge_over_f_max": float(ratio.max()),
+            "edge_over_f_mean": float(ratio.mean())}
+
+
 def check(P, T, spacing=None, delaunay=True, cell_data=None):
     det, sign = signed_volumes6(P, T)
     faces, per_face, counts = face_counts(T)
@@ -258,6 +269,7 @@ def check(P, T, spacing=None, delaunay=True, cell_data=None):
     if spacing is not None:
         computed["r_over_f"] = R / spacing_at(spacing, centre)
         r["r_over_f_max"] = float(computed["r_over_f"].max()) if len(T) else 0.0
+        r.update(edge_over_f(P, T, spacing))
     if cell_data is not None:
         r["field_rel_diff"] = field_differences(cell_data, computed)
     return r
