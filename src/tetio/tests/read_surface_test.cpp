@@ -60,6 +60,18 @@ TEST(ReadSurface, PolygonFacesOfAnOffCube) {
   EXPECT_EQ(p.facets[5].polygons[0], (std::vector<VertexId>{3, 0, 4, 7}));
 }
 
+TEST(ReadSurface, PolygonFacesOfAPlyCube) {
+  TempDir dir;
+  const std::string f = dir.file("cube.ply");
+  write_bytes(f, "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\nproperty double z\n"
+                 "element face 6\nproperty list uchar uint vertex_index\nend_header\n"
+                 "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                 "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+  const plc::Plc p = read_plc(f);
+  ASSERT_EQ(p.facets.size(), 6u);
+  EXPECT_EQ(p.facets[2].polygons[0], (std::vector<VertexId>{0, 1, 5, 4}));
+}
+
 TEST(ReadSurface, MergesExactlyEqualPointsOnly) {
   std::vector<Point3> distinct;
   const auto remap = merge_equal_points({{0, 0, 0}, {1, 0, 0}, {-0.0, 0, -0.0}, {1, 0, 1e-300}, {1, 0, 0}}, distinct);
