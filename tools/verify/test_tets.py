@@ -113,6 +113,23 @@ def test_tetgen_files_read_by_tetgen(tmp_path):
 
 
 @needs_convert
+@pytest.mark.skipif(shutil.which("tetgen") is None, reason="tetgen not installed")
+def test_poly_written_from_any_input_meshed_by_tetgen(tmp_path):
+    for name, switches, tets_min in (("octahedron_binary.stl", "-pQ", 4), ("layers.poly", "-pAaQ", 100),
+                                      ("facet_hole.poly", "-pqQ", 20)):
+        out = str(tmp_path / (name.split(".")[0] + "_copy.poly"))
+        subprocess.run([CONVERT, "--plc", os.path.join(TESTDATA, "3d", name), out], check=True)
+        r = subprocess.run(["tetgen", switches, out], capture_output=True, text=True, timeout=60)
+        assert r.returncode == 0, r.stdout + r.stderr
+        with open(out[:-5] + ".1.ele") as f:
+            head = f.readline().split()
+        assert int(head[0]) >= tets_min, (name, head)
+        if "A" in switches:  # the two regions' attributes came through
+            T = np.loadtxt(out[:-5] + ".1.ele", skiprows=1)
+            assert sorted(set(T[:, 5].astype(int))) == [1, 2]
+
+
+@needs_convert
 def test_tetgen_round_trip_keeps_coordinates(tmp_path):
     base, P, T = random_delaunay(tmp_path, n=50)
     convert(base + ".ele", str(tmp_path / "out.node"), str(tmp_path / "out.b64.vtu"))

@@ -3,6 +3,7 @@
 #include <random>
 #include "tetio/read_plc.hpp"
 #include "tetio/read_tetgen.hpp"
+#include "tetio/write_poly.hpp"
 #include "tetio/text_lines.hpp"
 #include "tetio/tests/test_util.hpp"
 
@@ -181,4 +182,47 @@ TEST(ReadRobustness, TruncatedAndDamagedFilesFailCleanly) {
       attempt(b);
     }
   }
+}
+
+namespace {
+
+void expect_same_plc(const plc::Plc& a, const plc::Plc& b) {
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.point_markers, b.point_markers);
+  ASSERT_EQ(a.facets.size(), b.facets.size());
+  for (std::size_t i = 0; i < a.facets.size(); ++i) {
+    EXPECT_EQ(a.facets[i].polygons, b.facets[i].polygons);
+    EXPECT_EQ(a.facets[i].holes, b.facets[i].holes);
+    EXPECT_EQ(a.facets[i].marker, b.facets[i].marker);
+  }
+  EXPECT_EQ(a.segments, b.segments);
+  EXPECT_EQ(a.holes, b.holes);
+  ASSERT_EQ(a.regions.size(), b.regions.size());
+  for (std::size_t i = 0; i < a.regions.size(); ++i) {
+    EXPECT_EQ(a.regions[i].point, b.regions[i].point);
+    EXPECT_EQ(a.regions[i].attribute, b.regions[i].attribute);
+    EXPECT_EQ(a.regions[i].max_volume, b.regions[i].max_volume);
+  }
+}
+
+}  // namespace
+
+TEST(WritePoly, EveryTestPlcReadsBackTheSame) {
+  TempDir dir;
+  for (const char* name : {"cube.poly", "cube10.poly", "box_cavity.poly", "layers.poly", "dihedral10.poly",
+                           "facet_hole.poly", "cube.smesh", "octahedron_be.ply", "octahedron_binary.stl"}) {
+    SCOPED_TRACE(name);
+    const plc::Plc a = read_plc(data(name));
+    write_poly(dir.file("copy.poly"), a);
+    expect_same_plc(read_poly(dir.file("copy.poly")), a);
+  }
+  plc::Plc w;
+  w.points = {{0, 0, 0}, {0, 0, 1}, {0.1, 1.0 / 3, -0.0}};
+  w.segments = {{0, 1}, {1, 2}};
+  w.regions = {{{0.5, 0.5, 0.5}, 3, -1}};
+  write_poly(dir.file("w.poly"), w);
+  expect_same_plc(read_poly(dir.file("w.poly")), w);
+  w.segments.push_back({2, 3});
+  expect_error([&] { write_poly(dir.file("bad.poly"), w); }, ExitCode::kInternal, "segment 2");
+  EXPECT_EQ(dir.count(), 2u);
 }
