@@ -12,7 +12,7 @@ plc::Plc read_off(const std::string& path) {
   std::string_view head = in.token(0);
   if (head.size() < 3 || head.substr(head.size() - 3) != "OFF" || head.find('4') != std::string_view::npos ||
       head.find('n') != std::string_view::npos) {
-    in.fail("not an OFF file: the first word is '" + std::string(head) + "', expected OFF (or COFF, NOFF, STOFF)");
+    in.fail("not an OFF file: the first word is '" + shown(head) + "', expected OFF (or COFF, NOFF, STOFF)");
   }
   std::size_t first = 1;
   if (in.size() == 1) {

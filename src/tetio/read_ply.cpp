@@ -75,12 +75,12 @@ Header parse_header(const std::string& path, const std::string& bytes) {
       if (f == "ascii") h.format = Format::kAscii;
       else if (f == "binary_little_endian") h.format = Format::kLittle;
       else if (f == "binary_big_endian") h.format = Format::kBig;
-      else fail("unknown PLY format '" + std::string(f) + "'");
+      else fail("unknown PLY format '" + shown(f) + "'");
       format_seen = true;
     } else if (w == "element") {
       if (row.size() < 3) fail("expected 'element NAME COUNT'");
       std::int64_t n = 0;
-      if (!parse_integer(row.token(2), n) || n < 0) fail("bad element count '" + std::string(row.token(2)) + "'");
+      if (!parse_integer(row.token(2), n) || n < 0) fail("bad element count '" + shown(row.token(2)) + "'");
       h.elements.push_back({std::string(row.token(1)), n, {}});
     } else if (w == "property") {
       if (h.elements.empty()) fail("a property before any element");
@@ -91,7 +91,7 @@ Header parse_header(const std::string& path, const std::string& bytes) {
         p = {std::string(row.token(4)), *t, true, *c};
       } else if (row.size() >= 3) {
         auto t = type_from(row.token(1));
-        if (!t) fail("unknown property type '" + std::string(row.token(1)) + "'");
+        if (!t) fail("unknown property type '" + shown(row.token(1)) + "'");
         p = {std::string(row.token(2)), *t, false, Type::kU8};
       } else {
         fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
@@ -102,7 +102,7 @@ Header parse_header(const std::string& path, const std::string& bytes) {
       h.body = pos;
       return h;
     } else if (w != "comment" && w != "obj_info") {
-      fail("unknown header line '" + std::string(w) + "'");
+      fail("unknown header line '" + shown(w) + "'");
     }
   }
 }
@@ -166,7 +166,7 @@ class Values {
     if (s == p_) fail_malformed(path_, line_, "unexpected end of file in the data");
     double v = 0;
     if (!parse_real(std::string_view(s, static_cast<std::size_t>(p_ - s)), v)) {
-      fail("'" + std::string(s, p_) + "' is not a finite number");
+      fail("'" + shown(std::string_view(s, static_cast<std::size_t>(p_ - s))) + "' is not a finite number");
     }
     return v;
   }

@@ -56,7 +56,7 @@ Surface read_binary(const std::string& path, const std::string& bytes) {
 
 void expect_word(TextLines& in, std::string_view word, const std::string& what) {
   in.expect(what);
-  if (in.token(0) != word) in.fail("expected '" + std::string(word) + "', found '" + std::string(in.token(0)) + "'");
+  if (in.token(0) != word) in.fail("expected '" + std::string(word) + "', found '" + shown(in.token(0)) + "'");
 }
 
 Surface read_ascii(const std::string& path, std::string bytes) {
@@ -67,7 +67,7 @@ Surface read_ascii(const std::string& path, std::string bytes) {
   while (in.next()) {
     if (in.token(0) == "endsolid") continue;
     if (in.token(0) == "solid") continue;
-    if (in.token(0) != "facet") in.fail("expected 'facet', found '" + std::string(in.token(0)) + "'");
+    if (in.token(0) != "facet") in.fail("expected 'facet', found '" + shown(in.token(0)) + "'");
     expect_word(in, "outer", "'outer loop'");
     std::vector<VertexId> face;
     for (int k = 0; k < 3; ++k) {

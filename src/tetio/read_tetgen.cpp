@@ -64,7 +64,7 @@ std::int64_t read_point_section(TextLines& in, plc::Plc& plc) {
   in.expect("the node list header");
   int dim = 0;
   if (in.integer(0) == 0) {
-    if (in.size() > 1 && in.integer(1) != 3) in.fail("dimension " + std::string(in.token(1)) + ": the 3D reader needs 3");
+    if (in.size() > 1 && in.integer(1) != 3) in.fail("dimension " + shown(in.token(1)) + ": the 3D reader needs 3");
     return read_sibling_nodes(in.path(), plc);
   }
   return read_nodes(in, plc, dim);
@@ -73,7 +73,7 @@ std::int64_t read_point_section(TextLines& in, plc::Plc& plc) {
 VertexId vertex_field(const TextLines& in, std::size_t i, std::int64_t base, std::size_t npoints) {
   const std::int64_t v = in.integer(i) - base;
   if (v < 0 || v >= static_cast<std::int64_t>(npoints)) {
-    in.fail("vertex " + std::string(in.token(i)) + " out of range (points " + std::to_string(base) + ".." +
+    in.fail("vertex " + shown(in.token(i)) + " out of range (points " + std::to_string(base) + ".." +
             std::to_string(base + static_cast<std::int64_t>(npoints) - 1) + ")");
   }
   return static_cast<VertexId>(v);
@@ -235,7 +235,7 @@ void read_ele(const std::string& path, std::int64_t base, tet::TetMesh& m) {
     const int s = predicates::orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
     if (s == 0) {
       throw Error(ExitCode::kInvalidGeometry, path + ":" + std::to_string(in.line()) + ": tetrahedron " +
-                                                  std::string(in.token(0)) + " has zero volume");
+                                                  shown(in.token(0)) + " has zero volume");
     }
     if (s < 0) std::swap(t[0], t[1]);
     m.tets.push_back(t);

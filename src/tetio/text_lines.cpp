@@ -71,16 +71,33 @@ void TextLines::need(std::size_t n, const std::string& what) const {
 
 std::int64_t TextLines::integer(std::size_t i) const {
   std::int64_t v = 0;
-  if (!parse_integer(token(i), v)) fail("field " + std::to_string(i + 1) + " '" + std::string(token(i)) + "' is not an integer");
+  if (!parse_integer(token(i), v)) fail("field " + std::to_string(i + 1) + " '" + shown(token(i)) + "' is not an integer");
   return v;
 }
 
 double TextLines::real(std::size_t i) const {
   double v = 0;
   if (!parse_real(token(i), v)) {
-    fail("field " + std::to_string(i + 1) + " '" + std::string(token(i)) + "' is not a finite number");
+    fail("field " + std::to_string(i + 1) + " '" + shown(token(i)) + "' is not a finite number");
   }
   return v;
+}
+
+std::string shown(std::string_view token) {
+  std::string out;
+  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out.push_back(static_cast<char>(c));
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out.push_back(kHex[c >> 4]);
+      out.push_back(kHex[c & 15]);
+    }
+  }
+  if (token.size() > 40) out += "...";
+  return out;
 }
 
 bool parse_integer(std::string_view s, std::int64_t& out) {

@@ -41,6 +41,10 @@ class TextLines {
   std::vector<std::string_view> tokens_;
 };
 
+// A token as an error message shows it: at most 40 characters, bytes outside printable ASCII as
+// \xNN (a damaged file must not put raw bytes into messages and logs).
+std::string shown(std::string_view token);
+
 // Strict number parsing of one token (whole token, no trailing characters).
 bool parse_integer(std::string_view s, std::int64_t& out);
 bool parse_real(std::string_view s, double& out);  // false for non-numbers and for NaN/inf

@@ -26,7 +26,7 @@ std::set<std::vector<std::tuple<double, double, double>>> faces_by_coordinates(c
 
 }  // namespace
 
-TEST(ReadSurface, OctahedronSameInEveryFormat) {
+TEST(TetioReadSurface, OctahedronSameInEveryFormat) {
   const plc::Plc off = read_plc(data("octahedron.off"));
   ASSERT_EQ(off.points.size(), 6u);
   ASSERT_EQ(off.facets.size(), 8u);
@@ -41,7 +41,7 @@ TEST(ReadSurface, OctahedronSameInEveryFormat) {
   }
 }
 
-TEST(ReadSurface, PlyFaceMarkers) {
+TEST(TetioReadSurface, PlyFaceMarkers) {
   for (const char* name : {"octahedron.ply", "octahedron_le.ply", "octahedron_be.ply"}) {
     const plc::Plc p = read_plc(data(name));
     ASSERT_EQ(p.facets.size(), 8u);
@@ -50,7 +50,7 @@ TEST(ReadSurface, PlyFaceMarkers) {
   }
 }
 
-TEST(ReadSurface, PolygonFacesOfAnOffCube) {
+TEST(TetioReadSurface, PolygonFacesOfAnOffCube) {
   TempDir dir;
   const std::string f = dir.file("cube.off");
   write_bytes(f, "OFF 8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
@@ -60,7 +60,7 @@ TEST(ReadSurface, PolygonFacesOfAnOffCube) {
   EXPECT_EQ(p.facets[5].polygons[0], (std::vector<VertexId>{3, 0, 4, 7}));
 }
 
-TEST(ReadSurface, PolygonFacesOfAPlyCube) {
+TEST(TetioReadSurface, PolygonFacesOfAPlyCube) {
   TempDir dir;
   const std::string f = dir.file("cube.ply");
   write_bytes(f, "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\nproperty double z\n"
@@ -72,14 +72,14 @@ TEST(ReadSurface, PolygonFacesOfAPlyCube) {
   EXPECT_EQ(p.facets[2].polygons[0], (std::vector<VertexId>{0, 1, 5, 4}));
 }
 
-TEST(ReadSurface, MergesExactlyEqualPointsOnly) {
+TEST(TetioReadSurface, MergesExactlyEqualPointsOnly) {
   std::vector<Point3> distinct;
   const auto remap = merge_equal_points({{0, 0, 0}, {1, 0, 0}, {-0.0, 0, -0.0}, {1, 0, 1e-300}, {1, 0, 0}}, distinct);
   EXPECT_EQ(remap, (std::vector<VertexId>{0, 1, 0, 2, 1}));
   EXPECT_EQ(distinct.size(), 3u);
 }
 
-TEST(ReadSurfaceErrors, OpenAndDegenerateSurfaces) {
+TEST(TetioReadSurfaceErrors, OpenAndDegenerateSurfaces) {
   expect_error([] { read_plc(data("bad_open.off")); }, ExitCode::kInvalidGeometry, "bad_open.off: the surface is not closed: the edge from");
   expect_error([] { read_plc(data("bad_open.stl")); }, ExitCode::kInvalidGeometry, "belongs to 1 face(s)");
   TempDir dir;
@@ -90,7 +90,7 @@ TEST(ReadSurfaceErrors, OpenAndDegenerateSurfaces) {
   expect_error([&] { read_plc(f); }, ExitCode::kInvalidGeometry, "no face");
 }
 
-TEST(ReadSurfaceErrors, MalformedFiles) {
+TEST(TetioReadSurfaceErrors, MalformedFiles) {
   expect_error([] { read_plc(data("bad_truncated.ply")); }, ExitCode::kInputMalformed, "binary data");
   expect_error([] { read_plc(data("bad_garbage.stl")); }, ExitCode::kInputMalformed, "not an STL file");
   TempDir dir;
@@ -112,4 +112,11 @@ TEST(ReadSurfaceErrors, MalformedFiles) {
   expect_error([&] { read_plc(ply); }, ExitCode::kInputMalformed, "x.ply:12: 'inf' is not a finite number");
   write_bytes(ply, "ply\nformat binary_middle_endian 1.0\nend_header\n");
   expect_error([&] { read_plc(ply); }, ExitCode::kInputMalformed, "x.ply:2: unknown PLY format");
+}
+
+TEST(TetioReadSurfaceErrors, DamagedBytesAreEscapedInMessages) {
+  TempDir dir;
+  const std::string off = dir.file("x.off");
+  write_bytes(off, "OFF\n3 1 0\n0 0 0\n1 \xce\xff 0\n0 1 0\n3 0 1 2\n");
+  expect_error([&] { read_plc(off); }, ExitCode::kInputMalformed, "x.off:4: field 2 '\\xce\\xff' is not a finite number");
 }

@@ -11,7 +11,7 @@ using namespace fdr;
 using namespace fdr::tetio;
 using namespace fdr::tetio::testing;
 
-TEST(ReadPoly, UnitCubeOneBased) {
+TEST(TetioReadPoly, UnitCubeOneBased) {
   const plc::Plc p = read_plc(data("cube.poly"));
   ASSERT_EQ(p.points.size(), 8u);
   EXPECT_EQ(p.points[6], (Point3{1, 1, 1}));
@@ -24,7 +24,7 @@ TEST(ReadPoly, UnitCubeOneBased) {
   EXPECT_EQ(p.source, data("cube.poly"));
 }
 
-TEST(ReadPoly, CavityZeroBasedWithVolumeHoleAndPointMarkers) {
+TEST(TetioReadPoly, CavityZeroBasedWithVolumeHoleAndPointMarkers) {
   const plc::Plc p = read_poly(data("box_cavity.poly"));
   ASSERT_EQ(p.points.size(), 16u);
   EXPECT_EQ(p.points[0], (Point3{0, 0, 0}));
@@ -36,7 +36,7 @@ TEST(ReadPoly, CavityZeroBasedWithVolumeHoleAndPointMarkers) {
   EXPECT_EQ(p.holes[0], (Point3{1.5, 1.5, 1.5}));
 }
 
-TEST(ReadPoly, LayersRegionsWithAttributesAndVolumes) {
+TEST(TetioReadPoly, LayersRegionsWithAttributesAndVolumes) {
   const plc::Plc p = read_poly(data("layers.poly"));
   EXPECT_EQ(p.points.size(), 12u);
   EXPECT_EQ(p.facets.size(), 11u);
@@ -49,7 +49,7 @@ TEST(ReadPoly, LayersRegionsWithAttributesAndVolumes) {
   EXPECT_EQ(p.regions[1].max_volume, 0.05);
 }
 
-TEST(ReadPoly, FacetWithHolePolygonAndHolePoint) {
+TEST(TetioReadPoly, FacetWithHolePolygonAndHolePoint) {
   const plc::Plc p = read_poly(data("facet_hole.poly"));
   ASSERT_EQ(p.facets.size(), 7u);
   const plc::Facet& top = p.facets[1];
@@ -60,7 +60,7 @@ TEST(ReadPoly, FacetWithHolePolygonAndHolePoint) {
   EXPECT_EQ(p.facets[2].marker, 7);
 }
 
-TEST(ReadPoly, SmallDihedralWedgeAndTheExperimentCube) {
+TEST(TetioReadPoly, SmallDihedralWedgeAndTheExperimentCube) {
   const plc::Plc w = read_poly(data("dihedral10.poly"));
   EXPECT_EQ(w.points.size(), 6u);
   ASSERT_EQ(w.facets.size(), 5u);
@@ -70,7 +70,7 @@ TEST(ReadPoly, SmallDihedralWedgeAndTheExperimentCube) {
   EXPECT_EQ(c.points[6], (Point3{10, 10, 10}));
 }
 
-TEST(ReadPoly, SegmentOnlyFacetsBecomeFreeSegments) {
+TEST(TetioReadPoly, SegmentOnlyFacetsBecomeFreeSegments) {
   TempDir dir;
   const std::string f = dir.file("well.poly");
   write_bytes(f, "3 3 0 0\n1 0 0 0\n2 0 0 1\n3 0 0 2\n2 0\n1\n2 1 2\n1\n2 2 3\n0\n");
@@ -79,7 +79,7 @@ TEST(ReadPoly, SegmentOnlyFacetsBecomeFreeSegments) {
   EXPECT_EQ(p.segments, (std::vector<std::array<VertexId, 2>>{{0, 1}, {1, 2}}));
 }
 
-TEST(ReadSmesh, PointsFromTheSiblingNodeFile) {
+TEST(TetioReadSmesh, PointsFromTheSiblingNodeFile) {
   const plc::Plc p = read_plc(data("cube.smesh"));
   ASSERT_EQ(p.points.size(), 8u);
   EXPECT_EQ(p.point_markers.size(), 8u);
@@ -88,7 +88,7 @@ TEST(ReadSmesh, PointsFromTheSiblingNodeFile) {
   EXPECT_EQ(p.facets[5].marker, 6);
 }
 
-TEST(ReadPoly, EndingAfterTheFacetsMeansNoHolesNoRegions) {
+TEST(TetioReadPoly, EndingAfterTheFacetsMeansNoHolesNoRegions) {
   TempDir dir;
   write_bytes(dir.file("short.poly"), "3 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n1 0\n1\n3 1 2 3\n");
   const plc::Plc p = read_poly(dir.file("short.poly"));
@@ -96,7 +96,7 @@ TEST(ReadPoly, EndingAfterTheFacetsMeansNoHolesNoRegions) {
   EXPECT_TRUE(p.holes.empty() && p.regions.empty());
 }
 
-TEST(ReadSmesh, MissingSiblingNodeFile) {
+TEST(TetioReadSmesh, MissingSiblingNodeFile) {
   TempDir dir;
   write_bytes(dir.file("lone.smesh"), "0 3 0 0\n1 0\n3 1 2 3\n0\n");
   expect_error([&] { read_smesh(dir.file("lone.smesh")); }, ExitCode::kInputUnreadable, "lone.node: cannot open");
@@ -107,14 +107,14 @@ TEST(ReadSmesh, MissingSiblingNodeFile) {
                "lone.smesh:4: a polygon needs at least one corner");
 }
 
-TEST(ReadNode, PointSetOnly) {
+TEST(TetioReadNode, PointSetOnly) {
   const plc::Plc p = read_plc(data("cube.node"));
   EXPECT_EQ(p.points.size(), 8u);
   EXPECT_TRUE(p.facets.empty());
   EXPECT_EQ(p.point_markers[7], 2);
 }
 
-TEST(PolyDimension, TellsTwoFromThree) {
+TEST(TetioPolyDimension, TellsTwoFromThree) {
   EXPECT_EQ(poly_dimension(data("cube.poly")), 3);
   EXPECT_EQ(poly_dimension(data("box_cavity.poly")), 3);
   EXPECT_EQ(poly_dimension(data("square2d.poly")), 2);
@@ -125,7 +125,7 @@ TEST(PolyDimension, TellsTwoFromThree) {
   expect_error([&] { poly_dimension(dir.file("empty.poly")); }, ExitCode::kInputMalformed, "empty file");
 }
 
-TEST(ReadPolyErrors, NameFileAndLine) {
+TEST(TetioReadPolyErrors, NameFileAndLine) {
   expect_error([] { read_plc(data("bad_nan.poly")); }, ExitCode::kInputMalformed, "bad_nan.poly:9: field 4 'nan' is not a finite number");
   expect_error([] { read_plc(data("bad_truncated.poly")); }, ExitCode::kInputMalformed, "unexpected end of file, expected facet 3");
   expect_error([] { read_plc(data("bad_index.poly")); }, ExitCode::kInputMalformed, "bad_index.poly:13: vertex 9 out of range (points 1..8)");
@@ -134,14 +134,14 @@ TEST(ReadPolyErrors, NameFileAndLine) {
   expect_error([] { read_plc(data("cube.obj")); }, ExitCode::kInputUnreadable, "unknown 3D input format '.obj'");
 }
 
-TEST(ReadPolyErrors, GeometricFaultsAreLeftToThePlcChecks) {
+TEST(TetioReadPolyErrors, GeometricFaultsAreLeftToThePlcChecks) {
   // The reader parses these; plc::check rejects them (non-planar facet, hole outside, crossing facets).
   EXPECT_EQ(read_plc(data("bad_nonplanar.poly")).points[6].z, 1.25);
   EXPECT_EQ(read_plc(data("bad_hole_outside.poly")).holes.size(), 1u);
   EXPECT_EQ(read_plc(data("bad_intersecting.poly")).facets.size(), 7u);
 }
 
-TEST(ReadPolyErrors, OddHeadersAndOutOfSequencePoints) {
+TEST(TetioReadPolyErrors, OddHeadersAndOutOfSequencePoints) {
   TempDir dir;
   const std::string f = dir.file("x.poly");
   write_bytes(f, "2 3 0 0\n1 0 0 0\n3 1 0 0\n");
@@ -160,7 +160,7 @@ TEST(ReadPolyErrors, OddHeadersAndOutOfSequencePoints) {
 
 // Every prefix and many byte-damaged copies of the valid inputs either read or fail with an
 // fdr::Error: nothing crashes, nothing else is thrown.
-TEST(ReadRobustness, TruncatedAndDamagedFilesFailCleanly) {
+TEST(TetioReadRobustness, TruncatedAndDamagedFilesFailCleanly) {
   TempDir dir;
   std::mt19937 rng(48);
   for (const char* name : {"cube.poly", "facet_hole.poly", "layers.poly", "octahedron.off", "octahedron.stl",
@@ -207,7 +207,7 @@ void expect_same_plc(const plc::Plc& a, const plc::Plc& b) {
 
 }  // namespace
 
-TEST(WritePoly, EveryTestPlcReadsBackTheSame) {
+TEST(TetioWritePoly, EveryTestPlcReadsBackTheSame) {
   TempDir dir;
   for (const char* name : {"cube.poly", "cube10.poly", "box_cavity.poly", "layers.poly", "dihedral10.poly",
                            "facet_hole.poly", "cube.smesh", "octahedron_be.ply", "octahedron_binary.stl"}) {

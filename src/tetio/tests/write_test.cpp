@@ -20,7 +20,7 @@ std::size_t count_of(const std::string& text, const std::string& part) {
 
 }  // namespace
 
-TEST(CubeMesh, SixPositiveTetrahedraTwelveFaces) {
+TEST(TetioCubeMesh, SixPositiveTetrahedraTwelveFaces) {
   const tet::TetMesh m = cube_mesh();
   ASSERT_EQ(m.tets.size(), 6u);
   double vol6 = 0;
@@ -32,7 +32,7 @@ TEST(CubeMesh, SixPositiveTetrahedraTwelveFaces) {
   EXPECT_EQ(m.faces.size(), 12u);
 }
 
-TEST(WriteTetgen, ReadsBackBitForBit) {
+TEST(TetioWriteTetgen, ReadsBackBitForBit) {
   TempDir dir;
   tet::TetMesh m = cube_mesh();
   m.points[3] = {1, 1, -0.0};  // signed zero must survive the text
@@ -50,7 +50,7 @@ TEST(WriteTetgen, ReadsBackBitForBit) {
   EXPECT_EQ(ele.substr(0, ele.find('\n')), "6 4 1");
 }
 
-TEST(ReadTetgenMesh, ZeroVolumeAndMissingFiles) {
+TEST(TetioReadTetgenMesh, ZeroVolumeAndMissingFiles) {
   TempDir dir;
   write_bytes(dir.file("flat.node"), "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n");
   write_bytes(dir.file("flat.ele"), "1 4 0\n1 1 2 3 4\n");
@@ -60,7 +60,7 @@ TEST(ReadTetgenMesh, ZeroVolumeAndMissingFiles) {
   expect_error([&] { read_tetgen_mesh(dir.file("none")); }, ExitCode::kInputUnreadable, "none.node: cannot open");
 }
 
-TEST(WriteTetgen, EleListsThePositiveVolumeOrderAsTetgenDoes) {
+TEST(TetioWriteTetgen, EleListsThePositiveVolumeOrderAsTetgenDoes) {
   TempDir dir;
   const tet::TetMesh m = cube_mesh();
   write_tetgen(dir.file("c.node"), m);
@@ -74,7 +74,7 @@ TEST(WriteTetgen, EleListsThePositiveVolumeOrderAsTetgenDoes) {
   }
 }
 
-TEST(WriteVtu, AppendedAndBase64Headers) {
+TEST(TetioWriteVtu, AppendedAndBase64Headers) {
   TempDir dir;
   const tet::TetMesh m = cube_mesh();
   write_vtu(dir.file("raw.vtu"), m);
@@ -93,7 +93,7 @@ TEST(WriteVtu, AppendedAndBase64Headers) {
   EXPECT_EQ(b64.find("AppendedData"), std::string::npos);
 }
 
-TEST(WriteMsh, SectionsAndPhysicalGroups) {
+TEST(TetioWriteMsh, SectionsAndPhysicalGroups) {
   TempDir dir;
   const tet::TetMesh m = cube_mesh();
   write_msh(dir.file("cube.msh"), m);
@@ -107,7 +107,7 @@ TEST(WriteMsh, SectionsAndPhysicalGroups) {
   EXPECT_NE(s.find("$Nodes\n1 8 1 8\n3 1 0 8\n"), std::string::npos);
 }
 
-TEST(WriteMsh, NonPositiveMarkersAreShifted) {
+TEST(TetioWriteMsh, NonPositiveMarkersAreShifted) {
   TempDir dir;
   tet::TetMesh m = cube_mesh();
   m.tet_material.assign(6, 0);
@@ -117,7 +117,7 @@ TEST(WriteMsh, NonPositiveMarkersAreShifted) {
   EXPECT_NE(s.find("3 1 \"material_0\"\n"), std::string::npos);
 }
 
-TEST(WriteAll, NothingLeftOnFailure) {
+TEST(TetioWriteAll, NothingLeftOnFailure) {
   TempDir dir;
   tet::TetMesh m = cube_mesh();
   expect_error([&] { write_vtu(dir.file("no/such/folder/x.vtu"), m); }, ExitCode::kOutputError, "x.vtu");
@@ -133,7 +133,7 @@ TEST(WriteAll, NothingLeftOnFailure) {
   EXPECT_EQ(dir.count(), 0u);
 }
 
-TEST(WriteAll, SeveralOutputsAsOne) {
+TEST(TetioWriteAll, SeveralOutputsAsOne) {
   TempDir dir;
   const tet::TetMesh m = cube_mesh();
   expect_error([&] { write_tets_all({dir.file("a.vtu"), dir.file("a.msh"), dir.file("gone/a.node")}, m); },
@@ -145,7 +145,7 @@ TEST(WriteAll, SeveralOutputsAsOne) {
   EXPECT_NE(read_file_bytes(dir.file("a.vtu")).find("format=\"binary\""), std::string::npos);
 }
 
-TEST(WriteAll, ReplacesAnExistingFileWhole) {
+TEST(TetioWriteAll, ReplacesAnExistingFileWhole) {
   TempDir dir;
   write_bytes(dir.file("m.msh"), "old content");
   write_tets(dir.file("m.msh"), cube_mesh());
