@@ -20,6 +20,15 @@ bool collinear(Point3 a, Point3 b, Point3 c) {
          predicates::orient2d({a.z, a.x}, {b.z, b.x}, {c.z, c.x}) == 0;
 }
 
+// The face opposite position j, oriented as the boundary of a positive tetrahedron ((-1)^j times
+// the other positions in increasing order) and rotated to start at position i: (i, x, y), as
+// kDirEdge[i][j] = {x, y}. A neighbour sharing that face sees it as (i', y', x').
+constexpr int kDirEdge[4][4][2] = {
+    {{0, 0}, {3, 2}, {1, 3}, {2, 1}},
+    {{2, 3}, {0, 0}, {3, 0}, {0, 2}},
+    {{3, 1}, {0, 3}, {0, 0}, {1, 0}},
+    {{1, 2}, {2, 0}, {0, 1}, {0, 0}},
+};
 }  // namespace
 
 VertexId Delaunay3::add_vertex(Point3 p) {
@@ -31,6 +40,7 @@ VertexId Delaunay3::add_vertex(Point3 p) {
   }
   pts_.push_back(p);
   vtet_.push_back(kNoId);
+  vlocal_.push_back(kNoId);
   return static_cast<VertexId>(pts_.size() - 1);
 }
 
@@ -39,8 +49,10 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   out.vertex_of.assign(pts.size(), kNoId);
   pts_.reserve(pts_.size() + pts.size());
   vtet_.reserve(vtet_.size() + pts.size());
-  // About 6.5 tetrahedra per point in random position, plus the hull's ghosts.
-  cells_.reserve(cells_.size() + pts.size() * 13 / 2 + 64);
+  vlocal_.reserve(vlocal_.size() + pts.size());
+  // About 6.75 tetrahedra per point in random position, plus the hull's ghosts: room for 7 per
+  // point spares the copy that growing the array would make at its largest.
+  cells_.reserve(cells_.size() + pts.size() * 7 + 1024);
   in_cavity_.reserve(cells_.capacity());
   for (const Index i : brio_order(pts)) {
     const Insertion r = insert(pts[i], kNoId, nullptr);
@@ -182,7 +194,8 @@ void Delaunay3::insert_vertex(VertexId v, TetId start, std::vector<TetId>* creat
 void Delaunay3::dig_cavity(TetId start, VertexId v) {
   // The cavity: the tetrahedra whose circumspheres strictly hold p, grown across faces from the
   // one that holds p (they form a connected, star-shaped set). Each face to a tetrahedron
-  // outside it becomes a new tetrahedron with p.
+  // outside it becomes a new tetrahedron with p. Marks: 1 in the cavity, 2 tested and outside
+  // (a tetrahedron next to several cavity ones is tested once).
   const Point3 p = pts_[v];
   cavity_.clear();
   ball_.clear();
@@ -193,15 +206,19 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
     for (int i = 0; i < 4; ++i) {
       const Index code = cells_[t].n[i];
       const TetId nb = code >> 2;
-      if (in_cavity_[nb]) continue;
-      if (conflict(nb, p)) {
-        in_cavity_[nb] = 1;
-        cavity_.push_back(nb);
-      } else {
-        NewCell nc{cells_[t].v, code, i};
-        nc.v[i] = v;
-        ball_.push_back(nc);
+      std::uint8_t& mark = in_cavity_[nb];
+      if (mark == 1) continue;
+      if (mark == 0) {
+        if (conflict(nb, p)) {
+          mark = 1;
+          cavity_.push_back(nb);
+          continue;
+        }
+        mark = 2;
       }
+      NewCell nc{cells_[t].v, code, i};
+      nc.v[i] = v;
+      ball_.push_back(nc);
     }
   }
 }
@@ -224,6 +241,7 @@ void Delaunay3::fill_cavity(VertexId v, std::vector<TetId>* created) {
     in_cavity_[t] = 0;
     if (!is_ghost(t)) --finite_;
   }
+  for (const NewCell& nc : ball_) in_cavity_[nc.outside >> 2] = 0;
   for (const NewCell& nc : ball_) {
     const TetId id = reused < cavity_.size() ? cavity_[reused++] : new_slot();
     Cell& c = cells_[id];
@@ -248,12 +266,60 @@ void Delaunay3::fill_cavity(VertexId v, std::vector<TetId>* created) {
 }
 
 void Delaunay3::link_new_faces(std::span<const TetId> ids) {
-  // The faces through the new vertex pair up across the edges of the cavity's boundary: the face
-  // opposite position j of a new tetrahedron holds the new vertex and the edge of the two
-  // positions that are neither j nor the new vertex's, and exactly one other new tetrahedron
-  // holds that edge with the new vertex.
+  // The faces through the new vertex pair up across the edges of the cavity's boundary: the
+  // face opposite position j of a new tetrahedron holds the new vertex and one boundary edge,
+  // and exactly one other new tetrahedron holds that edge with the new vertex, in the opposite
+  // direction (the two induce opposite orientations on their shared face). The boundary's
+  // vertices get small local numbers, so that a directed edge is a cell of a small square table.
+  local_verts_.clear();
+  auto local = [&](VertexId u) -> Index {
+    if (u == kInfinite) return 0;
+    if (vlocal_[u] == kNoId) {
+      local_verts_.push_back(u);
+      vlocal_[u] = static_cast<Index>(local_verts_.size());
+    }
+    return vlocal_[u];
+  };
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    for (int m = 0; m < 4; ++m)
+      if (m != ball_[k].i) local(cells_[ids[k]].v[m]);
+  const std::size_t n = local_verts_.size() + 1;
+  if (n <= kMaxDenseLocals) {
+    if (++stamp_ == 0) {  // the stamps wrapped around: forget every old one
+      std::fill(edge_dense_.begin(), edge_dense_.end(), DenseSlot{});
+      stamp_ = 1;
+    }
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const TetId id = ids[k];
+      const int i = ball_[k].i;
+      const auto& v = cells_[id].v;
+      for (int j = 0; j < 4; ++j) {
+        if (j == i) continue;
+        const Index a = local(v[kDirEdge[i][j][0]]), b = local(v[kDirEdge[i][j][1]]);
+        const DenseSlot& other = edge_dense_[b * n + a];
+        if (other.stamp == stamp_) {
+          cells_[id].n[j] = other.code;
+          cells_[other.code >> 2].n[other.code & 3] = 4 * id + static_cast<Index>(j);
+        } else {
+          edge_dense_[a * n + b] = {stamp_, 4 * id + static_cast<Index>(j)};
+        }
+      }
+    }
+  } else {
+    link_by_hash(ids);
+  }
+  for (const VertexId u : local_verts_) vlocal_[u] = kNoId;
+}
+
+void Delaunay3::link_by_hash(std::span<const TetId> ids) {
+  // The same pairing for large cavities (degenerate inputs), keyed by the directed edge's
+  // local numbers in an open-addressing table.
   std::size_t cap = 64;
-  while (cap < 4 * ids.size()) cap *= 2;
+  int shift = 64 - 6;
+  while (cap < 4 * ids.size()) {
+    cap *= 2;
+    --shift;
+  }
   if (edge_table_.size() < cap) edge_table_.assign(cap, EdgeSlot{});
   const std::size_t mask = cap - 1;
   edge_used_.clear();
@@ -263,12 +329,10 @@ void Delaunay3::link_new_faces(std::span<const TetId> ids) {
     const auto& v = cells_[id].v;
     for (int j = 0; j < 4; ++j) {
       if (j == i) continue;
-      int e0 = -1, e1 = -1;
-      for (int m = 0; m < 4; ++m)
-        if (m != i && m != j) (e0 < 0 ? e0 : e1) = m;
-      const VertexId a = std::min(v[e0], v[e1]), b = std::max(v[e0], v[e1]);
+      const VertexId x = v[kDirEdge[i][j][0]], y = v[kDirEdge[i][j][1]];
+      const VertexId a = std::min(x, y), b = std::max(x, y);
       const std::uint64_t mix = (std::uint64_t(a) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(b) * 0xC2B2AE3D27D4EB4Full);
-      std::size_t h = static_cast<std::size_t>(mix >> 32) & mask;
+      std::size_t h = static_cast<std::size_t>(mix >> shift);
       for (;; h = (h + 1) & mask) {
         EdgeSlot& slot = edge_table_[h];
         if (slot.a == a && slot.b == b) {

@@ -106,11 +106,13 @@ class Delaunay3 {
   void dig_cavity(TetId start, VertexId v);
   void fill_cavity(VertexId v, std::vector<TetId>* created);
   void link_new_faces(std::span<const TetId> ids);
+  void link_by_hash(std::span<const TetId> ids);
   TetId new_slot();
   VertexId add_vertex(Point3 p);
 
   LargeArray<Point3> pts_;
   LargeArray<TetId> vtet_;
+  LargeArray<Index> vlocal_;  // kNoId, or the vertex's local number during an insertion
   LargeArray<Cell> cells_;
   LargeArray<std::uint8_t> in_cavity_;
   std::vector<TetId> free_;
@@ -130,6 +132,14 @@ class Delaunay3 {
     Index code = 0;
   };
   std::vector<EdgeSlot> edge_table_;
+  struct DenseSlot {
+    std::uint32_t stamp = 0;  // the insertion that wrote it
+    Index code = 0;
+  };
+  static constexpr std::size_t kMaxDenseLocals = 128;
+  std::vector<DenseSlot> edge_dense_ = std::vector<DenseSlot>(kMaxDenseLocals * kMaxDenseLocals);
+  std::uint32_t stamp_ = 0;
+  std::vector<VertexId> local_verts_;
   std::vector<std::size_t> edge_used_;
 };
 

@@ -102,7 +102,8 @@ TetMesh Delaunay3::to_mesh() const {
 }
 
 std::size_t Delaunay3::bytes() const {
-  return pts_.capacity() * sizeof(Point3) + vtet_.capacity() * sizeof(TetId) + cells_.capacity() * sizeof(Cell) +
+  return pts_.capacity() * sizeof(Point3) + (vtet_.capacity() + vlocal_.capacity()) * sizeof(Index) +
+         cells_.capacity() * sizeof(Cell) + edge_dense_.capacity() * sizeof(DenseSlot) +
          in_cavity_.capacity() + free_.capacity() * sizeof(TetId) + cavity_.capacity() * sizeof(TetId) +
          ball_.capacity() * sizeof(NewCell) + ball_ids_.capacity() * sizeof(TetId) +
          edge_table_.capacity() * sizeof(EdgeSlot) + edge_used_.capacity() * sizeof(std::size_t);
