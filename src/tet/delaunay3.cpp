@@ -31,13 +31,15 @@ constexpr int kDirEdge[4][4][2] = {
 };
 }  // namespace
 
+void Delaunay3::require_finite(Point3 p) const {
+  if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) return;
+  std::ostringstream os;
+  os << "Delaunay tetrahedralization: the point after vertex " << pts_.size() << " has a non-finite coordinate ("
+     << p.x << ", " << p.y << ", " << p.z << ")";
+  throw Error(ExitCode::kInvalidGeometry, os.str());
+}
+
 VertexId Delaunay3::add_vertex(Point3 p) {
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-    std::ostringstream os;
-    os << "Delaunay tetrahedralization: point " << pts_.size() << " has a non-finite coordinate (" << p.x
-       << ", " << p.y << ", " << p.z << ")";
-    throw Error(ExitCode::kInvalidGeometry, os.str());
-  }
   pts_.push_back(p);
   vtet_.push_back(kNoId);
   vlocal_.push_back(kNoId);
@@ -46,6 +48,7 @@ VertexId Delaunay3::add_vertex(Point3 p) {
 
 BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   BulkInsertion out;
+  for (const Point3& p : pts) require_finite(p);  // before any change
   out.vertex_of.assign(pts.size(), kNoId);
   pts_.reserve(pts_.size() + pts.size());
   vtet_.reserve(vtet_.size() + pts.size());
@@ -64,6 +67,7 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
 }
 
 Insertion Delaunay3::insert(Point3 p, TetId hint, std::vector<TetId>* created) {
+  require_finite(p);
   if (dim_ < 3) return insert_low_dim(p, created);
   const TetId t = locate(p, hint);
   if (!is_ghost(t))
@@ -152,7 +156,8 @@ TetId Delaunay3::walk(Point3 p, TetId t) const {
   // only keeps the walk from favouring one direction.
   int from = -1;
   std::uint32_t turn = 0;
-  for (;;) {
+  for (std::size_t steps = 0;; ++steps) {
+    if (steps > cells_.size()) return scan(p);
     const Cell& c = cells_[t];
     const Point3 q[4] = {pts_[c.v[0]], pts_[c.v[1]], pts_[c.v[2]], pts_[c.v[3]]};
     const int s = static_cast<int>(turn++ & 3);
@@ -172,6 +177,27 @@ TetId Delaunay3::walk(Point3 p, TetId t) const {
     from = static_cast<int>(c.n[next] & 3);
     if (is_ghost(t)) return t;
   }
+}
+
+TetId Delaunay3::scan(Point3 p) const {
+  // Every tetrahedron in turn: a safety net should a walk ever run longer than there are
+  // tetrahedra (it cannot cycle in a Delaunay tetrahedralization).
+  for (TetId t = 0; t < cells_.size(); ++t) {
+    if (!alive(t)) continue;
+    const auto& v = cells_[t].v;
+    if (is_ghost(t)) {
+      if (orient3d(pts_[v[0]], pts_[v[1]], pts_[v[2]], p) > 0) return t;
+      continue;
+    }
+    bool inside = true;
+    for (int i = 0; i < 4 && inside; ++i) {
+      Point3 r[4] = {pts_[v[0]], pts_[v[1]], pts_[v[2]], pts_[v[3]]};
+      r[i] = p;
+      inside = orient3d(r[0], r[1], r[2], r[3]) >= 0;
+    }
+    if (inside) return t;
+  }
+  return last_;
 }
 
 bool Delaunay3::conflict(TetId t, Point3 p) const {

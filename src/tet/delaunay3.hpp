@@ -43,6 +43,8 @@ struct BulkInsertion {
 class Delaunay3 {
  public:
   // Inserts all points in a spatially sorted biased randomized order (tet/spatial_sort.hpp).
+  // A non-finite coordinate (here or in insert) throws fdr::Error (kInvalidGeometry) before
+  // anything changes.
   BulkInsertion insert_all(std::span<const Point3> pts);
 
   // Inserts one point, starting the search at `hint` (any live tetrahedron; kNoId: the last one
@@ -102,6 +104,8 @@ class Delaunay3 {
   void build_first_tet(VertexId a, VertexId b, VertexId c, VertexId d);
   void insert_vertex(VertexId v, TetId start, std::vector<TetId>* created);
   TetId walk(Point3 p, TetId t) const;
+  TetId scan(Point3 p) const;
+  void require_finite(Point3 p) const;
   bool conflict(TetId t, Point3 p) const;
   void dig_cavity(TetId start, VertexId v);
   void fill_cavity(VertexId v, std::vector<TetId>* created);

@@ -10,6 +10,7 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include "base/error.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/delaunay3.hpp"
 #include "tet/spatial_sort.hpp"
@@ -284,4 +285,51 @@ TEST(Delaunay3, LocateFindsTheContainingTetrahedron) {
       EXPECT_GE(predicates::orient3d(r[0], r[1], r[2], r[3]), 0);
     }
   }
+}
+
+TEST(Delaunay3, NearDegenerateSetsAreValid) {
+  // Points on a sphere rounded to doubles (nearly cospherical), and a lattice moved by single
+  // ulps (nearly coplanar and cospherical everywhere): the filter's uncertain cases.
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> g(0, 1);
+  std::vector<Point3> sphere;
+  for (int i = 0; i < 3000; ++i) {
+    Point3 v{g(rng), g(rng), g(rng)};
+    sphere.push_back(Point3{5, 5, 5} + (1 / std::sqrt(norm2(v))) * v);
+  }
+  expect_like_cgal_degenerate(sphere);
+  std::uniform_int_distribution<int> pick(0, 5);
+  std::vector<Point3> lattice;
+  for (int x = 0; x < 8; ++x)
+    for (int y = 0; y < 8; ++y)
+      for (int z = 0; z < 8; ++z) {
+        Point3 p{1 + x * 0.1, 1 + y * 0.1, 1 + z * 0.1};
+        const int k = pick(rng);
+        double* c = k % 3 == 0 ? &p.x : (k % 3 == 1 ? &p.y : &p.z);
+        *c = std::nextafter(*c, k < 3 ? 10.0 : -10.0);
+        lattice.push_back(p);
+      }
+  predicates::reset_counters();
+  expect_like_cgal_degenerate(lattice);
+  EXPECT_GT(predicates::counters().exact, 0u);
+}
+
+TEST(Delaunay3, NonFinitePointsAreRefusedBeforeAnyChange) {
+  auto pts = random_cube(100, 41);
+  pts[50].y = std::nan("");
+  Delaunay3 d;
+  EXPECT_THROW(d.insert_all(pts), Error);
+  EXPECT_EQ(d.num_vertices(), 0u);
+  pts[50].y = 0.5;
+  d.insert_all(pts);
+  const std::size_t before = d.num_finite_tets();
+  try {
+    d.insert({0.5, HUGE_VAL, 0.5});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidGeometry);
+    EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos);
+  }
+  EXPECT_EQ(d.num_finite_tets(), before);
+  expect_valid_delaunay(d);
 }
