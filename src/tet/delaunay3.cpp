@@ -227,6 +227,7 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
   ball_.clear();
   in_cavity_[start] = 1;
   cavity_.push_back(start);
+  for (const Index c : cells_[start].n) __builtin_prefetch(&cells_[c >> 2]);
   for (std::size_t k = 0; k < cavity_.size(); ++k) {
     const TetId t = cavity_[k];
     for (int i = 0; i < 4; ++i) {
@@ -238,6 +239,9 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
         if (conflict(nb, p)) {
           mark = 1;
           cavity_.push_back(nb);
+          // Its neighbours are tested when its turn comes: start fetching them now, since they
+          // may lie anywhere in the array and the test would wait for memory.
+          for (const Index c : cells_[nb].n) __builtin_prefetch(&cells_[c >> 2]);
           continue;
         }
         mark = 2;
