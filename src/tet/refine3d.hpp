@@ -1,0 +1,57 @@
+// The start of Functional Delaunay Refinement in 3D: which tetrahedra are B-bad (circumradius
+// over the spacing at the circumcentre, R / f(c), above the bound B) and the order in which
+// refinement splits them (largest R / f(c) first).
+#pragma once
+#include <array>
+#include <functional>
+#include <queue>
+#include <vector>
+#include "base/point3.hpp"
+#include "tet/delaunay3.hpp"
+
+namespace fdr::tet {
+
+// The spacing function f: a positive length at every point of the domain.
+using Spacing3 = std::function<double(Point3)>;
+
+// A finite tetrahedron's circumcentre and R / f(c).
+struct SizeRatio {
+  Point3 centre;
+  double ratio = 0;
+};
+SizeRatio size_ratio(const Delaunay3& dt, TetId t, const Spacing3& f);
+
+// True when the tetrahedron is B-bad: R / f(c) > B.
+inline bool is_bad(const SizeRatio& s, double bound) { return s.ratio > bound; }
+
+// A B-bad tetrahedron waiting to be split, with the vertices it had when queued (its slot may be
+// reused by the time it is taken out).
+struct BadTet {
+  double ratio = 0;
+  TetId tet = kNoId;
+  std::array<VertexId, 4> v{};
+  Point3 centre;
+};
+
+// The B-bad tetrahedra by decreasing R / f(c), ties by their vertex ids, so that the order does not
+// depend on where tetrahedra are stored. Entries whose tetrahedron was destroyed meanwhile are
+// dropped when they come up.
+class BadTetQueue {
+ public:
+  explicit BadTetQueue(double bound) : bound_(bound) {}
+  // Queues t when it is finite and B-bad; returns whether it was queued.
+  bool offer(const Delaunay3& dt, TetId t, const Spacing3& f);
+  // The worst tetrahedron still in dt, or false when none is left.
+  bool pop(const Delaunay3& dt, BadTet* out);
+  std::size_t size() const { return heap_.size(); }
+  double bound() const { return bound_; }
+
+ private:
+  struct Worse {
+    bool operator()(const BadTet& a, const BadTet& b) const;
+  };
+  double bound_;
+  std::priority_queue<BadTet, std::vector<BadTet>, Worse> heap_;
+};
+
+}  // namespace fdr::tet

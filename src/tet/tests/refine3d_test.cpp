@@ -1,0 +1,95 @@
+// Tetrahedron geometry, the B-bad test and the queue of bad tetrahedra.
+#include <gtest/gtest.h>
+#include <cmath>
+#include <random>
+#include "tet/delaunay3.hpp"
+#include "tet/refine3d.hpp"
+#include "tet/tet_geometry.hpp"
+
+using namespace fdr;
+using namespace fdr::tet;
+
+TEST(TetGeometry, CircumsphereOfTheCornerTetrahedron) {
+  const Sphere s = circumsphere({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  EXPECT_NEAR(s.centre.x, 0.5, 1e-15);
+  EXPECT_NEAR(s.centre.y, 0.5, 1e-15);
+  EXPECT_NEAR(s.centre.z, 0.5, 1e-15);
+  EXPECT_NEAR(s.radius, std::sqrt(3.0) / 2, 1e-15);
+}
+
+TEST(TetGeometry, CentreIsEquidistantFarFromTheOrigin) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 1000; ++i) {
+    const Point3 o{1e6, -2e6, 3e5};
+    const Point3 p[4] = {o + Point3{u(rng), u(rng), u(rng)}, o + Point3{u(rng), u(rng), u(rng)},
+                         o + Point3{u(rng), u(rng), u(rng)}, o + Point3{u(rng), u(rng), u(rng)}};
+    const Sphere s = circumsphere(p[0], p[1], p[2], p[3]);
+    if (s.radius > 100) continue;  // nearly flat: the centre is far and ill-conditioned
+    for (const Point3& q : p) EXPECT_NEAR(dist(q, s.centre), s.radius, 1e-7 * (1 + s.radius));
+  }
+}
+
+TEST(TetGeometry, RadiusEdgeOfTheRegularTetrahedron) {
+  const Point3 a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  EXPECT_NEAR(radius_edge_ratio(a, b, c, d), std::sqrt(6.0) / 4, 1e-15);
+  EXPECT_NEAR(shortest_edge(a, b, c, d), std::sqrt(8.0), 1e-15);
+}
+
+TEST(Refine3d, BadTetrahedraComeOutLargestRatioFirst) {
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(400);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  const Spacing3 f = [](Point3 p) { return 0.05 + 0.1 * p.x; };
+  const double bound = 1.0;
+  BadTetQueue q(bound);
+  std::size_t bad = 0;
+  dt.for_each_finite_tet([&](TetId t) {
+    const bool b = is_bad(size_ratio(dt, t, f), bound);
+    EXPECT_EQ(q.offer(dt, t, f), b);
+    bad += b;
+  });
+  ASSERT_GT(bad, 10u);
+  EXPECT_EQ(q.size(), bad);
+  // Splitting the worst one destroys it (and others): those leave the queue unseen.
+  BadTet worst;
+  ASSERT_TRUE(q.pop(dt, &worst));
+  EXPECT_GT(worst.ratio, bound);
+  const Insertion ins = dt.insert(worst.centre, worst.tet);
+  ASSERT_FALSE(ins.duplicate);
+  double last = worst.ratio;
+  std::size_t popped = 1;
+  BadTet b;
+  while (q.pop(dt, &b)) {
+    EXPECT_LE(b.ratio, last);
+    EXPECT_TRUE(dt.alive(b.tet) && !dt.is_ghost(b.tet));
+    last = b.ratio;
+    ++popped;
+  }
+  EXPECT_LT(popped, bad);
+}
+
+TEST(Refine3d, TiesAreOrderedByVertices) {
+  Delaunay3 dt;
+  // A cube's corners and its centre: congruent tetrahedra with equal ratios, which must come out
+  // in one fixed order.
+  std::vector<Point3> pts;
+  for (int x = 0; x < 2; ++x)
+    for (int y = 0; y < 2; ++y)
+      for (int z = 0; z < 2; ++z) pts.push_back({double(x), double(y), double(z)});
+  pts.push_back({0.5, 0.5, 0.5});
+  dt.insert_all(pts);
+  const Spacing3 f = [](Point3) { return 0.01; };
+  std::vector<std::array<VertexId, 4>> first, second;
+  for (auto* out : {&first, &second}) {
+    BadTetQueue q(1.0);
+    dt.for_each_finite_tet([&](TetId t) { q.offer(dt, t, f); });
+    BadTet b;
+    while (q.pop(dt, &b)) out->push_back(b.v);
+  }
+  EXPECT_EQ(first.size(), dt.num_finite_tets());
+  EXPECT_EQ(first, second);
+}
