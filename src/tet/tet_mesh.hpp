@@ -11,7 +11,7 @@
 namespace fdr::tet {
 
 // Tetrahedra are stored with positive volume: dot(b - a, cross(c - a, d - a)) > 0 (VTK's and
-// Gmsh's order; TetGen's .ele lists the same four vertices with the first two swapped).
+// Gmsh's and TetGen's order).
 struct TetMesh {
   std::vector<Point3> points;
   std::vector<std::array<VertexId, 4>> tets;

@@ -1,0 +1,48 @@
+// The 3D mesher's one call: a conforming Delaunay tetrahedralization of a PLC refined by FDR
+// until every tetrahedron has R/f(c) <= B (the paper's three rules), with slivers removed.
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+#include "base/point3.hpp"
+#include "plc/plc.hpp"
+#include "sizing/spacing3d.hpp"
+#include "tet/tet_mesh.hpp"
+
+namespace fdr::tet {
+
+struct TetOptions {
+  double bound = 0;               // B; 0: the default, which keeps radius-edge <= 2 (docs/3d.md)
+  bool refine = true;             // false: the conforming Delaunay tetrahedralization only
+  bool remove_slivers = true;     // sliver removal after refinement (keeps R/f <= B)
+  std::size_t max_vertices = 0;   // a cap on the vertices (0: automatic); reaching it is reported
+  std::function<void(double)> progress;  // fraction done in [0, 1], for the CLI's 0...10...20
+};
+
+// A place where a guarantee could not be met (e.g. a small input angle protected by shells).
+struct Shortfall {
+  Point3 where;
+  std::string what;
+};
+
+struct TetStats {
+  std::size_t input_vertices = 0;
+  std::size_t segment_splits = 0;  // rule 1
+  std::size_t facet_splits = 0;    // rule 2
+  std::size_t tet_splits = 0;      // rule 3
+  std::size_t rejected = 0;        // circumcentres not inserted because they encroached
+  double bound = 0;                // the B used
+  bool capped = false;             // max_vertices reached before every rule was met
+  std::vector<Shortfall> shortfalls;
+};
+
+struct TetResult {
+  TetMesh mesh;   // tetrahedra with material ids, subfacets with markers, subsegments
+  TetStats stats;
+};
+
+// Throws fdr::Error (plc::check's exit codes) on bad input; nothing else is changed.
+TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, const TetOptions& options = {});
+
+}  // namespace fdr::tet
