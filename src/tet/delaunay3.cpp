@@ -283,16 +283,14 @@ void Delaunay3::fill_cavity(VertexId v, std::vector<TetId>* created) {
       ++finite_;
       last_ = id;
     }
-    for (const VertexId u : c.v)
-      if (u != kInfinite) vtet_[u] = id;
   }
+  vtet_[v] = ball_ids_.back();
   for (; reused < cavity_.size(); ++reused) {
     cells_[cavity_[reused]].v.fill(kNoId);
     free_.push_back(cavity_[reused]);
   }
   link_new_faces(ball_ids_);
   if (created) created->insert(created->end(), ball_ids_.begin(), ball_ids_.end());
-  (void)v;
 }
 
 void Delaunay3::link_new_faces(std::span<const TetId> ids) {
@@ -300,43 +298,50 @@ void Delaunay3::link_new_faces(std::span<const TetId> ids) {
   // face opposite position j of a new tetrahedron holds the new vertex and one boundary edge,
   // and exactly one other new tetrahedron holds that edge with the new vertex, in the opposite
   // direction (the two induce opposite orientations on their shared face). The boundary's
-  // vertices get small local numbers, so that a directed edge is a cell of a small square table.
+  // vertices get small local numbers, so that a directed edge is a cell of a small square table;
+  // the first new tetrahedron to meet a vertex becomes its vertex tetrahedron.
   local_verts_.clear();
-  auto local = [&](VertexId u) -> Index {
+  auto local = [&](VertexId u, TetId id) -> Index {
     if (u == kInfinite) return 0;
     if (vlocal_[u] == kNoId) {
       local_verts_.push_back(u);
       vlocal_[u] = static_cast<Index>(local_verts_.size());
+      vtet_[u] = id;
     }
     return vlocal_[u];
   };
-  for (std::size_t k = 0; k < ids.size(); ++k)
-    for (int m = 0; m < 4; ++m)
-      if (m != ball_[k].i) local(cells_[ids[k]].v[m]);
-  const std::size_t n = local_verts_.size() + 1;
-  if (n <= kMaxDenseLocals) {
-    if (++stamp_ == 0) {  // the stamps wrapped around: forget every old one
-      std::fill(edge_dense_.begin(), edge_dense_.end(), DenseSlot{});
-      stamp_ = 1;
-    }
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const TetId id = ids[k];
-      const int i = ball_[k].i;
-      const auto& v = cells_[id].v;
-      for (int j = 0; j < 4; ++j) {
-        if (j == i) continue;
-        const Index a = local(v[kDirEdge[i][j][0]]), b = local(v[kDirEdge[i][j][1]]);
-        const DenseSlot& other = edge_dense_[b * n + a];
-        if (other.stamp == stamp_) {
-          cells_[id].n[j] = other.code;
-          cells_[other.code >> 2].n[other.code & 3] = 4 * id + static_cast<Index>(j);
-        } else {
-          edge_dense_[a * n + b] = {stamp_, 4 * id + static_cast<Index>(j)};
-        }
+  if (++stamp_ == 0) {  // the stamps wrapped around: forget every old one
+    std::fill(edge_dense_.begin(), edge_dense_.end(), DenseSlot{});
+    stamp_ = 1;
+  }
+  constexpr Index n = kMaxDenseLocals;
+  bool dense = true;
+  for (std::size_t k = 0; k < ids.size() && dense; ++k) {
+    const TetId id = ids[k];
+    const int i = ball_[k].i;
+    const auto& v = cells_[id].v;
+    for (int j = 0; j < 4 && dense; ++j) {
+      if (j == i) continue;
+      const Index a = local(v[kDirEdge[i][j][0]], id), b = local(v[kDirEdge[i][j][1]], id);
+      if (a >= n || b >= n) {
+        dense = false;
+        break;
+      }
+      const DenseSlot& other = edge_dense_[b * n + a];
+      if (other.stamp == stamp_) {
+        cells_[id].n[j] = other.code;
+        cells_[other.code >> 2].n[other.code & 3] = 4 * id + static_cast<Index>(j);
+      } else {
+        edge_dense_[a * n + b] = {stamp_, 4 * id + static_cast<Index>(j)};
       }
     }
-  } else {
+  }
+  if (!dense) {
+    // A cavity with too many boundary vertices for the table (degenerate inputs): start over.
     link_by_hash(ids);
+    for (const TetId id : ids)
+      for (const VertexId u : cells_[id].v)
+        if (u != kInfinite) vtet_[u] = id;
   }
   for (const VertexId u : local_verts_) vlocal_[u] = kNoId;
 }
