@@ -57,7 +57,14 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   // point spares the copy that growing the array would make at its largest.
   cells_.reserve(cells_.size() + pts.size() * 7 + 1024);
   in_cavity_.reserve(cells_.capacity());
-  for (const Index i : brio_order(pts)) {
+  const std::vector<Index> order = brio_order(pts);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    // The order jumps across the input: fetch a few points ahead.
+    if (k + 8 < order.size()) {
+      __builtin_prefetch(&pts[order[k + 8]]);
+      __builtin_prefetch(&out.vertex_of[order[k + 8]], 1);
+    }
+    const Index i = order[k];
     const Insertion r = insert(pts[i], kNoId, nullptr);
     out.vertex_of[i] = r.vertex;
     if (r.duplicate) out.duplicates.push_back(i);
@@ -227,7 +234,10 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
   ball_.clear();
   in_cavity_[start] = 1;
   cavity_.push_back(start);
-  for (const Index c : cells_[start].n) __builtin_prefetch(&cells_[c >> 2]);
+  for (const Index c : cells_[start].n) {
+    __builtin_prefetch(&cells_[c >> 2]);
+    __builtin_prefetch(&in_cavity_[c >> 2]);
+  }
   for (std::size_t k = 0; k < cavity_.size(); ++k) {
     const TetId t = cavity_[k];
     for (int i = 0; i < 4; ++i) {
@@ -241,7 +251,10 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
           cavity_.push_back(nb);
           // Its neighbours are tested when its turn comes: start fetching them now, since they
           // may lie anywhere in the array and the test would wait for memory.
-          for (const Index c : cells_[nb].n) __builtin_prefetch(&cells_[c >> 2]);
+          for (const Index c : cells_[nb].n) {
+            __builtin_prefetch(&cells_[c >> 2]);
+            __builtin_prefetch(&in_cavity_[c >> 2]);
+          }
           continue;
         }
         mark = 2;
