@@ -57,7 +57,14 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   // point spares the copy that growing the array would make at its largest.
   cells_.reserve(cells_.size() + pts.size() * 7 + 1024);
   in_cavity_.reserve(cells_.capacity());
-  for (const Index i : brio_order(pts)) {
+  const std::vector<Index> order = brio_order(pts);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    // The order jumps across the input: fetch a few points ahead.
+    if (k + 8 < order.size()) {
+      __builtin_prefetch(&pts[order[k + 8]]);
+      __builtin_prefetch(&out.vertex_of[order[k + 8]], 1);
+    }
+    const Index i = order[k];
     const Insertion r = insert(pts[i], kNoId, nullptr);
     out.vertex_of[i] = r.vertex;
     if (r.duplicate) out.duplicates.push_back(i);
@@ -227,7 +234,10 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
   ball_.clear();
   in_cavity_[start] = 1;
   cavity_.push_back(start);
-  for (const Index c : cells_[start].n) __builtin_prefetch(&cells_[c >> 2]);
+  for (const Index c : cells_[start].n) {
+    __builtin_prefetch(&cells_[c >> 2]);
+    __builtin_prefetch(&in_cavity_[c >> 2]);
+  }
   for (std::size_t k = 0; k < cavity_.size(); ++k) {
     const TetId t = cavity_[k];
     for (int i = 0; i < 4; ++i) {
@@ -241,7 +251,10 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
           cavity_.push_back(nb);
           // Its neighbours are tested when its turn comes: start fetching them now, since they
           // may lie anywhere in the array and the test would wait for memory.
-          for (const Index c : cells_[nb].n) __builtin_prefetch(&cells_[c >> 2]);
+          for (const Index c : cells_[nb].n) {
+            __builtin_prefetch(&cells_[c >> 2]);
+            __builtin_prefetch(&in_cavity_[c >> 2]);
+          }
           continue;
         }
         mark = 2;
@@ -283,16 +296,14 @@ void Delaunay3::fill_cavity(VertexId v, std::vector<TetId>* created) {
       ++finite_;
       last_ = id;
     }
-    for (const VertexId u : c.v)
-      if (u != kInfinite) vtet_[u] = id;
   }
+  vtet_[v] = ball_ids_.back();
   for (; reused < cavity_.size(); ++reused) {
     cells_[cavity_[reused]].v.fill(kNoId);
     free_.push_back(cavity_[reused]);
   }
   link_new_faces(ball_ids_);
   if (created) created->insert(created->end(), ball_ids_.begin(), ball_ids_.end());
-  (void)v;
 }
 
 void Delaunay3::link_new_faces(std::span<const TetId> ids) {
@@ -300,43 +311,50 @@ void Delaunay3::link_new_faces(std::span<const TetId> ids) {
   // face opposite position j of a new tetrahedron holds the new vertex and one boundary edge,
   // and exactly one other new tetrahedron holds that edge with the new vertex, in the opposite
   // direction (the two induce opposite orientations on their shared face). The boundary's
-  // vertices get small local numbers, so that a directed edge is a cell of a small square table.
+  // vertices get small local numbers, so that a directed edge is a cell of a small square table;
+  // the first new tetrahedron to meet a vertex becomes its vertex tetrahedron.
   local_verts_.clear();
-  auto local = [&](VertexId u) -> Index {
+  auto local = [&](VertexId u, TetId id) -> Index {
     if (u == kInfinite) return 0;
     if (vlocal_[u] == kNoId) {
       local_verts_.push_back(u);
       vlocal_[u] = static_cast<Index>(local_verts_.size());
+      vtet_[u] = id;
     }
     return vlocal_[u];
   };
-  for (std::size_t k = 0; k < ids.size(); ++k)
-    for (int m = 0; m < 4; ++m)
-      if (m != ball_[k].i) local(cells_[ids[k]].v[m]);
-  const std::size_t n = local_verts_.size() + 1;
-  if (n <= kMaxDenseLocals) {
-    if (++stamp_ == 0) {  // the stamps wrapped around: forget every old one
-      std::fill(edge_dense_.begin(), edge_dense_.end(), DenseSlot{});
-      stamp_ = 1;
-    }
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const TetId id = ids[k];
-      const int i = ball_[k].i;
-      const auto& v = cells_[id].v;
-      for (int j = 0; j < 4; ++j) {
-        if (j == i) continue;
-        const Index a = local(v[kDirEdge[i][j][0]]), b = local(v[kDirEdge[i][j][1]]);
-        const DenseSlot& other = edge_dense_[b * n + a];
-        if (other.stamp == stamp_) {
-          cells_[id].n[j] = other.code;
-          cells_[other.code >> 2].n[other.code & 3] = 4 * id + static_cast<Index>(j);
-        } else {
-          edge_dense_[a * n + b] = {stamp_, 4 * id + static_cast<Index>(j)};
-        }
+  if (++stamp_ == 0) {  // the stamps wrapped around: forget every old one
+    std::fill(edge_dense_.begin(), edge_dense_.end(), DenseSlot{});
+    stamp_ = 1;
+  }
+  constexpr Index n = kMaxDenseLocals;
+  bool dense = true;
+  for (std::size_t k = 0; k < ids.size() && dense; ++k) {
+    const TetId id = ids[k];
+    const int i = ball_[k].i;
+    const auto& v = cells_[id].v;
+    for (int j = 0; j < 4 && dense; ++j) {
+      if (j == i) continue;
+      const Index a = local(v[kDirEdge[i][j][0]], id), b = local(v[kDirEdge[i][j][1]], id);
+      if (a >= n || b >= n) {
+        dense = false;
+        break;
+      }
+      const DenseSlot& other = edge_dense_[b * n + a];
+      if (other.stamp == stamp_) {
+        cells_[id].n[j] = other.code;
+        cells_[other.code >> 2].n[other.code & 3] = 4 * id + static_cast<Index>(j);
+      } else {
+        edge_dense_[a * n + b] = {stamp_, 4 * id + static_cast<Index>(j)};
       }
     }
-  } else {
+  }
+  if (!dense) {
+    // A cavity with too many boundary vertices for the table (degenerate inputs): start over.
     link_by_hash(ids);
+    for (const TetId id : ids)
+      for (const VertexId u : cells_[id].v)
+        if (u != kInfinite) vtet_[u] = id;
   }
   for (const VertexId u : local_verts_) vlocal_[u] = kNoId;
 }

@@ -140,7 +140,7 @@ class Delaunay3 {
     std::uint32_t stamp = 0;  // the insertion that wrote it
     Index code = 0;
   };
-  static constexpr std::size_t kMaxDenseLocals = 128;
+  static constexpr Index kMaxDenseLocals = 64;
   std::vector<DenseSlot> edge_dense_ = std::vector<DenseSlot>(kMaxDenseLocals * kMaxDenseLocals);
   std::uint32_t stamp_ = 0;
   std::vector<VertexId> local_verts_;

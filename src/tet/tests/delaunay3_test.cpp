@@ -259,6 +259,14 @@ TEST(Delaunay3, DeterministicAndEqualToOneByOneInsertion) {
       const auto& v = c.vertices(t);
       ASSERT_TRUE(std::find(v.begin(), v.end(), r.vertex) != v.end());
     }
+    if (r.vertex % 97 == 0) {  // and all of them (a scan of every slot, so only now and then)
+      std::size_t around = 0;
+      for (TetId t = 0; t < c.tet_slots(); ++t) {
+        const auto& v = c.vertices(t);
+        around += c.alive(t) && std::find(v.begin(), v.end(), r.vertex) != v.end();
+      }
+      ASSERT_EQ(around, created.size());
+    }
   }
   EXPECT_EQ(a.to_mesh().tets, c.to_mesh().tets);
   EXPECT_EQ(a.to_mesh().points, c.to_mesh().points);
