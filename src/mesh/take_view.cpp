@@ -1,4 +1,5 @@
 // The compact mesh of a triangulation, built while its arrays are released (see take_view.hpp).
+#include "base/prefetch.hpp"
 #include "mesh/take_view.hpp"
 
 #include <utility>
@@ -23,7 +24,7 @@ static Index number_vertices(const Triangulation& t, const LargeArray<std::array
   const std::size_t ns = t.num_slots();
   for (TriangleId s = 0; s < ns; ++s) {
     if (s + kAhead < ns)
-      for (const Index v : corners[s + kAhead]) __builtin_prefetch(&remap[v], 1);
+      for (const Index v : corners[s + kAhead]) fdr::prefetch_for_write(&remap[v]);
     if (t.dead(s)) continue;
     for (const Index v : corners[s]) remap[v] = 0;
   }
@@ -124,9 +125,9 @@ MeshView take_view(Triangulation& t) {
     for (TriangleId s = 0; s < ns; ++s) {
       if (s + kAhead < ns)
         for (int k = 0; k < 3; ++k) {
-          __builtin_prefetch(&remap[corners[s + kAhead][k]]);
+          fdr::prefetch(&remap[corners[s + kAhead][k]]);
           const HalfEdge tw = t.twin_[3 * (s + kAhead) + k];
-          if (tw != kNoId) __builtin_prefetch(&slot[tri_of(tw)]);
+          if (tw != kNoId) fdr::prefetch(&slot[tri_of(tw)]);
         }
       if (t.dead(s)) continue;
       const Index i = slot[s];

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+#include "base/prefetch.hpp"
 #include "base/large_array.hpp"
 #include "base/types.hpp"
 #include "mesh/mesh_view.hpp"
@@ -125,10 +126,10 @@ class Triangulation {
   // Asks for the cache lines of triangle t and of vertex v's point, for a caller that knows
   // early which triangle it will read next.
   void prefetch(TriangleId t, Index v) const {
-    __builtin_prefetch(&corners_[t]);
-    __builtin_prefetch(&twin_[3 * t]);
-    __builtin_prefetch(&flags_[t]);
-    __builtin_prefetch(&pts_[v]);
+    fdr::prefetch(&corners_[t]);
+    fdr::prefetch(&twin_[3 * t]);
+    fdr::prefetch(&flags_[t]);
+    fdr::prefetch(&pts_[v]);
   }
 
   // --- Regions: empty, or per triangle slot the index of the Pslg::regions entry whose seed

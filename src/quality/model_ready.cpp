@@ -1,6 +1,7 @@
 // Model readiness of a final mesh: edges against hmin, skinny triangles, mean quality,
 // coast deviation both ways, connected pieces, gravity-wave time step, removed features.
 // Measurements only (double precision); no combinatorial decision is taken here.
+#include "base/prefetch.hpp"
 #include "quality/compensated_sum.hpp"
 #include "quality/text_format.hpp"
 #include "quality/model_ready.hpp"
@@ -423,8 +424,8 @@ void ReadinessPass::measure(std::size_t lo, std::size_t hi, RangeFigures& p, Com
   for (std::size_t t = lo; t < hi; ++t) {
     if (t + 16 < hi)  // the corners a few triangles ahead (scattered loads)
       for (const Index v : T[t + 16]) {
-        __builtin_prefetch(&V[v]);
-        if (have_z_) __builtin_prefetch(&m_.z[v]);
+        fdr::prefetch(&V[v]);
+        if (have_z_) fdr::prefetch(&m_.z[v]);
       }
     const auto& tri = T[t];
     const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
@@ -501,7 +502,7 @@ void ReadinessPass::sums(std::size_t lo, std::size_t hi, CompensatedSum& area, C
   const auto& V = m_.vertices;
   for (std::size_t t = lo; t < hi; ++t) {
     if (t + 16 < hi)
-      for (const Index v : T[t + 16]) __builtin_prefetch(&V[v]);
+      for (const Index v : T[t + 16]) fdr::prefetch(&V[v]);
     const auto& tri = T[t];
     const Point2 pt[3] = {V[tri[0]], V[tri[1]], V[tri[2]]};
     area.add(0.5 * cross2(pt));

@@ -1,4 +1,5 @@
 // Orthogonality (|cos| between edge and cell-centre link, D-Flow FM style) and smoothness (neighbour area ratio).
+#include "base/prefetch.hpp"
 #include "quality/orthogonality.hpp"
 
 #include <algorithm>
@@ -82,14 +83,14 @@ OrthogonalityStats compute_orthogonality(const mesh::MeshView& m, const std::vec
       // ahead (by then their triangles are in cache), so the loads below wait less.
       if (prefetch && t + 16 < hi)
         for (int k = 0; k < 3; ++k)
-          if (nb[3 * (t + 16) + k] != kNoId) __builtin_prefetch(&m.triangles[nb[3 * (t + 16) + k] / 3]);
+          if (nb[3 * (t + 16) + k] != kNoId) fdr::prefetch(&m.triangles[nb[3 * (t + 16) + k] / 3]);
       if (prefetch && t + 8 < hi) {
         const auto& ahead = m.triangles[t + 8];
         for (int k = 0; k < 3; ++k) {
-          __builtin_prefetch(&m.vertices[ahead[k]]);
-          if (pr) __builtin_prefetch(&pr->nn2[ahead[k]], 1);
+          fdr::prefetch(&m.vertices[ahead[k]]);
+          if (pr) fdr::prefetch_for_write(&pr->nn2[ahead[k]]);
           const Index g = nb[3 * (t + 8) + k];
-          if (g != kNoId) __builtin_prefetch(&m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]]);
+          if (g != kNoId) fdr::prefetch(&m.vertices[m.triangles[g / 3][(g % 3 + 2) % 3]]);
         }
       }
       const auto& tr = m.triangles[t];

@@ -1,4 +1,5 @@
 // The report's pass over the triangles (see triangle_pass.hpp).
+#include "base/prefetch.hpp"
 #include "quality/triangle_pass.hpp"
 
 #include <algorithm>
@@ -128,16 +129,16 @@ std::size_t TrianglePass::load_batch(std::size_t lo, std::size_t n) {
     const std::size_t t = lo + i;
     if (t + 2 * kBatch < T.size())
       for (int k = 0; k < 3; ++k)
-        if (const Index g = nb[3 * (t + 2 * kBatch) + k]; g != kNoId) __builtin_prefetch(&T[g / 3]);
+        if (const Index g = nb[3 * (t + 2 * kBatch) + k]; g != kNoId) fdr::prefetch(&T[g / 3]);
     if (t + kBatch < T.size()) {
       const auto& ahead = T[t + kBatch];
       for (int k = 0; k < 3; ++k) {
-        __builtin_prefetch(&V[ahead[k]]);
-        if (in_.fv) __builtin_prefetch(&in_.fv[ahead[k]]);
-        __builtin_prefetch(&in_.nn2[ahead[k]], 1);
-        if (in_.walk) __builtin_prefetch(&in_.tov[ahead[k]], 1);
+        fdr::prefetch(&V[ahead[k]]);
+        if (in_.fv) fdr::prefetch(&in_.fv[ahead[k]]);
+        fdr::prefetch_for_write(&in_.nn2[ahead[k]]);
+        if (in_.walk) fdr::prefetch_for_write(&in_.tov[ahead[k]]);
         const Index g = nb[3 * (t + kBatch) + k];
-        if (g != kNoId) __builtin_prefetch(&V[T[g / 3][(g % 3 + 2) % 3]]);
+        if (g != kNoId) fdr::prefetch(&V[T[g / 3][(g % 3 + 2) % 3]]);
       }
     }
     const auto& tr = T[t];
@@ -265,8 +266,8 @@ void TrianglePass::evaluate(std::size_t lo, std::size_t hi) {
   for (std::size_t t = lo; t < hi; ++t) {
     if (t + 8 < hi)
       for (const Index v : T[t + 8]) {
-        __builtin_prefetch(&V[v]);
-        if (in_.fv) __builtin_prefetch(&in_.fv[v]);
+        fdr::prefetch(&V[v]);
+        if (in_.fv) fdr::prefetch(&in_.fv[v]);
       }
     const Point2 a = V[T[t][0]], b = V[T[t][1]], c = V[T[t][2]];
     const double cr = geom::cross2(a, b, c);

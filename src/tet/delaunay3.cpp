@@ -1,4 +1,5 @@
 // Delaunay3: point location and Bowyer-Watson insertion.
+#include "base/prefetch.hpp"
 #include "tet/delaunay3.hpp"
 #include <algorithm>
 #include <cmath>
@@ -61,8 +62,8 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   for (std::size_t k = 0; k < order.size(); ++k) {
     // The order jumps across the input: fetch a few points ahead.
     if (k + 8 < order.size()) {
-      __builtin_prefetch(&pts[order[k + 8]]);
-      __builtin_prefetch(&out.vertex_of[order[k + 8]], 1);
+      fdr::prefetch(&pts[order[k + 8]]);
+      fdr::prefetch_for_write(&out.vertex_of[order[k + 8]]);
     }
     const Index i = order[k];
     const Insertion r = insert(pts[i], kNoId, nullptr);
@@ -235,8 +236,8 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
   in_cavity_[start] = 1;
   cavity_.push_back(start);
   for (const Index c : cells_[start].n) {
-    __builtin_prefetch(&cells_[c >> 2]);
-    __builtin_prefetch(&in_cavity_[c >> 2]);
+    fdr::prefetch(&cells_[c >> 2]);
+    fdr::prefetch(&in_cavity_[c >> 2]);
   }
   for (std::size_t k = 0; k < cavity_.size(); ++k) {
     const TetId t = cavity_[k];
@@ -252,8 +253,8 @@ void Delaunay3::dig_cavity(TetId start, VertexId v) {
           // Its neighbours are tested when its turn comes: start fetching them now, since they
           // may lie anywhere in the array and the test would wait for memory.
           for (const Index c : cells_[nb].n) {
-            __builtin_prefetch(&cells_[c >> 2]);
-            __builtin_prefetch(&in_cavity_[c >> 2]);
+            fdr::prefetch(&cells_[c >> 2]);
+            fdr::prefetch(&in_cavity_[c >> 2]);
           }
           continue;
         }
