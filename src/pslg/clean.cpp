@@ -104,6 +104,12 @@ std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Po
       const Segment& sg = segs_[s];
       if (sg.a == v || sg.b == v) continue;
       const Point2 a = pts_[sg.a], b = pts_[sg.b];
+      // Farther than tol from the segment's box (with a margin for rounding): not near, and
+      // decided without a predicate (whose exact path collinear chains would take every time).
+      const double m = 2 * tol;
+      if (p.x < std::min(a.x, b.x) - m || p.x > std::max(a.x, b.x) + m || p.y < std::min(a.y, b.y) - m ||
+          p.y > std::max(a.y, b.y) + m)
+        continue;
       if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
       const Point2 d = b - a;
       const double t = dot(p - a, d) / dot(d, d);
