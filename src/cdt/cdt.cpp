@@ -283,8 +283,8 @@ std::vector<Index> insert_points(Triangulation& T, const pslg::Pslg& in, const B
   std::vector<Index> alias(n);
   for (std::size_t i = 0; i < n; ++i) alias[i] = static_cast<Index>(i);
   // Why two orders: along the Hilbert curve alone, a chain of points inserted one after the
-  // other beside a dense chain (the far side of a finely resampled square, a lattice's rows)
-  // takes over most of its neighbour's fan at every step, a quadratic total. Random rounds (a
+  // other beside a dense chain (the far side of a finely resampled square) takes over most of
+  // its neighbour's fan at every step, a quadratic total. Random rounds (a
   // biased randomized insertion order, Amenta, Choi and Rote 2003) bound the expected work on
   // any input, but give cocircular points another of their equally valid triangulations and
   // every triangle another slot, which the refinement's order follows; so the Hilbert order is
