@@ -1,7 +1,8 @@
-// CDT construction: Hilbert-ordered incremental insertion, segment recovery by edge flips
+// CDT construction: incremental insertion in a biased randomized Hilbert order, segment recovery by edge flips
 // (regions.cpp then removes the regions outside the domain).
 #include "cdt/cdt.hpp"
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <sstream>
@@ -40,6 +41,15 @@ std::uint64_t hilbert(std::uint32_t x, std::uint32_t y) {
     }
   }
   return d;
+}
+
+// A fixed mix of a 64-bit value (splitmix64's finaliser): the same pseudo-random rounds on every
+// platform, unlike the standard distributions.
+std::uint64_t mix(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
 }
 
 [[noreturn]] void crossing_error(const Triangulation& T, Index a, Index b, Index sid, HalfEdge h,
@@ -84,6 +94,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     HalfEdge h = h0, start = kNoId;
     Index next_a = kNoId;
     do {
+      if (stats) ++stats->recovery_steps;
       const Index u = T.dst(h), w = T.apex(h);
       if (u == b) { mark_constrained(T, h, sid, source); return; }
       if (orient2d(T.point(a), T.point(b), T.point(u)) == 0 && diametral(T.point(a), T.point(b), T.point(u)) > 0) {
@@ -106,6 +117,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     HalfEdge cur = mesh::next_he(start);  // right -> left
     Index end = kNoId;
     while (true) {
+      if (stats) ++stats->recovery_steps;
       if (T.constrained(cur)) crossing_error(T, a, b, sid, cur, source);
       crossing.push_back({T.org(cur), T.dst(cur)});
       const HalfEdge n = T.twin(cur);
@@ -129,6 +141,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
         throw Error(ExitCode::kInternal, source + ": segment recovery by flips did not converge");
       const auto [u, w] = crossing.front();
       crossing.pop_front();
+      if (stats) ++stats->recovery_steps;
       const HalfEdge e = T.find_edge(u, w);
       if (e == kNoId) continue;
       const Index c = T.apex(e), d = T.apex(T.twin(e));
@@ -150,6 +163,7 @@ void insert_segment(Triangulation& T, Index a, Index b, Index sid, const std::st
     while (!fresh.empty()) {
       const auto [u, w] = fresh.back();
       fresh.pop_back();
+      if (stats) ++stats->recovery_steps;
       const HalfEdge e = T.find_edge(u, w);
       if (e == kNoId || T.constrained(e) || T.twin(e) == kNoId) continue;
       const Index c = T.apex(e), d = T.apex(T.twin(e));
@@ -200,34 +214,94 @@ void start_triangulation(Triangulation& T, const pslg::Pslg& in, const Box2& box
   T.new_triangle(s0, s1, s2);
 }
 
-std::vector<Index> insert_points(Triangulation& T, const pslg::Pslg& in, const Box2& box, const std::string& source,
-                                 CdtStats* stats) {
-  const std::size_t n = in.points.size();
-  std::vector<std::pair<std::uint64_t, Index>> order(n);
+std::vector<Index> insertion_order(const std::vector<Point2>& points, const Box2& box, bool rounds) {
+  const std::size_t n = points.size();
+  // A point's round comes from the trailing one bits of a hash of its index: about half the
+  // points are in the last round, a quarter in the one before, ...; rounds beyond
+  // log2(n / kFirstRound) merge into the first, and an input under 2 * kFirstRound points is a
+  // single round.
+  constexpr std::size_t kFirstRound = 64;
+  int levels = 0;
+  while (rounds && (kFirstRound << (levels + 1)) <= n) ++levels;
+  struct Key {
+    int round;
+    std::uint64_t hilbert;
+    Index id;
+  };
+  std::vector<Key> keys(n);
   const double sx = box.width() > 0 ? 65535.0 / box.width() : 0, sy = box.height() > 0 ? 65535.0 / box.height() : 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto hx = static_cast<std::uint32_t>((in.points[i].x - box.lo.x) * sx);
-    const auto hy = static_cast<std::uint32_t>((in.points[i].y - box.lo.y) * sy);
-    order[i] = {hilbert(hx, hy), static_cast<Index>(i)};
+    const auto hx = static_cast<std::uint32_t>((points[i].x - box.lo.x) * sx);
+    const auto hy = static_cast<std::uint32_t>((points[i].y - box.lo.y) * sy);
+    int round = 0;
+    if (levels > 0) round = levels - std::min(levels, std::countr_one(mix(i)));
+    keys[i] = {round, hilbert(hx, hy), static_cast<Index>(i)};
   }
-  std::sort(order.begin(), order.end());
-  std::vector<Index> alias(n);
-  for (std::size_t i = 0; i < n; ++i) alias[i] = static_cast<Index>(i);
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return a.round != b.round ? a.round < b.round : a.hilbert != b.hilbert ? a.hilbert < b.hilbert : a.id < b.id;
+  });
+  std::vector<Index> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].id;
+  return order;
+}
+
+// Inserts the points in `order`; false (the triangulation half built) as soon as the work, walk
+// steps plus new triangles, exceeds work_per_point per point inserted so far plus a start
+// allowance (0: no limit).
+bool insert_in_order(Triangulation& T, const pslg::Pslg& in, const std::vector<Index>& order,
+                     std::size_t work_per_point, std::vector<Index>* alias, const std::string& source,
+                     CdtStats* stats) {
   Inserter ins(T);
   TriangleId last = 0;
-  for (const auto& [key, i] : order) {
+  std::size_t work = 0, budget = 4096;
+  for (const Index i : order) {
+    budget += work_per_point;
     const Point2 p = in.points[i];
-    Location loc = locate_visibility(T, last, p);
+    std::size_t steps = 0;
+    Location loc = locate_visibility(T, last, p, &steps);
+    work += steps;
+    if (stats) stats->walk_steps += steps;
     if (loc.kind == LocateKind::kOnVertex) {
-      alias[i] = T.org(loc.he);
+      (*alias)[i] = T.org(loc.he);
       if (stats) ++stats->duplicate_points;
       continue;
     }
     if (!ins.build_cavity(p, loc))
       throw Error(ExitCode::kInternal, source + ": could not insert vertex " + std::to_string(i) + " " + point_text(p));
     ins.commit_vertex(i);
+    work += ins.new_triangles().size();
+    if (stats) stats->new_triangles += ins.new_triangles().size();
+    if (work_per_point > 0 && work > budget) return false;
     last = ins.new_triangles().front();
   }
+  return true;
+}
+
+std::vector<Index> insert_points(Triangulation& T, const pslg::Pslg& in, const Box2& box, const std::string& source,
+                                 CdtStats* stats) {
+  const std::size_t n = in.points.size();
+  std::vector<Index> alias(n);
+  for (std::size_t i = 0; i < n; ++i) alias[i] = static_cast<Index>(i);
+  // Why two orders: along the Hilbert curve alone, a chain of points inserted one after the
+  // other beside a dense chain (the far side of a finely resampled square) takes over most of
+  // its neighbour's fan at every step, a quadratic total. Random rounds (a
+  // biased randomized insertion order, Amenta, Choi and Rote 2003) bound the expected work on
+  // any input, but give cocircular points another of their equally valid triangulations and
+  // every triangle another slot, which the refinement's order follows; so the Hilbert order is
+  // kept for the inputs it handles in linear work, and the points are inserted anew in random
+  // rounds as soon as its work exceeds kWorkPerPoint per point (coastlines take about 12).
+  constexpr std::size_t kWorkPerPoint = 24;
+  const std::size_t duplicates = stats ? stats->duplicate_points : 0;
+  if (insert_in_order(T, in, insertion_order(in.points, box, false), kWorkPerPoint, &alias, source, stats))
+    return alias;
+  T = Triangulation{};
+  start_triangulation(T, in, box);
+  for (std::size_t i = 0; i < n; ++i) alias[i] = static_cast<Index>(i);
+  if (stats) {
+    stats->duplicate_points = duplicates;
+    stats->random_rounds = true;
+  }
+  insert_in_order(T, in, insertion_order(in.points, box, true), 0, &alias, source, stats);
   return alias;
 }
 

@@ -33,6 +33,15 @@ struct CdtStats {
   std::size_t duplicate_points = 0;    // merged with an existing vertex
   std::size_t segments_split_at_vertices = 0;
   std::size_t removed_triangles = 0;
+  // Work counts (for complexity checks): visibility-walk steps while inserting the input points,
+  // triangles created by those insertions, and the edges segment recovery examined (rotations
+  // around a segment's end, crossed edges, flip attempts).
+  std::size_t walk_steps = 0;
+  std::size_t new_triangles = 0;
+  std::size_t recovery_steps = 0;
+  // The points were inserted anew in random rounds (steps.hpp insert_points); the counts above
+  // include the abandoned first pass.
+  bool random_rounds = false;
 };
 
 // Builds the CDT of `in` (local coordinates). An input segment that ends up (partly) between two

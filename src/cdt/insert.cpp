@@ -159,21 +159,22 @@ void Inserter::commit_vertex(Index v) {
     for (HalfEdge h : boundary_) rim_region_.push_back(T.region(mesh::tri_of(h)));
   for (TriangleId t : cavity_) T.kill_triangle(t);
   new_tris_.clear();
-  by_start_.clear();
   for (const Rim& r : rim_) {
     const TriangleId t = T.new_triangle(r.x, r.y, v);
     T.link(3 * t, r.outer);
     if (r.cons) T.set_constrained(3 * t, true);
     new_tris_.push_back(t);
-    by_start_.push_back({r.x, t});
   }
   if (T.has_regions())
     for (std::size_t k = 0; k < new_tris_.size(); ++k) T.set_region(new_tris_[k], rim_region_[k]);
-  std::sort(by_start_.begin(), by_start_.end());
+  // Each rim vertex starts one rim edge: its vertex edge, set to that triangle's first half-edge,
+  // finds the neighbour of every new triangle's edge y -> v in constant time (a rim vertex
+  // starting none, an end of a split boundary edge, keeps an edge of another triangle).
+  for (TriangleId t : new_tris_) T.set_vertex_edge(T.corner(t, 0), 3 * t);
   for (TriangleId t : new_tris_) {
-    const Index y = T.corner(t, 1);
-    auto it = std::lower_bound(by_start_.begin(), by_start_.end(), std::make_pair(y, TriangleId{0}));
-    if (it != by_start_.end() && it->first == y) T.link(3 * t + 1, 3 * it->second + 2);
+    const HalfEdge h = T.vertex_edge(T.corner(t, 1));
+    if (h % 3 == 0 && T.corner(mesh::tri_of(h), 2) == v && !T.dead(mesh::tri_of(h)))
+      T.link(3 * t + 1, h + 2);
   }
   if (split_cons) {
     // Both halves of a split subsegment stay constrained and belong to the same input segment.

@@ -53,7 +53,6 @@ class Inserter {
   struct Rim { Index x, y; HalfEdge outer; bool cons; };
   std::vector<Rim> rim_;
   std::vector<std::int32_t> rim_region_;  // Triangulation::region per rim edge (if regions are used)
-  std::vector<std::pair<Index, TriangleId>> by_start_;
 };
 
 }  // namespace fdr::cdt

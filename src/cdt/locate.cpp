@@ -20,9 +20,10 @@ Location classify_inside(const mesh::Triangulation& tri, TriangleId t, Point2 p,
 }
 }  // namespace
 
-Location locate_visibility(const mesh::Triangulation& tri, TriangleId t, Point2 p) {
+Location locate_visibility(const mesh::Triangulation& tri, TriangleId t, Point2 p, std::size_t* count) {
   std::uint32_t rng = 2463534242u;
   for (std::size_t steps = 0;; ++steps) {
+    if (count) ++*count;
     rng ^= rng << 13; rng ^= rng >> 17; rng ^= rng << 5;
     const int r = static_cast<int>(rng % 3);
     int o[3];

@@ -18,7 +18,8 @@ struct Location {
 
 // Visibility walk from triangle `start` (ignores constraints; needs a closed mesh, i.e. before
 // holes are removed). Deterministic: the edge order comes from a fixed-seed generator.
-Location locate_visibility(const mesh::Triangulation& tri, TriangleId start, Point2 p);
+// `steps` (optional) gets the number of triangles stepped through added.
+Location locate_visibility(const mesh::Triangulation& tri, TriangleId start, Point2 p, std::size_t* steps = nullptr);
 
 // Walk along the line from a point inside `start` (its centroid) towards p; stops at the first
 // constrained or boundary edge that separates p from `start` (kind kBlocked). `max_steps`

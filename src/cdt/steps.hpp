@@ -14,7 +14,11 @@ std::string point_text(Point2 p);
 // The input points as vertices 0..n-1 (with their markers) and a super-triangle of three more
 // vertices around `box`, their bounding box.
 void start_triangulation(mesh::Triangulation& T, const pslg::Pslg& in, const Box2& box);
-// Inserts the input points in Hilbert order; returns per input point the vertex it became (a
+// An insertion order (a permutation of 0..n-1, the same for the same input): along a Hilbert
+// curve over `box`, or with `rounds` in random rounds of doubling size, each along the curve.
+std::vector<Index> insertion_order(const std::vector<Point2>& points, const Box2& box, bool rounds);
+// Inserts the input points along the Hilbert curve, or, when that costs more than a constant
+// work per point, anew in random rounds (CdtStats::random_rounds); returns per input point the vertex it became (a
 // duplicate: the earlier vertex at the same place).
 std::vector<Index> insert_points(mesh::Triangulation& T, const pslg::Pslg& in, const Box2& box,
                                  const std::string& source, CdtStats* stats);

@@ -91,7 +91,8 @@ std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Po
   for (const Segment& s : segs_) box.add(pts_[s.a]), box.add(pts_[s.b]), total += dist(pts_[s.a], pts_[s.b]);
   SegmentGrid grid(box, segs_.size(), total / static_cast<double>(segs_.size()));
   for (Index i = 0; i < segs_.size(); ++i) grid.add_segment(i, pts_[segs_[i].a], pts_[segs_[i].b]);
-  std::vector<Index> near;
+  // The cells each vertex's tol box touches, as (cell, vertex) pairs grouped by cell.
+  std::vector<std::pair<std::size_t, Index>> at;
   for (Index v = 0; v < pts_.size(); ++v) {
     if (present && !(*present)[v]) continue;
     const Point2 p = pts_[v];
@@ -99,17 +100,53 @@ std::vector<std::pair<Index, Index>> vertices_near_segments(const std::vector<Po
     Box2 q;
     q.add({p.x - tol, p.y - tol});
     q.add({p.x + tol, p.y + tol});
-    grid.segments_near(q, &near);
-    for (Index s : near) {
-      const Segment& sg = segs_[s];
-      if (sg.a == v || sg.b == v) continue;
-      const Point2 a = pts_[sg.a], b = pts_[sg.b];
-      if (p == a || p == b || orient2d(a, b, p) == 0) continue;  // exact cases: find_contacts
-      const Point2 d = b - a;
-      const double t = dot(p - a, d) / dot(d, d);
-      if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) continue;
-      if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
+    grid.for_box_cells(q, [&](std::size_t c) { at.push_back({c, v}); });
+  }
+  std::sort(at.begin(), at.end());
+  // Farther than tol from a segment's box (with a margin for rounding): not near, decided
+  // without a predicate (whose exact path collinear chains would take every time).
+  const double m = 2 * tol;
+  auto check = [&](Index v, Index s) {
+    const Segment& sg = segs_[s];
+    if (sg.a == v || sg.b == v) return;
+    const Point2 p = pts_[v], a = pts_[sg.a], b = pts_[sg.b];
+    if (p.x < std::min(a.x, b.x) - m || p.x > std::max(a.x, b.x) + m || p.y < std::min(a.y, b.y) - m ||
+        p.y > std::max(a.y, b.y) + m)
+      return;
+    if (p == a || p == b || orient2d(a, b, p) == 0) return;  // exact cases: find_contacts
+    const Point2 d = b - a;
+    const double t = dot(p - a, d) / dot(d, d);
+    if (!(t > 0 && t < 1) || dist(p, a) <= tol || dist(p, b) <= tol) return;
+    if (dist_to_segment(p, a, b) <= tol) found.push_back({v, s});
+  };
+  // Why a sweep per cell: a long straight chain crowds ~sqrt(n) segments into each cell it
+  // passes; sorted by their lower end along the cell's longer extent, a vertex looks only at the
+  // segments whose lower end lies within the longest such segment's reach of it.
+  std::vector<std::pair<double, Index>> by_lo;
+  for (std::size_t k = 0; k < at.size();) {
+    const std::size_t c = at[k].first;
+    std::size_t e = k;
+    while (e < at.size() && at[e].first == c) ++e;
+    const auto& ids = grid.segments_in(c);
+    Box2 cb;
+    for (Index i : ids) cb.add(pts_[segs_[i].a]), cb.add(pts_[segs_[i].b]);
+    const bool along_x = cb.width() >= cb.height();
+    auto coord = [along_x](Point2 p) { return along_x ? p.x : p.y; };
+    by_lo.clear();
+    double reach = 0;
+    for (Index i : ids) {
+      const double u = coord(pts_[segs_[i].a]), w = coord(pts_[segs_[i].b]);
+      by_lo.push_back({std::min(u, w), i});
+      reach = std::max(reach, std::fabs(w - u));
     }
+    std::sort(by_lo.begin(), by_lo.end());
+    for (std::size_t j = k; j < e; ++j) {
+      const Index v = at[j].second;
+      const double x = coord(pts_[v]);
+      auto it = std::lower_bound(by_lo.begin(), by_lo.end(), std::pair{x - m - reach, Index{0}});
+      for (; it != by_lo.end() && it->first <= x + m; ++it) check(v, it->second);
+    }
+    k = e;
   }
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());

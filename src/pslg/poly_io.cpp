@@ -30,10 +30,20 @@ class Reader {
     errno = 0;
     std::ifstream in(path_, std::ios::binary);
     if (!in) throw Error(ExitCode::kInputUnreadable, path_ + ": cannot open file: " + std::strerror(errno));
-    std::ostringstream ss;
-    ss << in.rdbuf();
+    // Read straight into a buffer of the file's size (a copy through a string stream grows it
+    // step by step and copies it once more); then whatever a stream without a size still has.
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+    in.clear();
+    in.seekg(0);
+    if (size > 0) {
+      text_.resize(static_cast<std::size_t>(size));
+      in.read(text_.data(), size);
+      text_.resize(static_cast<std::size_t>(in.gcount()));
+    }
+    char chunk[1 << 16];
+    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text_.append(chunk, static_cast<std::size_t>(in.gcount()));
     if (in.bad()) throw Error(ExitCode::kInputUnreadable, path_ + ": read error");
-    text_ = ss.str();
   }
 
   // Upper bound on the records left (a record line has at least 5 bytes plus a newline): caps

@@ -2,12 +2,41 @@
 #include "pslg/resolve.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include "base/error.hpp"
 #include "pslg/validate.hpp"
 
 namespace fdr::pslg {
 
 namespace {
+// True if two points lie within tol of each other. Why cells tol wide, sorted: two such points
+// lie in the same or adjacent cells, so each point looks only at its neighbour cells' few points
+// (a sweep along x alone would compare every pair of points on one vertical line).
+bool points_within(const std::vector<Point2>& points, double tol) {
+  if (points.empty()) return false;
+  Box2 box;
+  for (const Point2& p : points) box.add(p);
+  struct Cell {
+    std::int64_t cx, cy;
+    Index id;
+    bool operator<(const Cell& o) const { return cx != o.cx ? cx < o.cx : cy != o.cy ? cy < o.cy : id < o.id; }
+  };
+  std::vector<Cell> cells(points.size());
+  for (Index i = 0; i < points.size(); ++i)
+    cells[i] = {static_cast<std::int64_t>(std::floor((points[i].x - box.lo.x) / tol)),
+                static_cast<std::int64_t>(std::floor((points[i].y - box.lo.y) / tol)), i};
+  std::sort(cells.begin(), cells.end());
+  for (const Cell& c : cells)
+    for (std::int64_t dx = 0; dx <= 1; ++dx) {
+      // Cells (cx, cy..cy+1) and (cx+1, cy-1..cy+1): every neighbouring pair is met once.
+      const std::int64_t y0 = dx == 0 ? c.cy : c.cy - 1;
+      auto it = std::lower_bound(cells.begin(), cells.end(), Cell{c.cx + dx, y0, 0});
+      for (; it != cells.end() && it->cx == c.cx + dx && it->cy <= c.cy + 1; ++it)
+        if (it->id != c.id && dist(points[c.id], points[it->id]) <= tol) return true;
+    }
+  return false;
+}
+
 // True if validate() finds nothing and no vertex pair or vertex-segment pair is within tol.
 bool clean_within(const Pslg& in, double tol, const std::string& source) {
   try {
@@ -16,12 +45,7 @@ bool clean_within(const Pslg& in, double tol, const std::string& source) {
     return false;
   }
   if (!(tol > 0)) return true;
-  std::vector<Index> order(in.points.size());
-  for (Index i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return in.points[a].x < in.points[b].x; });
-  for (std::size_t i = 0; i < order.size(); ++i)
-    for (std::size_t j = i + 1; j < order.size() && in.points[order[j]].x - in.points[order[i]].x <= tol; ++j)
-      if (dist(in.points[order[i]], in.points[order[j]]) <= tol) return false;
+  if (points_within(in.points, tol)) return false;
   return vertices_near_segments(in.points, in.segments, nullptr, tol).empty();
 }
 }  // namespace

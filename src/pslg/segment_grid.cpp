@@ -94,8 +94,8 @@ SegmentGrid::SegmentGrid(Box2 box, std::size_t n_items, double mean_length) {
   const double mag = std::max({std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y),
                                std::fabs(box.hi.y)});
   pad_ = 1e-7 * cs_ + 1e-13 * mag;
+  // Point cells are made by the first add_point: many grids hold segments only.
   segs_.resize(static_cast<std::size_t>(nx_ * ny_));
-  pts_.resize(segs_.size());
 }
 
 long SegmentGrid::col(double x) const {
@@ -119,6 +119,7 @@ void SegmentGrid::add_segment(Index id, Point2 a, Point2 b) {
 }
 
 void SegmentGrid::add_point(Index id, Point2 p) {
+  if (pts_.empty()) pts_.resize(segs_.size());
   pts_[cell_of(p)].push_back(id);
   if (id >= pt_stamp_.size()) pt_stamp_.resize(static_cast<std::size_t>(id) + 1, 0);
 }
@@ -137,6 +138,7 @@ void SegmentGrid::segments_near(Box2 box, std::vector<Index>* out) const {
 
 void SegmentGrid::points_near(Box2 box, std::vector<Index>* out) const {
   out->clear();
+  if (pts_.empty()) return;
   for_box_cells(box, [&](std::size_t c) {
     for (Index p : pts_[c]) out->push_back(p);  // a point lives in exactly one cell
   });

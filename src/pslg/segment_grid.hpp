@@ -46,7 +46,7 @@ class SegmentGrid {
 
   std::size_t num_cells() const { return segs_.size(); }
   const std::vector<Index>& segments_in(std::size_t cell) const { return segs_[cell]; }
-  const std::vector<Index>& points_in(std::size_t cell) const { return pts_[cell]; }
+  const std::vector<Index>& points_in(std::size_t cell) const { return pts_.empty() ? kNone : pts_[cell]; }
 
   // Distinct segment ids near a box (deduplicated with a stamp array sized to max id seen).
   void segments_near(Box2 box, std::vector<Index>* out) const;
@@ -60,6 +60,7 @@ class SegmentGrid {
   std::vector<std::vector<Index>> segs_, pts_;
   mutable std::vector<std::uint32_t> seg_stamp_, pt_stamp_;
   mutable std::uint32_t stamp_ = 0;
+  static inline const std::vector<Index> kNone;  // the points of every cell before add_point
 };
 
 template <class F>

@@ -66,15 +66,38 @@ Contacts find_contacts(const std::vector<Point2>& points, const std::vector<Segm
     grid.add_segment(i, points[s.a], points[s.b]);
   }
   // Why per cell: two segments that meet share at least one cell (registration is padded).
+  // Why a sweep in each cell: the segments of a long straight chain crowd the cells it passes
+  // (a cell holds ~sqrt(n) of them when the chain is alone in a large box), and all pairs would
+  // be quadratic in that; sorted by their lower end along the cell's longer extent, a segment
+  // is compared only with those whose range overlaps its own (the others classify as kNone).
+  std::vector<std::pair<double, Index>> by_lo;
   for (std::size_t c = 0; c < grid.num_cells(); ++c) {
     const auto& ids = grid.segments_in(c);
-    for (std::size_t u = 0; u < ids.size(); ++u) {
-      const Segment& s = segments[ids[u]];
-      for (std::size_t v = u + 1; v < ids.size(); ++v) {
-        const Segment& t = segments[ids[v]];
+    if (ids.size() < 2) continue;
+    Box2 cb;
+    for (Index i : ids) cb.add(points[segments[i].a]), cb.add(points[segments[i].b]);
+    const bool along_x = cb.width() >= cb.height();
+    auto lo = [&](Index i) {
+      const Point2 a = points[segments[i].a], b = points[segments[i].b];
+      return along_x ? std::min(a.x, b.x) : std::min(a.y, b.y);
+    };
+    auto hi = [&](Index i) {
+      const Point2 a = points[segments[i].a], b = points[segments[i].b];
+      return along_x ? std::max(a.x, b.x) : std::max(a.y, b.y);
+    };
+    by_lo.clear();
+    for (Index i : ids) by_lo.push_back({lo(i), i});
+    std::sort(by_lo.begin(), by_lo.end());
+    for (std::size_t u = 0; u < by_lo.size(); ++u) {
+      const Index su = by_lo[u].second;
+      const Segment& s = segments[su];
+      const double end = hi(su);
+      for (std::size_t v = u + 1; v < by_lo.size() && by_lo[v].first <= end; ++v) {
+        const Index sv = by_lo[v].second;
+        const Segment& t = segments[sv];
         const Contact k = classify(points[s.a], points[s.b], points[t.a], points[t.b]);
         if (k == Contact::kNone || k == Contact::kEndpoint) continue;
-        out.segment_pairs.emplace_back(std::min(ids[u], ids[v]), std::max(ids[u], ids[v]));
+        out.segment_pairs.emplace_back(std::min(su, sv), std::max(su, sv));
         out.kinds.push_back(k);
       }
     }

@@ -31,6 +31,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <nlohmann/json.hpp>
 #include "base/error.hpp"
+#include "chains.hpp"
+#include "child.hpp"
 #include "cdt/cdt.hpp"
 #include "refine/refine.hpp"
 #include "sizing/fields.hpp"
@@ -284,32 +286,6 @@ MshStats read_msh41(const std::string& path) {
   return st;
 }
 
-struct ChildRun { double wall = 0; double maxrss_mb = 0; int status = 0; };
-
-// Spawns `argv` with stdout+stderr to `log`, waits with wait4 for its own rusage: wall clock and ru_maxrss.
-// posix_spawn (vfork-like) keeps the bench process's pages out of the child's peak.
-ChildRun spawn_and_wait(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  pid_t pid;
-  const auto t0 = Clock::now();
-  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0)
-    throw fdr::Error(fdr::ExitCode::kInputUnreadable, "bench_fdr: cannot start " + args[0] + ": " + std::strerror(rc));
-  int st = 0;
-  rusage ru{};
-  if (wait4(pid, &st, 0, &ru) < 0)
-    throw fdr::Error(fdr::ExitCode::kInternal, std::string("bench_fdr: wait4 failed: ") + std::strerror(errno));
-  return {secs(t0, Clock::now()), ru.ru_maxrss / 1024.0, st};
-}
-
 // Gmsh's own "Done meshing 2D (Wall X s" figure: meshing time without start-up, .geo parsing and .msh writing.
 std::optional<double> gmsh_mesh2d_wall(const std::string& log) {
   std::ifstream in(log);
@@ -429,7 +405,9 @@ constexpr const char* kUsage =
     "                calibrated so Gmsh makes as many triangles as fdrmesh)\n"
     "  --gmsh-bin    Gmsh executable (default gmsh from PATH)\n"
     "  --fdrmesh-bin fdrmesh executable for the fdrmesh-cli row (default: the one built with this bench)\n"
-    "  --no-cli      skip the fdrmesh-cli row (whole command-line process)\n";
+    "  --no-cli      skip the fdrmesh-cli row (whole command-line process)\n"
+    "  --chains N    instead: the chain benchmark (chains.hpp) with about N vertices per case (fdrmesh's CDT,\n"
+    "                CGAL's CDT unless --no-cgal, the command line unless --no-cli)\n";
 
 double parse_number(const char* opt, const char* text) {
   char* e;
@@ -442,6 +420,7 @@ double parse_number(const char* opt, const char* text) {
 
 int run(int argc, char** argv) {
   std::vector<double> ks;
+  std::size_t chains = 0;
   bool fdr_on = true, cgal = true, gmsh = true;
   std::string fdr_binary = FDR_BINARY;
   GmshOptions g;
@@ -464,11 +443,13 @@ int run(int argc, char** argv) {
     else if (a == "--gmsh-bin") g.binary = value(i);
     else if (a == "--fdrmesh-bin") fdr_binary = value(i);
     else if (a == "--no-cli") fdr_binary.clear();
+    else if (a == "--chains") chains = static_cast<std::size_t>(parse_number("--chains", value(i)));
     else if (a == "-h" || a == "--help") { std::printf("%s", kUsage); return 0; }
     else if (!a.empty() && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')))
       throw fdr::Error(fdr::ExitCode::kUsage, "bench_fdr: unknown option " + a + "\n" + kUsage);
     else ks.push_back(parse_number("k", argv[i]));
   }
+  if (chains > 0) return run_chains(chains, fdr_binary, cgal);
   if (ks.empty()) ks = {0.08, 0.025, 0.0125};
   std::printf("FDR benchmark: f = k * paper-f1 on [0,10]^2, B = 1; refine = meshing time, whole = the measured process\n"
               "  from start to exit, peak = its VmHWM (ru_maxrss), tri/int(1/f^2) = triangles per unit of int 1/f^2 dA\n");
