@@ -12,6 +12,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "coast/convex.hpp"
+#include "coast/faces.hpp"
 #include "coast/report.hpp"
 #include "pslg/contained_difference.hpp"
 
@@ -549,16 +550,9 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
     if (debug::value(debug::Aid::kFilter)) std::fprintf(stderr, "difference by faces: overlay fallback\n");
     return checked(a->Difference(b), what);
   };
-  // Noded: the union of the lines with one of them nodes them all (OGR 3.6 has no unary union).
-  std::unique_ptr<OGRGeometry> first(lines.getGeometryRef(0)->clone());
-  GeomPtr noded(lines.Union(first.get()));
-  dl("noded");
-  if (!noded) return fallback();
-  GeomPtr faces(noded->Polygonize());
-  dl("polygonized");
-  if (!faces) return fallback();
   std::vector<std::unique_ptr<OGRPolygon>> fs, out;
-  polygons_of(faces.get(), fs);
+  if (!arrangement_faces(lines, fs)) return fallback();
+  dl("noded and polygonized");
   const Prepared in_a(a), in_b(b);
   for (auto& f : fs) {
     const Point2 p = inside_point(f.get());
