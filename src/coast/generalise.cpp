@@ -79,10 +79,17 @@ void dump_wkt(const OwnedPolygons& outp) {
 
 Result generalise(const Polygons& input, const Options& o) {
   GdalQuiet quiet;
-  FilterLaps lap("filter");
+  // The steps' times under the filter's developer aid and as sub-stages of the read under the
+  // stages' one (FDR_DEBUG_STAGES), beside the pipeline's stage table.
+  FilterLaps filter_lap("filter");
+  StepLaps stage_lap(debug::Aid::kStages, "stage read:");
+  auto lap = [&](const char* step) {
+    filter_lap(step);
+    stage_lap(step);
+  };
   Result res;
   res.close_width = o.close_width;
-  if (lap.on()) print_input(input);
+  if (filter_lap.on()) print_input(input);
   GeomPtr W = unite(input, res);
   lap("union");
   const GeomPtr W0(W->clone());  // the input water bodies (ownership of the result's pieces)

@@ -12,6 +12,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "coast/convex.hpp"
+#include "coast/faces.hpp"
 #include "coast/report.hpp"
 #include "pslg/contained_difference.hpp"
 
@@ -136,6 +137,35 @@ GeomPtr with_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, std::vector<std
   return checked(m->Difference(hm.get()), what);
 }
 
+// p grown by `hair` (one segment per quarter circle) for contact tests: its outer ring grown and
+// its holes shrunk, each on its own. Why: GEOS buffers a polygon with thousands of holes by
+// placing every hole of its result in a shell with a point index built anew for each test,
+// quadratic in the holes; the rings of this polygon are the same buffers, and they cannot meet
+// (each is at least `hair` from the input's rings), so they go together without an overlay.
+GeomPtr grown_for_contact(const OGRPolygon& p, double hair) {
+  if (p.getNumInteriorRings() == 0) return checked(p.Buffer(hair, 1), "buffer");
+  OGRPolygon outer;
+  outer.addRing(const_cast<OGRLinearRing*>(p.getExteriorRing()));
+  GeomPtr b = checked(outer.Buffer(hair, 1), "buffer of an outer ring");
+  std::vector<std::unique_ptr<OGRPolygon>> bs;
+  polygons_of(b.get(), bs);
+  if (bs.size() != 1) return checked(p.Buffer(hair, 1), "buffer");
+  auto out = std::move(bs[0]);
+  for (int k = 0; k < p.getNumInteriorRings(); ++k) {
+    const OGRLinearRing* h = p.getInteriorRing(k);
+    OGREnvelope e;
+    h->getEnvelope(&e);
+    if (std::min(e.MaxX - e.MinX, e.MaxY - e.MinY) <= 2 * hair) continue;  // nothing left of it
+    OGRPolygon hp;
+    hp.addRing(const_cast<OGRLinearRing*>(h));
+    GeomPtr hb = checked(hp.Buffer(-hair, 1), "buffer of a hole");
+    std::vector<std::unique_ptr<OGRPolygon>> hps;
+    polygons_of(hb.get(), hps);
+    for (const auto& q : hps) out->addRing(const_cast<OGRLinearRing*>(q->getExteriorRing()));
+  }
+  return GeomPtr(out.release());
+}
+
 }  // namespace
 
 // The union of polygon pieces, overlaid only where they meet. Why: GEOS's cascaded union of a
@@ -182,7 +212,7 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
       if (find(i) == find(j)) continue;
       const std::size_t big = npts[i] >= npts[j] ? i : j, small = big == i ? j : i;
       if (!prep[big]) prep[big] = std::make_unique<Prepared>(ps[big].get());
-      if (hair > 0 && !grown[small]) grown[small] = checked(ps[small]->Buffer(hair, 1), "buffer");
+      if (hair > 0 && !grown[small]) grown[small] = grown_for_contact(*ps[small], hair);
       if (prep[big]->intersects(hair > 0 ? grown[small].get() : ps[small].get())) parent[find(i)] = find(j);
     }
   }
@@ -520,16 +550,9 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
     if (debug::value(debug::Aid::kFilter)) std::fprintf(stderr, "difference by faces: overlay fallback\n");
     return checked(a->Difference(b), what);
   };
-  // Noded: the union of the lines with one of them nodes them all (OGR 3.6 has no unary union).
-  std::unique_ptr<OGRGeometry> first(lines.getGeometryRef(0)->clone());
-  GeomPtr noded(lines.Union(first.get()));
-  dl("noded");
-  if (!noded) return fallback();
-  GeomPtr faces(noded->Polygonize());
-  dl("polygonized");
-  if (!faces) return fallback();
   std::vector<std::unique_ptr<OGRPolygon>> fs, out;
-  polygons_of(faces.get(), fs);
+  if (!arrangement_faces(lines, fs)) return fallback();
+  dl("noded and polygonized");
   const Prepared in_a(a), in_b(b);
   for (auto& f : fs) {
     const Point2 p = inside_point(f.get());

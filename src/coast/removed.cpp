@@ -148,10 +148,13 @@ void list_removed(std::shared_ptr<GoneWater> gone, bool early, const Options& o,
                   list_area = o.list_area, close_width = o.close_width] {
     GdalQuiet q2;
     FilterLaps l3("  listing");
+    StepLaps s3(debug::Aid::kStages, "stage listing:");  // sub-stages of the listing (beside)
     GeomPtr g = gone->get();
     l3("difference");
+    s3("difference");
     RemovedWater w = list_removed_water(std::move(g), listed_at, hair, list_area, close_width);
     l3("list");
+    s3("list");
     return w;
   };
   if (o.defer_removed) {

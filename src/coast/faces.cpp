@@ -1,0 +1,172 @@
+// The faces of an arrangement of lines, cluster by cluster (faces.hpp).
+#include "coast/faces.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "base/parallel.hpp"
+#include "pslg/segment_grid.hpp"
+
+namespace fdr::coast {
+namespace {
+
+Box2 segment_box(const OGRLineString* l, int i) {
+  Box2 b;
+  b.add({l->getX(i), l->getY(i)});
+  b.add({l->getX(i + 1), l->getY(i + 1)});
+  return b;
+}
+
+bool boxes_meet(const Box2& a, const Box2& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
+}
+
+// The faces of one cluster's lines: noded (OGR 3.6 has no unary union: the union with one of
+// them nodes them all) and polygonized. False when GEOS fails.
+bool cluster_faces(const OGRMultiLineString& lines, const std::vector<int>& members, OwnedPolygons& out) {
+  OGRMultiLineString ml;
+  for (const int i : members) ml.addGeometry(lines.getGeometryRef(i));
+  std::unique_ptr<OGRGeometry> first(ml.getGeometryRef(0)->clone());
+  GeomPtr noded(ml.Union(first.get()));
+  if (!noded) return false;
+  if (wkbFlatten(noded->getGeometryType()) == wkbLineString) {  // Polygonize wants a collection
+    auto m = std::make_unique<OGRMultiLineString>();
+    m->addGeometryDirectly(noded.release());
+    noded = std::move(m);
+  }
+  GeomPtr faces(noded->Polygonize());
+  if (!faces) return false;
+  polygons_of(faces.get(), out);
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> line_clusters(const OGRMultiLineString& lines) {
+  const int n = lines.getNumGeometries();
+  Box2 box;
+  std::size_t nseg = 0;
+  double total = 0;
+  for (int i = 0; i < n; ++i) {
+    const OGRLineString* l = lines.getGeometryRef(i);
+    for (int k = 0; k + 1 < l->getNumPoints(); ++k) {
+      const Point2 a{l->getX(k), l->getY(k)}, b{l->getX(k + 1), l->getY(k + 1)};
+      box.add(a);
+      box.add(b);
+      total += dist(a, b);
+      ++nseg;
+    }
+  }
+  std::vector<int> parent(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
+  auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  if (nseg > 0) {
+    pslg::SegmentGrid grid(box, nseg, total / static_cast<double>(nseg));
+    std::vector<int> seg_line;
+    std::vector<std::pair<int, int>> seg_at;  // (line, first vertex)
+    seg_line.reserve(nseg);
+    for (int i = 0; i < n; ++i) {
+      const OGRLineString* l = lines.getGeometryRef(i);
+      for (int k = 0; k + 1 < l->getNumPoints(); ++k) {
+        grid.add_segment(static_cast<Index>(seg_at.size()), {l->getX(k), l->getY(k)}, {l->getX(k + 1), l->getY(k + 1)});
+        seg_at.emplace_back(i, k);
+      }
+    }
+    std::vector<Index> near;
+    for (std::size_t s = 0; s < seg_at.size(); ++s) {
+      const auto [i, k] = seg_at[s];
+      const Box2 b = segment_box(lines.getGeometryRef(i), k);
+      grid.segments_near(b, &near);
+      for (const Index t : near) {
+        const auto [j, m] = seg_at[t];
+        if (find(i) == find(j)) continue;
+        if (boxes_meet(b, segment_box(lines.getGeometryRef(j), m))) parent[static_cast<std::size_t>(find(i))] = find(j);
+      }
+    }
+  }
+  std::vector<int> id(static_cast<std::size_t>(n), -1);
+  std::vector<std::vector<int>> out;
+  for (int i = 0; i < n; ++i) {
+    int& c = id[static_cast<std::size_t>(find(i))];
+    if (c < 0) {
+      c = static_cast<int>(out.size());
+      out.emplace_back();
+    }
+    out[static_cast<std::size_t>(c)].push_back(i);
+  }
+  return out;
+}
+
+// Why clusters: GEOS nodes and polygonizes the whole at once, and where its fast noding fails on
+// one spot it snaps and nodes everything again; its polygonizer places every hole with a point
+// index per candidate shell. Clusters whose lines never meet share no face boundary, so each
+// is polygonized alone; only faces that hold another cluster need its faces taken out.
+bool arrangement_faces(const OGRMultiLineString& lines, OwnedPolygons& faces) {
+  const auto clusters = line_clusters(lines);
+  const std::size_t nc = clusters.size();
+  std::vector<OwnedPolygons> per(nc);
+  std::atomic<bool> failed{false};
+  parallel_chunks(nc, [&](std::size_t c, unsigned) {
+    GdalQuiet quiet;
+    if (!failed && !cluster_faces(lines, clusters[c], per[c])) failed = true;
+  });
+  if (failed) return false;
+  // Each cluster's box and a point on it (its first vertex: on none of the other clusters'
+  // segments, whose boxes it does not meet).
+  std::vector<OGREnvelope> cenv(nc);
+  std::vector<Point2> cpt(nc);
+  Box2 all;
+  for (std::size_t c = 0; c < nc; ++c) {
+    for (const int i : clusters[c]) {
+      OGREnvelope e;
+      lines.getGeometryRef(i)->getEnvelope(&e);
+      cenv[c].Merge(e);
+    }
+    const OGRLineString* l = lines.getGeometryRef(clusters[c].front());
+    cpt[c] = {l->getX(0), l->getY(0)};
+    all.add(cpt[c]);
+  }
+  pslg::SegmentGrid points(all, nc, std::sqrt(all.width() * all.height() / static_cast<double>(std::max<std::size_t>(nc, 1))));
+  for (std::size_t c = 0; c < nc; ++c) points.add_point(static_cast<Index>(c), cpt[c]);
+  std::vector<Index> near;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (auto& f : per[c]) {
+      OGREnvelope fe;
+      f->getEnvelope(&fe);
+      Box2 fb;
+      fb.add({fe.MinX, fe.MinY});
+      fb.add({fe.MaxX, fe.MaxY});
+      points.points_near(fb, &near);
+      std::sort(near.begin(), near.end());
+      std::unique_ptr<Prepared> pf;
+      std::vector<std::size_t> inside;
+      for (const Index d : near) {
+        if (d == c || !fe.Contains(cenv[d])) continue;
+        if (!pf) pf = std::make_unique<Prepared>(f.get());
+        const OGRPoint pt(cpt[d].x, cpt[d].y);
+        if (pf->contains(&pt)) inside.push_back(d);
+      }
+      if (inside.empty()) continue;
+      auto held = std::make_unique<OGRMultiPolygon>();
+      for (const std::size_t d : inside)
+        for (const auto& g : per[d]) held->addGeometry(g.get());
+      if (held->IsEmpty()) continue;  // lines without faces: no area to take out
+      pf.reset();
+      GeomPtr u(held->UnionCascaded());
+      GeomPtr cut = u ? GeomPtr(f->Difference(u.get())) : nullptr;
+      if (!cut) return false;
+      OwnedPolygons ps;
+      polygons_of(cut.get(), ps);
+      if (ps.size() != 1) return false;
+      f = std::move(ps[0]);
+    }
+  for (auto& v : per)
+    for (auto& f : v) faces.push_back(std::move(f));
+  return true;
+}
+
+}  // namespace fdr::coast

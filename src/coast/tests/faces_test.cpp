@@ -1,0 +1,94 @@
+// The faces of an arrangement of lines cluster by cluster (faces.hpp), and the differences by
+// faces built on them, against GEOS's overlay.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "coast/faces.hpp"
+#include "coast/geometry_ops.hpp"
+
+namespace fdr::coast {
+namespace {
+
+// A closed line around the box [x0, x1] x [y0, y1].
+std::unique_ptr<OGRLineString> square_line(double x0, double y0, double x1, double y1) {
+  auto l = std::make_unique<OGRLineString>();
+  l->addPoint(x0, y0);
+  l->addPoint(x1, y0);
+  l->addPoint(x1, y1);
+  l->addPoint(x0, y1);
+  l->addPoint(x0, y0);
+  return l;
+}
+
+OGRLinearRing square_ring(double x0, double y0, double x1, double y1) {
+  return closed_ring({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+}
+
+std::vector<double> areas(const OwnedPolygons& fs) {
+  std::vector<double> a;
+  for (const auto& f : fs) a.push_back(f->get_Area());
+  std::sort(a.begin(), a.end());
+  return a;
+}
+
+TEST(CoastFaces, LinesWhoseSegmentsMeetShareACluster) {
+  OGRMultiLineString ml;
+  ml.addGeometryDirectly(square_line(0, 0, 2, 2).release());
+  ml.addGeometryDirectly(square_line(100, 0, 101, 1).release());  // far from the others
+  ml.addGeometryDirectly(square_line(1, 1, 3, 3).release());      // crosses the first
+  const auto c = line_clusters(ml);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0], (std::vector<int>{0, 2}));
+  EXPECT_EQ(c[1], (std::vector<int>{1}));
+}
+
+TEST(CoastFaces, LinesInsideALargeBoxButFarFromItsSegmentsAreAClusterOfTheirOwn) {
+  OGRMultiLineString ml;
+  ml.addGeometryDirectly(square_line(0, 0, 10, 10).release());
+  ml.addGeometryDirectly(square_line(4, 4, 6, 6).release());
+  EXPECT_EQ(line_clusters(ml).size(), 2u);
+}
+
+TEST(CoastFaces, CrossingSquaresGiveThreeFaces) {
+  OGRMultiLineString ml;
+  ml.addGeometryDirectly(square_line(0, 0, 2, 2).release());
+  ml.addGeometryDirectly(square_line(1, 1, 3, 3).release());
+  OwnedPolygons fs;
+  ASSERT_TRUE(arrangement_faces(ml, fs));
+  EXPECT_EQ(areas(fs), (std::vector<double>{1, 3, 3}));
+}
+
+TEST(CoastFaces, AFaceHoldingAnotherClusterHasItsFacesCutOut) {
+  OGRMultiLineString ml;
+  ml.addGeometryDirectly(square_line(0, 0, 10, 10).release());
+  ml.addGeometryDirectly(square_line(4, 4, 6, 6).release());
+  ml.addGeometryDirectly(square_line(4.5, 4.5, 5.5, 5.5).release());  // inside the inner one
+  ml.addGeometryDirectly(square_line(20, 0, 21, 1).release());        // beside, outside
+  OwnedPolygons fs;
+  ASSERT_TRUE(arrangement_faces(ml, fs));
+  EXPECT_EQ(areas(fs), (std::vector<double>{1, 1, 3, 96}));
+}
+
+// a - b where the lines of a's hole lie inside a face bounded by b's hole: the face gets the
+// inner square cut out, as GEOS's overlay of the whole says.
+TEST(CoastFaces, DifferenceByFacesWithNestedClustersIsTheOverlays) {
+  OGRPolygon a, b;
+  OGRLinearRing ao = square_ring(0, 0, 10, 10), ah = square_ring(4, 4, 6, 6);
+  OGRLinearRing bo = square_ring(0, 0, 10, 10), bh = square_ring(1, 1, 9, 9);
+  a.addRing(&ao);
+  a.addRing(&ah);
+  b.addRing(&bo);
+  b.addRing(&bh);
+  const GeomPtr by_faces = difference_by_faces(&a, &b, "test");
+  const GeomPtr overlay = difference_by_faces(&a, &b, "test", true);
+  EXPECT_DOUBLE_EQ(area_of(by_faces.get()), 60);
+  EXPECT_DOUBLE_EQ(area_of(overlay.get()), 60);
+  const GeomPtr sym(by_faces->SymDifference(overlay.get()));
+  EXPECT_NEAR(area_of(sym.get()), 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace fdr::coast
