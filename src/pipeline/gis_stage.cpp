@@ -88,6 +88,11 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
+    // A water body of more than a few hmin^2 behind a connection the openings close keeps that
+    // connection, about one element across (coast/reconnect.hpp).
+    fo.connect_area = opt.keep_coast ? 0.0 : 4 * hmin * hmin;
+    fo.connect_width = 0.9 * hmin;
+    fo.narrow_gap = opt.keep_coast ? 0.0 : 0.5 * hmin;  // coast/narrow_gaps.hpp
     // Tips of land thinner than --close-width stay unless other land is within hmin/2 of their
     // end (coast/tips.hpp).
     fo.tip_clearance = 0.5 * hmin;
@@ -304,6 +309,10 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     cf.push_back({"islets_simplified", static_cast<double>(ff.islets_replaced)});
     cf.push_back({"islets_joined", static_cast<double>(ff.islets_joined)});
     cf.push_back({"islets_joined_water_m2", ff.islets_joined_area});
+    cf.push_back({"narrow_gaps_kept", static_cast<double>(ff.narrow_gaps)});
+    cf.push_back({"narrow_gaps_made", static_cast<double>(ff.narrow_gaps_made)});
+    cf.push_back({"water_connections_widened", static_cast<double>(ff.reconnected)});
+    cf.push_back({"water_connections_widened_m2", ff.reconnected_area});
     cf.push_back({"water_widened", static_cast<double>(ff.widened)});
     cf.push_back({"water_widened_m2", ff.widened_area});
     cf.push_back({"input_area_m2", ff.input_area});

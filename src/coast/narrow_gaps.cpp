@@ -1,0 +1,139 @@
+// Step: the places where the water stays narrower than the resolution, listed (narrow_gaps.hpp).
+#include "coast/narrow_gaps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "coast/geometry_ops.hpp"
+#include "coast/report.hpp"
+#include "pslg/segment_grid.hpp"
+
+namespace fdr::coast {
+namespace {
+
+struct Seg {
+  Point2 a, b;
+  std::uint32_t ring;
+  double at;  // the way along its ring to a (m)
+};
+
+// The closest points of two segments that do not cross: *s, *t their parameters on ab and cd.
+double closest(const Seg& u, const Seg& v, double* s, double* t) {
+  auto proj = [](Point2 p, Point2 a, Point2 b) {
+    const Point2 d = b - a;
+    const double l2 = norm2(d);
+    return l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  };
+  auto at = [](Point2 a, Point2 b, double k) { return a + k * (b - a); };
+  double best = std::numeric_limits<double>::infinity();
+  const double cand[4][2] = {{0, proj(u.a, v.a, v.b)}, {1, proj(u.b, v.a, v.b)}, {proj(v.a, u.a, u.b), 0},
+                             {proj(v.b, u.a, u.b), 1}};
+  for (const auto& c : cand) {
+    const double d = dist(at(u.a, u.b, c[0]), at(v.a, v.b, c[1]));
+    if (d < best) {
+      best = d;
+      *s = c[0];
+      *t = c[1];
+    }
+  }
+  return best;
+}
+
+double cross(Point2 a, Point2 b) { return a.x * b.y - a.y * b.x; }
+
+}  // namespace
+
+std::vector<NarrowGap> narrow_gaps(const Polygons& polygons, double width,
+                                   const std::unordered_set<std::uint64_t>* input_vertex) {
+  std::vector<NarrowGap> out;
+  if (!(width > 0)) return out;
+  std::vector<Seg> segs;
+  std::vector<double> ring_len;
+  Box2 box;
+  double total = 0;
+  for (const Rings& rings : polygons)
+    for (const auto& r : rings) {
+      const auto id = static_cast<std::uint32_t>(ring_len.size());
+      double at = 0;
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const Point2 a = r[i], b = r[(i + 1) % r.size()];
+        segs.push_back({a, b, id, at});
+        at += dist(a, b);
+        box.add(a);
+      }
+      ring_len.push_back(at);
+      total += at;
+    }
+  if (segs.empty()) return out;
+  pslg::SegmentGrid grid(box, segs.size(), std::max(total / static_cast<double>(segs.size()), width));
+  for (std::size_t k = 0; k < segs.size(); ++k) grid.add_segment(static_cast<Index>(k), segs[k].a, segs[k].b);
+  auto is_input = [&](const Seg& s) {
+    return input_vertex && input_vertex->count(point_key(s.a.x, s.a.y)) && input_vertex->count(point_key(s.b.x, s.b.y));
+  };
+  std::vector<NarrowGap> hits;
+  std::vector<Index> near;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Seg& u = segs[i];
+    Box2 qb;
+    qb.add({std::min(u.a.x, u.b.x) - width, std::min(u.a.y, u.b.y) - width});
+    qb.add({std::max(u.a.x, u.b.x) + width, std::max(u.a.y, u.b.y) + width});
+    grid.segments_near(qb, &near);
+    for (const Index k : near) {
+      if (k <= i) continue;  // each pair once
+      const Seg& v = segs[k];
+      double s = 0, t = 0;
+      const double d = closest(u, v, &s, &t);
+      if (!(d < width) || !(d > 0)) continue;
+      const Point2 p = u.a + s * (u.b - u.a), q = v.a + t * (v.b - v.a);
+      // Water lies left of every segment: across water, each coast sees the other on its left.
+      if (!(cross(u.b - u.a, q - p) > 0) || !(cross(v.b - v.a, p - q) > 0)) continue;
+      if (u.ring == v.ring) {
+        const double L = ring_len[u.ring];
+        const double along = std::fabs((v.at + t * dist(v.a, v.b)) - (u.at + s * dist(u.a, u.b)));
+        if (!(std::min(along, L - along) > 3 * d)) continue;
+      }
+      hits.push_back({0.5 * (p + q), d, is_input(u) && is_input(v)});
+    }
+  }
+  std::sort(hits.begin(), hits.end(), [](const NarrowGap& a, const NarrowGap& b) {
+    if (a.width != b.width) return a.width < b.width;
+    return a.where.x != b.where.x ? a.where.x < b.where.x : a.where.y < b.where.y;
+  });
+  // One place per cluster: cells of 2 width hold the places listed.
+  const double cell = 2 * width;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> listed;
+  auto key = [](long i, long j) { return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j); };
+  for (const NarrowGap& g : hits) {
+    const long ci = static_cast<long>(std::floor(g.where.x / cell)), cj = static_cast<long>(std::floor(g.where.y / cell));
+    bool near_listed = false;
+    for (long di = -1; di <= 1 && !near_listed; ++di)
+      for (long dj = -1; dj <= 1 && !near_listed; ++dj)
+        if (auto it = listed.find(key(ci + di, cj + dj)); it != listed.end())
+          for (const std::size_t k : it->second)
+            if (dist(out[k].where, g.where) < cell) { near_listed = true; break; }
+    if (near_listed) continue;
+    listed[key(ci, cj)].push_back(out.size());
+    out.push_back(g);
+  }
+  return out;
+}
+
+void list_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>& input_vertex, Result& res) {
+  if (!(o.narrow_gap > 0)) return;
+  FilterLaps lap("  narrow gaps");
+  for (const NarrowGap& g : narrow_gaps(res.polygons, o.narrow_gap, &input_vertex)) {
+    ++res.narrow_gaps;
+    if (!g.in_input) ++res.narrow_gaps_made;
+    res.repairs.push_back({"narrow_gap_kept", g.where, g.width,
+                           "water " + num(g.width) + " m wide is kept narrower than " + num(o.narrow_gap) + " m (" +
+                               (g.in_input ? std::string("as the input has it: widening would join two water bodies "
+                                                         "or closing would cut one off")
+                                           : std::string("where the generalisation moved the coast")) +
+                               "); the mesh needs elements about that small here",
+                           -1});
+  }
+  lap("listed");
+}
+
+}  // namespace fdr::coast
