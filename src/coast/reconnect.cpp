@@ -31,6 +31,19 @@ GeomPtr clipped(const OGRGeometry& g, const OGRPolygon& box, const OGREnvelope& 
   return checked(g.Intersection(&box), "water clipped to a box around a cut-off body");
 }
 
+// p with only the holes whose boxes meet b (the others do not change p's clip to b).
+OGRPolygon near_part(const OGRPolygon& p, const OGREnvelope& b) {
+  OGRPolygon q;
+  q.addRing(const_cast<OGRLinearRing*>(p.getExteriorRing()));
+  for (int k = 0; k < p.getNumInteriorRings(); ++k) {
+    const OGRLinearRing* h = p.getInteriorRing(k);
+    OGREnvelope he;
+    h->getEnvelope(&he);
+    if (he.Intersects(b)) q.addRing(const_cast<OGRLinearRing*>(h));
+  }
+  return q;
+}
+
 // e reaches the box's edge (within tol) where the box is not already the body's own box.
 bool reaches_edge(const OGREnvelope& e, const OGREnvelope& box, const OGREnvelope& body, double tol) {
   return (e.MinX <= box.MinX + tol && box.MinX > body.MinX) || (e.MaxX >= box.MaxX - tol && box.MaxX < body.MaxX) ||
@@ -54,11 +67,11 @@ GeomPtr lost_connection(const OGRPolygon& body, const OGRPolygon& piece, const O
     be.MaxX = std::min(pe.MaxX + e, bodye.MaxX);
     be.MaxY = std::min(pe.MaxY + e, bodye.MaxY);
     const OGRPolygon box = box_polygon(be);
-    GeomPtr bw = clipped(body, box, be);
+    GeomPtr bw = clipped(near_part(body, be), box, be);
     if (!bw || bw->IsEmpty()) return nullptr;
     OwnedPolygons pw, mw;  // the piece and the main water, clipped
-    if (GeomPtr c = clipped(piece, box, be)) polygons_of(c.get(), pw);
-    if (GeomPtr c = clipped(main, box, be)) polygons_of(c.get(), mw);
+    if (GeomPtr c = clipped(near_part(piece, be), box, be)) polygons_of(c.get(), pw);
+    if (GeomPtr c = clipped(near_part(main, be), box, be)) polygons_of(c.get(), mw);
     GeomPtr lost = std::move(bw);
     for (OwnedPolygons* r : {&pw, &mw})
       if (!r->empty()) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "coast/geometry_ops.hpp"
 #include "coast/narrow_gaps.hpp"
@@ -16,28 +17,31 @@ Rings sea_with(const std::vector<Box2>& islands) {
   return r;
 }
 
-std::unordered_set<std::uint64_t> vertices_of(const Polygons& ps) {
-  std::unordered_set<std::uint64_t> v;
-  for (const auto& rings : ps)
-    for (const auto& r : rings)
-      for (Point2 q : r) v.insert(point_key(q.x, q.y));
-  return v;
+GeomPtr water(const Polygons& ps) {
+  auto m = std::make_unique<OGRMultiPolygon>();
+  for (const auto& rings : ps) {
+    OGRPolygon p = to_ogr(rings);
+    m->addGeometry(&p);
+  }
+  return GeomPtr(m.release());
 }
 
 TEST(CoastNarrowGaps, TwoIsletsThirtyMetresApartAreOneGap) {
   const Polygons ps{sea_with({{{400, 400}, {480, 480}}, {{510, 400}, {590, 480}}})};
-  const auto input = vertices_of(ps);
-  const auto gaps = narrow_gaps(ps, 50, &input);
+  const auto gaps = narrow_gaps(ps, 50, &ps);
   ASSERT_EQ(gaps.size(), 1u);
   EXPECT_NEAR(gaps[0].width, 30, 1e-9);
   EXPECT_NEAR(gaps[0].where.x, 495, 1e-9);
   EXPECT_GE(gaps[0].where.y, 400);
   EXPECT_LE(gaps[0].where.y, 480);
   EXPECT_TRUE(gaps[0].in_input);
-  // Not input coast: the gap is one the generalisation made.
+  // Not input coast: the gap is one the generalisation made (the input's east islet was 20 m
+  // farther east).
   EXPECT_FALSE(narrow_gaps(ps, 50, nullptr)[0].in_input);
+  const Polygons before{sea_with({{{400, 400}, {480, 480}}, {{530, 400}, {610, 480}}})};
+  EXPECT_FALSE(narrow_gaps(ps, 50, &before)[0].in_input);
   // Wider than the limit: none.
-  EXPECT_TRUE(narrow_gaps(ps, 30, &input).empty());
+  EXPECT_TRUE(narrow_gaps(ps, 30, &ps).empty());
 }
 
 TEST(CoastNarrowGaps, IsletNearTheCoastAndAShallowNotch) {
@@ -78,7 +82,7 @@ TEST(CoastNarrowGaps, ListedAsRepairs) {
   res.polygons = {sea_with({{{400, 400}, {480, 480}}, {{510, 400}, {590, 480}}})};
   Options o;
   o.narrow_gap = 50;
-  list_narrow_gaps(o, vertices_of(res.polygons), res);
+  list_narrow_gaps(o, *water(res.polygons), res);
   EXPECT_EQ(res.narrow_gaps, 1u);
   EXPECT_EQ(res.narrow_gaps_made, 0u);
   ASSERT_EQ(res.repairs.size(), 1u);
@@ -87,7 +91,7 @@ TEST(CoastNarrowGaps, ListedAsRepairs) {
   o.narrow_gap = 0;
   Result none;
   none.polygons = res.polygons;
-  list_narrow_gaps(o, {}, none);
+  list_narrow_gaps(o, *water(none.polygons), none);
   EXPECT_TRUE(none.repairs.empty());
 }
 
