@@ -113,6 +113,9 @@ std::vector<NarrowGap> narrow_gaps(const Polygons& polygons, double width, const
           if (k <= i || seen[k] == now) continue;  // each pair once
           seen[k] = now;
           const Seg& v = segs[k];
+          if (std::max(v.a.x, v.b.x) < qb.lo.x || std::min(v.a.x, v.b.x) > qb.hi.x ||
+              std::max(v.a.y, v.b.y) < qb.lo.y || std::min(v.a.y, v.b.y) > qb.hi.y)
+            continue;
           double s = 0, t = 0;
           const double d = closest(u, v, &s, &t);
           if (!(d < width) || !(d > 0)) continue;
@@ -156,14 +159,35 @@ std::vector<NarrowGap> narrow_gaps(const Polygons& polygons, double width, const
     out.push_back(g);
   }
   // In the input: both coasts of the gap lie on the input's coast (within 5 % of the width).
+  // Only the input's segments near a listed gap are indexed (the cells of the listing).
   if (input && !out.empty()) {
-    std::vector<double> in_len;
+    const double tol = 0.05 * width;
+    auto near_listed = [&](Point2 a, Point2 b) {
+      const long i0 = static_cast<long>(std::floor((std::min(a.x, b.x) - tol) / cell)) - 1;
+      const long i1 = static_cast<long>(std::floor((std::max(a.x, b.x) + tol) / cell)) + 1;
+      const long j0 = static_cast<long>(std::floor((std::min(a.y, b.y) - tol) / cell)) - 1;
+      const long j1 = static_cast<long>(std::floor((std::max(a.y, b.y) + tol) / cell)) + 1;
+      if ((i1 - i0 + 1) * (j1 - j0 + 1) > 256) return true;  // a long segment: kept
+      for (long i = i0; i <= i1; ++i)
+        for (long j = j0; j <= j1; ++j)
+          if (listed.count(key(i, j))) return true;
+      return false;
+    };
+    std::vector<Seg> in_segs;
     Box2 in_box;
     double in_total = 0;
-    const std::vector<Seg> in_segs = segments_of(*input, &in_len, &in_box, &in_total);
+    for (const Rings& rings : *input)
+      for (const auto& r : rings)
+        for (std::size_t i = 0; i < r.size(); ++i) {
+          const Point2 a = r[i], b = r[(i + 1) % r.size()];
+          if (!near_listed(a, b)) continue;
+          in_segs.push_back({a, b, 0, 0});
+          in_box.add(a);
+          in_box.add(b);
+          in_total += dist(a, b);
+        }
     if (!in_segs.empty()) {
       const pslg::SegmentGrid in_grid = grid_of(in_segs, in_box, in_total, width);
-      const double tol = 0.05 * width;
       for (NarrowGap& g : out)
         g.in_input = near_segment(in_grid, in_segs, g.ends[0], tol) < tol && near_segment(in_grid, in_segs, g.ends[1], tol) < tol;
     }

@@ -324,7 +324,11 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
          " joined to land, " +
          num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
          " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
-         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
+         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.reconnected) +
+         " cut-off water bodies kept with their connection widened (" + num(ff.reconnected_area / 1e6) +
+         " km^2 of land), " + std::to_string(ff.narrow_gaps) + " places narrower than hmin/2 left (" +
+         std::to_string(ff.narrow_gaps_made) + " of them made by these steps), " + std::to_string(ff.united) +
+         " overlaps united");
     std::map<std::string, std::size_t> kinds;
     for (const auto& r : rest->repairs) ++kinds[r.repair.kind];
     std::string rep = "repairs: " + std::to_string(rest->repairs.size());
