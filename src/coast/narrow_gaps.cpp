@@ -212,10 +212,10 @@ void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res) {
     if (!g.in_input) ++res.narrow_gaps_made;
     res.repairs.push_back({"narrow_gap_kept", g.where, g.width,
                            "water " + num(g.width) + " m wide is kept narrower than " + num(o.narrow_gap) + " m (" +
-                               (g.in_input ? std::string("as the input has it: widening would join two water bodies "
-                                                         "or closing would cut one off")
-                                           : std::string("where the generalisation moved the coast")) +
-                               "); the mesh needs elements about that small here",
+                               (g.in_input ? std::string("the input has it so")
+                                           : std::string("made where a step moved the coast: an islet's triangle, a join "
+                                                         "or a widened bank"))
+                               + "); the mesh needs elements about that small here",
                            -1});
   }
   lap("listed");
