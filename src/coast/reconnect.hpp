@@ -14,7 +14,7 @@
 namespace fdr::coast {
 
 // The water of `body` that `result` lost (body minus the result's pieces `piece` and `main`,
-// hairlines below `hair` wide left out) and that meets both `piece` and `main`: the smallest such
+// shrunk by `hair`: hairlines left out) and that meets both `piece` and `main`: the smallest such
 // connected part, searched in a box around `piece` grown by `reach` and doubled (up to the
 // body's box) while a part that meets `piece` reaches the box's edge. Null: none found.
 GeomPtr lost_connection(const OGRPolygon& body, const OGRPolygon& piece, const OGRPolygon& main, double reach,
