@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "coast/reconnect.hpp"
 #include "coast/report.hpp"
 
 namespace fdr::coast {
@@ -64,35 +65,82 @@ std::vector<int> owners(const OwnedPolygons& wps, const OwnedPolygons& rps) {
   return owner;
 }
 
+// The connection of the cut-off `piece` to `main` (both of `body`) widened to connect_width
+// (reconnect.hpp) and reported; null when none is found or it would meet other water.
+GeomPtr reconnect(const OGRPolygon& body, const OGRPolygon& piece, const OGRPolygon& main,
+                  const std::vector<const OGRPolygon*>& others, const OGREnvelope& inbox, const Options& o,
+                  Result& res) {
+  const double hair = 1e-3 * (o.close_width > 0 ? o.close_width : o.connect_width);
+  const GeomPtr lost = lost_connection(body, piece, main, 2 * o.connect_width, hair);
+  if (!lost) return nullptr;
+  GeomPtr c = widened_connection(*lost, o.connect_width, inbox, others);
+  if (!c) return nullptr;
+  const double a = piece.get_Area();
+  ++res.reconnected;
+  res.repairs.push_back({"water_connection_widened", inside_point(lost.get()), a,
+                         "water body of " + num(a) + " m^2 joined to the rest only through a connection narrower than " +
+                             num(o.min_feature) + " m (--min-feature) is kept: the connection (" +
+                             num(area_of(lost.get())) +
+                             " m^2 of water) was widened to at least " + num(o.connect_width) + " m",
+                         -1});
+  return c;
+}
+
 }  // namespace
 
 GeomPtr remove_cut_off(GeomPtr R, const OGRGeometry& W0, const Options& o, Result& res) {
+  FilterLaps lap("  cut off");
   std::vector<std::unique_ptr<OGRPolygon>> wps, rps;
   polygons_of(&W0, wps);
   polygons_of(R.get(), rps);
   const std::vector<int> owner = owners(wps, rps);
+  lap("owners");
   std::vector<int> best(wps.size(), -1);
   for (std::size_t j = 0; j < rps.size(); ++j) {
     if (owner[j] < 0) continue;
     int& b = best[static_cast<std::size_t>(owner[j])];
     if (b < 0 || rps[j]->get_Area() > rps[static_cast<std::size_t>(b)]->get_Area()) b = static_cast<int>(j);
   }
-  std::vector<std::unique_ptr<OGRPolygon>> kept;
+  OGREnvelope inbox;
+  W0.getEnvelope(&inbox);
+  // Decided first, moved after: the reconnections read the main pieces and the other bodies.
+  std::vector<char> keep(rps.size(), 1);
+  std::vector<std::unique_ptr<OGRPolygon>> kept, corridors;
   for (std::size_t j = 0; j < rps.size(); ++j) {
-    if (owner[j] >= 0 && best[static_cast<std::size_t>(owner[j])] != static_cast<int>(j)) {
-      const double a = rps[j]->get_Area();
-      ++res.cut_off;
-      res.cut_off_area += a;
-      res.repairs.push_back({"cut_off_water_removed", inside_point(rps[j].get()), a,
-                             "water body of " + num(a) + " m^2 joined to the rest only through a connection "
-                             "narrower than " + num(o.min_feature) + " m (--min-feature); it was removed",
-                             -1});
-      continue;
+    if (owner[j] < 0 || best[static_cast<std::size_t>(owner[j])] == static_cast<int>(j)) continue;
+    const double a = rps[j]->get_Area();
+    const std::size_t oj = static_cast<std::size_t>(owner[j]);
+    if (o.connect_area > 0 && o.connect_width > 0 && !(a < o.connect_area)) {
+      std::vector<const OGRPolygon*> others;  // water of the other input bodies
+      for (std::size_t k = 0; k < rps.size(); ++k)
+        if (owner[k] >= 0 && owner[k] != owner[j]) others.push_back(rps[k].get());
+      if (GeomPtr c = reconnect(*wps[oj], *rps[j], *rps[static_cast<std::size_t>(best[oj])], others, inbox, o, res)) {
+        polygons_of(c.get(), corridors);
+        continue;
+      }
     }
-    kept.push_back(std::move(rps[j]));
+    keep[j] = 0;
+    ++res.cut_off;
+    res.cut_off_area += a;
+    res.repairs.push_back({"cut_off_water_removed", inside_point(rps[j].get()), a,
+                           "water body of " + num(a) + " m^2 joined to the rest only through a connection "
+                           "narrower than " + num(o.min_feature) + " m (--min-feature); it was removed",
+                           -1});
   }
-  R = multi(kept);
-  return R;
+  for (std::size_t j = 0; j < rps.size(); ++j)
+    if (keep[j]) kept.push_back(std::move(rps[j]));
+  lap("reconnect");
+  if (corridors.empty()) return multi(kept);
+  const double before = [&] {
+    double s = 0;
+    for (const auto& k : kept) s += k->get_Area();
+    return s;
+  }();
+  for (auto& c : corridors) kept.push_back(std::move(c));
+  GeomPtr out = union_pieces(kept, std::max(1e-6 * o.connect_width, 1e-9), "water with widened connections");
+  res.reconnected_area += std::max(0.0, area_of(out.get()) - before);
+  lap("union");
+  return out;
 }
 
 }  // namespace fdr::coast

@@ -10,6 +10,7 @@
 #include "coast/cut_off.hpp"
 #include "coast/geometry_ops.hpp"
 #include "coast/islets.hpp"
+#include "coast/narrow_gaps.hpp"
 #include "coast/openings.hpp"
 #include "coast/removed.hpp"
 #include "coast/report.hpp"
@@ -47,6 +48,7 @@ void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Opt
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
   }
+  list_narrow_gaps(o, W0, res);
 }
 
 // Developer aid (kFilter): the input's size on stderr.

@@ -44,6 +44,12 @@ struct Options {
   double islet_shift = 0;      // no room at its centroid: the triangle may move up to this far from it
   bool join_islets = false;    // an islet with no room for its triangle is joined to land nearer
                                // than islet_side (convex hull with that coast) instead of removed
+  double connect_area = 0;     // a water body at least this large (m^2) cut off by a closed
+                               // connection gets that connection widened instead of being
+                               // removed (cut_off.hpp); 0: every cut-off body is removed
+  double connect_width = 0;    // ... to at least this width (m)
+  double narrow_gap = 0;       // water left narrower than this is listed, place by place
+                               // (narrow_gaps.hpp, narrow_gap_kept); 0: not listed
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other
                                // land is this near their end (m); 0: every thin part is cut
   bool defer_removed = false;  // the listing of removed water (input minus result: thousands of
@@ -80,6 +86,10 @@ struct Result {
   std::size_t channels_kept = 0;     // narrow connections kept (O2 - O1 pieces joining bodies)
   std::size_t cut_off = 0;           // water bodies cut off by a closed connection, removed
   double cut_off_area = 0;
+  std::size_t reconnected = 0;       // water bodies cut off whose connection was widened instead
+  double reconnected_area = 0;       // land that became water in those connections (m^2)
+  std::size_t narrow_gaps = 0;       // places where the water stays narrower than narrow_gap
+  std::size_t narrow_gaps_made = 0;  // ... of them, where the generalisation moved the coast
   double land_removed_area = 0;      // land thinner than close_width that became water (m^2)
   std::size_t widened = 0;           // pieces of narrow water widened
   double widened_area = 0;           // land that became water by widening (m^2)

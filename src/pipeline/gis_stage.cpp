@@ -89,6 +89,11 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
     fo.list_area = 0.5 * hmin * hmin;
+    // A water body of more than a few hmin^2 behind a connection the openings close keeps that
+    // connection, about one element across (coast/reconnect.hpp).
+    fo.connect_area = opt.keep_coast ? 0.0 : 4 * hmin * hmin;
+    fo.connect_width = 0.9 * hmin;
+    fo.narrow_gap = opt.keep_coast ? 0.0 : 0.5 * hmin;  // coast/narrow_gaps.hpp
     // Tips of land thinner than --close-width stay unless other land is within hmin/2 of their
     // end (coast/tips.hpp).
     fo.tip_clearance = 0.5 * hmin;
@@ -317,6 +322,10 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
     cf.push_back({"islets_simplified", static_cast<double>(ff.islets_replaced)});
     cf.push_back({"islets_joined", static_cast<double>(ff.islets_joined)});
     cf.push_back({"islets_joined_water_m2", ff.islets_joined_area});
+    cf.push_back({"narrow_gaps_kept", static_cast<double>(ff.narrow_gaps)});
+    cf.push_back({"narrow_gaps_made", static_cast<double>(ff.narrow_gaps_made)});
+    cf.push_back({"water_connections_widened", static_cast<double>(ff.reconnected)});
+    cf.push_back({"water_connections_widened_m2", ff.reconnected_area});
     cf.push_back({"water_widened", static_cast<double>(ff.widened)});
     cf.push_back({"water_widened_m2", ff.widened_area});
     cf.push_back({"input_area_m2", ff.input_area});
@@ -328,7 +337,11 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
          " joined to land, " +
          num(ff.land_removed_area / 1e6) + " km^2 of thin land removed, " + std::to_string(ff.tips_kept) +
          " tips of land kept, " + std::to_string(ff.widened) + " narrow water pieces widened (" +
-         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.united) + " overlaps united");
+         num(ff.widened_area / 1e6) + " km^2 of land), " + std::to_string(ff.reconnected) +
+         " cut-off water bodies kept with their connection widened (" + num(ff.reconnected_area / 1e6) +
+         " km^2 of land), " + std::to_string(ff.narrow_gaps) + " places narrower than hmin/2 left (" +
+         std::to_string(ff.narrow_gaps_made) + " of them made by these steps), " + std::to_string(ff.united) +
+         " overlaps united");
     std::map<std::string, std::size_t> kinds;
     for (const auto& r : rest->repairs) ++kinds[r.repair.kind];
     std::string rep = "repairs: " + std::to_string(rest->repairs.size());
