@@ -15,6 +15,7 @@ constexpr std::array<AidInfo, static_cast<unsigned>(Aid::kCount)> kAids{{
     {Aid::kSmooth, "FDR_DEBUG_SMOOTH", "the smoothing sweeps on stderr"},
     {Aid::kGpkg, "FDR_DEBUG_GPKG", "the GeoPackage writer's steps on stderr"},
     {Aid::kPslg, "FDR_DEBUG_PSLG", "PREFIX: a GIS run's PSLG before and after cleaning, PREFIX.before.poly and .after.poly"},
+    {Aid::kFilterWkt, "FDR_DEBUG_FILTER_WKT", "PATH: the coast generalisation's result as WKT, one polygon a line"},
     {Aid::kThreads, "FDR_THREADS", "N: at most N threads (1 to 64); results do not depend on it"},
 }};
 

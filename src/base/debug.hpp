@@ -9,12 +9,13 @@ namespace fdr::debug {
 enum class Aid : unsigned {
   kStages,   // FDR_DEBUG_STAGES: every pipeline stage's time on stderr
   kReport,   // FDR_DEBUG_REPORT: the quality report's steps
-  kFilter,   // FDR_DEBUG_FILTER: the coast generalisation's steps; its value, a path prefix for WKT dumps
+  kFilter,   // FDR_DEBUG_FILTER: the coast generalisation's steps
   kClean,    // FDR_DEBUG_CLEAN: PSLG cleaning and resampling steps
   kSizing,   // FDR_DEBUG_SIZING: spacing rules' steps
   kSmooth,   // FDR_DEBUG_SMOOTH: smoothing sweeps
   kGpkg,     // FDR_DEBUG_GPKG: GeoPackage writer's steps
   kPslg,     // FDR_DEBUG_PSLG=PREFIX: the GIS run's PSLG before and after cleaning as .poly files
+  kFilterWkt,  // FDR_DEBUG_FILTER_WKT=PATH: the coast generalisation's result as WKT, one polygon a line
   kThreads,  // FDR_THREADS=N: at most N threads (1..64)
   kCount
 };

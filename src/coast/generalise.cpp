@@ -62,9 +62,9 @@ void print_input(const Polygons& input) {
   std::fprintf(stderr, "filter input: %zu polygons, %zu rings, %zu vertices\n", input.size(), nr, nv);
 }
 
-// Developer aid (kFilter, its value a path): the result as WKT, one polygon a line.
+// Developer aid (kFilterWkt, its value a path): the result as WKT, one polygon a line.
 void dump_wkt(const OwnedPolygons& outp) {
-  const char* path = debug::value(debug::Aid::kFilter);
+  const char* path = debug::value(debug::Aid::kFilterWkt);
   if (!path) return;
   if (FILE* fp = std::fopen(path, "w")) {
     for (const auto& p : outp) {
