@@ -82,6 +82,12 @@ void set_smooth(Request& r, const std::string& key, const std::vector<std::strin
   r.mesh.smooth_passes = static_cast<int>(sm);
 }
 
+void set_bound(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;  // 2D: 1; 3D: the 3D default (tet::TetOptions)
+  r.mesh.bound = parse_number(key, v.back());
+  r.mesh.bound_given = true;
+}
+
 void set_max_steiner(Request& r, const std::string& key, const std::vector<std::string>& v) {
   if (v.empty()) return;
   const double ms = parse_number(key, v.back());
@@ -162,7 +168,7 @@ const std::vector<OptSpec>& option_table() {
        "The convex hull of all vertices bounds the domain (.poly/.node INPUT; like Triangle -c): point sets and dangling breaklines mesh"},
       {"mesh", "--simplify", "simplify", field<&MeshOptions::simplify>, "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
-      {"mesh", "--bound", "bound", field<&MeshOptions::bound>, "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},
+      {"mesh", "--bound", "bound", set_bound, "float", "B", "1 (2D), the 3D default keeping radius-edge <= 2 (3D)", "Refinement", "Quality bound: a triangle (tetrahedron) is bad when R/f(c) > B (need alpha*B < 1)"},
       {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q; GIS inputs: above 20 deg it gives way where a split would cut a boundary segment under f/2); 0 turns it off"},
       {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
       {"mesh", "--max-steiner", "max-steiner", set_max_steiner, "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
