@@ -2,6 +2,8 @@
 #include "api/tetrahedralize.hpp"
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include "base/error.hpp"
 #include "sizing/spacing3d_make.hpp"
 #include "tetio/read_plc.hpp"
@@ -33,6 +35,23 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
 TetResult tetrahedralize(const plc::Plc& plc, const std::string& spacing, const TetOptions& options) {
   const sizing::SizingPtr3 f = sizing::make_spacing3(spacing);
   return fdr::tetrahedralize(plc, *f, options);
+}
+
+std::string default_spacing3(const plc::Plc& plc) {
+  if (plc.points.empty()) return "1";
+  Point3 lo = plc.points[0], hi = plc.points[0];
+  for (const auto& p : plc.points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double d = dist(lo, hi) / 20.0;
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", d > 0 && std::isfinite(d) ? d : 1.0);
+  return buf;
+}
+
+sizing::SizingPtr3 grid_spacing3(sizing::Grid3 grid, const std::string& label) {
+  return std::make_shared<const sizing::GridField3>(std::move(grid), label);
 }
 
 plc::Plc read_plc(const std::string& path) { return tetio::read_plc(path); }

@@ -23,6 +23,14 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
 // or an expression in x, y, z (sizing::make_spacing3).
 TetResult tetrahedralize(const plc::Plc& plc, const std::string& spacing, const TetOptions& options = {});
 
+// The spacing of a run without one, as in 2D: a twentieth of the PLC's bounding-box diagonal, as
+// a --spacing number (shortest round-trip digits).
+std::string default_spacing3(const plc::Plc& plc);
+
+// f sampled on a regular 3D grid (cell centres), trilinear in between (sizing::GridField3): the
+// spacing of a Python callable.
+sizing::SizingPtr3 grid_spacing3(sizing::Grid3 grid, const std::string& label);
+
 // The PLC of a 3D input file (.poly with dimension 3, .smesh, .node, .off, .stl, .ply).
 plc::Plc read_plc(const std::string& path);
 

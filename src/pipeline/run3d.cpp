@@ -52,20 +52,6 @@ bool has_vtu(const std::vector<std::string>& outs) {
   });
 }
 
-// The default spacing of a run without --spacing: the PLC's bounding-box diagonal / 20, as 2D.
-std::string default_spacing(const plc::Plc& plc) {
-  if (plc.points.empty()) return "1";
-  Point3 lo = plc.points[0], hi = plc.points[0];
-  for (const auto& p : plc.points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const double d = dist(lo, hi) / 20.0;
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", d > 0 ? d : 1.0);
-  return buf;
-}
-
 void add_cell_fields(tet::TetMesh& m, quality::TetValues&& v) {
   auto put = [&](const char* name, std::vector<double>&& vals) {
     for (const auto& [n, _] : m.cell_fields)
@@ -101,7 +87,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
   StageClock clock(&r.stages);
   report_progress(0.0, "read");
   const plc::Plc plc = fdr::read_plc(opt.input);
-  const sizing::SizingPtr3 f = sizing::make_spacing3(opt.spacing.empty() ? default_spacing(plc) : opt.spacing);
+  const sizing::SizingPtr3 f = sizing::make_spacing3(opt.spacing.empty() ? fdr::default_spacing3(plc) : opt.spacing);
   clock.lap("read");
   if (log) log(LogLevel::kInfo, "3D input: " + std::to_string(plc.points.size()) + " vertices, " +
                                     std::to_string(plc.facets.size()) + " facets; spacing " + f->describe());
