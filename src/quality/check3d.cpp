@@ -137,14 +137,23 @@ std::optional<std::string> check_subfacet_planes(const tet::TetMesh& m, const pl
   for (long long id : ids)
     if (id >= 0) is_input[static_cast<std::size_t>(id)] = 1;
   const double tol = 1e-9 * bbox_diagonal(plc.points);
+  // The plane that held the previous subfacet is tried first: subfacets come facet by facet, so
+  // the scan over every plane is the exception.
+  std::size_t last = 0;
   for (std::size_t i = 0; i < m.faces.size(); ++i) {
     const auto& t = m.faces[i];
-    const bool found = std::any_of(planes.begin(), planes.end(), [&](const Plane& pl) {
+    auto holds = [&](const Plane& pl) {
       if (pl.marker != m.face_marker[i]) return false;
       for (VertexId v : t)
         if (!on_plane(pl, m.points[v], is_input[v], tol)) return false;
       return true;
-    });
+    };
+    bool found = last < planes.size() && holds(planes[last]);
+    for (std::size_t k = 0; !found && k < planes.size(); ++k)
+      if (holds(planes[k])) {
+        found = true;
+        last = k;
+      }
     if (!found)
       return "subfacet " + std::to_string(i) + " " + at(m.points[t[0]]) + " " + at(m.points[t[1]]) + " " +
              at(m.points[t[2]]) + " lies in no facet with marker " + std::to_string(m.face_marker[i]);
@@ -152,12 +161,12 @@ std::optional<std::string> check_subfacet_planes(const tet::TetMesh& m, const pl
   return std::nullopt;
 }
 
-std::optional<std::string> check_boundary_is_subfacets(const tet::TetMesh& m) {
+std::optional<std::string> check_boundary_is_subfacets(const tet::TetMesh& m, const std::vector<FaceUse>& uses) {
   std::vector<Tri> sub;
   sub.reserve(m.faces.size());
   for (const auto& f : m.faces) sub.push_back(sorted(f));
   std::sort(sub.begin(), sub.end());
-  for (const Tri& b : boundary_faces(face_uses(m)))
+  for (const Tri& b : boundary_faces(uses))
     if (!std::binary_search(sub.begin(), sub.end(), b))
       return "boundary face " + at(m.points[b[0]]) + " " + at(m.points[b[1]]) + " " + at(m.points[b[2]]) +
              " is no subfacet of the PLC";
@@ -207,21 +216,7 @@ std::optional<std::string> check_segments(const tet::TetMesh& m, const plc::Plc&
   return std::nullopt;
 }
 
-}  // namespace
-
-std::optional<std::string> check_orientation(const tet::TetMesh& m) {
-  for (std::size_t i = 0; i < m.tets.size(); ++i) {
-    const auto& t = m.tets[i];
-    for (VertexId v : t)
-      if (v >= m.points.size()) return "tetrahedron " + std::to_string(i) + ": vertex id " + std::to_string(v) + " out of range";
-    if (predicates::orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]) <= 0)
-      return "tetrahedron " + std::to_string(i) + " at " + at(m.points[t[0]]) + " has no positive volume";
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> check_faces_closed(const tet::TetMesh& m) {
-  const std::vector<FaceUse> uses = face_uses(m);
+std::optional<std::string> faces_closed(const tet::TetMesh& m, const std::vector<FaceUse>& uses) {
   for (std::size_t i = 0; i + 2 < uses.size(); ++i)
     if (uses[i].key == uses[i + 2].key)
       return "face " + at(m.points[uses[i].key[0]]) + " " + at(m.points[uses[i].key[1]]) + " " +
@@ -240,8 +235,7 @@ std::optional<std::string> check_faces_closed(const tet::TetMesh& m) {
   return std::nullopt;
 }
 
-std::optional<std::string> check_delaunay(const tet::TetMesh& m) {
-  const std::vector<FaceUse> uses = face_uses(m);
+std::optional<std::string> delaunay(const tet::TetMesh& m, const std::vector<FaceUse>& uses) {
   for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
     if (uses[i].key != uses[i + 1].key) continue;
     const auto& t = m.tets[uses[i].tet];
@@ -253,7 +247,7 @@ std::optional<std::string> check_delaunay(const tet::TetMesh& m) {
   return std::nullopt;
 }
 
-std::optional<std::string> check_conforming(const tet::TetMesh& m, const plc::Plc& plc) {
+std::optional<std::string> conforming(const tet::TetMesh& m, const plc::Plc& plc, const std::vector<FaceUse>& uses) {
   if (plc.facets.empty()) return std::nullopt;
   const plc::FacetTriangulation ft = plc::check_and_triangulate(plc, {.closed = true});
   const std::vector<long long> ids = input_ids(m, plc);
@@ -261,8 +255,29 @@ std::optional<std::string> check_conforming(const tet::TetMesh& m, const plc::Pl
     if (ids[i] < 0) return "input vertex " + std::to_string(i) + " " + at(plc.points[i]) + " is not a mesh vertex";
   if (auto e = check_facet_areas(m, plc, ft)) return e;
   if (auto e = check_subfacet_planes(m, plc, ft, ids)) return e;
-  if (auto e = check_boundary_is_subfacets(m)) return e;
+  if (auto e = check_boundary_is_subfacets(m, uses)) return e;
   return check_segments(m, plc, ft, ids);
+}
+
+}  // namespace
+
+std::optional<std::string> check_orientation(const tet::TetMesh& m) {
+  for (std::size_t i = 0; i < m.tets.size(); ++i) {
+    const auto& t = m.tets[i];
+    for (VertexId v : t)
+      if (v >= m.points.size()) return "tetrahedron " + std::to_string(i) + ": vertex id " + std::to_string(v) + " out of range";
+    if (predicates::orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]) <= 0)
+      return "tetrahedron " + std::to_string(i) + " at " + at(m.points[t[0]]) + " has no positive volume";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> check_faces_closed(const tet::TetMesh& m) { return faces_closed(m, face_uses(m)); }
+
+std::optional<std::string> check_delaunay(const tet::TetMesh& m) { return delaunay(m, face_uses(m)); }
+
+std::optional<std::string> check_conforming(const tet::TetMesh& m, const plc::Plc& plc) {
+  return conforming(m, plc, face_uses(m));
 }
 
 std::optional<std::string> check_r_over_f(const tet::TetMesh& m, const sizing::SizingField3& f, double B) {
@@ -283,9 +298,10 @@ std::optional<std::string> check_r_over_f(const tet::TetMesh& m, const sizing::S
 void check_tets(const tet::TetMesh& m, const plc::Plc& plc, const sizing::SizingField3& f, double B) {
   const std::string src = plc.source.empty() ? std::string("mesh") : plc.source;
   if (auto e = check_orientation(m)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
-  if (auto e = check_faces_closed(m)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
-  if (auto e = check_delaunay(m)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
-  if (auto e = check_conforming(m, plc)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
+  const std::vector<FaceUse> uses = face_uses(m);  // sorted once for the three face checks
+  if (auto e = faces_closed(m, uses)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
+  if (auto e = delaunay(m, uses)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
+  if (auto e = conforming(m, plc, uses)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
   if (auto e = check_r_over_f(m, f, B)) throw Error(ExitCode::kCheckFailed, src + ": check: " + *e);
 }
 

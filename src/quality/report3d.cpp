@@ -4,10 +4,13 @@
 #include "quality/report3d.hpp"
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <type_traits>
+#include <utility>
 #include "tet/tet_geometry.hpp"
 
 namespace fdr::quality {
@@ -17,46 +20,49 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 double volume_of(Point3 a, Point3 b, Point3 c, Point3 d) { return dot(b - a, cross(c - a, d - a)) / 6.0; }
 
-// Interior dihedral angle at edge (a, b) between the faces towards c and towards d: the angle
-// between the normals e x (c - a) and e x (d - a), which are the projections of c and d turned
-// by the same quarter turn about e.
-double dihedral_at(Point3 a, Point3 b, Point3 c, Point3 d) {
-  const Point3 e = b - a;
-  const Point3 n1 = cross(e, c - a), n2 = cross(e, d - a);
-  return std::atan2(std::sqrt(norm2(cross(n1, n2))), dot(n1, n2)) * kDeg;
-}
-
-using Edge = std::array<VertexId, 2>;
-
-std::vector<Edge> unique_edges(const tet::TetMesh& m) {
-  std::vector<Edge> e;
-  e.reserve(m.tets.size() * 6);
-  static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+// Calls fn(a, b) once per edge (a < b), vertex by vertex: each vertex's neighbours come from its
+// incident tetrahedra (a compact vertex -> tetrahedra table), sorted in a short local list. Cheaper
+// than sorting the six edges of every tetrahedron of a large mesh as one array.
+template <class Fn>
+void for_each_edge(const tet::TetMesh& m, Fn&& fn) {
+  const std::size_t n = m.points.size();
+  std::vector<Index> start(n + 1, 0);  // Index: 4 bytes per incidence with 32-bit ids
   for (const auto& t : m.tets)
-    for (const auto& p : kPairs) e.push_back({std::min(t[p[0]], t[p[1]]), std::max(t[p[0]], t[p[1]])});
-  std::sort(e.begin(), e.end());
-  e.erase(std::unique(e.begin(), e.end()), e.end());
-  return e;
+    for (VertexId v : t) ++start[v + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  std::vector<Index> incident(start[n]);
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (VertexId v : m.tets[i]) incident[fill[v]++] = static_cast<Index>(i);
+  std::vector<VertexId> nb;
+  for (std::size_t v = 0; v < n; ++v) {
+    nb.clear();
+    for (Index k = start[v]; k < start[v + 1]; ++k)
+      for (VertexId w : m.tets[incident[k]])
+        if (w > v) nb.push_back(w);
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    for (VertexId w : nb) fn(static_cast<VertexId>(v), w);
+  }
 }
 
 void measure_edges(const tet::TetMesh& m, const sizing::SizingField3& f, Report3& r) {
-  const std::vector<Edge> edges = unique_edges(m);
   const std::size_t n = m.points.size();
   std::vector<double> fp(n), shortest(n, std::numeric_limits<double>::infinity()), longest(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) fp[i] = f(m.points[i]);
-  r.min_l_over_f = edges.empty() ? 0 : std::numeric_limits<double>::infinity();
+  r.min_l_over_f = m.tets.empty() ? 0 : std::numeric_limits<double>::infinity();
   r.max_l_over_f = 0;
-  for (const auto& e : edges) {
-    const Point3 a = m.points[e[0]], b = m.points[e[1]];
+  for_each_edge(m, [&](VertexId va, VertexId vb) {
+    const Point3 a = m.points[va], b = m.points[vb];
     const double l = dist(a, b);
     const double lf = l / f(0.5 * (a + b));
     r.min_l_over_f = std::min(r.min_l_over_f, lf);
     r.max_l_over_f = std::max(r.max_l_over_f, lf);
-    for (VertexId v : e) {
+    for (VertexId v : {va, vb}) {
       shortest[v] = std::min(shortest[v], l);
       longest[v] = std::max(longest[v], l);
     }
-  }
+  });
   r.nn_over_f_min = std::numeric_limits<double>::infinity();
   r.el_over_f_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -114,9 +120,26 @@ Guarantees3 compute_guarantees3(double alpha, double B) {
 }
 
 std::pair<double, double> dihedral_range_deg(Point3 a, Point3 b, Point3 c, Point3 d) {
-  const double ang[6] = {dihedral_at(a, b, c, d), dihedral_at(a, c, b, d), dihedral_at(a, d, b, c),
-                         dihedral_at(b, c, a, d), dihedral_at(b, d, a, c), dihedral_at(c, d, a, b)};
-  return {*std::min_element(ang, ang + 6), *std::max_element(ang, ang + 6)};
+  // The four faces' normals, each pointing away from its opposite vertex (orientation-free: the
+  // sign is fixed against that vertex). The interior angle at the edge two faces share is pi minus
+  // the angle between their outward normals, so the smallest dihedral has the largest cosine
+  // -n_i.n_j: two acos per tetrahedron instead of six atan2.
+  const Point3 p[4] = {a, b, c, d};
+  Point3 n[4];
+  for (int i = 0; i < 4; ++i) {
+    const Point3 q0 = p[(i + 1) % 4], q1 = p[(i + 2) % 4], q2 = p[(i + 3) % 4];
+    Point3 v = cross(q1 - q0, q2 - q0);
+    if (dot(v, p[i] - q0) > 0) v = -1.0 * v;
+    n[i] = (1.0 / std::sqrt(norm2(v))) * v;
+  }
+  double cmax = -1, cmin = 1;  // cosines of the interior angles
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      const double cs = std::clamp(-dot(n[i], n[j]), -1.0, 1.0);
+      cmax = std::max(cmax, cs);
+      cmin = std::min(cmin, cs);
+    }
+  return {std::acos(cmax) * kDeg, std::acos(cmin) * kDeg};
 }
 
 Report3 measure_tets(const tet::TetMesh& m, const sizing::SizingField3& f, const tet::TetStats& stats,
@@ -138,6 +161,7 @@ Report3 measure_tets(const tet::TetMesh& m, const sizing::SizingField3& f, const
     values->min_dihedral_deg.resize(m.tets.size());
   }
   std::map<std::int32_t, MaterialFigures> mats;
+  MaterialFigures* last = nullptr;
   for (std::size_t i = 0; i < m.tets.size(); ++i) {
     const auto& t = m.tets[i];
     const Point3 a = m.points[t[0]], b = m.points[t[1]], c = m.points[t[2]], d = m.points[t[3]];
@@ -154,8 +178,11 @@ Report3 measure_tets(const tet::TetMesh& m, const sizing::SizingField3& f, const
     if (lo < 5) ++r.tets_under_5deg;
     if (lo < 10) ++r.tets_under_10deg;
     const std::int32_t mat = i < m.tet_material.size() ? m.tet_material[i] : 0;
-    MaterialFigures& mf = mats[mat];
-    mf.material = mat;
+    if (!last || last->material != mat) {  // materials come in runs: one map look-up per run
+      last = &mats[mat];
+      last->material = mat;
+    }
+    MaterialFigures& mf = *last;
     ++mf.tets;
     const double v = volume_of(a, b, c, d);
     mf.volume += v;
