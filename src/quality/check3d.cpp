@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -33,10 +34,10 @@ Tri sorted(Tri t) {
 
 // Every face of every tetrahedron with its tetrahedron and the local index of the opposite vertex,
 // sorted by the face's vertex ids.
-struct FaceUse {
+struct FaceUse {  // 20 bytes with 32-bit ids: four per tetrahedron
   Tri key;
-  std::size_t tet;
-  int opposite;
+  Index tet;
+  std::uint8_t opposite;
   bool operator<(const FaceUse& o) const { return std::tie(key, tet) < std::tie(o.key, o.tet); }
 };
 
@@ -45,7 +46,9 @@ std::vector<FaceUse> face_uses(const tet::TetMesh& m) {
   f.reserve(m.tets.size() * 4);
   for (std::size_t i = 0; i < m.tets.size(); ++i) {
     const auto& t = m.tets[i];
-    for (int k = 0; k < 4; ++k) f.push_back({sorted({t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}), i, k});
+    for (int k = 0; k < 4; ++k)
+      f.push_back({sorted({t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}), static_cast<Index>(i),
+                   static_cast<std::uint8_t>(k)});
   }
   std::sort(f.begin(), f.end());
   return f;
