@@ -14,6 +14,7 @@
 #include "cli/option_table.hpp"
 #include "pipeline/quality_run.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/run3d.hpp"
 #include "pipeline/summary.hpp"
 
 namespace fdr::cli {
@@ -173,6 +174,12 @@ int run(int argc, char** argv) {
         std::fflush(stdout);
       }
     };
+    if (pipeline::is_3d_run(o)) {  // a 3D input: the tetrahedral mesher
+      pipeline::Result3 r3 = pipeline::run3d(o, [&](double f, std::string_view s) { return progress(f, s); }, log);
+      progress.finish();
+      if (!o.quiet) pipeline::write_summary3(r3, std::cout);
+      return 0;
+    }
     pipeline::Result r = pipeline::run(o, [&](double f, std::string_view s) { return progress(f, s); }, log);
     progress.finish();
     if (!o.quiet) {

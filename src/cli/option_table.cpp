@@ -82,6 +82,12 @@ void set_smooth(Request& r, const std::string& key, const std::vector<std::strin
   r.mesh.smooth_passes = static_cast<int>(sm);
 }
 
+void set_bound(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;  // 2D: 1; 3D: the 3D default (tet::TetOptions)
+  r.mesh.bound = parse_number(key, v.back());
+  r.mesh.bound_given = true;
+}
+
 void set_max_steiner(Request& r, const std::string& key, const std::vector<std::string>& v) {
   if (v.empty()) return;
   const double ms = parse_number(key, v.back());
@@ -99,7 +105,7 @@ std::string output_help() {
     s += std::string(first ? "" : " ") + f.extensions;
     first = false;
   }
-  return s + "); repeatable; .slf also writes NAME.cli";
+  return s + "); repeatable; .slf also writes NAME.cli; 3D inputs: .vtu, .msh, .node (TetGen .node/.ele/.face)";
 }
 std::vector<std::string> output_choices() {
   std::vector<std::string> c;
@@ -114,7 +120,8 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "input", "input", field<&MeshOptions::input>, "vector_in", "INPUT", "", "Input",
        "Domain: Triangle .poly/.node file, or any OGR vector source with water polygons (islands as holes), "
        "a PostGIS table or view among them (\"PG:dbname=... \" with --layer schema.table); "
-       "not needed with --land and --extent",
+       "not needed with --land and --extent; a TetGen .poly/.node whose dimension line says 3, .smesh, .off, .stl or "
+       ".ply runs the 3D mesher (docs/3d.md)",
        false, false, {}, true},
       {"mesh", "--layer", "layer", field<&MeshOptions::layer>, "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
       {"mesh", "--where", "where", field<&MeshOptions::where>, "string", "SQL", "", "Input", "OGR attribute filter on INPUT features"},
@@ -133,7 +140,8 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--output-crs", "output-crs", field<&MeshOptions::output_crs>, "crs", "SRS", "", "CRS", "Write node coordinates in this CRS (same topology), e.g. EPSG:4326"},
       // mesh: spacing
       {"mesh", "--spacing", "spacing", field<&MeshOptions::spacing>, "expr", "EXPR|PRESET", "bbox diagonal / 20 (.poly)", "Spacing",
-       "Spacing f(x,y): a number, paper-f1, paper-f2, K*paper-f1, or an expression in x, y (+ - * / ^ abs sin cos tan sqrt exp log min max)"},
+       "Spacing f(x,y): a number, paper-f1, paper-f2, K*paper-f1, or an expression in x, y (+ - * / ^ abs sin cos tan sqrt exp log min max); "
+       "3D inputs: the same in x, y, z"},
       {"mesh", "--raster", "raster", field<&MeshOptions::raster>, "raster_in", "FILE", "", "Spacing", "Bathymetry/DEM raster (any GDAL format; elevation positive up)"},
       {"mesh", "--size-raster", "size-raster", field<&MeshOptions::size_raster>, "raster_in", "FILE", "", "Spacing", "Explicit size raster (metres)"},
       {"mesh", "--hmin", "hmin", field<&MeshOptions::hmin>, "float", "M", "", "Spacing", "Smallest element size (metres)"},
@@ -162,11 +170,12 @@ const std::vector<OptSpec>& option_table() {
        "The convex hull of all vertices bounds the domain (.poly/.node INPUT; like Triangle -c): point sets and dangling breaklines mesh"},
       {"mesh", "--simplify", "simplify", field<&MeshOptions::simplify>, "float", "FACTOR", "", "Repair", "Thin boundary vertices closer than FACTOR * f (shape kept within f/10)"},
       // mesh: refinement
-      {"mesh", "--bound", "bound", field<&MeshOptions::bound>, "float", "B", "1", "Refinement", "Quality bound: a triangle is bad when R/f(c) > B (need alpha*B < 1)"},
+      {"mesh", "--bound", "bound", set_bound, "float", "B", "1 (2D), the 3D default keeping radius-edge <= 2 (3D)", "Refinement", "Quality bound: a triangle (tetrahedron) is bad when R/f(c) > B (need alpha*B < 1)"},
       {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q; GIS inputs: above 20 deg it gives way where a split would cut a boundary segment under f/2); 0 turns it off"},
       {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
       {"mesh", "--max-steiner", "max-steiner", set_max_steiner, "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
-      {"mesh", "--check", "check", field<&MeshOptions::check>, "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails)"},
+      {"mesh", "--check", "check", field<&MeshOptions::check>, "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails); 3D: valid, Delaunay and conforming tetrahedralization "
+       "with R/f(c) <= B, checked exactly before anything is written"},
       // mesh: output
       {"mesh", "-o,--output", "output", field<&MeshOptions::outputs>, "file_out", "FILE", "", "Output", output_help(), true},
       {"mesh", "--of", "of", field<&MeshOptions::of>, "choice", "FORMAT", "", "Output", "Output format override",

@@ -64,7 +64,8 @@ struct Options {
   bool convex_hull = false;
 
   // Refinement.
-  double bound = 1.0;                    // B
+  double bound = 1.0;                    // B (2D; a 3D run without --bound takes the 3D default)
+  bool bound_given = false;              // --bound was given
   double min_angle_deg = -1.0;           // < 0: automatic (30 for GIS inputs, 0 for .poly/.node)
   int smooth_passes = -1;                // quality smoothing sweeps; < 0: automatic (4 GIS, 0 .poly)
   std::uint64_t max_steiner = 20'000'000;

@@ -12,6 +12,7 @@
 #include "cli/cli.hpp"
 #include "cli/option_table.hpp"
 #include "pipeline/mesh_domain.hpp"
+#include "python/tet_binding.hpp"
 
 namespace py = pybind11;
 
@@ -330,6 +331,7 @@ PYBIND11_MODULE(_core, mod) {
     return fdr::default_spacing_spec(make_pslg(v, std::nullopt, std::nullopt, std::nullopt, std::nullopt));
   });
   mod.def("_triangulate", &triangulate);
+  fdr::python::bind_tetrahedralize(mod);
   mod.def("_mesh", &mesh_gis);
   mod.def("_mesh_options", &mesh_options);
   py::class_<PyMesh, std::shared_ptr<PyMesh>> mesh(mod, "Mesh", "A finished mesh (see fdrmesh.Mesh)");

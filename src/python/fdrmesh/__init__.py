@@ -21,7 +21,7 @@ from ._core import (Error, InternalError, UsageError, InputUnreadableError, Inpu
                     GeometryError, SpacingError, WorkLimitError, OutputError, CrsError, CheckError,
                     CancelledError)
 
-__all__ = ["read_poly", "triangulate", "mesh", "Mesh", "Error", "UsageError", "InputUnreadableError",
+__all__ = ["read_poly", "triangulate", "tetrahedralize", "mesh", "Mesh", "Error", "UsageError", "InputUnreadableError",
            "InputMalformedError", "GeometryError", "SpacingError", "WorkLimitError", "OutputError",
            "CrsError", "CheckError", "CancelledError", "InternalError", "MESH_OPTIONS"]
 
@@ -159,6 +159,55 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     vm = None if vertex_markers is None else _np.asarray(vertex_markers, dtype=_np.int32)
     return _result(_core._triangulate(v, seg, hol, sm, vm, spec, grid, float(bound), float(min_angle),
                                       int(max_steiner), bool(convex_hull), bool(check), int(smooth)))
+
+
+def _spacing_grid3(fn, vertices, resolution):
+    """Samples f(x, y, z) once, vectorised, on cell centres of a grid over the PLC's box (one cell
+    of margin all round); trilinear in between (the mesher's GridField3)."""
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    size = float(max(hi - lo))
+    if not size > 0:
+        raise UsageError("the vertices span no volume")
+    d = size / int(resolution)
+    n = [int(_np.ceil((hi[k] - lo[k]) / d)) + 2 for k in range(3)]
+    o = [float(lo[k] - d) for k in range(3)]
+    axes = [o[k] + (_np.arange(n[k]) + 0.5) * d for k in range(3)]
+    Z, Y, X = _np.meshgrid(axes[2], axes[1], axes[0], indexing="ij")  # x fastest: v[(k*ny + j)*nx + i]
+    vals = _np.broadcast_to(_np.asarray(fn(X, Y, Z), dtype=_np.float64), X.shape)
+    label = f"python {getattr(fn, '__name__', 'callable')} on a {n[0]}x{n[1]}x{n[2]} grid"
+    return (n[0], n[1], n[2], o[0], o[1], o[2], d, _np.ascontiguousarray(vals).ravel(), label)
+
+
+def tetrahedralize(vertices, facets, holes=None, regions=None, spacing=None, bound=0.0, *,
+                   facet_markers=None, max_vertices=0, resolution=64):
+    """Tetrahedralizes a 3D PLC by Functional Delaunay Refinement: every tetrahedron gets
+    R/f(c) <= bound (0: the 3D default, docs/3d.md).
+
+    vertices (n,3); facets: a list, each facet a list of 0-based vertex ids (one polygon) or a list
+    of such lists (polygons; 2 ids make a segment in the facet); holes (h,3) volume hole points;
+    regions (r,4) rows x, y, z, attribute (or (r,5) with a volume bound); facet_markers: one int per
+    facet. spacing f: None (a twentieth of the box diagonal, the CLI's default), a number, a string
+    as --spacing (an expression in x, y, z, or "paper-f1", "0.5*paper-f2"), or a callable
+    f(x, y, z) on numpy arrays, sampled in one call on a grid of `resolution` cells along the
+    longer side of the box. The same input and spacing give the CLI's mesh.
+    Returns a dict of numpy arrays: points (n,3), tets (t,4), materials (t,), faces (f,3),
+    face_markers (f,), edges (e,2), edge_markers (e,), and stats (the refinement's counts)."""
+    v = _np.ascontiguousarray(vertices, dtype=_np.float64)
+    grid, spec = None, ""
+    if spacing is None:
+        spec = _core.default_spacing3(v)
+    elif callable(spacing):
+        grid = _spacing_grid3(spacing, v, resolution)
+    elif isinstance(spacing, _numbers.Real) and not isinstance(spacing, bool):
+        spec = repr(float(spacing))  # shortest round-trip form: the same double as on the command line
+    elif isinstance(spacing, str):
+        spec = spacing
+    else:
+        raise UsageError(f"spacing must be None, a number, a string or a callable, not {type(spacing).__name__}")
+    hol = None if holes is None else _np.asarray(holes, dtype=_np.float64).reshape(-1, 3)
+    reg = None if regions is None else _np.atleast_2d(_np.asarray(regions, dtype=_np.float64))
+    fm = None if facet_markers is None else [int(m) for m in facet_markers]
+    return _core._tetrahedralize(v, list(facets), fm, hol, reg, spec, grid, float(bound), int(max_vertices))
 
 
 def _arg(value):

@@ -1,0 +1,198 @@
+// The 3D report (measure_tets, compute_guarantees3) and the --check steps (check3d) on small
+// meshes whose answers are known: the unit cube in six Kuhn tetrahedra, a regular tetrahedron,
+// and broken copies of them.
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include "base/error.hpp"
+#include "predicates/predicates3d.hpp"
+#include "quality/check3d.hpp"
+#include "quality/report3d.hpp"
+
+namespace fdr::quality {
+namespace {
+
+class Const3 final : public sizing::SizingField3 {
+ public:
+  explicit Const3(double h) : h_(h) {}
+  double operator()(Point3) const override { return h_; }
+  double lipschitz() const override { return 0; }
+  std::string describe() const override { return "constant"; }
+
+ private:
+  double h_;
+};
+
+const std::vector<Point3> kCube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+
+// The marker of the cube side a boundary triangle lies on (testdata/3d/cube.poly's markers).
+std::int32_t side_marker(Point3 a, Point3 b, Point3 c) {
+  auto all = [&](auto get, double v) { return get(a) == v && get(b) == v && get(c) == v; };
+  auto X = [](Point3 p) { return p.x; };
+  auto Y = [](Point3 p) { return p.y; };
+  auto Z = [](Point3 p) { return p.z; };
+  if (all(Z, 0)) return 1;
+  if (all(Z, 1)) return 2;
+  if (all(Y, 0)) return 3;
+  if (all(X, 1)) return 4;
+  if (all(Y, 1)) return 5;
+  return 6;
+}
+
+// The cube in six tetrahedra around the diagonal (0,0,0)-(1,1,1), positively oriented, with its
+// twelve boundary triangles as subfacets.
+tet::TetMesh kuhn_cube() {
+  tet::TetMesh m;
+  m.points = kCube;
+  m.tets = {{0, 1, 2, 6}, {0, 1, 5, 6}, {0, 3, 2, 6}, {0, 3, 7, 6}, {0, 4, 5, 6}, {0, 4, 7, 6}};
+  for (auto& t : m.tets)
+    if (predicates::orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]) < 0) std::swap(t[2], t[3]);
+  m.tet_material.assign(m.tets.size(), 0);
+  std::map<std::array<VertexId, 3>, int> count;
+  for (const auto& t : m.tets)
+    for (int k = 0; k < 4; ++k) {
+      std::array<VertexId, 3> f{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  for (const auto& [f, n] : count)
+    if (n == 1) {
+      m.faces.push_back(f);
+      m.face_marker.push_back(side_marker(m.points[f[0]], m.points[f[1]], m.points[f[2]]));
+    }
+  return m;
+}
+
+plc::Plc cube_plc() {
+  plc::Plc p;
+  p.points = kCube;
+  const std::vector<std::vector<VertexId>> sides = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (std::size_t i = 0; i < sides.size(); ++i) p.facets.push_back({{sides[i]}, {}, static_cast<std::int32_t>(i + 1)});
+  p.source = "cube";
+  return p;
+}
+
+TEST(Report3, RegularTetrahedronDihedralAngles) {
+  const Point3 a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  const auto [lo, hi] = dihedral_range_deg(a, b, c, d);
+  const double expect = std::acos(1.0 / 3.0) * 180.0 / M_PI;
+  EXPECT_NEAR(lo, expect, 1e-9);
+  EXPECT_NEAR(hi, expect, 1e-9);
+}
+
+TEST(Report3, KuhnCubeFigures) {
+  const tet::TetMesh m = kuhn_cube();
+  tet::TetStats st;
+  st.bound = 1.0;
+  st.tet_splits = 3;
+  TetValues v;
+  const Report3 r = measure_tets(m, Const3(1.0), st, &v);
+  EXPECT_EQ(r.vertices, 8u);
+  EXPECT_EQ(r.tets, 6u);
+  EXPECT_EQ(r.subfacets, 12u);
+  ASSERT_EQ(r.materials.size(), 1u);
+  EXPECT_NEAR(r.materials[0].volume, 1.0, 1e-15);
+  EXPECT_NEAR(r.volume, 1.0, 1e-15);
+  // Every Kuhn tetrahedron has the cube's circumsphere (R = sqrt(3)/2) and shortest edge 1.
+  EXPECT_NEAR(r.max_R_over_f, std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_NEAR(r.max_radius_edge, std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_EQ(r.bad_tets, 0u);
+  EXPECT_NEAR(r.min_dihedral_deg, 45.0, 1e-9);
+  EXPECT_NEAR(r.max_dihedral_deg, 90.0, 1e-9);
+  EXPECT_EQ(r.tets_under_10deg, 0u);
+  EXPECT_NEAR(r.min_l_over_f, 1.0, 1e-15);
+  EXPECT_NEAR(r.max_l_over_f, std::sqrt(3.0), 1e-12);
+  EXPECT_EQ(v.r_over_f.size(), 6u);
+  EXPECT_EQ(r.stats.tet_splits, 3u);
+  std::size_t hist = 0;
+  for (auto c : r.dihedral_hist) hist += c;
+  EXPECT_EQ(hist, 6u);
+  // alpha = 0, B = 1: beta = 1/4 and Theorem 4.3 gives radius-edge <= 2.
+  ASSERT_TRUE(r.guarantees.valid);
+  EXPECT_DOUBLE_EQ(r.guarantees.beta, 0.25);
+  EXPECT_DOUBLE_EQ(r.guarantees.R_over_l_max, 2.0);
+  for (const auto& t : r.theorems) EXPECT_TRUE(t.holds) << t.key;
+  std::ostringstream text, json;
+  write_text3(r, text);
+  write_json3(r, json);
+  EXPECT_NE(text.str().find("R/l max (Thm 4.3)"), std::string::npos);
+  EXPECT_NE(json.str().find("\"theorem_4_4_nn_over_f_min\""), std::string::npos);
+}
+
+TEST(Report3, GuaranteesNeedAlphaBBelowOne) {
+  EXPECT_FALSE(compute_guarantees3(-1, 1).valid);
+  EXPECT_FALSE(compute_guarantees3(0.5, 2).valid);
+  EXPECT_FALSE(compute_guarantees3(0.1, 0).valid);
+  const Guarantees3 g = compute_guarantees3(0.1, 1);
+  ASSERT_TRUE(g.valid);
+  EXPECT_NEAR(g.R_over_l_max, (2 + (1.5 + std::sqrt(2.0)) * 0.1) / 0.9, 1e-12);  // the paper's closed form
+  EXPECT_NEAR(g.el_over_f_max, 2 / 1.1, 1e-15);
+}
+
+TEST(Check3, KuhnCubePassesEveryStep) {
+  const tet::TetMesh m = kuhn_cube();
+  EXPECT_FALSE(check_orientation(m));
+  EXPECT_FALSE(check_faces_closed(m));
+  EXPECT_FALSE(check_delaunay(m));
+  EXPECT_FALSE(check_conforming(m, cube_plc()));
+  EXPECT_FALSE(check_r_over_f(m, Const3(1.0), 1.0));
+  EXPECT_NO_THROW(check_tets(m, cube_plc(), Const3(1.0), 1.0));
+}
+
+TEST(Check3, NegativeTetrahedron) {
+  tet::TetMesh m = kuhn_cube();
+  std::swap(m.tets[2][0], m.tets[2][1]);
+  const auto e = check_orientation(m);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->find("tetrahedron 2"), std::string::npos);
+}
+
+TEST(Check3, FaceSharedByThree) {
+  tet::TetMesh m = kuhn_cube();
+  m.tets.push_back(m.tets[0]);
+  EXPECT_TRUE(check_faces_closed(m));
+}
+
+TEST(Check3, NotDelaunay) {
+  tet::TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 1}, {0.3, 0.3, -0.01}};
+  m.tets = {{0, 1, 2, 3}, {0, 2, 1, 4}};
+  ASSERT_FALSE(check_orientation(m));
+  const auto e = check_delaunay(m);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->find("not Delaunay"), std::string::npos);
+}
+
+TEST(Check3, MissingSubfacetBreaksConformity) {
+  tet::TetMesh m = kuhn_cube();
+  m.faces.pop_back();
+  m.face_marker.pop_back();
+  const auto e = check_conforming(m, cube_plc());
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->find("area"), std::string::npos);
+}
+
+TEST(Check3, SubfacetOffItsFacetsPlane) {
+  tet::TetMesh m = kuhn_cube();
+  std::swap(m.face_marker[0], m.face_marker.back());  // two subfacets of different sides trade markers
+  EXPECT_TRUE(check_conforming(m, cube_plc()));
+}
+
+TEST(Check3, RatioAboveBound) {
+  const tet::TetMesh m = kuhn_cube();
+  const auto e = check_r_over_f(m, Const3(1.0), 0.8);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->find("R/f(c)"), std::string::npos);
+  try {
+    check_tets(m, cube_plc(), Const3(1.0), 0.8);
+    FAIL();
+  } catch (const Error& x) {
+    EXPECT_EQ(x.exit_code(), static_cast<int>(ExitCode::kCheckFailed));
+  }
+}
+
+}  // namespace
+}  // namespace fdr::quality
