@@ -60,6 +60,7 @@ Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const
   apex_.assign(dt_.num_vertices(), 0);
   for (std::size_t p = 0; p < plc.points.size(); ++p) apex_[vid_[p]] = uses[p] >= 2;
   bd_ = std::make_unique<Boundary>(dt_, plc, ft, vid_);
+  find_acute_facet_pairs();
   const double est = estimated_vertices(plc, f);
   cap_ = options.max_vertices ? options.max_vertices
                               : static_cast<std::size_t>(std::min(20 * est, 4e9)) + 50 * plc.points.size() + 10000;
@@ -67,6 +68,42 @@ Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const
   for (std::uint32_t t = 0; t < bd_->tri_slots(); ++t)
     if (bd_->tri(t).alive) facet_queue_.push_back({t, bd_->tri(t).v});
   facet_queued_.assign(bd_->tri_slots(), 1);
+}
+
+void Refiner3::find_acute_facet_pairs() {
+  // Below 60 degrees the splits of two facets' subfacets feed each other; at 60 degrees and above
+  // they die out as in the cube's corners.
+  constexpr double kSmallDihedralCos = 0.5;
+  // Per input subsegment the facets on it and, for each, the corner of its triangle on the
+  // segment: the angle between the two triangles' directions away from the segment. This picks a
+  // protection policy only (double precision suffices); no mesh decision rests on it.
+  for (const plc::Subsegment& s : ft_.subsegments) {
+    if (s.facets.size() < 2) continue;
+    const VertexId a = vid_[s.a], b = vid_[s.b];
+    const Point3 pa = dt_.point(a), e = dt_.point(b) - pa;
+    std::vector<std::pair<std::uint32_t, Point3>> away;
+    for (std::uint32_t t : bd_->subfacets_at(a)) {
+      const SubfacetTri& tr = bd_->tri(t);
+      if (std::find(tr.v.begin(), tr.v.end(), b) == tr.v.end()) continue;
+      for (VertexId w : tr.v)
+        if (w != a && w != b) {
+          const Point3 d = dt_.point(w) - pa;
+          away.push_back({tr.facet, d - (dot(d, e) / norm2(e)) * e});
+        }
+    }
+    for (std::size_t i = 0; i < away.size(); ++i)
+      for (std::size_t j = i + 1; j < away.size(); ++j)
+        if (away[i].first != away[j].first &&
+            dot(away[i].second, away[j].second) > kSmallDihedralCos * std::sqrt(norm2(away[i].second) * norm2(away[j].second)))
+          acute_.push_back({std::min(away[i].first, away[j].first), std::max(away[i].first, away[j].first)});
+  }
+  std::sort(acute_.begin(), acute_.end());
+  acute_.erase(std::unique(acute_.begin(), acute_.end()), acute_.end());
+}
+
+bool Refiner3::acute_pair(std::uint32_t f, std::uint32_t g) const {
+  const std::pair<std::uint32_t, std::uint32_t> key{std::min(f, g), std::max(f, g)};
+  return std::binary_search(acute_.begin(), acute_.end(), key);
 }
 
 bool Refiner3::capped() {
@@ -103,6 +140,10 @@ bool Refiner3::subfacet_encroached(std::uint32_t t) {
   for (int i = 0; i < n; ++i) {
     const VertexId u = apex[i];
     if (u == kInfinite || bd_->on_facet(u, s.facet)) continue;
+    bool protected_apex = false;
+    if (!acute_.empty())
+      for (std::uint32_t k : bd_->subfacets_at(u)) protected_apex = protected_apex || acute_pair(bd_->tri(k).facet, s.facet);
+    if (protected_apex) continue;
     const Point3 p = dt_.point(u);
     if (predicates::orient3d(a, b, c, p) != 0 && predicates::equatorial_side(a, b, c, p) >= 0) return true;
   }
@@ -161,6 +202,9 @@ bool Refiner3::find_encroached(Point3 p, const std::vector<TetId>& cavity, bool 
   bool any = false;
   if (vmark_.size() < dt_.num_vertices()) vmark_.resize(dt_.num_vertices() * 3 / 2 + 16, 0);
   if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  if (tmark_.size() < dt_.tet_slots()) tmark_.resize(dt_.tet_slots() * 3 / 2 + 16, 0);
+  ++tstamp_;
+  for (TetId t : cavity) tmark_[t] = tstamp_;
   ++vstamp_;
   for (TetId t : cavity) {
     const auto& tv = dt_.vertices(t);
@@ -180,7 +224,7 @@ bool Refiner3::find_encroached(Point3 p, const std::vector<TetId>& cavity, bool 
       const std::uint32_t s = bd_->subfacet(f[0], f[1], f[2]);
       const TetId n = dt_.neighbour(t, i);
       // A subfacet inside the cavity would be destroyed: split it as if encroached.
-      const bool destroyed = std::find(cavity.begin(), cavity.end(), n) != cavity.end();
+      const bool destroyed = tmark_[n] == tstamp_;
       if (destroyed || predicates::equatorial_side(dt_.point(f[0]), dt_.point(f[1]), dt_.point(f[2]), p) >= 0) {
         facet_queue_.push_back({s, bd_->tri(s).v, true});
         any = true;

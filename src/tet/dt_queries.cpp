@@ -60,14 +60,24 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
     const auto& v = dt.vertices(t);
     return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
   };
+  // Tested tetrahedra are marked with a stamp per call; the marks live as long as the thread.
+  thread_local std::vector<std::uint32_t> mark;
+  thread_local std::uint32_t stamp = 0;
+  if (mark.size() < dt.tet_slots()) mark.resize(dt.tet_slots() + dt.tet_slots() / 2, 0);
+  if (++stamp == 0) {
+    std::fill(mark.begin(), mark.end(), 0);
+    stamp = 1;
+  }
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
   // edge lies on the spheres of the tetrahedra around it).
   out.push_back(start);
+  mark[start] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
     if (dt.is_ghost(out[k])) continue;
     for (int i = 0; i < 4; ++i) {
       const TetId n = dt.neighbour(out[k], i);
-      if (has(out, n)) continue;
+      if (mark[n] == stamp) continue;
+      mark[n] = stamp;
       if (dt.is_ghost(n) ? beyond_hull_face(dt, n, p) : in_conflict(n)) out.push_back(n);
     }
   }

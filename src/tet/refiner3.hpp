@@ -44,6 +44,8 @@ class Refiner3 {
   void flood_regions();
   // Rule 3 (with rules 1 and 2 first) until no tetrahedron in the domain is bad (or the cap).
   void refine();
+  // Adds a shortfall for every tetrahedron of the domain still bad (the first few).
+  void list_shortfalls();
 
   bool segment_encroached(VertexId a, VertexId b);
   bool subfacet_encroached(std::uint32_t t);
@@ -84,6 +86,8 @@ class Refiner3 {
   void assign_regions(const std::vector<TetId>& created);
   void flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp);
   void offer(TetId t);
+  // Whether the queue entries from these positions on touch a facet of an acute pair.
+  bool near_small_angle(std::size_t segs_from, std::size_t facets_from) const;
   bool face_is_subfacet(TetId t, int i) const;
   void note_shortfall(Point3 where, const std::string& what);
 
@@ -96,6 +100,12 @@ class Refiner3 {
   Delaunay3 dt_;
   std::vector<VertexId> vid_;          // PLC point -> vertex
   std::vector<std::uint8_t> apex_;     // per vertex: an input vertex where input segments meet
+  // Facet pairs meeting at a small dihedral angle (below 60 degrees) along a segment (f < g), sorted: a vertex of
+  // one does not encroach the other's subfacets (missing ones are still split), which stops the
+  // cascade of splits between two facets at a small angle.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> acute_;
+  bool acute_pair(std::uint32_t f, std::uint32_t g) const;
+  void find_acute_facet_pairs();
   std::unique_ptr<Boundary> bd_;
   std::deque<QueuedSegment> seg_queue_;
   std::deque<QueuedFacet> facet_queue_;
@@ -103,6 +113,8 @@ class Refiner3 {
   bool regions_live_ = false;               // rule 3: regions kept up to date at every insertion
   std::vector<std::int32_t> region_;        // per tetrahedron slot
   std::unique_ptr<BadTetQueue> bad_;
+  std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
+  std::uint32_t tstamp_ = 0;
   std::vector<std::uint32_t> vmark_;
   std::uint32_t vstamp_ = 0;
   std::size_t stalls_ = 0;

@@ -2,6 +2,7 @@
 // first, unless the circumcentre encroaches the boundary.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -116,29 +117,54 @@ void Refiner3::offer(TetId t) {
 void Refiner3::try_split_tet(const BadTet& b) {
   std::vector<TetId> cavity;
   conflict_region(dt_, b.centre, b.tet, cavity);
+  const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
   if (find_encroached(b.centre, cavity, true)) {
     ++stats_.rejected;
+    if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
+      // Only its shape is bad and the boundary it encroaches meets another facet at an acute
+      // angle: splitting there cascades toward the angle without end, so the tetrahedron stays
+      // (and is listed as a shortfall).
+      seg_queue_.resize(segs_before);
+      facet_queue_.resize(facets_before);
+      return;
+    }
+    const std::size_t before = dt_.num_vertices();
     conform();
-    offer(b.tet);  // still bad if the splits left it
+    // Still bad if the splits left it; without a new vertex it would only come back unchanged.
+    if (dt_.num_vertices() > before) offer(b.tet);
     return;
   }
   // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
   // outside the hull it would have crossed one.
   const TetId h = dt_.locate(b.centre, b.tet);
   if (h == kNoId || dt_.is_ghost(h) || region(h) == kOutsideRegion) {
-    ++stats_.rejected;
-    note_shortfall(b.centre, "circumcentre outside the domain without an encroached subfacet");
+    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
     return;
   }
   std::vector<TetId> created;
   const Insertion ins = dt_.insert(b.centre, h, &created);
-  if (ins.duplicate) {
-    note_shortfall(b.centre, "circumcentre repeats a vertex");
-    return;
-  }
+  if (ins.duplicate) return;  // as above
   ++stats_.tet_splits;
   after_insert(ins.vertex, created);
   conform();
+}
+
+bool Refiner3::near_small_angle(std::size_t segs_from, std::size_t facets_from) const {
+  if (acute_.empty()) return false;
+  auto acute_facet = [&](std::uint32_t f) {
+    for (const auto& [g, h] : acute_)
+      if (g == f || h == f) return true;
+    return false;
+  };
+  for (std::size_t i = facets_from; i < facet_queue_.size(); ++i)
+    if (acute_facet(bd_->tri(facet_queue_[i].tri).facet)) return true;
+  for (std::size_t i = segs_from; i < seg_queue_.size(); ++i) {
+    const std::uint32_t o = bd_->segment_origin(seg_queue_[i].a, seg_queue_[i].b);
+    if (o == UINT32_MAX) continue;
+    for (std::uint32_t f : bd_->origin(o).facets)
+      if (acute_facet(f)) return true;
+  }
+  return false;
 }
 
 void Refiner3::refine() {
@@ -157,6 +183,20 @@ void Refiner3::refine() {
   }
   conform();
   flood_regions();
+  list_shortfalls();
+}
+
+void Refiner3::list_shortfalls() {
+  dt_.for_each_finite_tet([&](TetId t) {
+    BadTet b;
+    if (!tet_bad(t, &b)) return;
+    const auto& v = dt_.vertices(t);
+    const Point3 a = dt_.point(v[0]), bb = dt_.point(v[1]), c = dt_.point(v[2]), d = dt_.point(v[3]);
+    char what[160];
+    std::snprintf(what, sizeof what, "tetrahedron left with R/f(c) %.4g, radius-edge %.4g (circumcentre given)",
+                  b.ratio, circumsphere(a, bb, c, d).radius / shortest_edge(a, bb, c, d));
+    note_shortfall(b.centre, what);
+  });
 }
 
 }  // namespace fdr::tet
