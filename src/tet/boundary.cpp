@@ -41,7 +41,11 @@ void Boundary::grow(VertexId v) {
   }
 }
 
-bool Boundary::is_subsegment(VertexId a, VertexId b) const { return segs_.count(seg_key(a, b)) != 0; }
+bool Boundary::is_subsegment(VertexId a, VertexId b) const {
+  // Most vertices lie on no segment: their lists answer before the hash map is asked.
+  if (segment_neighbours(a).empty() || segment_neighbours(b).empty()) return false;
+  return segs_.count(seg_key(a, b)) != 0;
+}
 
 std::uint32_t Boundary::segment_origin(VertexId a, VertexId b) const {
   const auto it = segs_.find(seg_key(a, b));
@@ -93,6 +97,7 @@ void Boundary::split_segment(VertexId a, VertexId b, VertexId v) {
 }
 
 std::uint32_t Boundary::subfacet(VertexId a, VertexId b, VertexId c) const {
+  if (subfacets_at(a).empty() || subfacets_at(b).empty() || subfacets_at(c).empty()) return UINT32_MAX;
   const auto it = faces_.find(face_key(a, b, c));
   return it == faces_.end() ? UINT32_MAX : it->second;
 }

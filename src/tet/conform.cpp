@@ -161,19 +161,42 @@ void Refiner3::enqueue_at(VertexId u) {
     }
 }
 
+void Refiner3::note_touched(const std::vector<TetId>& cavity) {
+  touched_segs_.clear();
+  touched_tris_.clear();
+  for (TetId t : cavity) {
+    if (dt_.is_ghost(t)) continue;  // a ghost's finite face is its finite neighbour's too
+    const auto& tv = dt_.vertices(t);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (bd_->is_subsegment(tv[i], tv[j])) touched_segs_.push_back({tv[i], tv[j]});
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t s = bd_->subfacet(tv[(i + 1) & 3], tv[(i + 2) & 3], tv[(i + 3) & 3]);
+      if (s != UINT32_MAX) touched_tris_.push_back(s);
+    }
+  }
+}
+
+void Refiner3::enqueue_all() {
+  bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) { seg_queue_.push_back({a, b, false}); });
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  for (std::uint32_t t = 0; t < bd_->tri_slots(); ++t)
+    if (bd_->tri(t).alive && !facet_queued_[t]) {
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, bd_->tri(t).v});
+    }
+}
+
 void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
   if (apex_.size() < dt_.num_vertices()) apex_.resize(dt_.num_vertices(), 0);
-  if (vmark_.size() < dt_.num_vertices()) vmark_.resize(dt_.num_vertices() * 3 / 2 + 16, 0);
-  ++vstamp_;
-  // Subsegments and subfacets whose edge or face the insertion made or destroyed all have their
-  // corners on the cavity's boundary: the vertices of the new tetrahedra.
-  for (TetId t : created)
-    for (VertexId u : dt_.vertices(t))
-      if (u != kInfinite && vmark_[u] != vstamp_) {
-        vmark_[u] = vstamp_;
-        enqueue_at(u);
-      }
-  (void)v;
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  for (const auto& e : touched_segs_) seg_queue_.push_back({e[0], e[1], false});
+  for (std::uint32_t t : touched_tris_)
+    if (bd_->tri(t).alive && !facet_queued_[t]) {
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, bd_->tri(t).v});
+    }
+  enqueue_at(v);  // the new pieces at v, when it was split into the boundary
   if (regions_live_) {
     assign_regions(created);
     for (TetId t : created) offer(t);
@@ -187,7 +210,11 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
   std::vector<TetId> created;
   std::vector<TetId> ts;
   const TetId hint = edge_tets(dt_, a, b, ts) ? ts[0] : dt_.vertex_tet(a);
-  const Insertion ins = dt_.insert(p, hint, &created);
+  const TetId h = dt_.locate(p, hint);
+  std::vector<TetId> cavity;
+  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, p, h, cavity);
+  note_touched(cavity);
+  const Insertion ins = dt_.insert(p, h, &created);
   if (ins.duplicate) {  // the piece is too short to split in doubles
     ++stalls_;
     note_shortfall(p, "subsegment too short to split");
@@ -253,6 +280,7 @@ void Refiner3::split_subfacet(std::uint32_t t) {
     return;
   }
   std::vector<TetId> created;
+  note_touched(cavity);
   const Insertion ins = dt_.insert(c, h, &created);
   if (ins.duplicate) {
     ++stalls_;

@@ -81,7 +81,12 @@ class Refiner3 {
   // Encroached (or, for subfacets, destroyed) subsegments and subfacets if p were inserted with
   // conflict region `cavity`; returns whether any.
   bool find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets);
+  // Before an insertion whose conflict region is `cavity`: the subsegments and subfacets that are
+  // edges and faces of its tetrahedra, the only ones whose neighbourhood the insertion changes.
+  void note_touched(const std::vector<TetId>& cavity);
   void after_insert(VertexId v, const std::vector<TetId>& created);
+  // Queues every subsegment and subfacet (a sweep that catches what note_touched could miss).
+  void enqueue_all();
   void enqueue_at(VertexId u);
   void assign_regions(const std::vector<TetId>& created);
   void flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp);
@@ -115,6 +120,8 @@ class Refiner3 {
   std::unique_ptr<BadTetQueue> bad_;
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
+  std::vector<std::array<VertexId, 2>> touched_segs_;
+  std::vector<std::uint32_t> touched_tris_;
   std::vector<std::uint32_t> vmark_;
   std::uint32_t vstamp_ = 0;
   std::size_t stalls_ = 0;

@@ -96,7 +96,8 @@ bool Refiner3::tet_bad(TetId t, BadTet* out) const {
   const Sphere s = circumsphere(a, b, c, d);
   const double ratio = s.radius / f_(s.centre);
   *out = {ratio, t, v, s.centre};
-  if (ratio > bound_) return true;
+  // A sliver too flat for a double circumcentre is bad; try_split_tet leaves it (a shortfall).
+  if (!(ratio <= bound_)) return true;
   // The paper's theorem gives radius-edge <= 2 only under conditions on B and f's Lipschitz
   // constant that a user's B need not meet; asking for it directly keeps the output's shape bound.
   constexpr double kRadiusEdge = 2.0;
@@ -115,6 +116,7 @@ void Refiner3::offer(TetId t) {
 }
 
 void Refiner3::try_split_tet(const BadTet& b) {
+  if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
   std::vector<TetId> cavity;
   conflict_region(dt_, b.centre, b.tet, cavity);
   const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
@@ -142,6 +144,7 @@ void Refiner3::try_split_tet(const BadTet& b) {
     return;
   }
   std::vector<TetId> created;
+  note_touched(cavity);
   const Insertion ins = dt_.insert(b.centre, h, &created);
   if (ins.duplicate) return;  // as above
   ++stats_.tet_splits;
@@ -173,6 +176,7 @@ void Refiner3::refine() {
   // region on across a subfacet that was missing for a moment.
   constexpr int kPasses = 4;
   for (int pass = 0; pass < kPasses && !stats_.capped; ++pass) {
+    enqueue_all();
     conform();
     flood_regions();
     regions_live_ = true;
@@ -181,6 +185,7 @@ void Refiner3::refine() {
     BadTet b;
     while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
   }
+  enqueue_all();
   conform();
   flood_regions();
   list_shortfalls();
