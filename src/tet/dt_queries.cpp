@@ -5,7 +5,20 @@
 namespace fdr::tet {
 namespace {
 
-bool has(const std::vector<TetId>& v, TetId t) { return std::find(v.begin(), v.end(), t) != v.end(); }
+// Visited tetrahedra are marked with a stamp per call, in marks that live as long as the thread
+// (a walk's cost stays proportional to what it visits).
+thread_local std::vector<std::uint32_t> marks;
+thread_local std::uint32_t stamp_now = 0;
+
+std::uint32_t* next_marks(const Delaunay3& dt) {
+  if (marks.size() < dt.tet_slots()) marks.resize(dt.tet_slots() + dt.tet_slots() / 2, 0);
+  if (++stamp_now == 0) {
+    std::fill(marks.begin(), marks.end(), 0);
+    stamp_now = 1;
+  }
+  return marks.data();
+}
+std::uint32_t mark_stamp() { return stamp_now; }
 
 bool holds(const std::array<VertexId, 4>& v, VertexId x) {
   return v[0] == x || v[1] == x || v[2] == x || v[3] == x;
@@ -18,15 +31,20 @@ void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
   if (dt.dimension() < 3) return;
   const TetId t0 = dt.vertex_tet(v);
   if (t0 == kNoId) return;
+  std::uint32_t* mark = next_marks(dt);
+  const std::uint32_t stamp = mark_stamp();
   out.push_back(t0);
-  // Stars are small (tens of tetrahedra): a linear membership test beats a hash set here.
+  mark[t0] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
     const TetId t = out[k];
     const auto& tv = dt.vertices(t);
     for (int i = 0; i < 4; ++i) {
       if (tv[i] == v) continue;  // the face opposite v does not hold v
       const TetId n = dt.neighbour(t, i);
-      if (!has(out, n)) out.push_back(n);
+      if (mark[n] != stamp) {
+        mark[n] = stamp;
+        out.push_back(n);
+      }
     }
   }
 }
@@ -60,14 +78,8 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
     const auto& v = dt.vertices(t);
     return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
   };
-  // Tested tetrahedra are marked with a stamp per call; the marks live as long as the thread.
-  thread_local std::vector<std::uint32_t> mark;
-  thread_local std::uint32_t stamp = 0;
-  if (mark.size() < dt.tet_slots()) mark.resize(dt.tet_slots() + dt.tet_slots() / 2, 0);
-  if (++stamp == 0) {
-    std::fill(mark.begin(), mark.end(), 0);
-    stamp = 1;
-  }
+  std::uint32_t* mark = next_marks(dt);
+  const std::uint32_t stamp = mark_stamp();
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
   // edge lies on the spheres of the tetrahedra around it).
   out.push_back(start);
