@@ -15,4 +15,14 @@ int insphere_exact(Point3 a, Point3 b, Point3 c, Point3 d, Point3 e) {
   return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
 }
 
+int diametral_side(Point3 a, Point3 b, Point3 p) {
+  ++counters().exact;
+  return static_cast<int>(CGAL::side_of_bounded_sphere(cgal(a), cgal(b), cgal(p)));
+}
+
+int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p) {
+  ++counters().exact;
+  return static_cast<int>(CGAL::side_of_bounded_sphere(cgal(a), cgal(b), cgal(c), cgal(p)));
+}
+
 }  // namespace fdr::predicates

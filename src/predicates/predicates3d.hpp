@@ -15,6 +15,15 @@ namespace fdr::predicates {
 int orient3d_exact(Point3 a, Point3 b, Point3 c, Point3 d);
 int insphere_exact(Point3 a, Point3 b, Point3 c, Point3 d, Point3 e);
 
+// Encroachment in 3D refinement, exact (CGAL's filtered exact kernel; few calls, so no own filter).
+// +1 when p lies strictly inside the sphere with diameter ab (the sign of -(a - p).(b - p)), 0 on
+// it, -1 outside; a != b.
+int diametral_side(Point3 a, Point3 b, Point3 p);
+// +1 when p lies strictly inside the equatorial sphere of triangle abc (the smallest sphere through
+// a, b, c: its centre lies in their plane), 0 on it, -1 outside; a, b, c not collinear. A sphere
+// through a, b, c and a fourth point is not this one, so insphere cannot decide it.
+int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p);
+
 namespace detail {
 inline constexpr double kO3dBound = (7.0 + 56.0 * kEps) * kEps;
 inline constexpr double kIspBound = (16.0 + 224.0 * kEps) * kEps;

@@ -41,6 +41,8 @@ class BadTetQueue {
   explicit BadTetQueue(double bound) : bound_(bound) {}
   // Queues t when it is finite and B-bad; returns whether it was queued.
   bool offer(const Delaunay3& dt, TetId t, const Spacing3& f);
+  // Queues an entry measured by the caller (e.g. bad by another test than R / f(c)).
+  void push(const BadTet& b) { heap_.push(b); }
   // The worst tetrahedron still in dt, or false when none is left.
   bool pop(const Delaunay3& dt, BadTet* out);
   std::size_t size() const { return heap_.size(); }

@@ -132,3 +132,35 @@ TEST(Predicates3d, NonFiniteGoesExact) {
   EXPECT_EQ(orient3d({0, 0, 0}, {big, 0, 0}, {0, big, 0}, {0, 0, big}), 1);
   EXPECT_EQ(counters().exact, 1u);
 }
+
+TEST(Predicates3d, DiametralSideIsTheSignOfTheAngleAtP) {
+  const Point3 a{0, 0, 0}, b{2, 0, 0};
+  EXPECT_EQ(diametral_side(a, b, {1, 0.5, 0}), 1);
+  EXPECT_EQ(diametral_side(a, b, {1, 1, 0}), 0);   // on the sphere: a right angle at p
+  EXPECT_EQ(diametral_side(a, b, {1, 0, 1}), 0);
+  EXPECT_EQ(diametral_side(a, b, {1, 0.7, 0.8}), -1);
+  // Against the exact kernel on random points near the sphere.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 2000; ++i) {
+    const Point3 p{1 + u(rng), u(rng), u(rng)};
+    const EK::Point_3 ea(a.x, a.y, a.z), eb(b.x, b.y, b.z), ep(p.x, p.y, p.z);
+    const auto d = (ea - ep) * (eb - ep);
+    const int want = d < 0 ? 1 : (d == 0 ? 0 : -1);
+    ASSERT_EQ(diametral_side(a, b, p), want) << i;
+  }
+}
+
+TEST(Predicates3d, EquatorialSideUsesTheSmallestSphere) {
+  // Triangle in z = 0 with circumcentre (0.5, 0.5, 0) and radius sqrt(0.5).
+  const Point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_EQ(equatorial_side(a, b, c, {0.5, 0.5, 0.7}), 1);
+  EXPECT_EQ(equatorial_side(a, b, c, {0.5, 0.5, 0.75}), -1);
+  EXPECT_EQ(equatorial_side(a, b, c, {1, 1, 0}), 0);
+  EXPECT_EQ(equatorial_side(a, b, c, {0.5, 0.5, -0.7}), 1);
+  // Tilted triangle far from the origin, points on the equatorial circle's axis.
+  const Point3 o{1e3, 2e3, -5e2};
+  const Point3 ta = o + Point3{1, 0, 1}, tb = o + Point3{-1, 0, -1}, tc = o + Point3{0, 1, 0};
+  EXPECT_EQ(equatorial_side(ta, tb, tc, o + Point3{0.5, 0, -0.5}), 1);
+  EXPECT_EQ(equatorial_side(ta, tb, tc, o + Point3{1.5, 0, -1.5}), -1);
+}

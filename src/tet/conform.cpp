@@ -1,0 +1,315 @@
+// Refiner3's start and rules 1 and 2: the conforming Delaunay tetrahedralization of the PLC.
+#include <algorithm>
+#include <cmath>
+#include "predicates/predicates3d.hpp"
+#include "tet/dt_queries.hpp"
+#include "tet/refiner3.hpp"
+
+namespace fdr::tet {
+namespace {
+
+// The 2D mesher's default: R / f(c) <= 1. Radius-edge <= 2 is asked for separately (tet_bad).
+constexpr double kDefaultBound = 1.0;
+
+// Vertices the spacing asks for over the PLC's box, estimated from f on a coarse grid of samples
+// (a regular tetrahedron with edge f has volume f^3 / (6 sqrt 2), about six per vertex).
+double estimated_vertices(const plc::Plc& plc, const sizing::SizingField3& f) {
+  Box3 box;
+  for (const Point3& p : plc.points) box.add(p);
+  if (box.empty()) return 0;
+  constexpr int kSamples = 12;
+  const Point3 d = (1.0 / kSamples) * (box.hi - box.lo);
+  const double cell = std::max(d.x, 1e-300) * std::max(d.y, 1e-300) * std::max(d.z, 1e-300);
+  double n = 0;
+  for (int i = 0; i < kSamples; ++i)
+    for (int j = 0; j < kSamples; ++j)
+      for (int k = 0; k < kSamples; ++k) {
+        const Point3 p = box.lo + Point3{(i + 0.5) * d.x, (j + 0.5) * d.y, (k + 0.5) * d.z};
+        const double h = f(p);
+        if (h > 0 && std::isfinite(h)) n += cell / (h * h * h / (6 * std::sqrt(2.0))) / 6;
+      }
+  return n;
+}
+
+}  // namespace
+
+Point3 segment_split_point(Point3 a, Point3 b, bool a_apex, bool b_apex) {
+  if (a_apex == b_apex) return 0.5 * (a + b);
+  const Point3 from = a_apex ? a : b, to = a_apex ? b : a;
+  const double len = dist(a, b);
+  // 2^round(log2(len / 2)) lies within [len / 2 / sqrt 2, len / 2 * sqrt 2]: well inside the piece.
+  const double r = std::exp2(std::round(std::log2(0.5 * len)));
+  return from + (r / len) * (to - from);
+}
+
+Point3 triangle_circumcentre(Point3 a, Point3 b, Point3 c) {
+  const Point3 ab = b - a, ac = c - a, n = cross(ab, ac);
+  const double s = 0.5 / norm2(n);
+  return a + s * (norm2(ac) * cross(n, ab) + norm2(ab) * cross(ac, n));
+}
+
+Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const sizing::SizingField3& f,
+                   const TetOptions& options)
+    : plc_(plc), ft_(ft), f_(f), options_(options) {
+  bound_ = options.bound > 0 ? options.bound : kDefaultBound;
+  stats_.bound = bound_;
+  stats_.input_vertices = plc.points.size();
+  vid_ = dt_.insert_all(plc.points).vertex_of;
+  std::vector<int> uses(plc.points.size(), 0);
+  for (const auto& s : ft.subsegments) ++uses[s.a], ++uses[s.b];
+  apex_.assign(dt_.num_vertices(), 0);
+  for (std::size_t p = 0; p < plc.points.size(); ++p) apex_[vid_[p]] = uses[p] >= 2;
+  bd_ = std::make_unique<Boundary>(dt_, plc, ft, vid_);
+  find_acute_facet_pairs();
+  const double est = estimated_vertices(plc, f);
+  cap_ = options.max_vertices ? options.max_vertices
+                              : static_cast<std::size_t>(std::min(20 * est, 4e9)) + 50 * plc.points.size() + 10000;
+  bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) { seg_queue_.push_back({a, b, false}); });
+  for (std::uint32_t t = 0; t < bd_->tri_slots(); ++t)
+    if (bd_->tri(t).alive) facet_queue_.push_back({t, bd_->tri(t).v});
+  facet_queued_.assign(bd_->tri_slots(), 1);
+}
+
+void Refiner3::find_acute_facet_pairs() {
+  // Below 60 degrees the splits of two facets' subfacets feed each other; at 60 degrees and above
+  // they die out as in the cube's corners.
+  constexpr double kSmallDihedralCos = 0.5;
+  // Per input subsegment the facets on it and, for each, the corner of its triangle on the
+  // segment: the angle between the two triangles' directions away from the segment. This picks a
+  // protection policy only (double precision suffices); no mesh decision rests on it.
+  for (const plc::Subsegment& s : ft_.subsegments) {
+    if (s.facets.size() < 2) continue;
+    const VertexId a = vid_[s.a], b = vid_[s.b];
+    const Point3 pa = dt_.point(a), e = dt_.point(b) - pa;
+    std::vector<std::pair<std::uint32_t, Point3>> away;
+    for (std::uint32_t t : bd_->subfacets_at(a)) {
+      const SubfacetTri& tr = bd_->tri(t);
+      if (std::find(tr.v.begin(), tr.v.end(), b) == tr.v.end()) continue;
+      for (VertexId w : tr.v)
+        if (w != a && w != b) {
+          const Point3 d = dt_.point(w) - pa;
+          away.push_back({tr.facet, d - (dot(d, e) / norm2(e)) * e});
+        }
+    }
+    for (std::size_t i = 0; i < away.size(); ++i)
+      for (std::size_t j = i + 1; j < away.size(); ++j)
+        if (away[i].first != away[j].first &&
+            dot(away[i].second, away[j].second) > kSmallDihedralCos * std::sqrt(norm2(away[i].second) * norm2(away[j].second)))
+          acute_.push_back({std::min(away[i].first, away[j].first), std::max(away[i].first, away[j].first)});
+  }
+  std::sort(acute_.begin(), acute_.end());
+  acute_.erase(std::unique(acute_.begin(), acute_.end()), acute_.end());
+}
+
+bool Refiner3::acute_pair(std::uint32_t f, std::uint32_t g) const {
+  const std::pair<std::uint32_t, std::uint32_t> key{std::min(f, g), std::max(f, g)};
+  return std::binary_search(acute_.begin(), acute_.end(), key);
+}
+
+bool Refiner3::capped() {
+  if (dt_.num_vertices() < cap_) return false;
+  if (!stats_.capped) note_shortfall({}, "vertex cap reached before every rule was met");
+  stats_.capped = true;
+  return true;
+}
+
+void Refiner3::note_shortfall(Point3 where, const std::string& what) {
+  // A handful locate the trouble; thousands would only repeat it.
+  constexpr std::size_t kMaxListed = 32;
+  if (stats_.shortfalls.size() < kMaxListed) stats_.shortfalls.push_back({where, what});
+}
+
+bool Refiner3::segment_encroached(VertexId a, VertexId b) {
+  std::vector<TetId> ts;
+  if (!edge_tets(dt_, a, b, ts)) return true;  // missing: its diametral sphere is not empty
+  const Point3 pa = dt_.point(a), pb = dt_.point(b);
+  for (TetId t : ts)
+    for (VertexId u : dt_.vertices(t))
+      if (u != a && u != b && u != kInfinite && predicates::diametral_side(pa, pb, dt_.point(u)) >= 0) return true;
+  return false;
+}
+
+bool Refiner3::subfacet_encroached(std::uint32_t t) {
+  const SubfacetTri& s = bd_->tri(t);
+  std::array<VertexId, 2> apex{};
+  const int n = face_apexes(dt_, s.v[0], s.v[1], s.v[2], apex);
+  if (n == 0) return true;  // missing
+  const Point3 a = dt_.point(s.v[0]), b = dt_.point(s.v[1]), c = dt_.point(s.v[2]);
+  // A Delaunay face whose two apexes lie outside its equatorial sphere has that sphere empty; a
+  // vertex of the same facet is coplanar by construction (rounding aside), so never encroaches.
+  for (int i = 0; i < n; ++i) {
+    const VertexId u = apex[i];
+    if (u == kInfinite || bd_->on_facet(u, s.facet)) continue;
+    bool protected_apex = false;
+    if (!acute_.empty())
+      for (std::uint32_t k : bd_->subfacets_at(u)) protected_apex = protected_apex || acute_pair(bd_->tri(k).facet, s.facet);
+    if (protected_apex) continue;
+    const Point3 p = dt_.point(u);
+    if (predicates::orient3d(a, b, c, p) != 0 && predicates::equatorial_side(a, b, c, p) >= 0) return true;
+  }
+  return false;
+}
+
+void Refiner3::enqueue_at(VertexId u) {
+  for (VertexId w : bd_->segment_neighbours(u))
+    if (u < w) seg_queue_.push_back({u, w, false});
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  for (std::uint32_t t : bd_->subfacets_at(u))
+    if (!facet_queued_[t]) {
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, bd_->tri(t).v});
+    }
+}
+
+void Refiner3::note_touched(const std::vector<TetId>& cavity) {
+  touched_segs_.clear();
+  touched_tris_.clear();
+  for (TetId t : cavity) {
+    if (dt_.is_ghost(t)) continue;  // a ghost's finite face is its finite neighbour's too
+    const auto& tv = dt_.vertices(t);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (bd_->is_subsegment(tv[i], tv[j])) touched_segs_.push_back({tv[i], tv[j]});
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t s = bd_->subfacet(tv[(i + 1) & 3], tv[(i + 2) & 3], tv[(i + 3) & 3]);
+      if (s != UINT32_MAX) touched_tris_.push_back(s);
+    }
+  }
+}
+
+void Refiner3::enqueue_all() {
+  bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) { seg_queue_.push_back({a, b, false}); });
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  for (std::uint32_t t = 0; t < bd_->tri_slots(); ++t)
+    if (bd_->tri(t).alive && !facet_queued_[t]) {
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, bd_->tri(t).v});
+    }
+}
+
+void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
+  if (apex_.size() < dt_.num_vertices()) apex_.resize(dt_.num_vertices(), 0);
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  for (const auto& e : touched_segs_) seg_queue_.push_back({e[0], e[1], false});
+  for (std::uint32_t t : touched_tris_)
+    if (bd_->tri(t).alive && !facet_queued_[t]) {
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, bd_->tri(t).v});
+    }
+  enqueue_at(v);  // the new pieces at v, when it was split into the boundary
+  if (regions_live_) {
+    assign_regions(created);
+    for (TetId t : created) offer(t);
+  }
+  if (options_.progress && cap_ > 0 && dt_.num_vertices() % 4096 == 0)
+    options_.progress(std::min(0.99, static_cast<double>(dt_.num_vertices()) / static_cast<double>(cap_)));
+}
+
+void Refiner3::split_segment(VertexId a, VertexId b) {
+  const Point3 p = segment_split_point(dt_.point(a), dt_.point(b), apex_[a], apex_[b]);
+  std::vector<TetId> created;
+  std::vector<TetId> ts;
+  const TetId hint = edge_tets(dt_, a, b, ts) ? ts[0] : dt_.vertex_tet(a);
+  const TetId h = dt_.locate(p, hint);
+  std::vector<TetId> cavity;
+  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, p, h, cavity);
+  note_touched(cavity);
+  const Insertion ins = dt_.insert(p, h, &created);
+  if (ins.duplicate) {  // the piece is too short to split in doubles
+    ++stalls_;
+    note_shortfall(p, "subsegment too short to split");
+    return;
+  }
+  bd_->split_segment(a, b, ins.vertex);
+  ++stats_.segment_splits;
+  after_insert(ins.vertex, created);
+}
+
+bool Refiner3::find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets) {
+  bool any = false;
+  if (vmark_.size() < dt_.num_vertices()) vmark_.resize(dt_.num_vertices() * 3 / 2 + 16, 0);
+  if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
+  if (tmark_.size() < dt_.tet_slots()) tmark_.resize(dt_.tet_slots() * 3 / 2 + 16, 0);
+  ++tstamp_;
+  for (TetId t : cavity) tmark_[t] = tstamp_;
+  ++vstamp_;
+  for (TetId t : cavity) {
+    const auto& tv = dt_.vertices(t);
+    for (VertexId u : tv) {
+      if (u == kInfinite || vmark_[u] == vstamp_) continue;
+      vmark_[u] = vstamp_;
+      for (VertexId w : bd_->segment_neighbours(u))
+        if (u < w && predicates::diametral_side(dt_.point(u), dt_.point(w), p) >= 0) {
+          seg_queue_.push_back({u, w, true});
+          any = true;
+        }
+    }
+    if (!facets || dt_.is_ghost(t)) continue;
+    for (int i = 0; i < 4; ++i) {
+      if (!face_is_subfacet(t, i)) continue;
+      const std::array<VertexId, 3> f{tv[(i + 1) & 3], tv[(i + 2) & 3], tv[(i + 3) & 3]};
+      const std::uint32_t s = bd_->subfacet(f[0], f[1], f[2]);
+      const TetId n = dt_.neighbour(t, i);
+      // A subfacet inside the cavity would be destroyed: split it as if encroached.
+      const bool destroyed = tmark_[n] == tstamp_;
+      if (destroyed || predicates::equatorial_side(dt_.point(f[0]), dt_.point(f[1]), dt_.point(f[2]), p) >= 0) {
+        facet_queue_.push_back({s, bd_->tri(s).v, true});
+        any = true;
+      }
+    }
+  }
+  return any;
+}
+
+void Refiner3::split_subfacet(std::uint32_t t) {
+  const SubfacetTri s = bd_->tri(t);
+  const Point3 c = triangle_circumcentre(dt_.point(s.v[0]), dt_.point(s.v[1]), dt_.point(s.v[2]));
+  const FacetLocation loc = bd_->locate_in_facet(t, c);
+  if (loc.tri == UINT32_MAX) {  // beyond a subsegment of the facet: it is encroached
+    seg_queue_.push_back({loc.seg[0], loc.seg[1], true});
+    ++stats_.rejected;
+    facet_queue_.push_back({t, s.v, true});
+    return;
+  }
+  const TetId h = dt_.locate(c, dt_.vertex_tet(s.v[0]));
+  std::vector<TetId> cavity;
+  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, c, h, cavity);
+  if (find_encroached(c, cavity, false)) {
+    ++stats_.rejected;
+    facet_queue_.push_back({t, s.v, true});
+    return;
+  }
+  std::vector<TetId> created;
+  note_touched(cavity);
+  const Insertion ins = dt_.insert(c, h, &created);
+  if (ins.duplicate) {
+    ++stalls_;
+    note_shortfall(c, "subfacet circumcentre repeats a vertex");
+    return;
+  }
+  bd_->insert_in_facet(loc.tri, ins.vertex);
+  ++stats_.facet_splits;
+  after_insert(ins.vertex, created);
+}
+
+void Refiner3::conform() {
+  // Stalled splits (pieces too short for doubles) cannot go on for ever.
+  constexpr std::size_t kMaxStalls = 1000;
+  while ((!seg_queue_.empty() || !facet_queue_.empty()) && !capped() && stalls_ < kMaxStalls) {
+    if (!seg_queue_.empty()) {
+      const QueuedSegment q = seg_queue_.front();
+      seg_queue_.pop_front();
+      if (bd_->is_subsegment(q.a, q.b) && (q.forced || segment_encroached(q.a, q.b))) split_segment(q.a, q.b);
+      continue;
+    }
+    const QueuedFacet q = facet_queue_.front();
+    facet_queue_.pop_front();
+    if (!q.forced) facet_queued_[q.tri] = 0;
+    const SubfacetTri& s = bd_->tri(q.tri);
+    if (!s.alive || s.v != q.v) continue;
+    if (q.forced || subfacet_encroached(q.tri)) split_subfacet(q.tri);
+  }
+  if (stalls_ >= kMaxStalls) note_shortfall({}, "boundary splits stalled");
+}
+
+}  // namespace fdr::tet

@@ -1,0 +1,103 @@
+#include "tet/dt_queries.hpp"
+#include <algorithm>
+#include "predicates/predicates3d.hpp"
+
+namespace fdr::tet {
+namespace {
+
+// Visited tetrahedra are marked with a stamp per call, in marks that live as long as the thread
+// (a walk's cost stays proportional to what it visits).
+thread_local std::vector<std::uint32_t> marks;
+thread_local std::uint32_t stamp_now = 0;
+
+std::uint32_t* next_marks(const Delaunay3& dt) {
+  if (marks.size() < dt.tet_slots()) marks.resize(dt.tet_slots() + dt.tet_slots() / 2, 0);
+  if (++stamp_now == 0) {
+    std::fill(marks.begin(), marks.end(), 0);
+    stamp_now = 1;
+  }
+  return marks.data();
+}
+std::uint32_t mark_stamp() { return stamp_now; }
+
+bool holds(const std::array<VertexId, 4>& v, VertexId x) {
+  return v[0] == x || v[1] == x || v[2] == x || v[3] == x;
+}
+
+}  // namespace
+
+void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
+  out.clear();
+  if (dt.dimension() < 3) return;
+  const TetId t0 = dt.vertex_tet(v);
+  if (t0 == kNoId) return;
+  std::uint32_t* mark = next_marks(dt);
+  const std::uint32_t stamp = mark_stamp();
+  out.push_back(t0);
+  mark[t0] = stamp;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const TetId t = out[k];
+    const auto& tv = dt.vertices(t);
+    for (int i = 0; i < 4; ++i) {
+      if (tv[i] == v) continue;  // the face opposite v does not hold v
+      const TetId n = dt.neighbour(t, i);
+      if (mark[n] != stamp) {
+        mark[n] = stamp;
+        out.push_back(n);
+      }
+    }
+  }
+}
+
+bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& out) {
+  std::vector<TetId> star;
+  vertex_star(dt, a, star);
+  out.clear();
+  for (TetId t : star)
+    if (holds(dt.vertices(t), b)) out.push_back(t);
+  return !out.empty();
+}
+
+int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::array<VertexId, 2>& apex) {
+  std::vector<TetId> ts;
+  if (!edge_tets(dt, a, b, ts)) return 0;
+  int n = 0;
+  for (TetId t : ts) {
+    const auto& v = dt.vertices(t);
+    if (!holds(v, c)) continue;
+    for (int i = 0; i < 4; ++i)
+      if (v[i] != a && v[i] != b && v[i] != c && n < 2) apex[n++] = v[i];
+  }
+  return n;
+}
+
+void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
+  out.clear();
+  if (start == kNoId || dt.is_ghost(start)) return;
+  auto in_conflict = [&](TetId t) {
+    const auto& v = dt.vertices(t);
+    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+  };
+  std::uint32_t* mark = next_marks(dt);
+  const std::uint32_t stamp = mark_stamp();
+  // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
+  // edge lies on the spheres of the tetrahedra around it).
+  out.push_back(start);
+  mark[start] = stamp;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (dt.is_ghost(out[k])) continue;
+    for (int i = 0; i < 4; ++i) {
+      const TetId n = dt.neighbour(out[k], i);
+      if (mark[n] == stamp) continue;
+      mark[n] = stamp;
+      if (dt.is_ghost(n) ? beyond_hull_face(dt, n, p) : in_conflict(n)) out.push_back(n);
+    }
+  }
+}
+
+bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {
+  const auto& v = dt.vertices(g);
+  return predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p) > 0;
+}
+
+}  // namespace fdr::tet

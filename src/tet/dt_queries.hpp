@@ -1,0 +1,31 @@
+// Queries over a Delaunay3 that refinement needs (stars, edges, faces, conflict regions), as free
+// functions over its public interface.
+#pragma once
+#include <array>
+#include <vector>
+#include "base/point3.hpp"
+#include "tet/delaunay3.hpp"
+
+namespace fdr::tet {
+
+// Every live tetrahedron (ghosts included) with v as a vertex, by a walk across the faces at v.
+// Empty while dimension() < 3.
+void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out);
+
+// The tetrahedra (ghosts included) with edge ab; false when ab is not an edge.
+bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& out);
+
+// The vertices opposite face abc in the (at most two) tetrahedra that have it (kInfinite for a
+// ghost); returns how many there are (0: abc is not a face).
+int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::array<VertexId, 2>& apex);
+
+// The tetrahedra that inserting p would destroy, without changing dt: from `start` (a finite
+// tetrahedron whose closed circumsphere holds p, e.g. the one p lies in or the one p is the
+// circumcentre of), the finite ones whose circumsphere holds p strictly inside, connected through
+// faces, and the ghosts next to them whose hull face p lies strictly beyond (not walked further).
+void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out);
+
+// Whether p lies strictly beyond ghost g's hull face.
+bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p);
+
+}  // namespace fdr::tet

@@ -1,0 +1,131 @@
+// The state of Functional Delaunay Refinement in 3D on a PLC and its steps: the conforming
+// Delaunay tetrahedralization (rules 1 and 2: encroached subsegments and subfacets), the regions
+// (materials, outside), and the B-bad tetrahedra (rule 3). tetrahedralize() runs them in order;
+// tests reach the steps and the tetrahedralization here.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+#include "plc/plc.hpp"
+#include "plc/triangulate_facets.hpp"
+#include "sizing/spacing3d.hpp"
+#include "tet/boundary.hpp"
+#include "tet/delaunay3.hpp"
+#include "tet/refine3d.hpp"
+#include "tet/tetrahedralize.hpp"
+
+namespace fdr::tet {
+
+// Where a subsegment ab is split: the midpoint, or, when exactly one end is an apex (an input
+// vertex where input segments meet), the point at a power-of-two distance from it nearest to the
+// midpoint (concentric shells: splits near a small angle stay on spheres around its apex, so they
+// stop encroaching each other's pieces).
+Point3 segment_split_point(Point3 a, Point3 b, bool a_apex, bool b_apex);
+
+// The centre of the circle through a, b, c in their plane (double precision, relative to a).
+Point3 triangle_circumcentre(Point3 a, Point3 b, Point3 c);
+
+// Tetrahedron region codes besides indices into Plc::regions.
+inline constexpr std::int32_t kOutsideRegion = -2;  // beyond the outer surface or in a volume hole
+inline constexpr std::int32_t kDefaultRegion = -1;  // inside, in no region of the PLC
+inline constexpr std::int32_t kUnknownRegion = -3;
+
+class Refiner3 {
+ public:
+  // Inserts the PLC's vertices; `ft` is its checked facet triangulation.
+  Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const sizing::SizingField3& f,
+           const TetOptions& options);
+
+  // Rules 1 and 2 until no subsegment or subfacet is encroached or missing (or the cap).
+  void conform();
+  // Every tetrahedron's region by a flood fill across faces that are not subfacets.
+  void flood_regions();
+  // Rule 3 (with rules 1 and 2 first) until no tetrahedron in the domain is bad (or the cap).
+  void refine();
+  // Adds a shortfall for every tetrahedron of the domain still bad (the first few).
+  void list_shortfalls();
+
+  bool segment_encroached(VertexId a, VertexId b);
+  bool subfacet_encroached(std::uint32_t t);
+  // Whether tetrahedron t (finite, in the domain) is bad: R / f(c) > B, radius-edge above 2, or
+  // its region's volume bound exceeded. *out gets its entry for the queue.
+  bool tet_bad(TetId t, BadTet* out) const;
+  std::int32_t region(TetId t) const { return t < region_.size() ? region_[t] : kUnknownRegion; }
+  std::int32_t material(TetId t) const;
+
+  const Delaunay3& dt() const { return dt_; }
+  const Boundary& boundary() const { return *bd_; }
+  const TetStats& stats() const { return stats_; }
+  TetStats& stats() { return stats_; }
+  double bound() const { return bound_; }
+  const sizing::SizingField3& spacing() const { return f_; }
+  const plc::Plc& plc() const { return plc_; }
+
+ private:
+  // Queued pieces; `forced` ones are split without a test (a rejected point encroached them).
+  struct QueuedSegment {
+    VertexId a, b;
+    bool forced = false;
+  };
+  struct QueuedFacet {
+    std::uint32_t tri;
+    std::array<VertexId, 3> v;
+    bool forced = false;
+  };
+  bool capped();
+  void split_segment(VertexId a, VertexId b);
+  void split_subfacet(std::uint32_t t);
+  void try_split_tet(const BadTet& b);
+  // Encroached (or, for subfacets, destroyed) subsegments and subfacets if p were inserted with
+  // conflict region `cavity`; returns whether any.
+  bool find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets);
+  // Before an insertion whose conflict region is `cavity`: the subsegments and subfacets that are
+  // edges and faces of its tetrahedra, the only ones whose neighbourhood the insertion changes.
+  void note_touched(const std::vector<TetId>& cavity);
+  void after_insert(VertexId v, const std::vector<TetId>& created);
+  // Queues every subsegment and subfacet (a sweep that catches what note_touched could miss).
+  void enqueue_all();
+  void enqueue_at(VertexId u);
+  void assign_regions(const std::vector<TetId>& created);
+  void flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp);
+  void offer(TetId t);
+  // Whether the queue entries from these positions on touch a facet of an acute pair.
+  bool near_small_angle(std::size_t segs_from, std::size_t facets_from) const;
+  bool face_is_subfacet(TetId t, int i) const;
+  void note_shortfall(Point3 where, const std::string& what);
+
+  const plc::Plc& plc_;
+  const plc::FacetTriangulation& ft_;
+  const sizing::SizingField3& f_;
+  TetOptions options_;
+  double bound_ = 1;
+  std::size_t cap_ = 0;
+  Delaunay3 dt_;
+  std::vector<VertexId> vid_;          // PLC point -> vertex
+  std::vector<std::uint8_t> apex_;     // per vertex: an input vertex where input segments meet
+  // Facet pairs meeting at a small dihedral angle (below 60 degrees) along a segment (f < g), sorted: a vertex of
+  // one does not encroach the other's subfacets (missing ones are still split), which stops the
+  // cascade of splits between two facets at a small angle.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> acute_;
+  bool acute_pair(std::uint32_t f, std::uint32_t g) const;
+  void find_acute_facet_pairs();
+  std::unique_ptr<Boundary> bd_;
+  std::deque<QueuedSegment> seg_queue_;
+  std::deque<QueuedFacet> facet_queue_;
+  std::vector<std::uint8_t> facet_queued_;  // per subfacet slot
+  bool regions_live_ = false;               // rule 3: regions kept up to date at every insertion
+  std::vector<std::int32_t> region_;        // per tetrahedron slot
+  std::unique_ptr<BadTetQueue> bad_;
+  std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
+  std::uint32_t tstamp_ = 0;
+  std::vector<std::array<VertexId, 2>> touched_segs_;
+  std::vector<std::uint32_t> touched_tris_;
+  std::vector<std::uint32_t> vmark_;
+  std::uint32_t vstamp_ = 0;
+  std::size_t stalls_ = 0;
+  TetStats stats_;
+};
+
+}  // namespace fdr::tet

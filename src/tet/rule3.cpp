@@ -1,0 +1,207 @@
+// Refiner3's regions and rule 3: B-bad tetrahedra split at their circumcentres, largest R / f(c)
+// first, unless the circumcentre encroaches the boundary.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include "predicates/predicates3d.hpp"
+#include "tet/dt_queries.hpp"
+#include "tet/refiner3.hpp"
+#include "tet/tet_geometry.hpp"
+
+namespace fdr::tet {
+
+bool Refiner3::face_is_subfacet(TetId t, int i) const {
+  const auto& v = dt_.vertices(t);
+  const VertexId a = v[(i + 1) & 3], b = v[(i + 2) & 3], c = v[(i + 3) & 3];
+  if (a == kInfinite || b == kInfinite || c == kInfinite) return false;
+  return bd_->subfacet(a, b, c) != UINT32_MAX;
+}
+
+std::int32_t Refiner3::material(TetId t) const {
+  const std::int32_t r = region(t);
+  return r >= 0 ? static_cast<std::int32_t>(std::lround(plc_.regions[static_cast<std::size_t>(r)].attribute)) : 0;
+}
+
+void Refiner3::flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp) {
+  std::vector<TetId> stack{start};
+  mark[start] = stamp;
+  while (!stack.empty()) {
+    const TetId t = stack.back();
+    stack.pop_back();
+    region_[t] = code;
+    for (int i = 0; i < 4; ++i) {
+      const TetId n = dt_.neighbour(t, i);
+      if (mark[n] == stamp || face_is_subfacet(t, i)) continue;
+      mark[n] = stamp;
+      stack.push_back(n);
+    }
+  }
+}
+
+void Refiner3::flood_regions() {
+  const std::size_t n = dt_.tet_slots();
+  region_.assign(n, kUnknownRegion);
+  std::vector<std::uint32_t> mark(n, 0);
+  std::uint32_t stamp = 1;
+  // The outside: everything reached from the ghosts without crossing a subfacet (one flood: the
+  // ghosts are connected to each other around the hull).
+  for (TetId t = 0; t < n; ++t)
+    if (dt_.alive(t) && dt_.is_ghost(t) && mark[t] == 0) flood(t, kOutsideRegion, mark, stamp);
+  const bool closed = !plc_.facets.empty();
+  if (!closed) {  // a point set: its convex hull is the domain
+    for (TetId t = 0; t < n; ++t)
+      if (dt_.alive(t)) region_[t] = dt_.is_ghost(t) ? kOutsideRegion : kDefaultRegion;
+  }
+  for (const Point3& h : plc_.holes) {
+    const TetId t = dt_.locate(h);
+    if (t != kNoId && !dt_.is_ghost(t)) flood(t, kOutsideRegion, mark, ++stamp);
+  }
+  for (std::size_t r = 0; r < plc_.regions.size(); ++r) {
+    const TetId t = dt_.locate(plc_.regions[r].point);
+    if (t != kNoId && !dt_.is_ghost(t) && region_[t] != kOutsideRegion)
+      flood(t, static_cast<std::int32_t>(r), mark, ++stamp);
+  }
+  for (TetId t = 0; t < n; ++t)
+    if (dt_.alive(t) && region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
+}
+
+void Refiner3::assign_regions(const std::vector<TetId>& created) {
+  if (region_.size() < dt_.tet_slots()) region_.resize(dt_.tet_slots(), kUnknownRegion);
+  const bool hull_domain = plc_.facets.empty();  // a point set: every finite tetrahedron is inside
+  for (TetId t : created)
+    region_[t] = dt_.is_ghost(t) ? kOutsideRegion : (hull_domain ? kDefaultRegion : kUnknownRegion);
+  // A new tetrahedron takes the region of an old neighbour across a face that is not a subfacet;
+  // new ones pass it on among themselves (a cavity that no subfacet crosses is one region).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (TetId t : created) {
+      if (region_[t] != kUnknownRegion) continue;
+      for (int i = 0; i < 4; ++i) {
+        const std::int32_t r = region_[dt_.neighbour(t, i)];
+        if (r == kUnknownRegion || face_is_subfacet(t, i)) continue;
+        region_[t] = r;
+        changed = true;
+        break;
+      }
+    }
+  }
+  for (TetId t : created)
+    if (region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
+}
+
+bool Refiner3::tet_bad(TetId t, BadTet* out) const {
+  if (!dt_.alive(t) || dt_.is_ghost(t) || region(t) == kOutsideRegion) return false;
+  const auto& v = dt_.vertices(t);
+  const Point3 a = dt_.point(v[0]), b = dt_.point(v[1]), c = dt_.point(v[2]), d = dt_.point(v[3]);
+  const Sphere s = circumsphere(a, b, c, d);
+  const double ratio = s.radius / f_(s.centre);
+  *out = {ratio, t, v, s.centre};
+  // A sliver too flat for a double circumcentre is bad; try_split_tet leaves it (a shortfall).
+  if (!(ratio <= bound_)) return true;
+  // The paper's theorem gives radius-edge <= 2 only under conditions on B and f's Lipschitz
+  // constant that a user's B need not meet; asking for it directly keeps the output's shape bound.
+  constexpr double kRadiusEdge = 2.0;
+  if (s.radius > kRadiusEdge * shortest_edge(a, b, c, d)) return true;
+  const std::int32_t r = region(t);
+  if (r >= 0) {
+    const double vmax = plc_.regions[static_cast<std::size_t>(r)].max_volume;
+    if (vmax > 0 && std::fabs(dot(b - a, cross(c - a, d - a))) / 6 > vmax) return true;
+  }
+  return false;
+}
+
+void Refiner3::offer(TetId t) {
+  BadTet b;
+  if (tet_bad(t, &b)) bad_->push(b);
+}
+
+void Refiner3::try_split_tet(const BadTet& b) {
+  if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
+  std::vector<TetId> cavity;
+  conflict_region(dt_, b.centre, b.tet, cavity);
+  const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
+  if (find_encroached(b.centre, cavity, true)) {
+    ++stats_.rejected;
+    if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
+      // Only its shape is bad and the boundary it encroaches meets another facet at an acute
+      // angle: splitting there cascades toward the angle without end, so the tetrahedron stays
+      // (and is listed as a shortfall).
+      seg_queue_.resize(segs_before);
+      facet_queue_.resize(facets_before);
+      return;
+    }
+    const std::size_t before = dt_.num_vertices();
+    conform();
+    // Still bad if the splits left it; without a new vertex it would only come back unchanged.
+    if (dt_.num_vertices() > before) offer(b.tet);
+    return;
+  }
+  // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
+  // outside the hull it would have crossed one.
+  const TetId h = dt_.locate(b.centre, b.tet);
+  if (h == kNoId || dt_.is_ghost(h) || region(h) == kOutsideRegion) {
+    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
+    return;
+  }
+  std::vector<TetId> created;
+  note_touched(cavity);
+  const Insertion ins = dt_.insert(b.centre, h, &created);
+  if (ins.duplicate) return;  // as above
+  ++stats_.tet_splits;
+  after_insert(ins.vertex, created);
+  conform();
+}
+
+bool Refiner3::near_small_angle(std::size_t segs_from, std::size_t facets_from) const {
+  if (acute_.empty()) return false;
+  auto acute_facet = [&](std::uint32_t f) {
+    for (const auto& [g, h] : acute_)
+      if (g == f || h == f) return true;
+    return false;
+  };
+  for (std::size_t i = facets_from; i < facet_queue_.size(); ++i)
+    if (acute_facet(bd_->tri(facet_queue_[i].tri).facet)) return true;
+  for (std::size_t i = segs_from; i < seg_queue_.size(); ++i) {
+    const std::uint32_t o = bd_->segment_origin(seg_queue_[i].a, seg_queue_[i].b);
+    if (o == UINT32_MAX) continue;
+    for (std::uint32_t f : bd_->origin(o).facets)
+      if (acute_facet(f)) return true;
+  }
+  return false;
+}
+
+void Refiner3::refine() {
+  bad_ = std::make_unique<BadTetQueue>(bound_);
+  // A few passes: the regions are flooded again after each, in case a boundary split passed a
+  // region on across a subfacet that was missing for a moment.
+  constexpr int kPasses = 4;
+  for (int pass = 0; pass < kPasses && !stats_.capped; ++pass) {
+    enqueue_all();
+    conform();
+    flood_regions();
+    regions_live_ = true;
+    dt_.for_each_finite_tet([&](TetId t) { offer(t); });
+    if (bad_->size() == 0) break;
+    BadTet b;
+    while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
+  }
+  enqueue_all();
+  conform();
+  flood_regions();
+  list_shortfalls();
+}
+
+void Refiner3::list_shortfalls() {
+  dt_.for_each_finite_tet([&](TetId t) {
+    BadTet b;
+    if (!tet_bad(t, &b)) return;
+    const auto& v = dt_.vertices(t);
+    const Point3 a = dt_.point(v[0]), bb = dt_.point(v[1]), c = dt_.point(v[2]), d = dt_.point(v[3]);
+    char what[160];
+    std::snprintf(what, sizeof what, "tetrahedron left with R/f(c) %.4g, radius-edge %.4g (circumcentre given)",
+                  b.ratio, circumsphere(a, bb, c, d).radius / shortest_edge(a, bb, c, d));
+    note_shortfall(b.centre, what);
+  });
+}
+
+}  // namespace fdr::tet
