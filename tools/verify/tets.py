@@ -317,7 +317,7 @@ def main(argv=None):
           + ("" if ok else "  FAILED"))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(r, f, indent=1)
+            json.dump(r, f, indent=1, default=lambda o: o.item() if hasattr(o, "item") else str(o))
     return 0 if ok else 1
 
 

@@ -120,8 +120,6 @@ def test_check_fails_with_exit_10_and_nothing_written(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.xfail(reason="needs the FDR tetrahedralize (facet recovery); the first version's subfacets "
-                          "do not match its tetrahedra", strict=False)
 @pytest.mark.parametrize("name", ["cube.poly", "octahedron.off", "facet_hole.poly"])
 def test_check_passes_on_plcs(tmp_path, name):
     p = run(DATA / name, "--spacing", "0.5", "--check", "-o", "m.vtu", "--report", "r.json", "-q", cwd=tmp_path)
