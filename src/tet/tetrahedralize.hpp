@@ -1,5 +1,5 @@
 // The 3D mesher's one call: a conforming Delaunay tetrahedralization of a PLC refined by FDR
-// until every tetrahedron has R/f(c) <= B (the paper's three rules), with slivers removed.
+// until every tetrahedron has R/f(c) <= B (the paper's three rules) and radius-edge <= 2.
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -13,9 +13,8 @@
 namespace fdr::tet {
 
 struct TetOptions {
-  double bound = 0;               // B; 0: the default, which keeps radius-edge <= 2 (docs/3d.md)
+  double bound = 0;               // B; 0: the default, 1 as in 2D (radius-edge <= 2 is enforced apart)
   bool refine = true;             // false: the conforming Delaunay tetrahedralization only
-  bool remove_slivers = true;     // sliver removal after refinement (keeps R/f <= B)
   std::size_t max_vertices = 0;   // a cap on the vertices (0: automatic); reaching it is reported
   std::function<void(double)> progress;  // fraction done in [0, 1], for the CLI's 0...10...20
 };
