@@ -1,6 +1,7 @@
 // The 3D run: read (tetio via api) -> spacing (sizing) -> tetrahedralize (api/tet) -> measure and
 // check (quality) -> write (tetio, all or nothing).
 #include "pipeline/run3d.hpp"
+#include "pipeline/summary.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -146,15 +147,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
 void write_summary3(const Result3& r, std::ostream& out) {
   if (r.measured) quality::write_text3(r.report, out);
   else out << "3D mesh: " << r.report.vertices << " vertices, " << r.report.tets << " tetrahedra\n";
-  out << "stages (s, peak MiB):";
-  for (const auto& st : r.stages) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, " %s %.2f (%.0f)", st.name.c_str(), st.seconds, st.peak_rss_mb);
-    out << buf;
-  }
-  out << "\n";
-  for (const auto& w : r.written) out << "wrote " << w << "\n";
-  out.flush();
+  write_stages_and_outputs(r.stages, r.written, out);
 }
 
 }  // namespace fdr::pipeline

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "base/error.hpp"
+#include "sizing/spec_text.hpp"
 #include "sizing/expression_field.hpp"
 #include "sizing/fields.hpp"
 
@@ -13,28 +14,9 @@ namespace fdr::sizing {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
-std::optional<double> parse_number(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  double v = 0;
-  const char* first = s.data();
-  if (*first == '+') ++first;  // from_chars rejects a leading '+'
-  auto r = std::from_chars(first, s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
-void require_positive(double v, const std::string& spec) {
-  if (!(v > 0) || !std::isfinite(v))
-    throw Error(ExitCode::kInvalidSpacing,
-                "spacing '" + spec + "': " + format_number(v) + " is not a positive finite number");
-}
+using spec_text::parse_number;
+using spec_text::require_positive;
+using spec_text::trim;
 
 // 1 for paper-f1, 2 for paper-f2, 0 otherwise.
 int preset_id(const std::string& s) {

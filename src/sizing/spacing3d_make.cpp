@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "base/error.hpp"
+#include "sizing/spec_text.hpp"
 #include "sizing/fields.hpp"
 #include "sizing/spacing3d_expression.hpp"
 
@@ -31,28 +32,9 @@ std::string PaperF2Field3::describe() const {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
-std::optional<double> parse_number(const std::string& s) {
-  if (s.empty()) return std::nullopt;
-  double v = 0;
-  const char* first = s.data();
-  if (*first == '+') ++first;  // from_chars rejects a leading '+'
-  auto r = std::from_chars(first, s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
-void require_positive(double v, const std::string& spec) {
-  if (!(v > 0) || !std::isfinite(v))
-    throw Error(ExitCode::kInvalidSpacing,
-                "spacing '" + spec + "': " + format_number(v) + " is not a positive finite number");
-}
+using spec_text::parse_number;
+using spec_text::require_positive;
+using spec_text::trim;
 
 SizingPtr3 make_preset(const std::string& name, double k) {
   if (name == "paper-f1") return std::make_shared<PaperF1Field3>(k);
