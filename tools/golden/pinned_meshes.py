@@ -45,6 +45,12 @@ CASES = {
         "--open-boundary", os.path.join(TD, "chesapeake", "chesapeake_mouth_open_boundary.geojson"),
         "--raster", os.path.join(TD, "chesapeake", "chesapeake_mouth_etopo5.tif"),
         "--hmin", "150", "--dist-grade", "0.08"], GIS_OUT),
+    "turku_archipelago": ("quick", [
+        os.path.join(TD, "baltic_archipelago", "turku_archipelago.gpkg"), "--layer", "water",
+        "--open-boundary", os.path.join(TD, "baltic_archipelago", "turku_archipelago.gpkg"),
+        "--open-boundary-layer", "open_boundary",
+        "--raster", os.path.join(TD, "baltic_archipelago", "turku_archipelago_etopo5.tif"),
+        "--hmin", "300", "--hmax", "5000"], GIS_OUT),
     "square_1m": ("regions", [os.path.join(TD, "poly", "square10.poly"), "--spacing", "0.025*paper-f1"], POLY_OUT),
     "chesapeake_mouth": ("regions", region("chesapeake_mouth", 150) + ["--hmax", "5000"], GIS_OUT),
     "gulf_of_maine": ("regions", region("gulf_of_maine", 120) + ["--dist-grade", "0.04"], GIS_OUT),
