@@ -173,7 +173,6 @@ std::vector<std::pair<Point2, Point2>> cgal_constraint_edges(const pslg::Pslg& g
 void run_case(const Case& c, double scale, Point2 offset) {
   const std::string what = c.name + " scale " + std::to_string(scale) + " offset " + std::to_string(offset.x);
   const pslg::Pslg g = transform(c, scale, offset);
-  if (std::getenv("FDR_DUMP")) pslg::write_poly(g, "/tmp/i10t/" + c.name + "_" + std::to_string(scale) + "_" + std::to_string((long long)offset.x) + ".poly");
   std::vector<pslg::Repair> reps;
   pslg::Pslg r;
   ASSERT_NO_THROW(r = pslg::resolve(g, {}, &reps)) << what;
