@@ -8,11 +8,16 @@
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/make_mesh_3.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -36,12 +41,22 @@ int main(int argc, char** argv) {
   const double h = std::strtod(argv[2], nullptr);
   const std::string mode = argc > 3 ? argv[3] : "plain";
   if (!(h > 0) || (mode != "plain" && mode != "optimise")) return usage();
-  Polyhedron poly;
-  std::ifstream in(path);
-  if (!(in >> poly) || poly.empty()) {
-    std::cerr << "cgal_mesh3_bench: " << path << ": not a readable closed .off surface\n";
+  // Facets of a PLC carry no consistent orientation, so the soup is oriented before it becomes a surface.
+  namespace pmp = CGAL::Polygon_mesh_processing;
+  std::vector<K::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if (!CGAL::IO::read_polygon_soup(path, points, polygons) || polygons.empty()) {
+    std::cerr << "cgal_mesh3_bench: " << path << ": not a readable .off surface\n";
     return 3;
   }
+  pmp::orient_polygon_soup(points, polygons);
+  Polyhedron poly;
+  pmp::polygon_soup_to_polygon_mesh(points, polygons, poly);
+  if (!CGAL::is_closed(poly)) {
+    std::cerr << "cgal_mesh3_bench: " << path << ": the surface is not closed\n";
+    return 3;
+  }
+  pmp::orient_to_bound_a_volume(poly);
   Domain domain(poly);
   domain.detect_features();
   namespace p = CGAL::parameters;
