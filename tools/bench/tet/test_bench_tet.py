@@ -1,0 +1,43 @@
+"""Tests of the 3D benchmark driver's steps: .poly reading, the .off surface, the rows, the child."""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_tet  # noqa: E402
+
+DATA = os.path.join(bench_tet.ROOT, "testdata", "3d")
+
+
+def test_read_poly_one_based_cube():
+    verts, polys = bench_tet.read_poly(os.path.join(DATA, "cube10.poly"))
+    assert len(verts) == 8 and verts[0] == (0.0, 0.0, 0.0) and verts[6] == (10.0, 10.0, 10.0)
+    assert len(polys) == 6 and polys[0] == [0, 1, 2, 3]
+
+
+def test_read_poly_zero_based_cavity():
+    verts, polys = bench_tet.read_poly(os.path.join(DATA, "box_cavity.poly"))
+    assert len(verts) == 16 and verts[8] == (1.0, 1.0, 1.0)
+    assert len(polys) == 12 and polys[6] == [8, 9, 10, 11]
+
+
+def test_write_off_fans_each_quad(tmp_path):
+    off = tmp_path / "c.off"
+    bench_tet.write_off(os.path.join(DATA, "box_cavity.poly"), str(off))
+    lines = off.read_text().split("\n")
+    assert lines[0] == "OFF" and lines[1] == "16 24 0"
+    assert lines[2 + 16] == "3 0 1 2" and lines[2 + 17] == "3 0 2 3"
+
+
+def row(tets):
+    return {"tool": "t", "param": "p", "tets": tets, "wall": 1.0, "cpu": 1.0, "rss": 1.0}
+
+
+def test_format_row_marks_counts_off_by_more_than_ten_percent():
+    assert "more than 10 %" not in bench_tet.format_row("x", row(1090), 1000)
+    assert "more than 10 %" in bench_tet.format_row("x", row(1110), 1000)
+    assert "1024 B/tet" in bench_tet.format_row("x", row(1024), 1000)
+
+
+def test_run_child_measures_the_child(tmp_path):
+    wall, cpu, rss, text = bench_tet.run_child([sys.executable, "-c", "print('hi')"], str(tmp_path))
+    assert text.strip() == "hi" and wall > 0 and cpu >= 0 and rss > 1
