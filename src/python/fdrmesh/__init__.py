@@ -128,6 +128,20 @@ def _spacing_grid(fn, vertices, resolution):
     return (nx, ny, x0, y0, d, d, _np.ascontiguousarray(vals).ravel(), label)
 
 
+
+def _spacing_arguments(spacing, v, resolution, default_spec, sample_grid):
+    """(grid, spec) for the core from a `spacing` argument: None (the CLI's default), a number, a
+    --spacing string or a callable sampled on a grid."""
+    if spacing is None:
+        return None, default_spec(v)
+    if callable(spacing):
+        return sample_grid(spacing, v, resolution), ""
+    if isinstance(spacing, _numbers.Real) and not isinstance(spacing, bool):
+        return None, repr(float(spacing))  # shortest round-trip form: the same double as on the command line
+    if isinstance(spacing, str):
+        return None, spacing
+    raise UsageError(f"spacing must be None, a number, a string or a callable, not {type(spacing).__name__}")
+
 def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, min_angle=0.0,
                 max_steiner=20_000_000, convex_hull=False, *, segment_markers=None, vertex_markers=None,
                 resolution=256, check=False, smooth=0):
@@ -142,17 +156,7 @@ def triangulate(vertices, segments=None, holes=None, spacing=None, bound=1.0, mi
     keeps the FDR mesh as is).
     Returns a Mesh; the GIL is released while meshing."""
     v = _np.ascontiguousarray(vertices, dtype=_np.float64)
-    grid, spec = None, ""
-    if spacing is None:
-        spec = _core.default_spacing(v)
-    elif callable(spacing):
-        grid = _spacing_grid(spacing, v, resolution)
-    elif isinstance(spacing, _numbers.Real) and not isinstance(spacing, bool):
-        spec = repr(float(spacing))  # shortest round-trip form: the same double as on the command line
-    elif isinstance(spacing, str):
-        spec = spacing
-    else:
-        raise UsageError(f"spacing must be None, a number, a string or a callable, not {type(spacing).__name__}")
+    grid, spec = _spacing_arguments(spacing, v, resolution, _core.default_spacing, _spacing_grid)
     seg = None if segments is None else _np.asarray(segments, dtype=_np.int64).reshape(-1, 2)
     hol = None if holes is None else _np.asarray(holes, dtype=_np.float64).reshape(-1, 2)
     sm = None if segment_markers is None else _np.asarray(segment_markers, dtype=_np.int32)
@@ -193,17 +197,7 @@ def tetrahedralize(vertices, facets, holes=None, regions=None, spacing=None, bou
     Returns a dict of numpy arrays: points (n,3), tets (t,4), materials (t,), faces (f,3),
     face_markers (f,), edges (e,2), edge_markers (e,), and stats (the refinement's counts)."""
     v = _np.ascontiguousarray(vertices, dtype=_np.float64)
-    grid, spec = None, ""
-    if spacing is None:
-        spec = _core.default_spacing3(v)
-    elif callable(spacing):
-        grid = _spacing_grid3(spacing, v, resolution)
-    elif isinstance(spacing, _numbers.Real) and not isinstance(spacing, bool):
-        spec = repr(float(spacing))  # shortest round-trip form: the same double as on the command line
-    elif isinstance(spacing, str):
-        spec = spacing
-    else:
-        raise UsageError(f"spacing must be None, a number, a string or a callable, not {type(spacing).__name__}")
+    grid, spec = _spacing_arguments(spacing, v, resolution, _core.default_spacing3, _spacing_grid3)
     hol = None if holes is None else _np.asarray(holes, dtype=_np.float64).reshape(-1, 3)
     reg = None if regions is None else _np.atleast_2d(_np.asarray(regions, dtype=_np.float64))
     fm = None if facet_markers is None else [int(m) for m in facet_markers]
