@@ -58,6 +58,8 @@ class Refiner3 {
   const Delaunay3& dt() const { return dt_; }
   const Boundary& boundary() const { return *bd_; }
   const TetStats& stats() const { return stats_; }
+  // No subsegment or subfacet is left queued: the last conform() recovered the whole boundary.
+  bool conforming() const { return seg_queue_.empty() && facet_queue_.empty(); }
   TetStats& stats() { return stats_; }
   double bound() const { return bound_; }
   const sizing::SizingField3& spacing() const { return f_; }

@@ -1,4 +1,5 @@
 #include "tet/tetrahedralize.hpp"
+#include "base/error.hpp"
 #include "plc/check.hpp"
 #include "tet/refiner3.hpp"
 #include "tet/tet_output.hpp"
@@ -14,8 +15,17 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
   } else {
     r.flood_regions();
   }
+  // A boundary left unrecovered lets the region flood cross it: the mesh would lose its volume.
+  if (!r.conforming() && !r.stats().capped)
+    throw Error(ExitCode::kInternal, plc.source + ": the 3D refinement stopped before every subsegment and "
+                                     "subfacet was recovered (boundary splits stalled); nothing written");
   TetResult out;
   out.mesh = make_tet_mesh(r);
+  // Facets that enclose a volume and no tetrahedron inside: a boundary subfacet was lost and the
+  // outside flooded in.
+  if (!plc.facets.empty() && out.mesh.tets.empty() && !r.stats().capped)
+    throw Error(ExitCode::kInternal, plc.source + ": the 3D refinement lost a boundary subfacet and no "
+                                     "tetrahedron was left inside; nothing written");
   out.stats = r.stats();
   if (options.progress) options.progress(1.0);
   return out;
