@@ -12,7 +12,7 @@ namespace fdr::quality {
 namespace {
 
 using Json = nlohmann::ordered_json;
-constexpr const char* kRepairsPlaceholder = "\x01" "fdrmesh repairs" "\x01";
+constexpr const char* kRepairsSpliceMark = "\x01" "fdrmesh repairs" "\x01";
 
 Json num(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
@@ -79,8 +79,8 @@ void write_json(const QualityReport& r, std::ostream& out) {
   j["input_file"] = r.run.input_file;
   j["min_angle_option_deg"] = num(r.run.min_angle_option_deg);
   // The repairs (up to hundreds of thousands on real coasts) are streamed below instead of held as
-  // one document: a placeholder marks their place.
-  j["repairs"] = kRepairsPlaceholder;
+  // one document: the text is cut at this mark and the repairs are written there.
+  j["repairs"] = kRepairsSpliceMark;
   const Guarantees& g = r.guarantees;
   auto gv = [&](double v) { return g.valid ? num(v) : Json(nullptr); };
   j["guarantees"] = {{"beta", gv(g.beta)},
@@ -108,7 +108,7 @@ void write_json(const QualityReport& r, std::ostream& out) {
                    {"el_over_f_max", num(r.el_over_f_max)}};
   if (r.model_ready) j["model_ready"] = model_ready_json(*r.model_ready);
   const std::string text = j.dump(2);
-  const std::string mark = Json(kRepairsPlaceholder).dump();
+  const std::string mark = Json(kRepairsSpliceMark).dump();
   const std::size_t at = text.find(mark);
   if (at == std::string::npos) throw Error(ExitCode::kInternal, "quality: report JSON without its repairs");
   out.write(text.data(), static_cast<std::streamsize>(at));
