@@ -662,4 +662,16 @@ GeomPtr difference_contained(const OGRGeometry& a, const OGRGeometry& b, const c
   return checked(a.Difference(&b), what);
 }
 
+OGRPolygon box_polygon(const OGREnvelope& e) {
+  OGRLinearRing lr;
+  lr.addPoint(e.MinX, e.MinY);
+  lr.addPoint(e.MaxX, e.MinY);
+  lr.addPoint(e.MaxX, e.MaxY);
+  lr.addPoint(e.MinX, e.MaxY);
+  lr.closeRings();
+  OGRPolygon p;
+  p.addRing(&lr);
+  return p;
+}
+
 }  // namespace fdr::coast

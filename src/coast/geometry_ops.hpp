@@ -128,4 +128,7 @@ OGRPolygon to_ogr(const Rings& rings);
 // when ccw, else clockwise.
 std::vector<Point2> ring_points(const OGRLinearRing* r, bool ccw);
 
+// The rectangle of an envelope as a polygon (to clip by a box).
+OGRPolygon box_polygon(const OGREnvelope& e);
+
 }  // namespace fdr::coast

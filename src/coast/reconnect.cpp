@@ -4,22 +4,11 @@
 #include <algorithm>
 #include <limits>
 
+#include "coast/geometry_ops.hpp"
 #include "coast/meets.hpp"
 
 namespace fdr::coast {
 namespace {
-
-OGRPolygon box_polygon(const OGREnvelope& e) {
-  OGRLinearRing lr;
-  lr.addPoint(e.MinX, e.MinY);
-  lr.addPoint(e.MaxX, e.MinY);
-  lr.addPoint(e.MaxX, e.MaxY);
-  lr.addPoint(e.MinX, e.MaxY);
-  lr.closeRings();
-  OGRPolygon p;
-  p.addRing(&lr);
-  return p;
-}
 
 // g clipped to the box (null when it does not reach it).
 GeomPtr clipped(const OGRGeometry& g, const OGRPolygon& box, const OGREnvelope& be) {

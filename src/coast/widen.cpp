@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "base/parallel.hpp"
+#include "coast/geometry_ops.hpp"
 #include "coast/meets.hpp"
 #include "coast/report.hpp"
 
@@ -88,14 +89,7 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Option
   OGREnvelope we;
   W.getEnvelope(&we);
   {
-    OGRLinearRing lr;
-    lr.addPoint(we.MinX, we.MinY);
-    lr.addPoint(we.MaxX, we.MinY);
-    lr.addPoint(we.MaxX, we.MaxY);
-    lr.addPoint(we.MinX, we.MaxY);
-    lr.closeRings();
-    OGRPolygon box;
-    box.addRing(&lr);
+    OGRPolygon box = box_polygon(we);
     D = checked(D->Intersection(&box), "widened water inside the domain's box");
   }
   std::vector<std::unique_ptr<OGRPolygon>> wps, dps;
