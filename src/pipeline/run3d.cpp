@@ -12,7 +12,7 @@
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "sizing/spacing3d_make.hpp"
-#include "tetio/out_file.hpp"
+#include "base/out_file.hpp"
 #include "tetio/write_tets.hpp"
 
 namespace fdr::pipeline {
@@ -133,7 +133,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
     r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
   }
   if (!opt.report_json.empty()) {
-    tetio::OutFile out(opt.report_json);
+    OutFile out(opt.report_json);
     std::ostringstream s;
     quality::write_json3(r.report, s);
     out.write(s.str());
