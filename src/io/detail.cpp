@@ -2,15 +2,8 @@
 #include "io/detail.hpp"
 #include "base/triangle_geometry.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
