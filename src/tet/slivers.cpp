@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
 #include "tet/tet_geometry.hpp"
@@ -29,6 +30,27 @@ double van_der_corput(unsigned k) {
 }
 
 }  // namespace
+
+Sphere sliver_ball(Point3 a, Point3 b, Point3 c, Point3 d) {
+  const Sphere s = circumsphere(a, b, c, d);
+  const bool finite = std::isfinite(s.radius) && std::isfinite(s.centre.x) && std::isfinite(s.centre.y) &&
+                      std::isfinite(s.centre.z);
+  if (finite && predicates::insphere(a, b, c, d, s.centre) > 0) return s;
+  // The sphere through a nearly flat tetrahedron is ill-conditioned. The circumcentre of any of
+  // its faces lies in the face's plane at distance t from the sphere's centre, inside a sphere of
+  // radius sqrt(r^2 + t^2): the largest face gives the best conditioned such point.
+  const Point3 p[4] = {a, b, c, d};
+  int best = 0;
+  double best_area2 = -1;
+  for (int i = 0; i < 4; ++i) {
+    const Point3 q0 = p[(i + 1) & 3], q1 = p[(i + 2) & 3], q2 = p[(i + 3) & 3];
+    const double area2 = norm2(cross(q1 - q0, q2 - q0));
+    if (area2 > best_area2) best_area2 = area2, best = i;
+  }
+  const Point3 q0 = p[(best + 1) & 3], q1 = p[(best + 2) & 3], q2 = p[(best + 3) & 3];
+  const Point3 centre = triangle_circumcentre(q0, q1, q2);
+  return {centre, dist(centre, q0)};
+}
 
 double smallest_dihedral_cos(Point3 a, Point3 b, Point3 c, Point3 d) {
   // Each face's unit normal pointing away from the opposite vertex; the interior angle at the edge
@@ -156,7 +178,7 @@ void Refiner3::remove_slivers() {
 
 void Refiner3::try_split_sliver(const SliverTet& s) {
   const Point3 a = dt_.point(s.v[0]), b = dt_.point(s.v[1]), c = dt_.point(s.v[2]), d = dt_.point(s.v[3]);
-  const Sphere sp = circumsphere(a, b, c, d);
+  const Sphere sp = sliver_ball(a, b, c, d);
   if (!std::isfinite(sp.radius) || !std::isfinite(sp.centre.x) || !std::isfinite(sp.centre.y) ||
       !std::isfinite(sp.centre.z))
     return;
@@ -168,6 +190,8 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
   TetId pick_h = kNoId;
   double pick_cos = 2;
   for (const Point3& p : sliver_candidates(sp.centre, sp.radius, kSliverBallDelta, kSliverCandidates)) {
+    // Only a point strictly inside the sliver's circumsphere destroys it.
+    if (predicates::insphere(a, b, c, d, p) <= 0) continue;
     conflict_region(dt_, p, s.tet, cavity);
     const InsertionAngles ang = insertion_angles(dt_, p, cavity, slivers_->mark, slivers_->stamp);
     const bool good = ang.created_cos <= slivers_->cos_threshold;
@@ -193,7 +217,7 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
     conform();
     return;
   }
-  yield_for_sliver(s, sp.centre);
+  if (predicates::insphere(a, b, c, d, sp.centre) > 0) yield_for_sliver(s, sp.centre);
 }
 
 void Refiner3::yield_for_sliver(const SliverTet& s, Point3 centre) {

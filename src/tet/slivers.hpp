@@ -11,6 +11,7 @@
 #include <vector>
 #include "base/point3.hpp"
 #include "tet/delaunay3.hpp"
+#include "tet/tet_geometry.hpp"
 
 namespace fdr::tet {
 
@@ -18,6 +19,11 @@ namespace fdr::tet {
 // larger is worse, so comparing cosines orders tetrahedra without an arccosine (the angle itself
 // is tet_output.hpp's min_dihedral_deg).
 double smallest_dihedral_cos(Point3 a, Point3 b, Point3 c, Point3 d);
+
+// The ball the candidates are drawn from, for positively oriented (a, b, c, d): the circumsphere
+// when its double-precision centre lies strictly inside it (exact insphere), else, for a tetrahedron too flat for that, the circle of its
+// largest face (whose centre is always inside the circumsphere).
+Sphere sliver_ball(Point3 a, Point3 b, Point3 c, Point3 d);
 
 // The candidate Steiner points for a sliver with circumcentre `centre` and circumradius `radius`:
 // the centre first, then `count - 1` points spread evenly through the ball of radius

@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 #include "plc/check.hpp"
+#include "predicates/predicates3d.hpp"
 #include "sizing/spacing3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -85,6 +86,38 @@ TEST(Slivers, SmallestDihedralCosineMatchesTheAngle) {
     EXPECT_NEAR(std::acos(smallest_dihedral_cos(a, b, c, d)) * 180 / kPi, want, 1e-6) << i;
     EXPECT_NEAR(smallest_dihedral_cos(a, b, c, d), smallest_dihedral_cos(b, a, c, d), 1e-12);  // orientation-free
   }
+}
+
+TEST(Slivers, BallCentreIsInsideTheCircumsphereEvenWhenFlat) {
+  // Four points near the unit circle (one off it by `off`), two lifted by a tiny amount: the
+  // sphere through them is ill conditioned, yet the ball's centre must lie strictly inside it.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 2 * kPi);
+  for (int i = 0; i < 300; ++i) {
+    const double lift = std::pow(10.0, -3 - (i % 12)), off = std::pow(10.0, -4 - (i / 12) % 12);
+    std::array<double, 4> ang{u(rng), u(rng), u(rng), u(rng)};
+    std::sort(ang.begin(), ang.end());
+    Point3 p[4];
+    for (int k = 0; k < 4; ++k) {
+      const double r = k == 3 ? 1 + off : 1;
+      p[k] = {r * std::cos(ang[k]), r * std::sin(ang[k]), (k & 1) ? lift : -lift};
+    }
+    if (predicates::orient3d(p[0], p[1], p[2], p[3]) == 0) continue;
+    if (predicates::orient3d(p[0], p[1], p[2], p[3]) < 0) std::swap(p[0], p[1]);
+    const Sphere s = sliver_ball(p[0], p[1], p[2], p[3]);
+    EXPECT_GT(predicates::insphere(p[0], p[1], p[2], p[3], s.centre), 0) << i;
+    EXPECT_GT(s.radius, 0) << i;
+  }
+  // A flat tetrahedron that rule 3 left in a box at spacing 0.15 (four nearly cocircular points on
+  // two facets): its double-precision circumcentre lies outside its exact circumsphere.
+  Point3 p[4] = {{0x1.6p-1, 0x1.8p+1, 0x1.004fec04fec05p-3},
+                 {0x1.6p-1, 0x1.6ffb013fb014p+1, 0x0p+0},
+                 {0x1.1c1472ce58b03p-1, 0x1.8p+1, 0x1.ef1000f4a4a6cp-4},
+                 {0x1.1c1472ce58b03p-1, 0x1.70877ff85adadp+1, 0x0p+0}};
+  if (predicates::orient3d(p[0], p[1], p[2], p[3]) < 0) std::swap(p[0], p[1]);
+  ASSERT_GT(predicates::orient3d(p[0], p[1], p[2], p[3]), 0);
+  EXPECT_LE(predicates::insphere(p[0], p[1], p[2], p[3], circumsphere(p[0], p[1], p[2], p[3]).centre), 0);
+  EXPECT_GT(predicates::insphere(p[0], p[1], p[2], p[3], sliver_ball(p[0], p[1], p[2], p[3]).centre), 0);
 }
 
 TEST(Slivers, CandidatesFillTheBallDeterministically) {
