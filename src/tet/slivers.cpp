@@ -21,6 +21,15 @@ std::size_t histogram_bin(double deg) {
   return std::min(kHistogramBins - 1, static_cast<std::size_t>(std::max(0.0, deg) / 10.0));
 }
 
+// A fresh stamp for marks over dt's tetrahedron slots (grown as needed; cleared when it wraps).
+void next_stamp(const Delaunay3& dt, std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
+  if (mark.size() < dt.tet_slots()) mark.resize(dt.tet_slots() * 3 / 2 + 16, 0);
+  if (++stamp == 0) {
+    std::fill(mark.begin(), mark.end(), 0);
+    stamp = 1;
+  }
+}
+
 // The radical inverse of k in base 2: 1/2, 1/4, 3/4, 1/8, ... (evenly spread in (0, 1)).
 double van_der_corput(unsigned k) {
   double x = 0, scale = 0.5;
@@ -89,13 +98,39 @@ std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta
   return out;
 }
 
+bool bounded_conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::size_t max_size, std::vector<TetId>& out,
+                             std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
+  out.clear();
+  if (start == kNoId || dt.is_ghost(start)) return true;
+  next_stamp(dt, mark, stamp);
+  // As conflict_region: the start is destroyed whatever its sphere says, the finite tetrahedra
+  // whose sphere holds p strictly join through faces, ghosts whose hull face p is beyond end it.
+  out.push_back(start);
+  mark[start] = stamp;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (dt.is_ghost(out[k])) continue;
+    for (int i = 0; i < 4; ++i) {
+      const TetId n = dt.neighbour(out[k], i);
+      if (mark[n] == stamp) continue;
+      mark[n] = stamp;
+      bool in;
+      if (dt.is_ghost(n)) {
+        in = beyond_hull_face(dt, n, p);
+      } else {
+        const auto& v = dt.vertices(n);
+        in = predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+      }
+      if (!in) continue;
+      if (out.size() >= max_size) return false;
+      out.push_back(n);
+    }
+  }
+  return true;
+}
+
 InsertionAngles insertion_angles(const Delaunay3& dt, Point3 p, const std::vector<TetId>& cavity,
                                  std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
-  if (mark.size() < dt.tet_slots()) mark.resize(dt.tet_slots() * 3 / 2 + 16, 0);
-  if (++stamp == 0) {  // the stamp wrapped: old marks could match again
-    std::fill(mark.begin(), mark.end(), 0);
-    stamp = 1;
-  }
+  next_stamp(dt, mark, stamp);
   for (TetId t : cavity) mark[t] = stamp;
   InsertionAngles out;
   for (TetId t : cavity) {
@@ -148,6 +183,7 @@ void Refiner3::offer_sliver(TetId t) {
 void Refiner3::remove_slivers() {
   slivers_ = std::make_unique<SliverState>();
   slivers_->cos_threshold = std::cos(options_.sliver_angle_deg * kPi / 180.0);
+  slivers_->cos_floor = std::cos(options_.sliver_angle_deg / 3 * kPi / 180.0);
   stats_.sliver_angle_deg = options_.sliver_angle_deg;
   stats_.dihedral_hist_before.assign(kHistogramBins, 0);
   double worst = -1;
@@ -192,7 +228,7 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
   for (const Point3& p : sliver_candidates(sp.centre, sp.radius, kSliverBallDelta, kSliverCandidates)) {
     // Only a point strictly inside the sliver's circumsphere destroys it.
     if (predicates::insphere(a, b, c, d, p) <= 0) continue;
-    conflict_region(dt_, p, s.tet, cavity);
+    if (!bounded_conflict_region(dt_, p, s.tet, kSliverMaxCavity, cavity, slivers_->mark, slivers_->stamp)) continue;
     const InsertionAngles ang = insertion_angles(dt_, p, cavity, slivers_->mark, slivers_->stamp);
     const bool good = ang.created_cos <= slivers_->cos_threshold;
     if (!good && !(ang.created_cos < ang.destroyed_cos && ang.created_cos < pick_cos)) continue;
@@ -222,12 +258,14 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
 
 void Refiner3::yield_for_sliver(const SliverTet& s, Point3 centre) {
   // No candidate could go in: as in rule 3, the boundary pieces the circumcentre encroaches are
-  // split instead, unless they meet another facet at an acute angle (splits there cascade).
+  // split instead, unless they meet another facet at an acute angle, where splits feed each other;
+  // there only the flattest slivers (under a third of the threshold) split it, few enough that the
+  // phase's budget bounds them.
   std::vector<TetId>& cavity = slivers_->cavity;
   conflict_region(dt_, centre, s.tet, cavity);
   const std::size_t segs = seg_queue_.size(), facets = facet_queue_.size();
   if (!find_encroached(centre, cavity, true)) return;  // left; listed at the end if still a sliver
-  if (near_small_angle(segs, facets)) {
+  if (s.cos <= slivers_->cos_floor && near_small_angle(segs, facets)) {
     seg_queue_.resize(segs);
     facet_queue_.resize(facets);
     return;

@@ -31,6 +31,12 @@ Sphere sliver_ball(Point3 a, Point3 b, Point3 c, Point3 d);
 // Corput sequence, so the two are not correlated). The same arguments give the same points.
 std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta, int count);
 
+// conflict_region (tet/dt_queries.hpp) that gives up, returning false, once the region has more
+// than `max_size` tetrahedra: a candidate that would destroy that many is no local repair, and
+// near a thin wedge such regions are large and slow to walk. `mark`/`stamp` as below.
+bool bounded_conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::size_t max_size, std::vector<TetId>& out,
+                             std::vector<std::uint32_t>& mark, std::uint32_t& stamp);
+
 // What inserting p with conflict region `cavity` would do to the dihedral angles: the cosine of
 // the smallest angle among the finite tetrahedra it destroys and among those it creates (each
 // face of the cavity's boundary joined to p). `mark`/`stamp` are scratch (one entry per
@@ -70,10 +76,13 @@ class SliverQueue {
 // the old ones.
 inline constexpr double kSliverBallDelta = 0.4;
 inline constexpr int kSliverCandidates = 24;
+// A few times the conflict region of a circumcentre in a good mesh (a few dozen tetrahedra).
+inline constexpr std::size_t kSliverMaxCavity = 128;
 
 // The state of the sliver phase: the threshold, the queue and scratch.
 struct SliverState {
   double cos_threshold = 1;  // a tetrahedron with a larger smallest-angle cosine is a sliver
+  double cos_floor = 1;      // slivers flatter than this may split the boundary at acute facet pairs
   SliverQueue queue;
   std::vector<std::uint32_t> mark;
   std::uint32_t stamp = 0;
