@@ -122,6 +122,8 @@ Connection::Connection(const std::string& conninfo, const std::string& label) : 
     throw Error(ExitCode::kOutputError, label_ + ": cannot connect" + (why.empty() ? "" : ": " + why));
   }
   if (PQsetClientEncoding(c_, "UTF8") != 0) fail("cannot set the client encoding to UTF8");
+  // The server's notices ("drop cascades to ...") are not the user's business; errors are.
+  PQsetNoticeProcessor(c_, [](void*, const char*) {}, nullptr);
 }
 
 Connection::~Connection() {
