@@ -70,6 +70,15 @@ std::string resolve_schema(pg::Connection& c, const Job& j) {
   return s[0];
 }
 
+// Refuses a schema that is missing or closed to this role before any row is sent.
+void check_schema(pg::Connection& c, const Job& j) {
+  const std::vector<std::string> r = c.column(
+      "SELECT has_schema_privilege(oid, 'CREATE') FROM pg_catalog.pg_namespace WHERE nspname = " +
+          quote_literal(j.schema), "cannot look schema '" + j.schema + "' up");
+  if (r.empty()) j.fail("schema '" + j.schema + "' does not exist (create it, or give another with --pg-schema)");
+  if (r[0] != "t") j.fail("no right to create tables in schema '" + j.schema + "'");
+}
+
 // The SRID of the mesh CRS in spatial_ref_sys: by EPSG code, else by its WKT, else a new row
 // (inserted with the tables, so a failed write adds none).
 void resolve_srid(pg::Connection& c, Job& j) {
@@ -260,6 +269,7 @@ void write_tables(const mesh::MeshView& m, const std::string& conn, const WriteO
   gdal_register_once();  // the CRS lookup uses GDAL's OGRSpatialReference (PROJ)
   pg::Connection c(j.conn.libpq, j.label);
   j.schema = resolve_schema(c, j);
+  check_schema(c, j);
   clear_target(c, j, false);  // refuses an existing mesh before any work
   resolve_srid(c, j);
   j.tables = pg_tables(j.srid);

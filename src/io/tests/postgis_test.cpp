@@ -252,6 +252,12 @@ TEST(Postgis, ConnectionErrorsNameTheServerWithoutPassword) {
   EXPECT_EQ(e.code(), ExitCode::kOutputError);
   EXPECT_NE(msg.find("no_such_db"), std::string::npos) << msg;
   EXPECT_EQ(msg.find("xyz"), std::string::npos) << msg;
+  // A missing schema is refused before any row is sent.
+  io::WriteOptions missing = options("t5_");
+  missing.postgis.schema = "no_such_schema";
+  e = write_error(m, conn, missing);
+  EXPECT_EQ(e.code(), ExitCode::kOutputError);
+  EXPECT_NE(std::string(e.what()).find("schema 'no_such_schema' does not exist"), std::string::npos) << e.what();
   // A bad table prefix is a usage error.
   io::WriteOptions o = options("1bad;prefix");
   EXPECT_EQ(write_error(m, conn, o).code(), ExitCode::kUsage);
