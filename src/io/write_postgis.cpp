@@ -8,7 +8,7 @@
 
 #include <cctype>
 #include <cstdio>
-#include <iterator>
+#include <future>
 #include <memory>
 #include <random>
 #include <vector>
@@ -156,16 +156,13 @@ void clear_target(pg::Connection& c, const Job& j, bool drop) {
   c.exec(sql, "cannot drop the old tables (" + list + ")");
 }
 
-// Creates table i in `schema`, streams its rows with binary COPY, then builds its primary key
-// and spatial index, moves the fid sequence past the rows and gathers planner statistics (QGIS
-// asks for extents). The caller's transaction created the table, so COPY may FREEZE the rows
-// (no later vacuum has to rewrite them). Keys and indexes are built once the rows are in: kept up
-// row by row they cost a B-tree and a GiST insert per row.
-void load_table(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
+// Creates table i in `schema` and streams its rows with binary COPY; returns how many. The
+// caller's transaction created the table, so COPY may FREEZE the rows (no later vacuum has to
+// rewrite them).
+std::int64_t copy_rows(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
   const PgTable& t = j.tables[i];
-  const std::string name = j.p.prefix + t.name;
-  const std::string q = quote_ident(schema) + "." + quote_ident(name);
-  const std::string shown = j.schema + "." + name;
+  const std::string q = j.table(schema, i);
+  const std::string shown = j.schema + "." + j.p.prefix + t.name;
   c.exec("CREATE TABLE " + q + " (fid bigserial, " + t.columns + ")", "cannot create table " + shown);
   c.copy_begin("COPY " + q + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary, FREEZE)",
                "writing the rows of " + shown + " failed");
@@ -174,39 +171,107 @@ void load_table(pg::Connection& c, const Job& j, const std::string& schema, std:
   b.finish();
   c.copy_end();
   j.step(std::string("rows:") + t.name);
-  std::string sql = "ALTER TABLE " + q + " ADD CONSTRAINT " + quote_ident(name + "_pkey") + " PRIMARY KEY (fid);";
+  return rows;
+}
+
+// The index that becomes table i's primary key (unique on fid, named as the key).
+std::string fid_index(const Job& j, const std::string& schema, std::size_t i) {
+  const std::string name = j.p.prefix + j.tables[i].name;
+  return "CREATE UNIQUE INDEX " + quote_ident(name + "_pkey") + " ON " + j.table(schema, i) + " (fid);";
+}
+
+// Over the loaded rows of table i: its fid index (unless built elsewhere), spatial index, fid
+// sequence past the rows and planner statistics (QGIS asks for extents). Built once the rows
+// are in: kept up row by row they cost a B-tree and a GiST insert per row.
+void build_indexes(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i, std::int64_t rows,
+                   bool with_fid_index) {
+  const PgTable& t = j.tables[i];
+  const std::string name = j.p.prefix + t.name;
+  const std::string q = j.table(schema, i);
+  std::string sql = with_fid_index ? fid_index(j, schema, i) : std::string();
   if (t.spatial) sql += "CREATE INDEX " + quote_ident(name + "_geom_idx") + " ON " + q + " USING GIST (geom);";
   sql += "SELECT setval(pg_get_serial_sequence(" + quote_literal(q) + ", 'fid'), " + std::to_string(rows + 1) +
          ", false);ANALYZE " + q;
-  c.exec(sql, "cannot build the primary key and spatial index of " + shown);
+  c.exec(sql, "cannot build the indexes of " + j.schema + "." + name);
   j.step(std::string("indexes:") + t.name);
+}
+
+// "ALTER TABLE ... ADD PRIMARY KEY USING INDEX" for every table (fid is NOT NULL: no scan).
+std::string primary_keys(const Job& j, const std::string& schema) {
+  std::string sql;
+  for (std::size_t i = 0; i < j.tables.size(); ++i) {
+    const std::string key = quote_ident(j.p.prefix + j.tables[i].name + "_pkey");
+    sql += "ALTER TABLE " + j.table(schema, i) + " ADD CONSTRAINT " + key + " PRIMARY KEY USING INDEX " + key + ";";
+  }
+  return sql;
 }
 
 // GiST builds sort in memory up to this (the server's default is a few tens of MB).
 constexpr const char* kIndexMemory = "SET maintenance_work_mem = '256MB'";
 
-// Loads every table into the staging schema, each in a transaction of its own, on up to two
-// connections (one when the sizing field may not be called from two threads): the triangles
-// and the nodes, the two large tables, go side by side. Those commits need not reach the disk
-// before the swap's own commit, which flushes the log up to itself.
+// A connection for one side of the staged load, each table in a transaction of its own. Those
+// commits need not reach the disk before the swap's own commit, which flushes the log up to
+// itself.
+std::unique_ptr<pg::Connection> staging_session(const Job& j) {
+  auto c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
+  c->exec(std::string(kIndexMemory) + "; SET synchronous_commit = off", "cannot configure the session");
+  return c;
+}
+
+template <class Fn>
+void in_transaction(pg::Connection& c, Fn&& fn) {
+  c.exec("BEGIN", "cannot start a transaction");
+  fn();
+  c.exec("COMMIT", "commit failed");
+}
+
+constexpr std::size_t kTriangles = 1;  // the index in pg_tables
+
+// Loads every table into the staging schema on two connections (one when the sizing field may
+// not be called from two threads). The triangles, the largest table, take one: rows, then
+// spatial index and statistics. The other takes the rest, then the triangles' fid index, built
+// beside their spatial index (the two do not lock each other out; ANALYZE and an index build do).
 void load_staged(const Job& j, const std::string& staging) {
-  const bool f_serial = j.o.f && !j.o.f->thread_safe();
-  const unsigned workers = f_serial ? 1u : std::min(2u, max_threads());
-  std::vector<std::unique_ptr<pg::Connection>> conns(workers);
-  constexpr std::size_t kOrder[] = {1, 0, 2, 3, 4};  // the largest first
-  parallel_chunks(
-      std::size(kOrder),
-      [&](std::size_t chunk, unsigned w) {
-        auto& c = conns[w];
-        if (!c) {
-          c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
-          c->exec(std::string(kIndexMemory) + "; SET synchronous_commit = off", "cannot configure the session");
-        }
-        c->exec("BEGIN", "cannot start a transaction");
-        load_table(*c, j, staging, kOrder[chunk]);
-        c->exec("COMMIT", "commit failed");
+  std::promise<void> rows_in;
+  std::shared_future<void> triangles_in = rows_in.get_future().share();
+  // Opens its connection when given none; whatever fails before the rows are in also stops the
+  // other side's wait.
+  auto triangles = [&](std::unique_ptr<pg::Connection>& c) {
+    std::int64_t rows = 0;
+    try {
+      if (!c) c = staging_session(j);
+      in_transaction(*c, [&] { rows = copy_rows(*c, j, staging, kTriangles); });
+    } catch (...) {
+      rows_in.set_exception(std::current_exception());
+      throw;
+    }
+    rows_in.set_value();
+    in_transaction(*c, [&] { build_indexes(*c, j, staging, kTriangles, rows, false); });
+  };
+  auto rest = [&](pg::Connection& c) {
+    for (std::size_t i = 0; i < j.tables.size(); ++i) {
+      if (i == kTriangles) continue;
+      in_transaction(c, [&] { build_indexes(c, j, staging, i, copy_rows(c, j, staging, i), false); });
+    }
+    triangles_in.get();
+    in_transaction(c, [&] {
+      std::string sql;
+      for (std::size_t i = 0; i < j.tables.size(); ++i) sql += fid_index(j, staging, i);
+      c.exec(sql, "cannot build the fid indexes");
+    });
+  };
+  if ((j.o.f && !j.o.f->thread_safe()) || max_threads() < 2) {
+    auto c = staging_session(j);
+    triangles(c);
+    rest(*c);
+    return;
+  }
+  run_beside(
+      [&] {
+        std::unique_ptr<pg::Connection> c;
+        triangles(c);
       },
-      workers);
+      [&] { rest(*staging_session(j)); });
 }
 
 // The one transaction that puts the staged tables in place: the old mesh dropped (with
@@ -218,7 +283,7 @@ void swap_in(pg::Connection& c, const Job& j, const std::string& staging) {
   std::string sql;
   for (std::size_t i = 0; i < j.tables.size(); ++i)
     sql += "ALTER TABLE " + j.table(staging, i) + " SET SCHEMA " + quote_ident(j.schema) + ";";
-  c.exec(sql, "cannot move the tables into schema " + j.schema);
+  c.exec(sql + primary_keys(j, j.schema), "cannot move the tables into schema " + j.schema);
   c.exec("DROP SCHEMA " + quote_ident(staging), "cannot drop the staging schema " + staging);
   j.step("commit");
   c.exec("COMMIT", "commit failed (nothing written)");
@@ -229,7 +294,8 @@ void write_in_one_transaction(pg::Connection& c, const Job& j) {
   c.exec(std::string("BEGIN; ") + kIndexMemory, "cannot start a transaction");
   clear_target(c, j, true);
   if (!j.srs_insert.empty()) c.exec(j.srs_insert, "cannot add the mesh CRS to spatial_ref_sys");
-  for (std::size_t i = 0; i < j.tables.size(); ++i) load_table(c, j, j.schema, i);
+  for (std::size_t i = 0; i < j.tables.size(); ++i) build_indexes(c, j, j.schema, i, copy_rows(c, j, j.schema, i), true);
+  c.exec(primary_keys(j, j.schema), "cannot add the primary keys");
   j.step("commit");
   c.exec("COMMIT", "commit failed (nothing written)");
 }

@@ -164,6 +164,11 @@ TEST(Postgis, WritesTheGeoPackageTables) {
                        "' AND indexdef LIKE '%USING gist (geom)%'"),
               "1")
         << t;
+  for (const char* t : {"nodes", "triangles", "boundaries", "repairs", "metadata"})
+    EXPECT_EQ(db.value(std::string("SELECT string_agg(conname || ':' || pg_get_constraintdef(oid), ',') FROM "
+                                   "pg_constraint WHERE contype = 'p' AND conrelid = 'public.t1_") + t + "'::regclass"),
+              std::string("t1_") + t + "_pkey:PRIMARY KEY (fid)")
+        << t;
   // OGR reads the tables back as layers.
   OGRLayer* l = db.ds->GetLayerByName("t1_triangles");
   ASSERT_NE(l, nullptr);
@@ -362,6 +367,7 @@ TEST(Postgis, WithoutSchemaPrivilegeOneTransaction) {
   EXPECT_EQ(db.tables("t7_"), 5);
   EXPECT_EQ(db.value("SELECT count(*) FROM t7_triangles WHERE ST_IsValid(geom)"), "8");
   EXPECT_EQ(db.value("SELECT count(*) FROM pg_indexes WHERE tablename LIKE 't7\\_%' AND indexdef LIKE '%gist%'"), "4");
+  EXPECT_EQ(db.value("SELECT count(*) FROM pg_constraint WHERE contype = 'p' AND conrelid::regclass::text LIKE 't7\\_%'"), "5");
   EXPECT_EQ(db.staging(), "0");
   db.drop("t7_");
 }
