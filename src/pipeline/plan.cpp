@@ -6,6 +6,7 @@
 #include "base/path_util.hpp"
 #include "io/write_many.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/run3d.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -14,6 +15,7 @@ namespace {
 void check_gis_options(const Options& opt) {
   if (!opt.land.empty() && !opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
   check_layer_options(opt);
+  check_no_terrain_options(opt);
   auto negative = [](const std::optional<double>& v) { return v && !(*v >= 0); };
   if (negative(opt.close_width) || negative(opt.min_feature) || negative(opt.min_island_factor))
     throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");

@@ -9,6 +9,7 @@
 #include <sstream>
 #include "api/tetrahedralize.hpp"
 #include "base/error.hpp"
+#include "pipeline/gis_backend.hpp"
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "sizing/spacing3d_make.hpp"
@@ -66,9 +67,32 @@ void add_cell_fields(tet::TetMesh& m, quality::TetValues&& v) {
 
 }  // namespace
 
-bool is_3d_run(const Options& opt) { return fdr::is_3d_input(opt.input); }
+bool is_3d_run(const Options& opt) { return !opt.dem.empty() || fdr::is_3d_input(opt.input); }
+
+void check_no_terrain_options(const Options& opt) {
+  const Options d;
+  const std::pair<const char*, bool> given[] = {{"--base", opt.base != d.base}, {"--horizon", opt.horizons != d.horizons},
+                                                {"--depth-grade", opt.depth_grade.has_value()}};
+  for (const auto& [name, g] : given)
+    if (g) throw Error(ExitCode::kUsage, std::string(name) + " needs --dem (a terrain volume)");
+}
+
+void check_terrain_options(const Options& opt) {
+  if (opt.dem.empty()) throw Error(ExitCode::kUsage, "a terrain volume needs --dem");
+  if (!opt.raster.empty()) throw Error(ExitCode::kUsage, "--raster and --dem: the DEM is the terrain run's raster, give it once");
+  if (opt.base.empty()) throw Error(ExitCode::kUsage, "--dem needs --base (an elevation in metres or a raster)");
+  if (opt.input.empty()) throw Error(ExitCode::kUsage, "--dem needs the domain polygon (INPUT)");
+  if (opt.depth_grade && !(*opt.depth_grade >= 0)) throw Error(ExitCode::kUsage, "--depth-grade must be >= 0");
+  if (opt.hmin && opt.hmax && *opt.hmin > *opt.hmax) throw Error(ExitCode::kUsage, "--hmin must not exceed --hmax");
+  if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
+    throw Error(ExitCode::kUsage, "--bound must be a positive number");
+  for (const auto& o : opt.outputs)
+    if (!tetio::is_tets_output_path(o))
+      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh or TetGen .node/.ele");
+}
 
 void check_3d_options(const Options& opt) {
+  check_no_terrain_options(opt);
   for (const auto& [name, given] : options_2d_only(opt))
     if (given) throw Error(ExitCode::kUsage, std::string(name) + " applies to 2D runs only; " + opt.input + " is a 3D input");
   if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
@@ -79,6 +103,10 @@ void check_3d_options(const Options& opt) {
 }
 
 Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  if (!opt.dem.empty()) {
+    check_terrain_options(opt);  // usage errors before the GIS library is loaded
+    return gis_backend().run_terrain(opt, progress, log);
+  }
   const auto t_start = std::chrono::steady_clock::now();
   check_3d_options(opt);
   auto report_progress = [&](double frac, const char* stage) {
@@ -147,6 +175,14 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
 void write_summary3(const Result3& r, std::ostream& out) {
   if (r.measured) quality::write_text3(r.report, out);
   else out << "3D mesh: " << r.report.vertices << " vertices, " << r.report.tets << " tetrahedra\n";
+  if (!r.layers.empty()) out << "Layers (volume against the volume between their surfaces as triangulated):\n";
+  for (const LayerFigures& l : r.layers) {
+    char line[256];
+    const double rel = l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0;
+    std::snprintf(line, sizeof line, "  %3d %-24s %10zu tets  %.6g m3  expected %.6g m3  (%+.2e)\n",
+                  static_cast<int>(l.material), l.name.c_str(), l.tets, l.volume, l.expected, rel);
+    out << line;
+  }
   write_stages_and_outputs(r.stages, r.written, out);
 }
 

@@ -7,13 +7,13 @@
 
 namespace fdr::terrain {
 
-sizing::Grid3 spacing_grid_geometry(const Box3& box, double max_cells) {
+sizing::Grid3 spacing_grid_geometry(const Box3& box, double max_cells, double min_cell) {
   const double wx = box.hi.x - box.lo.x, wy = box.hi.y - box.lo.y, wz = box.hi.z - box.lo.z;
   if (!(wx > 0 && wy > 0 && wz > 0 && max_cells >= 64))
     throw Error(ExitCode::kInternal, "terrain spacing grid: empty box or too few cells");
   // Columns of 8 cells at least: the xy cell takes the rest of the budget.
   double cell = std::sqrt(wx * wy * 8.0 / max_cells);
-  cell = std::max(cell, std::cbrt(wx * wy * wz / max_cells));
+  cell = std::max({cell, std::cbrt(wx * wy * wz / max_cells), min_cell});
   sizing::Grid3 g;
   g.dx = g.dy = cell;
   g.dz = std::min(cell, wz / 8.0);

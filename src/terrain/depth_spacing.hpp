@@ -16,9 +16,10 @@ struct DepthSpacing {
   double alpha = 0;  // > 0: the gradient limit |grad f| <= alpha in 3D
 };
 
-// An empty grid (no values) over `box` with at most about max_cells cells: cubic cells in x and
-// y, and in z the same size or smaller so that the box's height has at least 8 cells.
-sizing::Grid3 spacing_grid_geometry(const Box3& box, double max_cells);
+// An empty grid (no values) over `box` with at most about max_cells cells: square cells in x and
+// y no smaller than min_cell (a spacing need not be sampled much finer than its smallest value),
+// and in z the same size or smaller so that the box's height has at least 8 cells.
+sizing::Grid3 spacing_grid_geometry(const Box3& box, double max_cells, double min_cell = 0);
 
 // The centres (x, y) of the grid's columns, i fastest: where the caller samples the 2D spacing
 // and the top surface.

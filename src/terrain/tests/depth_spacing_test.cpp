@@ -22,6 +22,7 @@ TEST(DepthSpacing, GridCoversTheBoxWithinTheBudget) {
   EXPECT_GE(g.x0 + g.nx * g.dx, 1000.0);
   EXPECT_GE(g.z0 + g.nz * g.dz, 0.0);
   EXPECT_EQ(column_centres(g).size(), g.nx * g.ny);
+  EXPECT_GE(spacing_grid_geometry(box(1000, 500, 20), 1e4, 100).dx, 100.0);
 }
 
 TEST(DepthSpacing, GrowsWithDepthAndIsClamped) {
