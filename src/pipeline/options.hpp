@@ -51,6 +51,7 @@ struct Options {
   std::string base;
   std::vector<std::string> horizons;
   std::optional<double> depth_grade;
+  std::optional<double> min_thickness;   // thinner layers collapse locally (default: a fraction of hmin)
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
   // Model-ready coast (GIS runs; coast/generalise.hpp, pslg/resample.hpp).
   bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)

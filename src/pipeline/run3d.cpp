@@ -72,7 +72,8 @@ bool is_3d_run(const Options& opt) { return !opt.dem.empty() || fdr::is_3d_input
 void check_no_terrain_options(const Options& opt) {
   const Options d;
   const std::pair<const char*, bool> given[] = {{"--base", opt.base != d.base}, {"--horizon", opt.horizons != d.horizons},
-                                                {"--depth-grade", opt.depth_grade.has_value()}};
+                                                {"--depth-grade", opt.depth_grade.has_value()},
+                                                {"--min-thickness", opt.min_thickness.has_value()}};
   for (const auto& [name, g] : given)
     if (g) throw Error(ExitCode::kUsage, std::string(name) + " needs --dem (a terrain volume)");
 }
@@ -83,6 +84,7 @@ void check_terrain_options(const Options& opt) {
   if (opt.base.empty()) throw Error(ExitCode::kUsage, "--dem needs --base (an elevation in metres or a raster)");
   if (opt.input.empty()) throw Error(ExitCode::kUsage, "--dem needs the domain polygon (INPUT)");
   if (opt.depth_grade && !(*opt.depth_grade >= 0)) throw Error(ExitCode::kUsage, "--depth-grade must be >= 0");
+  if (opt.min_thickness && !(*opt.min_thickness >= 0)) throw Error(ExitCode::kUsage, "--min-thickness must be >= 0");
   if (opt.hmin && opt.hmax && *opt.hmin > *opt.hmax) throw Error(ExitCode::kUsage, "--hmin must not exceed --hmax");
   if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
     throw Error(ExitCode::kUsage, "--bound must be a positive number");

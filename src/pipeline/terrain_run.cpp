@@ -30,6 +30,15 @@ namespace {
 constexpr double kSpacingCells = 1e6;
 // Default growth of the spacing per metre of depth below the top.
 constexpr double kDefaultDepthGrade = 0.25;
+// Default minimum layer thickness as a fraction of hmin: a pinch-out then meets the surface above
+// at roughly this slope over a TIN edge (about hmin long), an angle the 3D refinement terminates on.
+constexpr double kDefaultMinThickness = 0.25;
+
+double min_on(const sizing::SizingField& f, const std::vector<Point2>& xy) {
+  double lo = std::numeric_limits<double>::infinity();
+  for (const Point2 q : xy) lo = std::min(lo, f(q));
+  return std::isfinite(lo) ? lo : 0.0;
+}
 
 // The 2D run's options: the terrain TIN of the domain with the DEM as its raster, nothing written.
 Options tin_options(const Options& opt) {
@@ -39,6 +48,7 @@ Options tin_options(const Options& opt) {
   o.base.clear();
   o.horizons.clear();
   o.depth_grade.reset();
+  o.min_thickness.reset();
   o.outputs.clear();
   o.report_json.clear();
   o.check = false;
@@ -85,7 +95,7 @@ std::string stem(const std::string& path) { return std::filesystem::path(path).s
 // top (the TIN's DEM elevations), the horizons, the base; clamped into order (a documented repair,
 // logged), with the base refused where it is not below the top.
 std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::MeshView& m, const terrain::Tin& tin,
-                                            const gis::Frame& frame, const LogFn& log) {
+                                            const gis::Frame& frame, double min_thickness, const LogFn& log) {
   std::vector<terrain::Surface> stack;
   stack.push_back({"top", m.z});
   for (const std::string& h : opt.horizons) {
@@ -96,12 +106,14 @@ std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::Mesh
   }
   if (const auto zb = base_elevation(opt.base)) stack.push_back({"base", std::vector<double>(tin.xy.size(), *zb)});
   else stack.push_back({"base", sample_raster("--base", opt.base, frame, tin.xy, log)});
-  const terrain::ClampCounts c = terrain::clamp_surfaces(stack, tin, m.origin);
+  const terrain::ClampCounts c = terrain::clamp_surfaces(stack, tin, m.origin, min_thickness);
   for (std::size_t k = 1; k + 1 < stack.size(); ++k)
-    if (log && (c.lowered[k] || c.raised[k]))
+    if (log && (c.lowered[k] || c.raised[k] || c.collapsed[k]))
       log(LogLevel::kWarning, "horizon " + stack[k].name + ": " + std::to_string(c.lowered[k]) +
                                   " vertices lowered onto the surface above, " + std::to_string(c.raised[k]) +
-                                  " raised onto the base (the layers pinch out there)");
+                                  " raised onto the base (the layers pinch out there), " + std::to_string(c.collapsed[k]) +
+                                  " moved onto the nearer of them where a layer is thinner than " +
+                                  std::to_string(min_thickness) + " m");
   return stack;
 }
 
@@ -211,7 +223,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   if (r2.mesh.z.size() != r2.mesh.vertices.size()) throw Error(ExitCode::kInternal, "terrain TIN without elevations");
   const terrain::Tin tin = tin_of(r2.mesh);
   const gis::Frame frame = gis::Frame::from_crs(r2.mesh.crs_wkt, r2.mesh.origin);
-  const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, log);
+  const double hmin = r2.f ? min_on(*r2.f, tin.xy) : 0.0;
+  const double min_thickness = opt.min_thickness.value_or(kDefaultMinThickness * opt.hmin.value_or(hmin));
+  const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
   tp.plc.source = opt.input;
   const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z);

@@ -29,7 +29,7 @@ void check_shapes(const std::vector<Surface>& stack, const Tin& tin) {
 
 }  // namespace
 
-ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 origin) {
+ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 origin, double min_thickness) {
   check_shapes(stack, tin);
   const Surface& top = stack.front();
   const Surface& base = stack.back();
@@ -42,6 +42,7 @@ ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 o
   ClampCounts c;
   c.lowered.assign(stack.size(), 0);
   c.raised.assign(stack.size(), 0);
+  c.collapsed.assign(stack.size(), 0);
   for (std::size_t k = 1; k + 1 < stack.size(); ++k) {
     const std::vector<double>& above = stack[k - 1].z;
     std::vector<double>& z = stack[k].z;
@@ -53,6 +54,12 @@ ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 o
       } else if (z[v] <= base.z[v]) {
         z[v] = base.z[v];
         ++c.raised[k];
+      } else if (above[v] - z[v] < min_thickness) {
+        z[v] = above[v];
+        ++c.collapsed[k];
+      } else if (z[v] - base.z[v] < min_thickness) {
+        z[v] = base.z[v];
+        ++c.collapsed[k];
       } else {
         inside_somewhere = true;
       }
