@@ -48,6 +48,10 @@ std::vector<std::pair<const char*, bool>> options_2d_only(const Options& o) {
           {"--smooth", o.smooth_passes != d.smooth_passes}};
 }
 
+bool is_poly_path(const std::string& p) {
+  return p.size() >= 5 && (p.compare(p.size() - 5, 5, ".poly") == 0 || p.compare(p.size() - 5, 5, ".POLY") == 0);
+}
+
 bool has_vtu(const std::vector<std::string>& outs) {
   return std::any_of(outs.begin(), outs.end(), [](const std::string& p) {
     return p.size() >= 4 && (p.compare(p.size() - 4, 4, ".vtu") == 0 || p.compare(p.size() - 4, 4, ".VTU") == 0);
@@ -89,8 +93,8 @@ void check_terrain_options(const Options& opt) {
   if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
     throw Error(ExitCode::kUsage, "--bound must be a positive number");
   for (const auto& o : opt.outputs)
-    if (!tetio::is_tets_output_path(o))
-      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh or TetGen .node/.ele");
+    if (!tetio::is_tets_output_path(o) && !is_poly_path(o))
+      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh, TetGen .node/.ele or its PLC as .poly");
 }
 
 void check_3d_options(const Options& opt) {

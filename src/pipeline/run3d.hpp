@@ -38,9 +38,10 @@ bool is_3d_run(const Options& opt);
 // not 3D formats, a bound that is not positive. Throws Error(kUsage).
 void check_3d_options(const Options& opt);
 
-// Every usage error of a terrain run (--dem), before any I/O: a base missing or given twice
-// (--raster), terrain options without --dem, outputs that are not 3D formats, a negative depth
-// grade, a bound that is not positive. Throws Error(kUsage).
+// Every usage error of a terrain run (--dem), before any I/O: a base missing, --raster given
+// beside --dem, no domain, outputs that are not 3D formats or .poly (the terrain PLC), a negative
+// depth grade or minimum thickness, hmin above hmax, a bound that is not positive. Throws
+// Error(kUsage).
 void check_terrain_options(const Options& opt);
 
 // The terrain options given to a run without --dem (usage error naming the first); used by the 2D

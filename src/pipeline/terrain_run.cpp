@@ -20,6 +20,7 @@
 #include "terrain/surfaces.hpp"
 #include "terrain/terrain_plc.hpp"
 #include "tetio/out_file.hpp"
+#include "tetio/write_poly.hpp"
 #include "tetio/write_tets.hpp"
 
 namespace fdr::pipeline {
@@ -32,7 +33,7 @@ constexpr double kSpacingCells = 1e6;
 constexpr double kDefaultDepthGrade = 0.25;
 // Default minimum layer thickness as a fraction of hmin: a pinch-out then meets the surface above
 // at roughly this slope over a TIN edge (about hmin long), an angle the 3D refinement terminates on.
-constexpr double kDefaultMinThickness = 0.25;
+constexpr double kDefaultMinThickness = 0.5;
 
 double min_on(const sizing::SizingField& f, const std::vector<Point2>& xy) {
   double lo = std::numeric_limits<double>::infinity();
@@ -200,6 +201,17 @@ void to_world(tet::TetMesh& m, Point2 origin) {
   for (Point3& p : m.points) p = {p.x + origin.x, p.y + origin.y, p.z};
 }
 
+bool is_poly(const std::string& p) {
+  return p.size() >= 5 && (p.compare(p.size() - 5, 5, ".poly") == 0 || p.compare(p.size() - 5, 5, ".POLY") == 0);
+}
+
+// The terrain PLC in world coordinates as TetGen .poly files (for TetGen, or to mesh it again).
+void write_plc_outputs(const std::vector<std::string>& paths, plc::Plc p, Point2 origin) {
+  for (Point3& q : p.points) q = {q.x + origin.x, q.y + origin.y, q.z};
+  for (plc::Region& r : p.regions) r.point = {r.point.x + origin.x, r.point.y + origin.y, r.point.z};
+  for (const std::string& path : paths) tetio::write_poly(path, p);
+}
+
 }  // namespace
 
 std::optional<double> base_elevation(const std::string& base) {
@@ -234,6 +246,17 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
                                     std::to_string(tp.plc.facets.size()) + " facets, " + std::to_string(stack.size() - 1) +
                                     " layers; spacing " + f->describe());
 
+  std::vector<std::string> poly_out, mesh_out;
+  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : mesh_out).push_back(o);
+  if (!poly_out.empty() && mesh_out.empty()) {  // the PLC only: nothing to mesh
+    write_plc_outputs(poly_out, tp.plc, r2.mesh.origin);
+    r.written = poly_out;
+    r.measured = false;
+    r.report.input_file = opt.input;
+    r.report.vertices = tp.plc.points.size();
+    return r;
+  }
+
   tet::TetOptions to;
   to.bound = opt.bound_given ? opt.bound : 0.0;
   to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + tp.plc.points.size();
@@ -261,7 +284,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
 
   report_progress(0.9, "write");
   to_world(r.mesh, r2.mesh.origin);
-  tetio::write_tets_all(opt.outputs, r.mesh);
+  tetio::write_tets_all(mesh_out, r.mesh);
+  write_plc_outputs(poly_out, tp.plc, r2.mesh.origin);
   r.written = opt.outputs;
   clock.lap("write");
   r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

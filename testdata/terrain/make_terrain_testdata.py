@@ -7,7 +7,7 @@
 - synthetic_dem.tif: 24 x 24 cells of 100 m in EPSG:32632 (UTM 32N) from (500000, 5500000) north-up,
   z = 300 + 40 sin(x / 500 m) cos(y / 700 m) + 0.02 x (x, y from the lower-left corner).
 - synthetic_h1.tif: the same grid, z = 150 + 0.1 (x - 1200) m: meets the DEM nowhere.
-- synthetic_pinch.tif: the same grid, z = 280 + 0.06 x m: above the DEM in the east (pinches out).
+- synthetic_pinch.tif: the same grid, z = 200 + 0.1 x m: above the DEM in the east (pinches out).
 - synthetic_high.tif: the same grid, z = 1000 m everywhere: above the DEM.
 - synthetic_nocrs.tif: synthetic_h1 without a CRS.
 - synthetic_nodata.tif: the same grid, every cell nodata.
@@ -56,7 +56,7 @@ def synthetic():
     X, Y = np.meshgrid(x, y)
     write("synthetic_dem.tif", 300 + 40 * np.sin(X / 500) * np.cos(Y / 700) + 0.02 * X, gt, 32632)
     write("synthetic_h1.tif", 150 + 0.1 * (X - 1200), gt, 32632)
-    write("synthetic_pinch.tif", 280 + 0.06 * X, gt, 32632)
+    write("synthetic_pinch.tif", 200 + 0.1 * X, gt, 32632)
     write("synthetic_high.tif", np.full_like(X, 1000.0), gt, 32632)
     write("synthetic_nocrs.tif", 150 + 0.1 * (X - 1200), gt, None)
     write("synthetic_nodata.tif", np.full_like(X, -9999.0), gt, 32632, nodata=-9999.0)
