@@ -65,8 +65,9 @@ ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 o
       }
     }
     if (!inside_somewhere)
-      throw Error(ExitCode::kInvalidGeometry, "horizon " + stack[k].name +
-                                                  " lies nowhere between the surface above it and the base: its layer would be empty");
+      throw Error(ExitCode::kInvalidGeometry,
+                  "horizon " + stack[k].name + " lies nowhere between the surface above it and the base" +
+                      (c.collapsed[k] ? " by the minimum layer thickness (--min-thickness)" : "") + ": its layer would be empty");
   }
   return c;
 }
