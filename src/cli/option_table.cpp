@@ -163,7 +163,7 @@ const std::vector<OptSpec>& option_table() {
        true},
       {"mesh", "--depth-grade", "depth-grade", field<&MeshOptions::depth_grade>, "float", "G", "0.25", "Terrain",
        "Terrain volumes: the spacing grows by G metres per metre of depth below the DEM (h = h2D + G depth)"},
-      {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "hmin / 2", "Terrain",
+      {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "--vertical-tol (0 without it)", "Terrain",
        "Terrain volumes: where a layer is thinner than M metres at a TIN vertex its horizon moves onto the surface above "
        "(or the base): the layer collapses there instead of ending in a thin wedge (0: only where they cross)"},
       {"mesh", "--gradation", "gradation", field<&MeshOptions::gradation>, "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},

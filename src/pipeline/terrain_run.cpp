@@ -31,16 +31,6 @@ namespace {
 constexpr double kSpacingCells = 1e6;
 // Default growth of the spacing per metre of depth below the top.
 constexpr double kDefaultDepthGrade = 0.25;
-// Default minimum layer thickness as a fraction of hmin: a pinch-out then meets the surface above
-// at roughly this slope over a TIN edge (about hmin long), an angle the 3D refinement terminates on.
-constexpr double kDefaultMinThickness = 0.5;
-
-double min_on(const sizing::SizingField& f, const std::vector<Point2>& xy) {
-  double lo = std::numeric_limits<double>::infinity();
-  for (const Point2 q : xy) lo = std::min(lo, f(q));
-  return std::isfinite(lo) ? lo : 0.0;
-}
-
 // The 2D run's options: the terrain TIN of the domain with the DEM as its raster, nothing written.
 Options tin_options(const Options& opt) {
   Options o = opt;
@@ -235,8 +225,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   if (r2.mesh.z.size() != r2.mesh.vertices.size()) throw Error(ExitCode::kInternal, "terrain TIN without elevations");
   const terrain::Tin tin = tin_of(r2.mesh);
   const gis::Frame frame = gis::Frame::from_crs(r2.mesh.crs_wkt, r2.mesh.origin);
-  const double hmin = r2.f ? min_on(*r2.f, tin.xy) : 0.0;
-  const double min_thickness = opt.min_thickness.value_or(kDefaultMinThickness * opt.hmin.value_or(hmin));
+  // Layers thinner than the TIN's own vertical tolerance collapse by default: the TIN does not
+  // resolve elevations more finely than that.
+  const double min_thickness = opt.min_thickness.value_or(opt.vertical_tol.value_or(0.0));
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
   tp.plc.source = opt.input;

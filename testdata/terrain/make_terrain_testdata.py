@@ -2,8 +2,8 @@
 """Writes the terrain-volume test rasters of this folder (run from anywhere; GDAL and numpy).
 
 - lux_h1.tif, lux_h2.tif: two synthetic horizons on the grid of ../luxembourg/elev.tif (EPSG:4326):
-  h1 = 250 + 120 sin(2 pi (lon - 5.74) / 0.4) m rises above the DEM in the valleys (its layer
-  pinches out against the top there); h2 = -150 + 200 (lat - 49.8) m, a tilted plane.
+  h1 = 50 + 80 sin(2 pi (lon - 5.74) / 0.4) m, below the DEM (at least 141 m) and above h2 everywhere;
+  h2 = -150 + 200 (lat - 49.8) m, a tilted plane.
 - synthetic_dem.tif: 24 x 24 cells of 100 m in EPSG:32632 (UTM 32N) from (500000, 5500000) north-up,
   z = 300 + 40 sin(x / 500 m) cos(y / 700 m) + 0.02 x (x, y from the lower-left corner).
 - synthetic_h1.tif: the same grid, z = 150 + 0.1 (x - 1200) m: meets the DEM nowhere.
@@ -44,7 +44,7 @@ def luxembourg():
     lon = gt[0] + (np.arange(nx) + 0.5) * gt[1]
     lat = gt[3] + (np.arange(ny) + 0.5) * gt[5]
     LON, LAT = np.meshgrid(lon, lat)
-    write("lux_h1.tif", 250 + 120 * np.sin(2 * np.pi * (LON - 5.74) / 0.4), gt, 4326)
+    write("lux_h1.tif", 50 + 80 * np.sin(2 * np.pi * (LON - 5.74) / 0.4), gt, 4326)
     write("lux_h2.tif", -150 + 200 * (LAT - 49.8), gt, 4326)
 
 
