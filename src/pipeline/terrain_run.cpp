@@ -132,8 +132,9 @@ std::vector<double> top_per_column(const sizing::Grid3& g, const std::vector<Poi
 
 // f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, gradient-limited to --gradation;
 // hmin and hmax default to the 2D spacing's range (hmax grown by the grade over the box's height).
+// Made from the local-frame PLC and TIN; the grid returned is in world coordinates (+ origin).
 sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
-                                   const std::vector<Point2>& xy, const std::vector<double>& top) {
+                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin) {
   Box3 box;
   for (const Point3& q : p.points) box.add(q);
   // The 2D spacing's range on the TIN's vertices sets the defaults and the grid's cell (hmin / 2).
@@ -153,6 +154,8 @@ sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const 
   ds.hmax = opt.hmax.value_or(hi + ds.grade * (box.hi.z - box.lo.z));
   ds.alpha = opt.gradation;
   terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
+  g.x0 += origin.x;  // the mesh is made in world coordinates (plc_to_world)
+  g.y0 += origin.y;
   std::ostringstream label;
   label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "]";
   return fdr::grid_spacing3(std::move(g), label.str());
@@ -187,18 +190,19 @@ void write_report_json(const Result3& r, const std::string& path) {
   out.commit();
 }
 
-void to_world(tet::TetMesh& m, Point2 origin) {
-  for (Point3& p : m.points) p = {p.x + origin.x, p.y + origin.y, p.z};
+// The PLC moved from the local frame to world coordinates (each coordinate rounded once): the mesh
+// is made where it is written, so the exact predicates' decisions hold for the written numbers.
+void plc_to_world(plc::Plc& p, Point2 origin) {
+  for (Point3& q : p.points) q = {q.x + origin.x, q.y + origin.y, q.z};
+  for (plc::Region& r : p.regions) r.point = {r.point.x + origin.x, r.point.y + origin.y, r.point.z};
 }
 
 bool is_poly(const std::string& p) {
   return p.size() >= 5 && (p.compare(p.size() - 5, 5, ".poly") == 0 || p.compare(p.size() - 5, 5, ".POLY") == 0);
 }
 
-// The terrain PLC in world coordinates as TetGen .poly files (for TetGen, or to mesh it again).
-void write_plc_outputs(const std::vector<std::string>& paths, plc::Plc p, Point2 origin) {
-  for (Point3& q : p.points) q = {q.x + origin.x, q.y + origin.y, q.z};
-  for (plc::Region& r : p.regions) r.point = {r.point.x + origin.x, r.point.y + origin.y, r.point.z};
+// The terrain PLC (world coordinates) as TetGen .poly files (for TetGen, or to mesh it again).
+void write_plc_outputs(const std::vector<std::string>& paths, const plc::Plc& p) {
   for (const std::string& path : paths) tetio::write_poly(path, p);
 }
 
@@ -231,7 +235,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
   tp.plc.source = opt.input;
-  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z);
+  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin);
+  plc_to_world(tp.plc, r2.mesh.origin);
   clock.lap("surfaces");
   if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +
                                     std::to_string(tp.plc.facets.size()) + " facets, " + std::to_string(stack.size() - 1) +
@@ -240,7 +245,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   std::vector<std::string> poly_out, mesh_out;
   for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : mesh_out).push_back(o);
   if (!poly_out.empty() && mesh_out.empty()) {  // the PLC only: nothing to mesh
-    write_plc_outputs(poly_out, tp.plc, r2.mesh.origin);
+    write_plc_outputs(poly_out, tp.plc);
     r.written = poly_out;
     r.measured = false;
     r.report.input_file = opt.input;
@@ -274,9 +279,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   }
 
   report_progress(0.9, "write");
-  to_world(r.mesh, r2.mesh.origin);
   tetio::write_tets_all(mesh_out, r.mesh);
-  write_plc_outputs(poly_out, tp.plc, r2.mesh.origin);
+  write_plc_outputs(poly_out, tp.plc);
   r.written = opt.outputs;
   clock.lap("write");
   r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

@@ -122,7 +122,7 @@ TEST(TerrainRun, SyntheticDemWithAHorizon) {
   // World coordinates (UTM 32N) and every surface a physical group.
   const auto [lo, hi] = std::minmax_element(r.mesh.points.begin(), r.mesh.points.end(),
                                             [](const Point3& a, const Point3& b) { return a.x < b.x; });
-  EXPECT_GE(lo->x, 500000.0);
+  EXPECT_GE(lo->x, 500000.0);  // the mesh is made in world coordinates
   EXPECT_LE(hi->x, 502400.0);
   for (std::int32_t m : {1, 2, 3, 4})
     EXPECT_NE(std::find(r.mesh.face_marker.begin(), r.mesh.face_marker.end(), m), r.mesh.face_marker.end()) << m;
