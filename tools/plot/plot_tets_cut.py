@@ -24,7 +24,7 @@ def parse_args(argv):
                    help="vertical exaggeration (default: height drawn as a fifth of the width)")
     p.add_argument("--title", default="", help="figure title")
     p.add_argument("--elev", type=float, default=25, help="view elevation (degrees)")
-    p.add_argument("--azim", type=float, default=-60, help="view azimuth (degrees)")
+    p.add_argument("--azim", type=float, default=60, help="view azimuth (degrees)")
     return p.parse_args(argv)
 
 
@@ -71,7 +71,7 @@ def main(argv=None):
     mats = np.unique(mat)
     cmap = plt.get_cmap("tab10")
     colour = {m: cmap(i % 10) for i, m in enumerate(mats)}
-    fig = plt.figure(figsize=(10, 6), dpi=120)
+    fig = plt.figure(figsize=(10, 6), dpi=130)
     ax = fig.add_subplot(111, projection="3d")
     polys = p[faces]
     coll = Poly3DCollection(polys, facecolors=[colour[m] for m in mat[owner]], edgecolors="k", linewidths=0.15)
@@ -79,7 +79,10 @@ def main(argv=None):
     ax.set_xlim(p[:, 0].min(), p[:, 0].max())
     ax.set_ylim(p[:, 1].min(), p[:, 1].max())
     ax.set_zlim(p[:, 2].min(), p[:, 2].max())
-    ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])))
+    try:
+        ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])), zoom=1.6)
+    except TypeError:  # matplotlib before 3.6 has no zoom
+        ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])))
     ax.view_init(elev=a.elev, azim=a.azim)
     ax.set_axis_off()
     handles = [matplotlib.patches.Patch(color=colour[m], label=f"material {m}") for m in mats]
