@@ -15,7 +15,6 @@ namespace {
 void check_gis_options(const Options& opt) {
   if (!opt.land.empty() && !opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
   check_layer_options(opt);
-  check_no_terrain_options(opt);
   auto negative = [](const std::optional<double>& v) { return v && !(*v >= 0); };
   if (negative(opt.close_width) || negative(opt.min_feature) || negative(opt.min_island_factor))
     throw Error(ExitCode::kUsage, "--close-width, --min-feature and --min-island must be >= 0");
@@ -84,6 +83,9 @@ bool report_is_read(const Options& opt, const std::vector<io::Format>& formats) 
 }
 
 Plan plan_run(const Options& opt) {
+  if (!opt.dem.empty())
+    throw Error(ExitCode::kUsage, "--dem makes a terrain volume: a 3D run (pipeline::run3d), not a 2D mesh");
+  check_no_terrain_options(opt);
   Plan p;
   if (opt.input.empty() && opt.land.empty())
     throw Error(ExitCode::kUsage, "no input given: INPUT (a .poly/.node file or water polygons) or --land with --extent");
