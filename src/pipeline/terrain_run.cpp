@@ -99,12 +99,13 @@ std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::Mesh
   else stack.push_back({"base", sample_raster("--base", opt.base, frame, tin.xy, log)});
   const terrain::ClampCounts c = terrain::clamp_surfaces(stack, tin, m.origin, min_thickness);
   for (std::size_t k = 1; k + 1 < stack.size(); ++k)
-    if (log && (c.lowered[k] || c.raised[k] || c.collapsed[k]))
-      log(LogLevel::kWarning, "horizon " + stack[k].name + ": " + std::to_string(c.lowered[k]) +
-                                  " vertices lowered onto the surface above, " + std::to_string(c.raised[k]) +
-                                  " raised onto the base (the layers pinch out there), " + std::to_string(c.collapsed[k]) +
-                                  " moved onto the nearer of them where a layer is thinner than " +
-                                  std::to_string(min_thickness) + " m");
+    if (log && (c.lowered[k] || c.raised[k] || c.collapsed[k])) {
+      std::ostringstream s;
+      s << "horizon " << stack[k].name << ": " << c.lowered[k] << " vertices lowered onto the surface above, "
+        << c.raised[k] << " raised onto the base (the layers pinch out there), " << c.collapsed[k]
+        << " moved onto the surface above or the base where a layer is thinner than " << min_thickness << " m";
+      log(LogLevel::kWarning, s.str());
+    }
   return stack;
 }
 
