@@ -23,6 +23,7 @@ def parse_args(argv):
     p.add_argument("--exaggeration", type=float, default=0,
                    help="vertical exaggeration (default: height drawn as a fifth of the width)")
     p.add_argument("--title", default="", help="figure title")
+    p.add_argument("--zoom", type=float, default=1.0, help="zoom of the 3D box in the figure (matplotlib >= 3.6)")
     p.add_argument("--elev", type=float, default=25, help="view elevation (degrees)")
     p.add_argument("--azim", type=float, default=60, help="view azimuth (degrees)")
     return p.parse_args(argv)
@@ -80,7 +81,7 @@ def main(argv=None):
     ax.set_ylim(p[:, 1].min(), p[:, 1].max())
     ax.set_zlim(p[:, 2].min(), p[:, 2].max())
     try:
-        ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])), zoom=1.6)
+        ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])), zoom=a.zoom)
     except TypeError:  # matplotlib before 3.6 has no zoom
         ax.set_box_aspect((np.ptp(p[:, 0]), np.ptp(p[:, 1]), np.ptp(p[:, 2])))
     ax.view_init(elev=a.elev, azim=a.azim)
