@@ -151,6 +151,21 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--wavelength-rule", "wavelength-rule", field<&MeshOptions::wavelength_rule>, "float", "WL", "", "Spacing", "Wavelength rule h = T sqrt(g depth) / WL"},
       {"mesh", "--wave-period", "wave-period", field<&MeshOptions::wave_period_s>, "float", "S", "44712 (M2)", "Spacing", "Wave period T for --wavelength-rule (seconds)"},
       {"mesh", "--vertical-tol", "vertical-tol", field<&MeshOptions::vertical_tol>, "float", "M", "", "Spacing", "Terrain rule h = sqrt(8 tol / |curvature|): TIN within tol metres of the DEM"},
+      // mesh: terrain volumes
+      {"mesh", "--dem", "dem", field<&MeshOptions::dem>, "raster_in", "FILE", "", "Terrain",
+       "DEM raster: the top of a terrain volume (a tetrahedral mesh of INPUT's polygon down to --base); also the raster of "
+       "the 2D terrain TIN (--vertical-tol, --hmin, --hmax); outputs .vtu, .msh, .node (docs/terrain3d.md)"},
+      {"mesh", "--base", "base", field<&MeshOptions::base>, "string", "Z|FILE", "", "Terrain",
+       "Base of the terrain volume: an elevation in metres (e.g. -500) or a raster; must lie below the DEM"},
+      {"mesh", "--horizon", "horizon", field<&MeshOptions::horizons>, "raster_in", "FILE", "", "Terrain",
+       "Horizon raster (elevation), an internal surface between layers; repeatable, from the top down; clamped "
+       "between the surface above and the base (layers pinch out there); named after the file",
+       true},
+      {"mesh", "--depth-grade", "depth-grade", field<&MeshOptions::depth_grade>, "float", "G", "0.25", "Terrain",
+       "Terrain volumes: the spacing grows by G metres per metre of depth below the DEM (h = h2D + G depth)"},
+      {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "--vertical-tol (0 without it)", "Terrain",
+       "Terrain volumes: where a layer is thinner than M metres at a TIN vertex its horizon moves onto the surface above "
+       "(or the base): the layer collapses there instead of ending in a thin wedge (0: only where they cross)"},
       {"mesh", "--gradation", "gradation", field<&MeshOptions::gradation>, "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},
       {"mesh", "--cell-size", "cell-size", field<&MeshOptions::cell_size>, "float", "M", "max(hmin, sqrt(box area / 4e6))", "Spacing", "Cell size of the spacing grid (metres)"},
       {"mesh", "--write-spacing", "write-spacing", field<&MeshOptions::write_spacing>, "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},

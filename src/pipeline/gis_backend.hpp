@@ -16,6 +16,7 @@
 #include "mesh/mesh_view.hpp"
 #include "pipeline/gis_stage.hpp"
 #include "pipeline/options.hpp"
+#include "pipeline/run3d.hpp"
 #include "pipeline/stage_time.hpp"
 #include "sizing/grid.hpp"
 
@@ -37,6 +38,8 @@ struct GisBackend {
   void (*write_spacing_geotiff)(const PreparedInput&, const std::string& path);
   mesh::MeshView (*read_mesh)(const std::string& path);
   sizing::Grid (*read_raster_native)(const std::string& path, Point2 origin);
+  // A terrain volume (--dem): the whole 3D run from GIS layers (terrain_run.hpp).
+  Result3 (*run_terrain)(const Options&, const ProgressFn&, const LogFn&);
 };
 
 // The table: built in, or loaded from the GIS library (throws Error(kInternal) naming the paths

@@ -7,6 +7,7 @@
 #include "io/write_many.hpp"
 #include "pipeline/gis_backend.hpp"
 #include "pipeline/reproject_mesh.hpp"
+#include "pipeline/terrain_run.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -48,6 +49,7 @@ const GisBackend kTable{
     &write_spacing,
     &read_mesh,
     &gis::read_raster_native,
+    &run_terrain,
 };
 
 }  // namespace

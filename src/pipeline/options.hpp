@@ -44,6 +44,14 @@ struct Options {
   double wave_period_s = 44712.0;        // M2 tide, 12.42 h
   std::optional<double> vertical_tol;    // terrain: h = sqrt(8 tol / |kappa|)
   double gradation = 0.15;               // alpha for gradient limiting (GIS runs)
+  // Terrain volumes (a 3D run from GIS layers): the DEM as the top surface (also the 2D run's
+  // raster), the base (an elevation in metres, or a raster), horizon rasters from the top down,
+  // and the growth of the spacing per metre of depth below the top.
+  std::string dem;
+  std::string base;
+  std::vector<std::string> horizons;
+  std::optional<double> depth_grade;
+  std::optional<double> min_thickness;   // thinner layers collapse locally (default: a fraction of hmin)
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
   // Model-ready coast (GIS runs; coast/generalise.hpp, pslg/resample.hpp).
   bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)

@@ -6,6 +6,7 @@
 #include "base/path_util.hpp"
 #include "io/write_many.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/run3d.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -82,6 +83,9 @@ bool report_is_read(const Options& opt, const std::vector<io::Format>& formats) 
 }
 
 Plan plan_run(const Options& opt) {
+  if (!opt.dem.empty())
+    throw Error(ExitCode::kUsage, "--dem makes a terrain volume: a 3D run (pipeline::run3d), not a 2D mesh");
+  check_no_terrain_options(opt);
   Plan p;
   if (opt.input.empty() && opt.land.empty())
     throw Error(ExitCode::kUsage, "no input given: INPUT (a .poly/.node file or water polygons) or --land with --extent");

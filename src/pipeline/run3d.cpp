@@ -9,6 +9,7 @@
 #include <sstream>
 #include "api/tetrahedralize.hpp"
 #include "base/error.hpp"
+#include "pipeline/gis_backend.hpp"
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "sizing/spacing3d_make.hpp"
@@ -47,6 +48,10 @@ std::vector<std::pair<const char*, bool>> options_2d_only(const Options& o) {
           {"--smooth", o.smooth_passes != d.smooth_passes}};
 }
 
+bool is_poly_path(const std::string& p) {
+  return p.size() >= 5 && (p.compare(p.size() - 5, 5, ".poly") == 0 || p.compare(p.size() - 5, 5, ".POLY") == 0);
+}
+
 bool has_vtu(const std::vector<std::string>& outs) {
   return std::any_of(outs.begin(), outs.end(), [](const std::string& p) {
     return p.size() >= 4 && (p.compare(p.size() - 4, 4, ".vtu") == 0 || p.compare(p.size() - 4, 4, ".VTU") == 0);
@@ -66,11 +71,18 @@ void add_cell_fields(tet::TetMesh& m, quality::TetValues&& v) {
 
 }  // namespace
 
-bool is_3d_run(const Options& opt) { return fdr::is_3d_input(opt.input); }
+bool is_3d_run(const Options& opt) { return !opt.dem.empty() || fdr::is_3d_input(opt.input); }
 
-void check_3d_options(const Options& opt) {
-  for (const auto& [name, given] : options_2d_only(opt))
-    if (given) throw Error(ExitCode::kUsage, std::string(name) + " applies to 2D runs only; " + opt.input + " is a 3D input");
+void check_no_terrain_options(const Options& opt) {
+  const Options d;
+  const std::pair<const char*, bool> given[] = {{"--base", opt.base != d.base}, {"--horizon", opt.horizons != d.horizons},
+                                                {"--depth-grade", opt.depth_grade.has_value()},
+                                                {"--min-thickness", opt.min_thickness.has_value()}};
+  for (const auto& [name, g] : given)
+    if (g) throw Error(ExitCode::kUsage, std::string(name) + " needs --dem (a terrain volume)");
+}
+
+void check_tet_options(const Options& opt) {
   if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
     throw Error(ExitCode::kUsage, "--bound must be a positive number");
   // Above 30 degrees most of a good mesh would count as slivers.
@@ -78,12 +90,46 @@ void check_3d_options(const Options& opt) {
     throw Error(ExitCode::kUsage, "--sliver-angle must be in (0, 30] degrees");
   if (opt.sliver_angle_deg && opt.no_sliver_removal)
     throw Error(ExitCode::kUsage, "--sliver-angle and --no-sliver-removal contradict each other");
+}
+
+tet::TetOptions tet_options(const Options& opt, std::size_t plc_points) {
+  tet::TetOptions to;
+  to.bound = opt.bound_given ? opt.bound : 0.0;
+  to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + plc_points;
+  to.remove_slivers = !opt.no_sliver_removal;
+  if (opt.sliver_angle_deg) to.sliver_angle_deg = *opt.sliver_angle_deg;
+  return to;
+}
+
+void check_terrain_options(const Options& opt) {
+  if (opt.dem.empty()) throw Error(ExitCode::kUsage, "a terrain volume needs --dem");
+  if (!opt.raster.empty()) throw Error(ExitCode::kUsage, "--raster and --dem: the DEM is the terrain run's raster, give it once");
+  if (opt.base.empty()) throw Error(ExitCode::kUsage, "--dem needs --base (an elevation in metres or a raster)");
+  if (opt.input.empty()) throw Error(ExitCode::kUsage, "--dem needs the domain polygon (INPUT)");
+  if (opt.depth_grade && !(*opt.depth_grade >= 0)) throw Error(ExitCode::kUsage, "--depth-grade must be >= 0");
+  if (opt.min_thickness && !(*opt.min_thickness >= 0)) throw Error(ExitCode::kUsage, "--min-thickness must be >= 0");
+  if (opt.hmin && opt.hmax && *opt.hmin > *opt.hmax) throw Error(ExitCode::kUsage, "--hmin must not exceed --hmax");
+  check_tet_options(opt);
+  for (const auto& o : opt.outputs)
+    if (!tetio::is_tets_output_path(o) && !is_poly_path(o))
+      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh, TetGen .node/.ele or its PLC as .poly");
+}
+
+void check_3d_options(const Options& opt) {
+  check_no_terrain_options(opt);
+  for (const auto& [name, given] : options_2d_only(opt))
+    if (given) throw Error(ExitCode::kUsage, std::string(name) + " applies to 2D runs only; " + opt.input + " is a 3D input");
+  check_tet_options(opt);
   for (const auto& o : opt.outputs)
     if (!tetio::is_tets_output_path(o))
       throw Error(ExitCode::kUsage, "-o " + o + ": a 3D mesh is written as .vtu, .msh or TetGen .node/.ele");
 }
 
 Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  if (!opt.dem.empty()) {
+    check_terrain_options(opt);  // usage errors before the GIS library is loaded
+    return gis_backend().run_terrain(opt, progress, log);
+  }
   const auto t_start = std::chrono::steady_clock::now();
   check_3d_options(opt);
   auto report_progress = [&](double frac, const char* stage) {
@@ -98,11 +144,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
   if (log) log(LogLevel::kInfo, "3D input: " + std::to_string(plc.points.size()) + " vertices, " +
                                     std::to_string(plc.facets.size()) + " facets; spacing " + f->describe());
 
-  tet::TetOptions to;
-  to.bound = opt.bound_given ? opt.bound : 0.0;
-  to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + plc.points.size();
-  to.remove_slivers = !opt.no_sliver_removal;
-  if (opt.sliver_angle_deg) to.sliver_angle_deg = *opt.sliver_angle_deg;
+  tet::TetOptions to = tet_options(opt, plc.points.size());
   to.progress = [&](double x) { report_progress(0.05 + 0.75 * std::clamp(x, 0.0, 1.0), "refine"); };
   report_progress(0.05, "refine");
   TetResult tr = fdr::tetrahedralize(plc, *f, to);
@@ -154,6 +196,14 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
 void write_summary3(const Result3& r, std::ostream& out) {
   if (r.measured) quality::write_text3(r.report, out);
   else out << "3D mesh: " << r.report.vertices << " vertices, " << r.report.tets << " tetrahedra\n";
+  if (!r.layers.empty()) out << "Layers (volume against the volume between their surfaces as triangulated):\n";
+  for (const LayerFigures& l : r.layers) {
+    char line[256];
+    const double rel = l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0;
+    std::snprintf(line, sizeof line, "  %3d %-24s %10zu tets  %.6g m3  expected %.6g m3  (%+.2e)\n",
+                  static_cast<int>(l.material), l.name.c_str(), l.tets, l.volume, l.expected, rel);
+    out << line;
+  }
   write_stages_and_outputs(r.stages, r.written, out);
 }
 

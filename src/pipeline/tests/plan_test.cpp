@@ -81,6 +81,12 @@ TEST(Plan, UsageErrorsBeforeAnyRead) {
   o.sliver_angle_deg = 10;
   EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
   EXPECT_EQ(usage_code(poly_options()), fdr::ExitCode::kOk);
+  o = poly_options();
+  o.dem = "dem.tif";  // a terrain volume is a 3D run
+  EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
+  o = poly_options();
+  o.horizons = {"h.tif"};  // terrain options without --dem
+  EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
 }
 
 TEST(Plan, ReportReadOnlyWhenSomethingReadsIt) {

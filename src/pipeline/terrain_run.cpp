@@ -1,0 +1,299 @@
+// Terrain volumes: 2D TIN (pipeline::run with the DEM as raster) -> surfaces sampled at its
+// vertices (gis) -> PLC and spacing (terrain) -> tetrahedralize (api) -> report -> write (tetio).
+#include "pipeline/terrain_run.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <nlohmann/json.hpp>
+#include "api/tetrahedralize.hpp"
+#include "base/error.hpp"
+#include "gis/crs.hpp"
+#include "gis/raster_input.hpp"
+#include "pipeline/pipeline.hpp"
+#include "quality/check3d.hpp"
+#include "quality/rss.hpp"
+#include "terrain/depth_spacing.hpp"
+#include "terrain/surfaces.hpp"
+#include "terrain/terrain_plc.hpp"
+#include "base/out_file.hpp"
+#include "tetio/write_poly.hpp"
+#include "tetio/write_tets.hpp"
+
+namespace fdr::pipeline {
+namespace {
+
+// The cell budget of the 3D spacing grid: fine enough to follow the 2D spacing across the domain,
+// small enough that the 3D limiter's sweeps take a fraction of the meshing.
+constexpr double kSpacingCells = 1e6;
+// Default growth of the spacing per metre of depth below the top.
+constexpr double kDefaultDepthGrade = 0.25;
+// The 2D run's options: the terrain TIN of the domain with the DEM as its raster, nothing written.
+Options tin_options(const Options& opt) {
+  Options o = opt;
+  o.raster = opt.dem;
+  o.dem.clear();
+  o.base.clear();
+  o.horizons.clear();
+  o.depth_grade.reset();
+  o.min_thickness.reset();
+  o.outputs.clear();
+  o.report_json.clear();
+  o.check = false;
+  o.quiet = true;
+  o.report_only_if_read = true;
+  o.bound = Options{}.bound;
+  o.bound_given = false;
+  return o;
+}
+
+terrain::Tin tin_of(const mesh::MeshView& m) {
+  terrain::Tin t;
+  t.xy = m.vertices;
+  t.triangles.reserve(m.triangles.size());
+  for (const auto& tr : m.triangles) t.triangles.push_back({tr[0], tr[1], tr[2]});
+  return t;
+}
+
+Box2 box_of(const std::vector<Point2>& xy) {
+  Box2 b;
+  for (const Point2 p : xy) b.add(p);
+  return b;
+}
+
+// A raster warped into the working frame and sampled at the TIN's vertices; errors name the option.
+std::vector<double> sample_raster(const std::string& option, const std::string& path, const gis::Frame& frame,
+                                  const std::vector<Point2>& xy, const LogFn& log) {
+  try {
+    const Box2 box = box_of(xy);
+    const sizing::Grid g = gis::read_raster_to_frame(path, frame, box, gis::grid_cell_size_hint(path, frame, box), &xy);
+    int filled = 0;
+    std::vector<double> z = gis::sample_depths(g, xy, &filled);
+    if (filled > 0 && log)
+      log(LogLevel::kWarning, option + " " + path + ": " + std::to_string(filled) +
+                                  " vertices on nodata cells take the nearest valid cell's value");
+    return z;
+  } catch (const Error& e) {
+    throw Error(e.code(), option + " " + path + ": " + e.what());
+  }
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// top (the TIN's DEM elevations), the horizons, the base; clamped into order (a documented repair,
+// logged), with the base refused where it is not below the top.
+std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::MeshView& m, const terrain::Tin& tin,
+                                            const gis::Frame& frame, double min_thickness, const LogFn& log) {
+  std::vector<terrain::Surface> stack;
+  stack.push_back({"top", m.z});
+  for (const std::string& h : opt.horizons) {
+    std::string name = stem(h);
+    for (const auto& s : stack)
+      if (s.name == name) name += "_" + std::to_string(stack.size());
+    stack.push_back({name, sample_raster("--horizon", h, frame, tin.xy, log)});
+  }
+  if (const auto zb = base_elevation(opt.base)) stack.push_back({"base", std::vector<double>(tin.xy.size(), *zb)});
+  else stack.push_back({"base", sample_raster("--base", opt.base, frame, tin.xy, log)});
+  const terrain::ClampCounts c = terrain::clamp_surfaces(stack, tin, m.origin, min_thickness);
+  for (std::size_t k = 1; k + 1 < stack.size(); ++k)
+    if (log && (c.lowered[k] || c.raised[k] || c.collapsed[k])) {
+      std::ostringstream s;
+      s << "horizon " << stack[k].name << ": " << c.lowered[k] << " vertices lowered onto the surface above, "
+        << c.raised[k] << " raised onto the base (the layers pinch out there), " << c.collapsed[k]
+        << " moved onto the surface above or the base where a layer is thinner than " << min_thickness << " m";
+      log(LogLevel::kWarning, s.str());
+    }
+  return stack;
+}
+
+// The top's elevation per column of g: the TIN's vertices binned into the columns (mean), columns
+// without a vertex from their neighbours (gis::sample_depths fills from the nearest valid cell).
+std::vector<double> top_per_column(const sizing::Grid3& g, const std::vector<Point2>& xy, const std::vector<double>& top) {
+  sizing::Grid bins;
+  bins.nx = g.nx;
+  bins.ny = g.ny;
+  bins.x0 = g.x0;
+  bins.y0 = g.y0;
+  bins.dx = g.dx;
+  bins.dy = g.dy;
+  std::vector<double> sum(g.nx * g.ny, 0.0), cnt(g.nx * g.ny, 0.0);
+  for (std::size_t v = 0; v < xy.size(); ++v) {
+    const auto i = static_cast<std::size_t>(std::clamp((xy[v].x - g.x0) / g.dx, 0.0, static_cast<double>(g.nx - 1)));
+    const auto j = static_cast<std::size_t>(std::clamp((xy[v].y - g.y0) / g.dy, 0.0, static_cast<double>(g.ny - 1)));
+    sum[j * g.nx + i] += top[v];
+    cnt[j * g.nx + i] += 1;
+  }
+  bins.v.resize(sum.size());
+  for (std::size_t c = 0; c < sum.size(); ++c) bins.v[c] = cnt[c] > 0 ? sum[c] / cnt[c] : std::nan("");
+  return gis::sample_depths(bins, terrain::column_centres(g));
+}
+
+// f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, gradient-limited to --gradation;
+// hmin and hmax default to the 2D spacing's range (hmax grown by the grade over the box's height).
+// Made from the local-frame PLC and TIN; the grid returned is in world coordinates (+ origin).
+sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
+                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin) {
+  Box3 box;
+  for (const Point3& q : p.points) box.add(q);
+  // The 2D spacing's range on the TIN's vertices sets the defaults and the grid's cell (hmin / 2).
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (const Point2 q : xy) {
+    const double h = f2(q);
+    if (std::isfinite(h)) lo = std::min(lo, h), hi = std::max(hi, h);
+  }
+  if (opt.hmin) lo = *opt.hmin;
+  sizing::Grid3 g = terrain::spacing_grid_geometry(box, kSpacingCells, 0.5 * lo);
+  const std::vector<Point2> cols = terrain::column_centres(g);
+  std::vector<double> h2(cols.size());
+  for (std::size_t c = 0; c < cols.size(); ++c) h2[c] = f2(cols[c]);
+  terrain::DepthSpacing ds;
+  ds.grade = opt.depth_grade.value_or(kDefaultDepthGrade);
+  ds.hmin = lo;
+  ds.hmax = opt.hmax.value_or(hi + ds.grade * (box.hi.z - box.lo.z));
+  ds.alpha = opt.gradation;
+  terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
+  g.x0 += origin.x;  // the mesh is made in world coordinates (plc_to_world)
+  g.y0 += origin.y;
+  std::ostringstream label;
+  label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "]";
+  return fdr::grid_spacing3(std::move(g), label.str());
+}
+
+std::vector<LayerFigures> layer_figures(const quality::Report3& rep, const plc::Plc& p, const std::vector<double>& expected) {
+  std::vector<LayerFigures> out;
+  for (std::size_t s = 0; s < expected.size(); ++s) {
+    LayerFigures l;
+    l.material = static_cast<std::int32_t>(s + 1);
+    l.name = p.material_names.at(s + 1);
+    l.expected = expected[s];
+    for (const auto& mf : rep.materials)
+      if (mf.material == l.material) l.tets = mf.tets, l.volume = mf.volume;
+    out.push_back(l);
+  }
+  return out;
+}
+
+void write_report_json(const Result3& r, const std::string& path) {
+  std::ostringstream s;
+  quality::write_json3(r.report, s);
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(s.str());
+  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+  for (const LayerFigures& l : r.layers)
+    layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
+                      {"expected_volume", l.expected},
+                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
+  j["layers"] = layers;
+  OutFile out(path);
+  out.write(j.dump(2) + "\n");
+  out.commit();
+}
+
+// The PLC moved from the local frame to world coordinates (each coordinate rounded once): the mesh
+// is made where it is written, so the exact predicates' decisions hold for the written numbers.
+void plc_to_world(plc::Plc& p, Point2 origin) {
+  for (Point3& q : p.points) q = {q.x + origin.x, q.y + origin.y, q.z};
+  for (plc::Region& r : p.regions) r.point = {r.point.x + origin.x, r.point.y + origin.y, r.point.z};
+}
+
+bool is_poly(const std::string& p) {
+  return p.size() >= 5 && (p.compare(p.size() - 5, 5, ".poly") == 0 || p.compare(p.size() - 5, 5, ".POLY") == 0);
+}
+
+// The terrain PLC (world coordinates) as TetGen .poly files (for TetGen, or to mesh it again).
+void write_plc_outputs(const std::vector<std::string>& paths, const plc::Plc& p) {
+  for (const std::string& path : paths) tetio::write_poly(path, p);
+}
+
+}  // namespace
+
+std::optional<double> base_elevation(const std::string& base) {
+  char* end = nullptr;
+  const double z = std::strtod(base.c_str(), &end);
+  if (base.empty() || end == base.c_str() || *end != '\0' || !std::isfinite(z)) return std::nullopt;
+  return z;
+}
+
+Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn& log) {
+  const auto t_start = std::chrono::steady_clock::now();
+  check_terrain_options(opt);
+  auto report_progress = [&](double frac, const char* stage) {
+    if (progress && !progress(frac, stage)) throw Error(ExitCode::kCancelled, std::string("cancelled during ") + stage);
+  };
+  Result3 r;
+  StageClock clock(&r.stages);
+  const ProgressFn tin_progress = [&](double f, std::string_view s) { return !progress || progress(0.3 * f, s); };
+  Result r2 = run(tin_options(opt), tin_progress, log);
+  clock.lap("tin");
+  if (r2.mesh.z.size() != r2.mesh.vertices.size()) throw Error(ExitCode::kInternal, "terrain TIN without elevations");
+  const terrain::Tin tin = tin_of(r2.mesh);
+  const gis::Frame frame = gis::Frame::from_crs(r2.mesh.crs_wkt, r2.mesh.origin);
+  // Layers thinner than the TIN's own vertical tolerance collapse by default: the TIN does not
+  // resolve elevations more finely than that.
+  const double min_thickness = opt.min_thickness.value_or(opt.vertical_tol.value_or(0.0));
+  const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
+  terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
+  tp.plc.source = opt.input;
+  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin);
+  plc_to_world(tp.plc, r2.mesh.origin);
+  clock.lap("surfaces");
+  if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +
+                                    std::to_string(tp.plc.facets.size()) + " facets, " + std::to_string(stack.size() - 1) +
+                                    " layers; spacing " + f->describe());
+
+  std::vector<std::string> poly_out, mesh_out;
+  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : mesh_out).push_back(o);
+  if (!poly_out.empty() && mesh_out.empty()) {  // the PLC only: nothing to mesh
+    write_plc_outputs(poly_out, tp.plc);
+    r.written = poly_out;
+    r.measured = false;
+    r.report.input_file = opt.input;
+    r.report.vertices = tp.plc.points.size();
+    return r;
+  }
+
+  tet::TetOptions to = tet_options(opt, tp.plc.points.size());
+  to.progress = [&](double x) { report_progress(0.35 + 0.5 * std::clamp(x, 0.0, 1.0), "refine"); };
+  report_progress(0.35, "refine");
+  TetResult tr = fdr::tetrahedralize(tp.plc, *f, to);
+  clock.lap("tetrahedralize");
+  r.mesh = std::move(tr.mesh);
+
+  report_progress(0.85, "report");
+  r.measured = true;  // the layer volumes need the per-material figures
+  quality::TetValues values;
+  r.report = quality::measure_tets(r.mesh, *f, tr.stats, &values);
+  r.mesh.cell_fields.emplace_back("r_over_f", std::move(values.r_over_f));
+  r.mesh.cell_fields.emplace_back("radius_edge", std::move(values.radius_edge));
+  r.mesh.cell_fields.emplace_back("min_dihedral_deg", std::move(values.min_dihedral_deg));
+  r.report.input_file = opt.input;
+  r.layers = layer_figures(r.report, tp.plc, terrain::layer_volumes(tin, stack));
+  clock.lap("report");
+  if (opt.check) {
+    quality::check_tets(r.mesh, tp.plc, *f, tr.stats.bound);  // Error(kCheckFailed) before anything is written
+    r.report.check_passed = true;
+    clock.lap("check");
+  }
+
+  report_progress(0.9, "write");
+  tetio::write_tets_all(mesh_out, r.mesh);
+  write_plc_outputs(poly_out, tp.plc);
+  r.written = opt.outputs;
+  clock.lap("write");
+  r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  r.report.peak_rss_mb = quality::peak_rss_mb_value().value_or(0);
+  for (const auto& s : r.stages) {
+    r.report.stage_seconds.emplace_back(s.name, s.seconds);
+    r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
+  }
+  if (!opt.report_json.empty()) {
+    write_report_json(r, opt.report_json);
+    r.written.push_back(opt.report_json);
+  }
+  report_progress(1.0, "done");
+  return r;
+}
+
+}  // namespace fdr::pipeline

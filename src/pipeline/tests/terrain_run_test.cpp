@@ -1,0 +1,182 @@
+// Terrain volumes (--dem): usage errors, the synthetic DEM with a horizon (layers, groups, volumes,
+// --check), a pinch-out, bad inputs (exit codes, nothing written).
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+#include "base/error.hpp"
+#include "pipeline/run3d.hpp"
+#include "pipeline/terrain_run.hpp"
+
+namespace fdr::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kData = FDR_TESTDATA_DIR;
+const std::string kTerrain = kData + "/terrain/";
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("fdr_terrain_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Options synthetic(const fs::path& dir) {
+  Options o;
+  o.input = kTerrain + "synthetic_domain.geojson";
+  o.dem = kTerrain + "synthetic_dem.tif";
+  o.base = "-200";
+  o.horizons = {kTerrain + "synthetic_h1.tif"};
+  o.hmin = 150;
+  o.hmax = 400;
+  o.quiet = true;
+  o.outputs = {(dir / "m.vtu").string(), (dir / "m.msh").string()};
+  return o;
+}
+
+int run_code(const Options& o) {
+  try {
+    run3d(o, {}, {});
+    return 0;
+  } catch (const Error& e) {
+    return e.exit_code();
+  }
+}
+
+int usage_code(const Options& o) {
+  try {
+    check_terrain_options(o);
+    return 0;
+  } catch (const Error& e) {
+    return e.exit_code();
+  }
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(TerrainRun, UsageErrors) {
+  const Options o = synthetic(fs::temp_directory_path());
+  EXPECT_TRUE(is_3d_run(o));
+  EXPECT_EQ(usage_code(o), 0);
+  Options a = o;
+  a.base.clear();
+  EXPECT_EQ(usage_code(a), 2);
+  Options b = o;
+  b.raster = o.dem;
+  EXPECT_EQ(usage_code(b), 2);
+  Options c = o;
+  c.outputs = {"m.2dm"};
+  EXPECT_EQ(usage_code(c), 2);
+  Options d = o;
+  d.depth_grade = -1;
+  EXPECT_EQ(usage_code(d), 2);
+  Options e = o;
+  e.input.clear();
+  EXPECT_EQ(usage_code(e), 2);
+  Options f = o;
+  f.outputs = {"m.vtu", "m.poly"};
+  EXPECT_EQ(usage_code(f), 0);
+  // Terrain options without --dem, on a 3D PLC and in the 2D plan.
+  Options g;
+  g.input = kData + "/3d/cube.poly";
+  g.base = "-500";
+  EXPECT_THROW(check_3d_options(g), Error);
+  Options h;
+  h.horizons = {"h.tif"};
+  EXPECT_THROW(check_no_terrain_options(h), Error);
+}
+
+TEST(TerrainRun, BaseElevation) {
+  EXPECT_EQ(base_elevation("-500"), -500.0);
+  EXPECT_EQ(base_elevation("1e2"), 100.0);
+  EXPECT_FALSE(base_elevation("base.tif"));
+  EXPECT_FALSE(base_elevation("12m"));
+  EXPECT_FALSE(base_elevation(""));
+}
+
+TEST(TerrainRun, SyntheticDemWithAHorizon) {
+  const fs::path dir = fresh_dir("synthetic");
+  Options o = synthetic(dir);
+  o.check = true;
+  o.report_json = (dir / "r.json").string();
+  const Result3 r = run3d(o, {}, {});
+  ASSERT_EQ(r.layers.size(), 2u);
+  EXPECT_EQ(r.layers[0].name, "top-synthetic_h1");
+  EXPECT_EQ(r.layers[1].name, "synthetic_h1-base");
+  for (const LayerFigures& l : r.layers) {
+    EXPECT_GT(l.tets, 0u);
+    EXPECT_NEAR(l.volume, l.expected, 1e-3 * l.expected) << l.name;
+  }
+  ASSERT_TRUE(r.report.check_passed.has_value());
+  EXPECT_TRUE(*r.report.check_passed);
+  EXPECT_LE(r.report.max_R_over_f, r.report.bound_B * (1 + 1e-9));
+  // World coordinates (UTM 32N) and every surface a physical group.
+  const auto [lo, hi] = std::minmax_element(r.mesh.points.begin(), r.mesh.points.end(),
+                                            [](const Point3& a, const Point3& b) { return a.x < b.x; });
+  EXPECT_GE(lo->x, 500000.0);  // the mesh is made in world coordinates
+  EXPECT_LE(hi->x, 502400.0);
+  for (std::int32_t m : {1, 2, 3, 4})
+    EXPECT_NE(std::find(r.mesh.face_marker.begin(), r.mesh.face_marker.end(), m), r.mesh.face_marker.end()) << m;
+  const std::string msh = slurp(dir / "m.msh");
+  for (const char* g : {"\"top\"", "\"base\"", "\"side\"", "\"synthetic_h1\"", "\"top-synthetic_h1\"", "\"synthetic_h1-base\""})
+    EXPECT_NE(msh.find(g), std::string::npos) << g;
+  EXPECT_TRUE(fs::exists(dir / "m.vtu"));
+  EXPECT_NE(slurp(dir / "r.json").find("\"layers\""), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(TerrainRun, PinchOutCollapsesThinLayers) {
+  const fs::path dir = fresh_dir("pinch");
+  Options o = synthetic(dir);
+  o.horizons = {kTerrain + "synthetic_pinch.tif"};
+  // About hmin / 2: thinner wedges at the pinch-out make the 3D core fail (testdata/terrain/pinch_nan.poly).
+  o.min_thickness = 80;
+  o.check = true;
+  const Result3 r = run3d(o, {}, {});
+  ASSERT_EQ(r.layers.size(), 2u);
+  for (const LayerFigures& l : r.layers) EXPECT_NEAR(l.volume, l.expected, 1e-3 * l.expected) << l.name;
+  fs::remove_all(dir);
+}
+
+TEST(TerrainRun, PlcOnly) {
+  const fs::path dir = fresh_dir("plc");
+  Options o = synthetic(dir);
+  o.outputs = {(dir / "t.poly").string()};
+  const Result3 r = run3d(o, {}, {});
+  EXPECT_TRUE(r.mesh.tets.empty());
+  EXPECT_NE(slurp(dir / "t.poly").find("500"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(TerrainRun, BadInputsWriteNothing) {
+  const fs::path dir = fresh_dir("bad");
+  Options high = synthetic(dir);
+  high.horizons = {kTerrain + "synthetic_high.tif"};  // above the DEM everywhere
+  EXPECT_EQ(run_code(high), 5);
+  Options base = synthetic(dir);
+  base.base = "330";  // above the DEM in places
+  EXPECT_EQ(run_code(base), 5);
+  Options nocrs = synthetic(dir);
+  nocrs.horizons = {kTerrain + "synthetic_nocrs.tif"};
+  EXPECT_EQ(run_code(nocrs), 9);
+  Options nodata = synthetic(dir);
+  nodata.horizons = {kTerrain + "synthetic_nodata.tif"};
+  EXPECT_EQ(run_code(nodata), 6);
+  Options missing = synthetic(dir);
+  missing.base = kTerrain + "no_such_base.tif";
+  EXPECT_EQ(run_code(missing), 3);
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace fdr::pipeline
