@@ -10,8 +10,12 @@ SizeRatio size_ratio(const Delaunay3& dt, TetId t, const Spacing3& f) {
   return {s.centre, s.radius / f(s.centre)};
 }
 
-bool BadTetQueue::Worse::operator()(const BadTet& a, const BadTet& b) const {
-  // priority_queue puts the largest first: "a below b" when a's ratio is smaller.
+void BadTetQueue::push(const BadTet& b) {
+  heap_.push_back({b.ratio, b.tet, b.v});
+  std::push_heap(heap_.begin(), heap_.end(), Below{});
+}
+
+bool BadTetQueue::Below::operator()(const Entry& a, const Entry& b) const {
   if (a.ratio != b.ratio) return a.ratio < b.ratio;
   auto sa = a.v, sb = b.v;
   std::sort(sa.begin(), sa.end());
@@ -23,18 +27,19 @@ bool BadTetQueue::offer(const Delaunay3& dt, TetId t, const Spacing3& f) {
   if (!dt.alive(t) || dt.is_ghost(t)) return false;
   const SizeRatio s = size_ratio(dt, t, f);
   if (!is_bad(s, bound_)) return false;
-  heap_.push({s.ratio, t, dt.vertices(t), s.centre});
+  push({s.ratio, t, dt.vertices(t), s.centre});
   return true;
 }
 
 bool BadTetQueue::pop(const Delaunay3& dt, BadTet* out) {
   while (!heap_.empty()) {
-    const BadTet b = heap_.top();
-    heap_.pop();
-    if (dt.alive(b.tet) && dt.vertices(b.tet) == b.v) {
-      *out = b;
-      return true;
-    }
+    std::pop_heap(heap_.begin(), heap_.end(), Below{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
+    if (!dt.alive(e.tet) || dt.vertices(e.tet) != e.v) continue;
+    const auto& v = e.v;
+    *out = {e.ratio, e.tet, v, circumsphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3])).centre};
+    return true;
   }
   return false;
 }

@@ -117,10 +117,17 @@ void Refiner3::offer(TetId t) {
 
 void Refiner3::try_split_tet(const BadTet& b) {
   if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
-  std::vector<TetId> cavity;
-  conflict_region(dt_, b.centre, b.tet, cavity);
+  // The conflict region is dug once: what the circumcentre would encroach is read from it, and
+  // the insertion, when it goes ahead, is made from it.
+  const TetId h = dt_.locate(b.centre, b.tet);
+  if (h == kNoId || dt_.dig(b.centre, h).duplicate) {
+    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
+    return;
+  }
+  const std::vector<TetId>& cavity = dt_.cavity();
   const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
   if (find_encroached(b.centre, cavity, true)) {
+    dt_.abandon();
     ++stats_.rejected;
     if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
       // Only its shape is bad and the boundary it encroaches meets another facet at an acute
@@ -138,17 +145,16 @@ void Refiner3::try_split_tet(const BadTet& b) {
   }
   // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
   // outside the hull it would have crossed one.
-  const TetId h = dt_.locate(b.centre, b.tet);
-  if (h == kNoId || dt_.is_ghost(h) || region(h) == kOutsideRegion) {
-    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
+  if (dt_.is_ghost(h) || region(h) == kOutsideRegion) {
+    dt_.abandon();
+    ++stats_.rejected;  // as above
     return;
   }
-  std::vector<TetId> created;
   note_touched(cavity);
-  const Insertion ins = dt_.insert(b.centre, h, &created);
-  if (ins.duplicate) return;  // as above
+  created_.clear();
+  const Insertion ins = dt_.insert_dug(&created_);
   ++stats_.tet_splits;
-  after_insert(ins.vertex, created);
+  after_insert(ins.vertex, created_);
   conform();
 }
 
@@ -185,6 +191,7 @@ void Refiner3::refine() {
     BadTet b;
     while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
   }
+  bad_.reset();  // what it holds is stale or left for the shortfalls: its memory goes first
   enqueue_all();
   conform();
   flood_regions();

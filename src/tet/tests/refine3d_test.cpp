@@ -64,7 +64,10 @@ TEST(Refine3d, BadTetrahedraComeOutLargestRatioFirst) {
   std::size_t popped = 1;
   BadTet b;
   while (q.pop(dt, &b)) {
+    // Largest first; the centre is the tetrahedron's circumcentre again.
     EXPECT_LE(b.ratio, last);
+    EXPECT_EQ(b.centre, size_ratio(dt, b.tet, f).centre);
+    EXPECT_EQ(b.ratio, size_ratio(dt, b.tet, f).ratio);
     EXPECT_TRUE(dt.alive(b.tet) && !dt.is_ghost(b.tet));
     last = b.ratio;
     ++popped;
