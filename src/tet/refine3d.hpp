@@ -37,6 +37,10 @@ struct BadTet {
 // for besides R / f(c) <= B (which the paper's termination proof does not cover), a cheaper order
 // that splits the newest of nearly equal ratios first can run away. Entries
 // whose tetrahedron was destroyed meanwhile are dropped when they come up.
+// Kept cheap without changing the order: the ratios are cut into ranges on a log scale
+// (kBucketsPerOctave per factor of two), each range a heap of its own; the top range's heap is
+// popped first. Equal ratios share a range, so the order is the one heap's; the heap at work stays
+// small and in cache while the stale entries of lower ranges wait untouched.
 class BadTetQueue {
  public:
   explicit BadTetQueue(double bound) : bound_(bound) {}
@@ -47,8 +51,12 @@ class BadTetQueue {
   // The worst tetrahedron still in dt, or false when none is left. Its centre is
   // computed again from its vertices (the same value as when it was queued).
   bool pop(const Delaunay3& dt, BadTet* out);
-  std::size_t size() const { return heap_.size(); }
+  std::size_t size() const { return size_; }
   double bound() const { return bound_; }
+
+  static constexpr int kBucketsPerOctave = 64;
+  // The range of a ratio: non-decreasing in the ratio; NaN and infinity go to the top one.
+  static int bucket(double ratio);
 
  private:
   // A queued tetrahedron without its centre (half the bytes of a BadTet: the heap is the largest
@@ -62,7 +70,9 @@ class BadTetQueue {
     bool operator()(const Entry& a, const Entry& b) const;
   };
   double bound_;
-  std::vector<Entry> heap_;
+  std::vector<std::vector<Entry>> buckets_;  // each a heap by Below
+  int top_ = -1;                             // no range above it holds an entry
+  std::size_t size_ = 0;
 };
 
 }  // namespace fdr::tet

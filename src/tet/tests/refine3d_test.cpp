@@ -1,6 +1,7 @@
 // Tetrahedron geometry, the B-bad test and the queue of bad tetrahedra.
 #include <gtest/gtest.h>
 #include <cmath>
+#include <limits>
 #include <random>
 #include "tet/delaunay3.hpp"
 #include "tet/refine3d.hpp"
@@ -34,6 +35,21 @@ TEST(TetGeometry, RadiusEdgeOfTheRegularTetrahedron) {
   const Point3 a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
   EXPECT_NEAR(radius_edge_ratio(a, b, c, d), std::sqrt(6.0) / 4, 1e-15);
   EXPECT_NEAR(shortest_edge(a, b, c, d), std::sqrt(8.0), 1e-15);
+}
+
+TEST(Refine3d, RangesFollowTheRatioOnALogScale) {
+  int last = BadTetQueue::bucket(1e-30);
+  for (double r = 1e-30; r < 1e30; r *= 1.001) {
+    const int k = BadTetQueue::bucket(r);
+    EXPECT_GE(k, last) << r;
+    last = k;
+  }
+  // One range spans at most a factor 1 + 1/kBucketsPerOctave.
+  const double width = 1.0 + 1.0 / BadTetQueue::kBucketsPerOctave;
+  for (double r = 0.01; r < 100; r *= 1.003) EXPECT_LT(BadTetQueue::bucket(r), BadTetQueue::bucket(r * width * 1.0001)) << r;
+  EXPECT_EQ(BadTetQueue::bucket(std::nan("")), BadTetQueue::bucket(std::numeric_limits<double>::infinity()));
+  EXPECT_GT(BadTetQueue::bucket(std::nan("")), BadTetQueue::bucket(1e300));
+  EXPECT_EQ(BadTetQueue::bucket(0.0), 0);
 }
 
 TEST(Refine3d, BadTetrahedraComeOutLargestRatioFirst) {
