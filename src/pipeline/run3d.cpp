@@ -97,6 +97,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
   to.bound = opt.bound_given ? opt.bound : 0.0;
   to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + plc.points.size();
   to.progress = [&](double x) { report_progress(0.05 + 0.75 * std::clamp(x, 0.0, 1.0), "refine"); };
+  to.cell_fields = false;  // measure_tets computes them for the report and the VTU
   report_progress(0.05, "refine");
   TetResult tr = fdr::tetrahedralize(plc, *f, to);
   clock.lap("tetrahedralize");

@@ -16,6 +16,9 @@ struct TetOptions {
   double bound = 0;               // B; 0: the default, 1 as in 2D (radius-edge <= 2 is enforced apart)
   bool refine = true;             // false: the conforming Delaunay tetrahedralization only
   std::size_t max_vertices = 0;   // a cap on the vertices (0: automatic); reaching it is reported
+  // TetMesh::cell_fields (r_over_f, radius_edge, min_dihedral_deg) filled; a caller that measures
+  // every tetrahedron itself turns it off and spares computing and holding them twice.
+  bool cell_fields = true;
   std::function<void(double)> progress;  // fraction done in [0, 1], for the CLI's 0...10...20
 };
 
