@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "base/memory.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -189,7 +190,16 @@ void Refiner3::refine() {
     dt_.for_each_finite_tet([&](TetId t) { offer(t); });
     if (bad_->size() == 0) break;
     BadTet b;
-    while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
+    std::size_t purge_at = dt_.tet_slots() * 3 / 2;
+    while (!capped() && bad_->pop(dt_, &b)) {
+      try_split_tet(b);
+      if (dt_.tet_slots() < purge_at) continue;
+      // The per-tetrahedron arrays (slots, marks, regions) have grown by copying into larger
+      // buffers: the outgrown ones go back to the system now rather than stay resident (for
+      // seconds, by the allocator's decay) beside the arrays still growing.
+      release_free_memory();
+      purge_at = dt_.tet_slots() * 3 / 2;
+    }
   }
   bad_.reset();  // what it holds is stale or left for the shortfalls: its memory goes first
   enqueue_all();
