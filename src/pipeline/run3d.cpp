@@ -98,6 +98,7 @@ tet::TetOptions tet_options(const Options& opt, std::size_t plc_points) {
   to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + plc_points;
   to.remove_slivers = !opt.no_sliver_removal;
   if (opt.sliver_angle_deg) to.sliver_angle_deg = *opt.sliver_angle_deg;
+  to.cell_fields = false;  // quality::measure_tets computes them for the report and the VTU
   return to;
 }
 

@@ -76,6 +76,7 @@ BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
 
 Insertion Delaunay3::insert(Point3 p, TetId hint, std::vector<TetId>* created) {
   require_finite(p);
+  if (dug_live_) throw Error(ExitCode::kInternal, "Delaunay3::insert while a dug cavity waits");
   if (dim_ < 3) return insert_low_dim(p, created);
   const TetId t = locate(p, hint);
   if (!is_ghost(t))
@@ -221,16 +222,50 @@ bool Delaunay3::conflict(TetId t, Point3 p) const {
 }
 
 void Delaunay3::insert_vertex(VertexId v, TetId start, std::vector<TetId>* created) {
-  dig_cavity(start, v);
+  dig_cavity(start, pts_[v], v);
   fill_cavity(v, created);
 }
 
-void Delaunay3::dig_cavity(TetId start, VertexId v) {
+Insertion Delaunay3::dig(Point3 p, TetId located) {
+  require_finite(p);
+  if (dim_ < 3 || dug_live_ || located == kNoId || located >= cells_.size() || !alive(located))
+    throw Error(ExitCode::kInternal, "Delaunay3::dig: no tetrahedron to start from, or a cavity already dug");
+  if (!is_ghost(located))
+    for (const VertexId v : cells_[located].v)
+      if (pts_[v] == p) return {v, true};
+  // The new vertex's id is the next one, fixed now: the new tetrahedra are described with it.
+  dig_cavity(located, p, static_cast<VertexId>(pts_.size()));
+  dug_ = p;
+  dug_live_ = true;
+  return {};
+}
+
+Insertion Delaunay3::insert_dug(std::vector<TetId>* created) {
+  if (!dug_live_) throw Error(ExitCode::kInternal, "Delaunay3::insert_dug without a cavity dug");
+  dug_live_ = false;
+  const VertexId v = add_vertex(dug_);
+  fill_cavity(v, created);
+  return {v, false};
+}
+
+void Delaunay3::abandon() {
+  if (!dug_live_) return;
+  dug_live_ = false;
+  clear_cavity_marks();
+  cavity_.clear();
+  ball_.clear();
+}
+
+void Delaunay3::clear_cavity_marks() {
+  for (const TetId t : cavity_) in_cavity_[t] = 0;
+  for (const NewCell& nc : ball_) in_cavity_[nc.outside >> 2] = 0;
+}
+
+void Delaunay3::dig_cavity(TetId start, Point3 p, VertexId v) {
   // The cavity: the tetrahedra whose circumspheres strictly hold p, grown across faces from the
   // one that holds p (they form a connected, star-shaped set). Each face to a tetrahedron
   // outside it becomes a new tetrahedron with p. Marks: 1 in the cavity, 2 tested and outside
   // (a tetrahedron next to several cavity ones is tested once).
-  const Point3 p = pts_[v];
   cavity_.clear();
   ball_.clear();
   in_cavity_[start] = 1;
@@ -281,11 +316,9 @@ TetId Delaunay3::new_slot() {
 void Delaunay3::fill_cavity(VertexId v, std::vector<TetId>* created) {
   ball_ids_.clear();
   std::size_t reused = 0;
-  for (const TetId t : cavity_) {
-    in_cavity_[t] = 0;
+  clear_cavity_marks();
+  for (const TetId t : cavity_)
     if (!is_ghost(t)) --finite_;
-  }
-  for (const NewCell& nc : ball_) in_cavity_[nc.outside >> 2] = 0;
   for (const NewCell& nc : ball_) {
     const TetId id = reused < cavity_.size() ? cavity_[reused++] : new_slot();
     Cell& c = cells_[id];

@@ -52,6 +52,16 @@ class Delaunay3 {
   // four points span 3D, points are only kept (dimension() < 3) and no tetrahedron exists.
   Insertion insert(Point3 p, TetId hint = kNoId, std::vector<TetId>* created = nullptr);
 
+  // Insertion in two steps, for a caller that inspects the conflict region before it decides:
+  // dig(p, located) finds the tetrahedra that inserting p would destroy (cavity(); `located` is
+  // locate(p)'s answer), changing nothing a query sees; then insert_dug() inserts p from them,
+  // or abandon() forgets them. Nothing else may change the structure in between. When p repeats
+  // a vertex of `located`, dig returns that vertex as a duplicate and digs nothing.
+  Insertion dig(Point3 p, TetId located);
+  const std::vector<TetId>& cavity() const { return cavity_; }
+  Insertion insert_dug(std::vector<TetId>* created = nullptr);
+  void abandon();
+
   // A tetrahedron whose closure holds p, or a ghost whose hull face p lies strictly beyond;
   // kNoId while dimension() < 3. A visibility walk from `hint` (kNoId: the last tetrahedron made).
   TetId locate(Point3 p, TetId hint = kNoId) const;
@@ -107,7 +117,8 @@ class Delaunay3 {
   TetId scan(Point3 p) const;
   void require_finite(Point3 p) const;
   bool conflict(TetId t, Point3 p) const;
-  void dig_cavity(TetId start, VertexId v);
+  void dig_cavity(TetId start, Point3 p, VertexId v);
+  void clear_cavity_marks();
   void fill_cavity(VertexId v, std::vector<TetId>* created);
   void link_new_faces(std::span<const TetId> ids);
   void link_by_hash(std::span<const TetId> ids);
@@ -129,6 +140,8 @@ class Delaunay3 {
   std::array<VertexId, 3> span_{kNoId, kNoId, kNoId};
   // Scratch of one insertion, kept to reuse its memory.
   std::vector<TetId> cavity_;
+  Point3 dug_{};
+  bool dug_live_ = false;  // between dig and insert_dug or abandon
   std::vector<NewCell> ball_;
   std::vector<TetId> ball_ids_;
   struct EdgeSlot {

@@ -1,5 +1,7 @@
 #include "tet/refine3d.hpp"
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include "tet/tet_geometry.hpp"
 
 namespace fdr::tet {
@@ -10,8 +12,31 @@ SizeRatio size_ratio(const Delaunay3& dt, TetId t, const Spacing3& f) {
   return {s.centre, s.radius / f(s.centre)};
 }
 
-bool BadTetQueue::Worse::operator()(const BadTet& a, const BadTet& b) const {
-  // priority_queue puts the largest first: "a below b" when a's ratio is smaller.
+int BadTetQueue::bucket(double ratio) {
+  // ratio = m 2^e with m in [0.5, 1): the octave from e, the range inside it from m.
+  constexpr int kMinExp = -64, kMaxExp = 64;
+  constexpr int kTop = (kMaxExp - kMinExp + 1) * kBucketsPerOctave;
+  if (!(ratio < std::numeric_limits<double>::infinity())) return kTop;
+  if (!(ratio > 0)) return 0;
+  int e = 0;
+  const double m = std::frexp(ratio, &e);
+  if (e < kMinExp) return 0;
+  if (e > kMaxExp) return kTop - 1;
+  const int sub = std::min(kBucketsPerOctave - 1, static_cast<int>((m - 0.5) * 2 * kBucketsPerOctave));
+  return (e - kMinExp) * kBucketsPerOctave + sub;
+}
+
+void BadTetQueue::push(const BadTet& b) {
+  const int k = bucket(b.ratio);
+  if (static_cast<std::size_t>(k) >= buckets_.size()) buckets_.resize(static_cast<std::size_t>(k) + 1);
+  std::vector<Entry>& heap = buckets_[static_cast<std::size_t>(k)];
+  heap.push_back({b.ratio, b.tet, b.v});
+  std::push_heap(heap.begin(), heap.end(), Below{});
+  top_ = std::max(top_, k);
+  ++size_;
+}
+
+bool BadTetQueue::Below::operator()(const Entry& a, const Entry& b) const {
   if (a.ratio != b.ratio) return a.ratio < b.ratio;
   auto sa = a.v, sb = b.v;
   std::sort(sa.begin(), sa.end());
@@ -23,18 +48,24 @@ bool BadTetQueue::offer(const Delaunay3& dt, TetId t, const Spacing3& f) {
   if (!dt.alive(t) || dt.is_ghost(t)) return false;
   const SizeRatio s = size_ratio(dt, t, f);
   if (!is_bad(s, bound_)) return false;
-  heap_.push({s.ratio, t, dt.vertices(t), s.centre});
+  push({s.ratio, t, dt.vertices(t), s.centre});
   return true;
 }
 
 bool BadTetQueue::pop(const Delaunay3& dt, BadTet* out) {
-  while (!heap_.empty()) {
-    const BadTet b = heap_.top();
-    heap_.pop();
-    if (dt.alive(b.tet) && dt.vertices(b.tet) == b.v) {
-      *out = b;
+  for (; top_ >= 0; --top_) {
+    std::vector<Entry>& heap = buckets_[static_cast<std::size_t>(top_)];
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), Below{});
+      const Entry e = heap.back();
+      heap.pop_back();
+      --size_;
+      if (!dt.alive(e.tet) || dt.vertices(e.tet) != e.v) continue;
+      const auto& v = e.v;
+      *out = {e.ratio, e.tet, v, circumsphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3])).centre};
       return true;
     }
+    std::vector<Entry>().swap(heap);  // an emptied range gives its memory back
   }
   return false;
 }

@@ -4,7 +4,6 @@
 #pragma once
 #include <array>
 #include <functional>
-#include <queue>
 #include <vector>
 #include "base/point3.hpp"
 #include "tet/delaunay3.hpp"
@@ -34,26 +33,46 @@ struct BadTet {
 };
 
 // The B-bad tetrahedra by decreasing R / f(c), ties by their vertex ids, so that the order does not
-// depend on where tetrahedra are stored. Entries whose tetrahedron was destroyed meanwhile are
-// dropped when they come up.
+// depend on where tetrahedra are stored. The order is exact: with the radius-edge bound of 2 asked
+// for besides R / f(c) <= B (which the paper's termination proof does not cover), a cheaper order
+// that splits the newest of nearly equal ratios first can run away. Entries
+// whose tetrahedron was destroyed meanwhile are dropped when they come up.
+// Kept cheap without changing the order: the ratios are cut into ranges on a log scale
+// (kBucketsPerOctave per factor of two), each range a heap of its own; the top range's heap is
+// popped first. Equal ratios share a range, so the order is the one heap's; the heap at work stays
+// small and in cache while the stale entries of lower ranges wait untouched.
 class BadTetQueue {
  public:
   explicit BadTetQueue(double bound) : bound_(bound) {}
   // Queues t when it is finite and B-bad; returns whether it was queued.
   bool offer(const Delaunay3& dt, TetId t, const Spacing3& f);
   // Queues an entry measured by the caller (e.g. bad by another test than R / f(c)).
-  void push(const BadTet& b) { heap_.push(b); }
-  // The worst tetrahedron still in dt, or false when none is left.
+  void push(const BadTet& b);
+  // The worst tetrahedron still in dt, or false when none is left. Its centre is
+  // computed again from its vertices (the same value as when it was queued).
   bool pop(const Delaunay3& dt, BadTet* out);
-  std::size_t size() const { return heap_.size(); }
+  std::size_t size() const { return size_; }
   double bound() const { return bound_; }
 
+  static constexpr int kBucketsPerOctave = 64;
+  // The range of a ratio: non-decreasing in the ratio; NaN and infinity go to the top one.
+  static int bucket(double ratio);
+
  private:
-  struct Worse {
-    bool operator()(const BadTet& a, const BadTet& b) const;
+  // A queued tetrahedron without its centre (half the bytes of a BadTet: the heap is the largest
+  // array of the refinement after the tetrahedra).
+  struct Entry {
+    double ratio;
+    TetId tet;
+    std::array<VertexId, 4> v;
+  };
+  struct Below {
+    bool operator()(const Entry& a, const Entry& b) const;
   };
   double bound_;
-  std::priority_queue<BadTet, std::vector<BadTet>, Worse> heap_;
+  std::vector<std::vector<Entry>> buckets_;  // each a heap by Below
+  int top_ = -1;                             // no range above it holds an entry
+  std::size_t size_ = 0;
 };
 
 }  // namespace fdr::tet

@@ -131,6 +131,7 @@ class Refiner3 {
   std::vector<std::int32_t> region_;        // per tetrahedron slot
   std::unique_ptr<BadTetQueue> bad_;
   std::unique_ptr<SliverState> slivers_;  // during the sliver phase only: offer() queues slivers too
+  std::vector<TetId> created_;  // the tetrahedra the last rule-3 split made
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
   std::vector<std::array<VertexId, 2>> touched_segs_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "base/memory.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -111,6 +112,9 @@ bool Refiner3::tet_bad(TetId t, BadTet* out) const {
 }
 
 void Refiner3::offer(TetId t) {
+  // Without a queue (after rule 3, in the closing boundary pass) a bad tetrahedron is left to
+  // list_shortfalls.
+  if (!bad_) return;
   BadTet b;
   if (tet_bad(t, &b)) bad_->push(b);
   else if (slivers_) offer_sliver(t);
@@ -118,10 +122,17 @@ void Refiner3::offer(TetId t) {
 
 void Refiner3::try_split_tet(const BadTet& b) {
   if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
-  std::vector<TetId> cavity;
-  conflict_region(dt_, b.centre, b.tet, cavity);
+  // The conflict region is dug once: what the circumcentre would encroach is read from it, and
+  // the insertion, when it goes ahead, is made from it.
+  const TetId h = dt_.locate(b.centre, b.tet);
+  if (h == kNoId || dt_.dig(b.centre, h).duplicate) {
+    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
+    return;
+  }
+  const std::vector<TetId>& cavity = dt_.cavity();
   const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
   if (find_encroached(b.centre, cavity, true)) {
+    dt_.abandon();
     ++stats_.rejected;
     if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
       // Only its shape is bad and the boundary it encroaches meets another facet at an acute
@@ -139,17 +150,16 @@ void Refiner3::try_split_tet(const BadTet& b) {
   }
   // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
   // outside the hull it would have crossed one.
-  const TetId h = dt_.locate(b.centre, b.tet);
-  if (h == kNoId || dt_.is_ghost(h) || region(h) == kOutsideRegion) {
-    ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
+  if (dt_.is_ghost(h) || region(h) == kOutsideRegion) {
+    dt_.abandon();
+    ++stats_.rejected;  // as above
     return;
   }
-  std::vector<TetId> created;
   note_touched(cavity);
-  const Insertion ins = dt_.insert(b.centre, h, &created);
-  if (ins.duplicate) return;  // as above
+  created_.clear();
+  const Insertion ins = dt_.insert_dug(&created_);
   ++stats_.tet_splits;
-  after_insert(ins.vertex, created);
+  after_insert(ins.vertex, created_);
   conform();
 }
 
@@ -184,9 +194,19 @@ void Refiner3::refine() {
     dt_.for_each_finite_tet([&](TetId t) { offer(t); });
     if (bad_->size() == 0) break;
     BadTet b;
-    while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
+    std::size_t purge_at = dt_.tet_slots() * 3 / 2;
+    while (!capped() && bad_->pop(dt_, &b)) {
+      try_split_tet(b);
+      if (dt_.tet_slots() < purge_at) continue;
+      // The per-tetrahedron arrays (slots, marks, regions) have grown by copying into larger
+      // buffers: the outgrown ones go back to the system now rather than stay resident (for
+      // seconds, by the allocator's decay) beside the arrays still growing.
+      release_free_memory();
+      purge_at = dt_.tet_slots() * 3 / 2;
+    }
   }
   if (options_.remove_slivers && options_.sliver_angle_deg > 0 && !stats_.capped) remove_slivers();
+  bad_.reset();  // what it holds is stale or left for the shortfalls: its memory goes first
   enqueue_all();
   conform();
   flood_regions();

@@ -26,10 +26,16 @@ double min_dihedral_deg(Point3 a, Point3 b, Point3 c, Point3 d) {
   return best;
 }
 
-TetMesh make_tet_mesh(const Refiner3& r) {
+TetMesh make_tet_mesh(const Refiner3& r, bool cell_fields) {
   const Delaunay3& dt = r.dt();
   const Boundary& bd = r.boundary();
   TetMesh m;
+  // Room for every finite tetrahedron and vertex at once: grown by doubling, the arrays would
+  // hold up to twice their size while the tetrahedralization is still alive beside them.
+  const std::size_t most = dt.num_finite_tets();
+  m.points.reserve(dt.num_vertices());
+  m.tets.reserve(most);
+  m.tet_material.reserve(most);
   std::vector<VertexId> out_id(dt.num_vertices(), kNoId);
   auto use = [&](VertexId v) {
     if (out_id[v] == kNoId) {
@@ -39,12 +45,18 @@ TetMesh make_tet_mesh(const Refiner3& r) {
     return out_id[v];
   };
   std::vector<double> rf, re, md;
+  if (cell_fields) {
+    rf.reserve(most);
+    re.reserve(most);
+    md.reserve(most);
+  }
   dt.for_each_finite_tet([&](TetId t) {
     if (r.region(t) == kOutsideRegion) return;
     const auto& v = dt.vertices(t);
-    const Point3 a = dt.point(v[0]), b = dt.point(v[1]), c = dt.point(v[2]), d = dt.point(v[3]);
     m.tets.push_back({use(v[0]), use(v[1]), use(v[2]), use(v[3])});
     m.tet_material.push_back(r.material(t));
+    if (!cell_fields) return;
+    const Point3 a = dt.point(v[0]), b = dt.point(v[1]), c = dt.point(v[2]), d = dt.point(v[3]);
     const Sphere s = circumsphere(a, b, c, d);
     rf.push_back(s.radius / r.spacing()(s.centre));
     re.push_back(s.radius / shortest_edge(a, b, c, d));
@@ -66,9 +78,11 @@ TetMesh make_tet_mesh(const Refiner3& r) {
     m.edges.push_back({use(e[0]), use(e[1])});
     m.edge_marker.push_back(mk);
   }
-  m.cell_fields.push_back({"r_over_f", std::move(rf)});
-  m.cell_fields.push_back({"radius_edge", std::move(re)});
-  m.cell_fields.push_back({"min_dihedral_deg", std::move(md)});
+  if (cell_fields) {
+    m.cell_fields.push_back({"r_over_f", std::move(rf)});
+    m.cell_fields.push_back({"radius_edge", std::move(re)});
+    m.cell_fields.push_back({"min_dihedral_deg", std::move(md)});
+  }
   m.marker_names = r.plc().marker_names;
   m.material_names = r.plc().material_names;
   return m;

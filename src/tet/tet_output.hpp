@@ -11,8 +11,8 @@ namespace fdr::tet {
 double min_dihedral_deg(Point3 a, Point3 b, Point3 c, Point3 d);
 
 // Tetrahedra outside the domain are left out, and vertices no tetrahedron uses; faces carry their
-// facet's marker, edges the marker of their first facet (0 for a free segment). Cell fields:
-// r_over_f, radius_edge, min_dihedral_deg.
-TetMesh make_tet_mesh(const Refiner3& r);
+// facet's marker, edges the marker of their first facet (0 for a free segment). Cell fields
+// (when asked for): r_over_f, radius_edge, min_dihedral_deg.
+TetMesh make_tet_mesh(const Refiner3& r, bool cell_fields = true);
 
 }  // namespace fdr::tet

@@ -20,7 +20,7 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
     throw Error(ExitCode::kInternal, plc.source + ": the 3D refinement stopped before every subsegment and "
                                      "subfacet was recovered (boundary splits stalled); nothing written");
   TetResult out;
-  out.mesh = make_tet_mesh(r);
+  out.mesh = make_tet_mesh(r, options.cell_fields);
   // Facets that enclose a volume and no tetrahedron inside: a boundary subfacet was lost and the
   // outside flooded in.
   if (!plc.facets.empty() && out.mesh.tets.empty() && !r.stats().capped)

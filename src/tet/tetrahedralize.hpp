@@ -21,6 +21,9 @@ struct TetOptions {
   // <= 2 and the conforming Delaunay property are kept.
   bool remove_slivers = true;
   double sliver_angle_deg = 15.0;
+  // TetMesh::cell_fields (r_over_f, radius_edge, min_dihedral_deg) filled; a caller that measures
+  // every tetrahedron itself turns it off and spares computing and holding them twice.
+  bool cell_fields = true;
   std::function<void(double)> progress;  // fraction done in [0, 1], for the CLI's 0...10...20
 };
 

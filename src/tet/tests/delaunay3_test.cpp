@@ -341,3 +341,52 @@ TEST(Delaunay3, NonFinitePointsAreRefusedBeforeAnyChange) {
   EXPECT_EQ(d.num_finite_tets(), before);
   expect_valid_delaunay(d);
 }
+
+TEST(Delaunay3, DigThenInsertEqualsInsertAndAbandonChangesNothing) {
+  const auto pts = random_cube(3000, 9);
+  Delaunay3 a, b;
+  a.insert_all(pts);
+  b.insert_all(pts);
+  const auto probes = random_cube(120, 10);
+  std::vector<TetId> ca, cb;
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    const Point3 p = probes[k];
+    const TetId h = b.locate(p);
+    ASSERT_FALSE(b.dig(p, h).duplicate);
+    // The cavity is every tetrahedron whose circumsphere strictly holds p (p lies inside the cube).
+    std::set<TetId> dug(b.cavity().begin(), b.cavity().end());
+    std::size_t conflicting = 0;
+    b.for_each_finite_tet([&](TetId t) {
+      const auto& v = b.vertices(t);
+      const bool in = predicates::insphere(b.point(v[0]), b.point(v[1]), b.point(v[2]), b.point(v[3]), p) > 0;
+      conflicting += in;
+      if (in) {
+        EXPECT_TRUE(dug.count(t)) << "probe " << k << " tet " << t;
+      }
+    });
+    EXPECT_GE(dug.size(), conflicting);
+    if (k % 2 == 0) {  // abandoned: nothing changed, and the next dig or insert works as usual
+      b.abandon();
+      ASSERT_EQ(a.to_mesh().tets, b.to_mesh().tets);
+      continue;
+    }
+    ca.clear();
+    cb.clear();
+    const Insertion ra = a.insert(p, kNoId, &ca);
+    const Insertion rb = b.insert_dug(&cb);
+    EXPECT_EQ(ra.vertex, rb.vertex);
+    EXPECT_EQ(ca, cb);
+  }
+  std::string why;
+  EXPECT_TRUE(b.check_valid(&why)) << why;
+  EXPECT_TRUE(b.is_delaunay(&why)) << why;
+  EXPECT_EQ(a.to_mesh().tets, b.to_mesh().tets);
+  // A point that repeats a vertex is reported, nothing dug; insert() refuses while a cavity waits.
+  const Point3 q = b.point(7);
+  EXPECT_EQ(b.dig(q, b.locate(q)).vertex, 7u);
+  const Point3 r = probes[0];
+  ASSERT_FALSE(b.dig(r, b.locate(r)).duplicate);
+  EXPECT_THROW(b.insert(r), Error);
+  b.abandon();
+  EXPECT_FALSE(b.insert(r).duplicate);
+}

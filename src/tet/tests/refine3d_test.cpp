@@ -1,6 +1,7 @@
 // Tetrahedron geometry, the B-bad test and the queue of bad tetrahedra.
 #include <gtest/gtest.h>
 #include <cmath>
+#include <limits>
 #include <random>
 #include "tet/delaunay3.hpp"
 #include "tet/refine3d.hpp"
@@ -36,6 +37,21 @@ TEST(TetGeometry, RadiusEdgeOfTheRegularTetrahedron) {
   EXPECT_NEAR(shortest_edge(a, b, c, d), std::sqrt(8.0), 1e-15);
 }
 
+TEST(Refine3d, RangesFollowTheRatioOnALogScale) {
+  int last = BadTetQueue::bucket(1e-30);
+  for (double r = 1e-30; r < 1e30; r *= 1.001) {
+    const int k = BadTetQueue::bucket(r);
+    EXPECT_GE(k, last) << r;
+    last = k;
+  }
+  // One range spans at most a factor 1 + 1/kBucketsPerOctave.
+  const double width = 1.0 + 1.0 / BadTetQueue::kBucketsPerOctave;
+  for (double r = 0.01; r < 100; r *= 1.003) EXPECT_LT(BadTetQueue::bucket(r), BadTetQueue::bucket(r * width * 1.0001)) << r;
+  EXPECT_EQ(BadTetQueue::bucket(std::nan("")), BadTetQueue::bucket(std::numeric_limits<double>::infinity()));
+  EXPECT_GT(BadTetQueue::bucket(std::nan("")), BadTetQueue::bucket(1e300));
+  EXPECT_EQ(BadTetQueue::bucket(0.0), 0);
+}
+
 TEST(Refine3d, BadTetrahedraComeOutLargestRatioFirst) {
   std::mt19937_64 rng(22);
   std::uniform_real_distribution<double> u(0, 1);
@@ -64,7 +80,10 @@ TEST(Refine3d, BadTetrahedraComeOutLargestRatioFirst) {
   std::size_t popped = 1;
   BadTet b;
   while (q.pop(dt, &b)) {
+    // Largest first; the centre is the tetrahedron's circumcentre again.
     EXPECT_LE(b.ratio, last);
+    EXPECT_EQ(b.centre, size_ratio(dt, b.tet, f).centre);
+    EXPECT_EQ(b.ratio, size_ratio(dt, b.tet, f).ratio);
     EXPECT_TRUE(dt.alive(b.tet) && !dt.is_ghost(b.tet));
     last = b.ratio;
     ++popped;

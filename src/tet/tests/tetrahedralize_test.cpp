@@ -188,10 +188,17 @@ TEST(TetRefine, UnitCubeConstantSpacing) {
   double vol = 0;
   for (std::size_t t = 0; t < res.mesh.tets.size(); ++t) vol += tet_volume(res.mesh, t);
   EXPECT_NEAR(vol, 1.0, 1e-12);
-  // The same run twice gives the same mesh.
+  // The same run twice gives the same mesh; without the cell fields, the same mesh without them.
   const TetResult again = tetrahedralize(plc, f, {});
   EXPECT_EQ(again.mesh.tets, res.mesh.tets);
   EXPECT_EQ(again.mesh.points, res.mesh.points);
+  EXPECT_EQ(res.mesh.cell_fields.size(), 3u);
+  const TetResult bare = tetrahedralize(plc, f, {.cell_fields = false});
+  EXPECT_EQ(bare.mesh.tets, res.mesh.tets);
+  EXPECT_EQ(bare.mesh.points, res.mesh.points);
+  EXPECT_EQ(bare.mesh.tet_material, res.mesh.tet_material);
+  EXPECT_EQ(bare.mesh.faces, res.mesh.faces);
+  EXPECT_TRUE(bare.mesh.cell_fields.empty());
 }
 
 TEST(TetRefine, BoxWithCavity) {
