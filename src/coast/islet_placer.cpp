@@ -177,7 +177,7 @@ bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape,
     const double cl = i == 0 ? tri_cl : shift_cl;
     if ((i == 0 && r > tri_r) || has_room(L, own, at[i], cl, r)) {
       tri = triangle(at[i], r, turns_by_fit(shape, at[i], r).front());
-    } else if (has_room(L, own, at[i], cl, 0.5 * r)) {
+    } else if (o.islet_clearance > 0 && has_room(L, own, at[i], cl, 0.5 * r)) {
       for (const double turn : turns_by_fit(shape, at[i], r)) {
         std::vector<Point2> t = triangle(at[i], r, turn);
         if (land_clear(L, own, t, cl)) {

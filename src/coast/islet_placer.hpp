@@ -53,10 +53,10 @@ struct IsletPlacer {
   // first of 24 points near it (8 directions at a third, two thirds and all of islet_shift) that
   // has room; added to `into` and reported (islet_simplified). At each point the triangle takes
   // the turn that fits the islet best among those that keep their clearance from all other land
-  // (tri_cl, shift_cl). Why the shifts and turns: most islets that were dropped lie within hmin
-  // of other land, and the coast the model saw moved by that distance; a triangle's corners
-  // reach twice as far from its centre as its sides, so a turned one fits where its circumcircle
-  // does not. False: no room.
+  // (tri_cl, shift_cl; without islet_clearance, only where its circumcircle keeps it). Why the
+  // shifts and turns: most islets that were dropped lie within hmin of other land, and the coast
+  // the model saw moved by that distance; a triangle's corners reach twice as far from its centre
+  // as its sides, so a turned one fits where its circumcircle does not. False: no room.
   bool place(const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a, const std::string& what,
              OGRMultiPolygon* into);
   // The convex polygon h keeps cl from the input's box, the placed triangles and the joined
