@@ -316,13 +316,9 @@ std::vector<const Homeless*> IsletStep::join_to_triangles(const std::vector<cons
 
 // Clusters of the islets left (single link: nearer than islet_side to each other; ledges, chains
 // of rocks): the convex hull of a cluster becomes one island when it is at least --min-island
-// and has room (islet_side / 2 from other land, placed triangles and joins), else one triangle
+// and has room (IsletPlacer::tri_cl from other land, placed triangles and joins), else one triangle
 // for the cluster where there is room; otherwise each becomes water.
 void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Box2& inbox) {
-  // Clusters of the islets left (single link: nearer than islet_side to each other; ledges,
-  // chains of rocks): the convex hull of a cluster becomes one island when it is at least
-  // --min-island and has room (islet_side / 2 from other land, placed triangles and joins),
-  // else one triangle for the cluster where there is room; otherwise each becomes water.
   const std::size_t nl = lost.size();
   std::vector<std::size_t> up(nl);
   for (std::size_t i = 0; i < nl; ++i) up[i] = i;
@@ -369,17 +365,11 @@ void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Bo
       const double ha = h.size() >= 3 ? signed_area(h) : 0;
       if (ha > 0 && ha - sum <= 1.5 * o.islet_side * o.islet_side * static_cast<double>(ms.size()) &&
           P.hull_clear(land, h, inbox, P.tri_cl, true)) {
-        OGRLinearRing jr;
-        for (Point2 q : h) jr.addPoint(q.x, q.y);
-        jr.closeRings();
         const std::string what = std::to_string(ms.size()) + " islets of " + num(sum) + " m^2 in all, each nearer than " +
                                  num(dmax) + " m to the next";
         bool kept = false;
         if (!(ha < o.min_island_area)) {
-          auto jp = std::make_unique<OGRPolygon>();
-          jp->addRing(&jr);
-          joins->addGeometryDirectly(jp.release());
-          P.add_joined(h);
+          add_join(h);
           ++res.islets_joined;
           res.islets_joined_area += ha - sum;
           res.repairs.push_back({"islet_joined", lost[ms[0]]->inside, ha - sum,
@@ -392,7 +382,8 @@ void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Bo
           Point2 cen{0, 0};
           for (Point2 q : h) cen = cen + q;
           cen = (1.0 / static_cast<double>(h.size())) * cen;
-          kept = P.place(land, -1, jr, cen, sum, what + " (their convex hull: " + num(ha) + " m^2)", P.tris.get());
+          kept = P.place(land, -1, closed_ring(h), cen, sum, what + " (their convex hull: " + num(ha) + " m^2)",
+                         P.tris.get());
         }
         if (kept) continue;
       }

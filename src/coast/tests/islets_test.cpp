@@ -111,6 +111,8 @@ TEST(CoastIsletClusters, FiveIsletsThirtyMetresApartBecomeOneTriangle) {
   for (int k = 0; k < 5; ++k) islets.push_back(square(9000 + 90 * k, 10000, 60));
   const Result r = generalise(sea_with(islets), defaults());
   EXPECT_EQ(r.islets_replaced, 1u) << "one triangle for the cluster";
+  EXPECT_EQ(count(r, "islet_simplified"), 1u);
+  EXPECT_EQ(count(r, "island_removed"), 0u);
   EXPECT_EQ(r.islands_removed, 0u);
   EXPECT_EQ(holes(r), 1u);
   EXPECT_EQ(r.narrow_gaps, 0u);
@@ -124,6 +126,7 @@ TEST(CoastIsletClusters, LargeClusterIsKeptAsItsHull) {
     for (int row = 0; row < 2; ++row) islets.push_back(square(9000 + 350 * k, 10000 + 350 * row, 250));
   const Result r = generalise(sea_with(islets), defaults());
   EXPECT_EQ(r.islets_joined, 1u);
+  EXPECT_EQ(count(r, "islet_joined"), 1u);
   EXPECT_EQ(r.islets_replaced, 0u);
   EXPECT_EQ(r.islands_removed, 0u);
   ASSERT_EQ(holes(r), 1u);
