@@ -74,4 +74,11 @@ double convex_distance(Point2 a, Point2 b, const std::vector<Point2>& h) {
   return d;
 }
 
+double convex_gap(const std::vector<Point2>& a, const std::vector<Point2>& b) {
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < a.size() && d > 0; ++i) d = std::min(d, convex_distance(a[i], a[(i + 1) % a.size()], b));
+  for (std::size_t i = 0; i < b.size() && d > 0; ++i) d = std::min(d, convex_distance(b[i], b[(i + 1) % b.size()], a));
+  return d;
+}
+
 }  // namespace fdr::coast

@@ -29,6 +29,9 @@ bool apart(const Box2& a, const Box2& b, double r);
 bool inside_convex(Point2 p, const std::vector<Point2>& h);
 // Distance from segment ab to the convex polygon h (0 when they meet).
 double convex_distance(Point2 a, Point2 b, const std::vector<Point2>& h);
+// Distance between the convex polygons a and b (counter-clockwise; 0 when they meet or one holds
+// the other).
+double convex_gap(const std::vector<Point2>& a, const std::vector<Point2>& b);
 
 // Disks (centre, radius) by the cells of a uniform grid their boxes cover: which of them may
 // meet a box. For the islets' triangles (thousands, each placement testing every one before).

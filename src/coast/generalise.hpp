@@ -44,6 +44,10 @@ struct Options {
   double islet_shift = 0;      // no room at its centroid: the triangle may move up to this far from it
   bool join_islets = false;    // an islet with no room for its triangle is joined to land nearer
                                // than islet_side (convex hull with that coast) instead of removed
+  double islet_clearance = 0;  // every islet triangle, join and cluster hull keeps this from all
+                               // other land, and islets nearer than this to each other are
+                               // handled as one cluster (islet_clusters.hpp) (m); 0: the rules
+                               // without it (islet_placer.hpp)
   double connect_area = 0;     // a water body at least this large (m^2) cut off by a closed
                                // connection gets that connection widened instead of being
                                // removed (cut_off.hpp); 0: every cut-off body is removed

@@ -10,8 +10,33 @@
 namespace fdr::coast {
 
 IsletPlacer::IsletPlacer(const Options& options, Result& report)
-    : o(options), res(report), tri_r(options.islet_side / std::sqrt(3.0)), placed_grid(2 * options.islet_side),
-      tris(std::make_unique<OGRMultiPolygon>()) {}
+    : o(options), res(report), tri_r(options.islet_side / std::sqrt(3.0)),
+      tri_cl(options.islet_clearance > 0 ? options.islet_clearance : 0.5 * options.islet_side),
+      shift_cl(options.islet_clearance > 0 ? options.islet_clearance : 0.55 * options.islet_side),
+      join_cl(options.islet_clearance > 0 ? options.islet_clearance : 0.25 * options.islet_side),
+      placed_grid(2 * options.islet_side), joined_grid(2 * options.islet_side), tris(std::make_unique<OGRMultiPolygon>()) {}
+
+std::size_t IsletPlacer::add_placed(std::vector<Point2> poly, int ring) {
+  Point2 c{0, 0};
+  for (Point2 q : poly) c = c + q;
+  c = (1.0 / static_cast<double>(poly.size())) * c;
+  double r = 0;
+  for (Point2 q : poly) r = std::max(r, dist(q, c));
+  const std::size_t k = placed.size();
+  placed_grid.add(static_cast<std::uint32_t>(k), c, r);
+  placed.push_back(c);
+  placed_r.push_back(r);
+  placed_ring.push_back(ring);
+  placed_poly.push_back(std::move(poly));
+  return k;
+}
+
+void IsletPlacer::add_joined(std::vector<Point2> hull) {
+  const Box2 b = box_of(hull);
+  joined_grid.add(static_cast<std::uint32_t>(joined.size()), 0.5 * (b.lo + b.hi), 0.5 * dist(b.lo, b.hi));
+  joined_box.push_back(b);
+  joined.push_back(std::move(hull));
+}
 
 void IsletPlacer::build_land(const std::vector<std::unique_ptr<OGRPolygon>>& ps, LandIndex& L) const {
   Box2 box;
@@ -33,15 +58,24 @@ void IsletPlacer::build_land(const std::vector<std::unique_ptr<OGRPolygon>>& ps,
   for (std::size_t k = 0; k < L.seg.size(); ++k) L.grid->add_segment(static_cast<Index>(k), L.seg[k].first, L.seg[k].second);
 }
 
-bool IsletPlacer::has_room(const LandIndex& L, int own, Point2 c, double clf, double r) {
+bool IsletPlacer::has_room(const LandIndex& L, int own, Point2 c, double cl, double r) {
   if (r == 0) r = tri_r;
-  const double lim = r + clf * o.islet_side;
+  const double lim = r + cl;
   placed_grid.near({{c.x - lim, c.y - lim}, {c.x + lim, c.y + lim}}, &cand);
+  auto near_convex = [&](const std::vector<Point2>& g) {  // g within lim of c
+    if (inside_convex(c, g)) return true;
+    for (std::size_t i = 0; i < g.size(); ++i)
+      if (dist_to_segment(c, g[i], g[(i + 1) % g.size()]) < lim) return true;
+    return false;
+  };
   for (const std::uint32_t k : cand)
-    if (dist(placed[k], c) < lim + placed_r[k]) return false;
+    if (!placed_poly[k].empty() && dist(placed[k], c) < lim + placed_r[k] && near_convex(placed_poly[k])) return false;
   Box2 qb;
   qb.add({c.x - lim, c.y - lim});
   qb.add({c.x + lim, c.y + lim});
+  joined_grid.near(qb, &cand);
+  for (const std::uint32_t k : cand)
+    if (!beyond(c, lim, joined_box[k]) && near_convex(joined[k])) return false;
   L.grid->segments_near(qb, &near);
   for (Index k : near)
     if (L.ring[k] != own && (L.gone.empty() || !L.gone[L.ring[k]]) &&
@@ -50,10 +84,71 @@ bool IsletPlacer::has_room(const LandIndex& L, int own, Point2 c, double clf, do
   return true;
 }
 
+bool IsletPlacer::land_clear(const LandIndex& L, int own, const std::vector<Point2>& poly, double cl) {
+  const Box2 hb = box_of(poly);
+  const Box2 qb{{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}};
+  if (L.grid) {
+    L.grid->segments_near(qb, &near);
+    for (Index j : near) {
+      const int r = L.ring[j];
+      if (r == own || (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)])) continue;
+      if (convex_distance(L.seg[j].first, L.seg[j].second, poly) < cl) return false;
+    }
+  }
+  placed_grid.near(qb, &cand);
+  for (const std::size_t t : cand) {
+    if (placed_poly[t].empty() || beyond(placed[t], placed_r[t] + cl, hb)) continue;
+    if (convex_gap(placed_poly[t], poly) < cl) return false;
+  }
+  joined_grid.near(qb, &cand);
+  for (const std::uint32_t k : cand) {
+    if (apart(joined_box[k], hb, cl)) continue;
+    if (convex_gap(joined[k], poly) < cl) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// Corner k (clockwise) of the equilateral triangle of circumradius r around c whose corner 0
+// points at angle t0.
+Point2 corner(Point2 c, double r, double t0, int k) {
+  const double t = t0 - 2.0943951023931957 * k;
+  return Point2{c.x + r * std::cos(t), c.y + r * std::sin(t)};
+}
+std::vector<Point2> triangle(Point2 c, double r, double t0) {  // counter-clockwise
+  return {corner(c, r, t0, 0), corner(c, r, t0, 2), corner(c, r, t0, 1)};
+}
+
+// The 40 turns 3 degrees apart (from apex up) of a triangle of circumradius r around c, ordered
+// by how far the islet's farthest vertex lies from the triangle's sides (the first of equals
+// first). Why: with the apex always up, the ends of an islet longer than the triangle stuck out
+// by up to 0.6 islet_side, which the model sees as coast moved by that much.
+std::vector<double> turns_by_fit(const OGRLinearRing& shape, Point2 c, double r) {
+  const int ns = shape.getNumPoints();  // with the closing repeat
+  std::vector<std::pair<double, int>> fit;
+  for (int k = 0; k < 40; ++k) {
+    const double t0 = 1.5707963267948966 + k * (2.0943951023931957 / 40);
+    const Point2 p0 = corner(c, r, t0, 0), p1 = corner(c, r, t0, 1), p2 = corner(c, r, t0, 2);
+    double worst = 0;
+    for (int i = 0; i + 1 < ns; ++i) {
+      const Point2 v{shape.getX(i), shape.getY(i)};
+      worst = std::max(worst, std::min({dist_to_segment(v, p0, p1), dist_to_segment(v, p1, p2),
+                                        dist_to_segment(v, p2, p0)}));
+    }
+    fit.push_back({worst, k});
+  }
+  std::sort(fit.begin(), fit.end());
+  std::vector<double> out;
+  for (const auto& [w, k] : fit) out.push_back(1.5707963267948966 + k * (2.0943951023931957 / 40));
+  return out;
+}
+
+}  // namespace
+
 bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a,
                         const std::string& what, OGRMultiPolygon* into) {
   const int ns = shape.getNumPoints();  // with the closing repeat
-  Point2 c = cen;
   // A long islet gets a larger triangle where there is room around its centroid (side up to
   // 1.6 islet_side: the best turn of a triangle of side s leaves the ends of an islet of length
   // len about len / 2 - 0.39 s out; sized for 0.57 islet_side, 0.4 hmin), so that fewer
@@ -65,54 +160,43 @@ bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape,
       for (int j = i + 1; j + 1 < ns; ++j)
         len = std::max(len, dist({shape.getX(i), shape.getY(i)}, {shape.getX(j), shape.getY(j)}));
     const double side = std::min(1.6 * o.islet_side, (0.5 * len - 0.57 * o.islet_side) / 0.39);
-    if (side > o.islet_side && has_room(L, own, c, 0.5, side / std::sqrt(3.0))) r = side / std::sqrt(3.0);
+    if (side > o.islet_side && has_room(L, own, cen, tri_cl, side / std::sqrt(3.0))) r = side / std::sqrt(3.0);
   }
-  bool room = r > tri_r || has_room(L, own, c);
-  for (int step = 1; !room && step <= 3 && o.islet_shift > 0; ++step)
-    for (int d = 0; d < 8 && !room; ++d) {
+  // The places tried in order: the centroid, then 8 directions at a third, two thirds and all of
+  // islet_shift. At each, room for every turn (the circumcircle clear) takes the best fitting
+  // turn; else the best fitting of the turns that keep clear, when the inscribed circle is.
+  std::vector<Point2> at{cen};
+  for (int step = 1; step <= 3 && o.islet_shift > 0; ++step)
+    for (int d = 0; d < 8; ++d) {
       const double t = o.islet_shift * step / 3.0, ang = 0.7853981633974483 * d;
-      const Point2 q{cen.x + t * std::cos(ang), cen.y + t * std::sin(ang)};
-      if (has_room(L, own, q, shifted_cl)) { c = q; room = true; }
+      at.push_back({cen.x + t * std::cos(ang), cen.y + t * std::sin(ang)});
     }
-  if (!room) return false;
-  placed_grid.add(static_cast<std::uint32_t>(placed.size()), c, r);
-  placed.push_back(c);
-  placed_r.push_back(r);
-  placed_ring.push_back(own);
-  // The turn of the triangle: the one of 40 turns 3 degrees apart (from apex up; the first of
-  // equals) that keeps the islet's farthest vertex nearest the triangle's sides. The room test
-  // above is the same for every turn (a disk around the circumcircle). Why: with the apex always
-  // up, the ends of an islet longer than the triangle stuck out by up to 0.6 islet_side, which
-  // the model sees as coast moved by that much.
-  auto corner = [&](double t0, int k) {
-    const double t = t0 - 2.0943951023931957 * k;  // clockwise
-    return Point2{c.x + r * std::cos(t), c.y + r * std::sin(t)};
-  };
-  double turn = 1.5707963267948966, best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 40; ++k) {
-    const double t0 = 1.5707963267948966 + k * (2.0943951023931957 / 40);
-    const Point2 p0 = corner(t0, 0), p1 = corner(t0, 1), p2 = corner(t0, 2);
-    double worst = 0;
-    for (int i = 0; i + 1 < ns && worst < best; ++i) {
-      const Point2 v{shape.getX(i), shape.getY(i)};
-      worst = std::max(worst, std::min({dist_to_segment(v, p0, p1), dist_to_segment(v, p1, p2),
-                                        dist_to_segment(v, p2, p0)}));
+  std::vector<Point2> tri;
+  Point2 c = cen;
+  for (std::size_t i = 0; i < at.size() && tri.empty(); ++i) {
+    const double cl = i == 0 ? tri_cl : shift_cl;
+    if ((i == 0 && r > tri_r) || has_room(L, own, at[i], cl, r)) {
+      tri = triangle(at[i], r, turns_by_fit(shape, at[i], r).front());
+    } else if (o.islet_clearance > 0 && has_room(L, own, at[i], cl, 0.5 * r)) {
+      for (const double turn : turns_by_fit(shape, at[i], r)) {
+        std::vector<Point2> t = triangle(at[i], r, turn);
+        if (land_clear(L, own, t, cl)) {
+          tri = std::move(t);
+          break;
+        }
+      }
     }
-    if (worst < best) {
-      best = worst;
-      turn = t0;
-    }
+    if (!tri.empty()) c = at[i];
   }
+  if (tri.empty()) return false;
   OGRLinearRing tr;
-  for (int k = 0; k < 3; ++k) {
-    const Point2 q = corner(turn, k);
-    tr.addPoint(q.x, q.y);
-  }
+  for (const Point2 q : tri) tr.addPoint(q.x, q.y);
   tr.closeRings();
   auto tp = std::make_unique<OGRPolygon>();
   tp->addRing(&tr);
   const double ta = tp->get_Area();
   const double moved = dist(c, cen);
+  add_placed(std::move(tri), own);
   ++res.islets_replaced;
   res.repairs.push_back({"islet_simplified", c, a,
                          what + " is smaller than " + num(o.min_island_area) +
@@ -126,44 +210,25 @@ bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape,
   return true;
 }
 
-bool IsletPlacer::hull_clear(const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox,
-                             const std::vector<std::vector<Point2>>& joined, double cl, bool rings) {
+bool IsletPlacer::hull_clear(const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox, double cl,
+                             bool rings) {
   const Box2 hb = box_of(h);
   if (hb.lo.x < inbox.lo.x + cl || hb.lo.y < inbox.lo.y + cl || hb.hi.x > inbox.hi.x - cl || hb.hi.y > inbox.hi.y - cl)
     return false;
-  if (rings && L.grid) {
-    L.grid->segments_near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &near);
-    for (Index j : near) {
-      const int r = L.ring[j];
-      if (!L.gone.empty() && L.gone[static_cast<std::size_t>(r)]) continue;
-      if (convex_distance(L.seg[j].first, L.seg[j].second, h) < cl) return false;
-    }
-  }
-  placed_grid.near({{hb.lo.x - cl, hb.lo.y - cl}, {hb.hi.x + cl, hb.hi.y + cl}}, &cand);
-  for (const std::size_t t : cand) {
-    if (beyond(placed[t], placed_r[t] + cl, hb)) continue;
-    if (inside_convex(placed[t], h)) return false;
-    for (std::size_t i = 0; i < h.size(); ++i)
-      if (dist_to_segment(placed[t], h[i], h[(i + 1) % h.size()]) < placed_r[t] + cl) return false;
-  }
-  for (std::size_t k = 0; k < joined.size(); ++k) {
-    if (apart(joined_box[k], hb, cl)) continue;
-    const auto& g = joined[k];
-    for (std::size_t i = 0; i < g.size(); ++i)
-      if (convex_distance(g[i], g[(i + 1) % g.size()], h) < cl) return false;
-  }
-  return true;
+  if (rings) return land_clear(L, -1, h, cl);
+  static const LandIndex none;
+  return land_clear(none, -1, h, cl);
 }
 
 std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
-                                      const std::vector<std::vector<Point2>>& joined, double* taken, double* gap) {
+                                      double* taken, double* gap) {
   std::vector<Point2> isl;
   for (int i = 0; i + 1 < shape.getNumPoints(); ++i) isl.push_back({shape.getX(i), shape.getY(i)});
   const std::size_t ni = isl.size();
   if (ni < 3 || !L.grid) return std::vector<Point2>{};
   Box2 ib;
   for (Point2 q : isl) ib.add(q);
-  const double dmax = o.islet_side, cl = 0.25 * o.islet_side;
+  const double dmax = o.islet_side, cl = join_cl;
   Box2 qb{{ib.lo.x - dmax, ib.lo.y - dmax}, {ib.hi.x + dmax, ib.hi.y + dmax}};
   L.grid->segments_near(qb, &near);
   std::sort(near.begin(), near.end());  // the first of equals, whatever the grid's order
@@ -294,7 +359,7 @@ std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLine
       if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
     }
   }
-  if (!hull_clear(L, h, inbox, joined, cl, false)) return std::vector<Point2>{};
+  if (!hull_clear(L, h, inbox, cl, false)) return std::vector<Point2>{};
   *taken = std::max(0.0, taken_area);
   *gap = best;
   return h;

@@ -6,10 +6,11 @@
 // the islet, instead of water. Why: a dropped islet moves the coast the model sees by its
 // distance to the next coast (its vertices are input coast too), a kept one forces elements as
 // small as itself; the triangle keeps it within about islet_side / 2 with elements near hmin.
-// Other land (every ring but its own, and the triangles placed before it) must be farther than
-// islet_side / 2 beyond the triangle's corners. The islet step judges room on the land after the
-// union (later steps only take land away, so room there is room later too); the remnant step on
-// the land as it is then.
+// Other land (every ring but its own, the triangles placed and the hulls joined before it) must
+// be farther than Options::islet_clearance from the triangle, so that the water between them
+// holds elements of that size. The islet step judges room on the land after the union (later
+// steps only take land away, so room there is room later too); the remnant step on the land as
+// it is then.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -42,20 +43,25 @@ struct IsletPlacer {
 
   // L: the segments of the rings of ps.
   void build_land(const std::vector<std::unique_ptr<OGRPolygon>>& ps, LandIndex& L) const;
-  // Room for a triangle of circumradius r (0: islet_side's) around c: other land and the placed
-  // triangles farther than clf islet_side beyond its circumcircle.
-  bool has_room(const LandIndex& L, int own, Point2 c, double clf = 0.5, double r = 0);
+  // Room for every turn of a triangle of circumradius r (0: islet_side's) around c: other land,
+  // the placed triangles and the joined hulls farther than cl beyond its circumcircle.
+  bool has_room(const LandIndex& L, int own, Point2 c, double cl, double r = 0);
+  // The convex polygon poly keeps cl from every ring of L that is land (not gone, not `own`), the
+  // placed triangles and the joined hulls.
+  bool land_clear(const LandIndex& L, int own, const std::vector<Point2>& poly, double cl);
   // The islet of ring `own` (area a) as a triangle around cen or, with no room there, around the
   // first of 24 points near it (8 directions at a third, two thirds and all of islet_shift) that
-  // has room; added to `into` and reported (islet_simplified). Why the shifts: most islets that
-  // were dropped lie within hmin of other land, and the coast the model saw moved by that
-  // distance; moved by at most islet_shift they stay. False: no room.
+  // has room; added to `into` and reported (islet_simplified). At each point the triangle takes
+  // the turn that fits the islet best among those that keep their clearance from all other land
+  // (tri_cl, shift_cl; without islet_clearance, only where its circumcircle keeps it). Why the
+  // shifts and turns: most islets that were dropped lie within hmin of other land, and the coast
+  // the model saw moved by that distance; a triangle's corners reach twice as far from its centre
+  // as its sides, so a turned one fits where its circumcircle does not. False: no room.
   bool place(const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a, const std::string& what,
              OGRMultiPolygon* into);
   // The convex polygon h keeps cl from the input's box, the placed triangles and the joined
   // hulls and, with `rings`, from every ring of L that is land (not gone).
-  bool hull_clear(const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox,
-                  const std::vector<std::vector<Point2>>& joined, double cl, bool rings);
+  bool hull_clear(const LandIndex& L, const std::vector<Point2>& h, const Box2& inbox, double cl, bool rings);
   // An islet with no room for its triangle, joined to the nearest other land when that is
   // nearer than islet_side: the convex hull of the islet and of that land's coast within
   // rho = len / 2 + d + 0.1 islet_side of the nearest point (len: the islet's length, d: the gap)
@@ -63,25 +69,33 @@ struct IsletPlacer {
   // next coast; joined, its outer side stays coast and the gap, narrower than an element, is no
   // longer water. The hull must meet the land's ring along that one run of coast only (so no
   // water is cut off: the land grows by a convex piece whose intersection with it is connected;
-  // it may touch the run between its ends, round a convex corner), keep islet_side / 4 from every
+  // it may touch the run between its ends, round a convex corner), keep join_cl from every
   // other ring, placed triangle and earlier join, stay inside the input's box (open boundaries do
   // not move) and hold at most 3 islet_side^2. Returns the hull (empty: not joined), the water it
   // takes (*taken) and the gap (*gap).
-  std::vector<Point2> join(const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox,
-                           const std::vector<std::vector<Point2>>& joined, double* taken, double* gap);
+  std::vector<Point2> join(const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox, double* taken,
+                           double* gap);
+  // A convex polygon (a triangle, a hull of islets) kept as land; placed_ring: the ring it
+  // replaces (-1: several).
+  std::size_t add_placed(std::vector<Point2> poly, int ring);
+  // A hull joined to land.
+  void add_joined(std::vector<Point2> hull);
 
   const Options& o;
   Result& res;
   const double tri_r;  // circumradius of a triangle of side islet_side
-  // A moved triangle keeps a little more room (0.55 islet_side beyond its corners instead of
-  // 0.5): with 0.5 the moved triangles added edges under hmin/2, and more room kept the coast
-  // farther from the islets.
-  const double shifted_cl = 0.55;
+  // The room each placement keeps from all other land: islet_clearance, or without it (tests of
+  // the older rules) islet_side / 2 around a triangle, a little more around a moved one, and
+  // islet_side / 4 around a join.
+  const double tri_cl, shift_cl, join_cl;
   std::vector<Point2> placed;    // centres of the islets kept as triangles (the remnant step keeps them)
   std::vector<double> placed_r;  // their circumradii
   std::vector<int> placed_ring;  // the ring each replaces (-1: several)
+  std::vector<std::vector<Point2>> placed_poly;  // their corners (empty: left out of the tests)
   DiskGrid placed_grid;
-  std::vector<Box2> joined_box;  // the boxes of the islets' hulls joined to land
+  std::vector<std::vector<Point2>> joined;  // the islets' hulls joined to land
+  std::vector<Box2> joined_box;             // their boxes
+  DiskGrid joined_grid;                     // ... by the cells of a grid
   std::unique_ptr<OGRMultiPolygon> tris;  // the islet step's triangles (added after the widening)
   std::vector<std::uint32_t> cand;  // scratch: placed triangles near a place
   std::vector<Index> near;          // scratch: land segments near a place

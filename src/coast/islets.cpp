@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "coast/islet_clusters.hpp"
 #include "coast/report.hpp"
 
 namespace fdr::coast {
@@ -30,6 +31,9 @@ class IsletStep {
  private:
   bool judge(const OGRLinearRing* h, double a);
   void rejudge(const Box2& inbox);
+  std::vector<const Homeless*> place_clusters(const Box2& inbox);
+  bool place_cluster(const std::vector<std::size_t>& members, const Box2& inbox);
+  void add_join(std::vector<Point2> h);
   std::vector<const Homeless*> join_to_land(const std::vector<const Homeless*>& still, const Box2& inbox);
   std::vector<const Homeless*> join_to_triangles(const std::vector<const Homeless*>& lost, const Box2& inbox);
   void join_clusters(const std::vector<const Homeless*>& lost, const Box2& inbox);
@@ -40,7 +44,6 @@ class IsletStep {
   LandIndex land;
   std::unique_ptr<OGRMultiPolygon> grown = std::make_unique<OGRMultiPolygon>();
   std::vector<Homeless> homeless;
-  std::vector<std::vector<Point2>> joined;  // hulls of the islets joined to land
   std::unique_ptr<OGRMultiPolygon> joins = std::make_unique<OGRMultiPolygon>();
 };
 
@@ -105,12 +108,101 @@ void IsletStep::rejudge(const Box2& inbox) {
   land.gone.assign(static_cast<std::size_t>(land.rings), 0);
   for (const Homeless& hl : homeless) land.gone[static_cast<std::size_t>(hl.ring)] = 1;
   std::vector<const Homeless*> still;
-  for (const Homeless& hl : homeless)
-    if (!P.place(land, hl.ring, hl.shape, hl.centroid, hl.area, hl.what, P.tris.get())) still.push_back(&hl);
+  for (const Homeless* hl : place_clusters(inbox))
+    if (!P.place(land, hl->ring, hl->shape, hl->centroid, hl->area, hl->what, P.tris.get())) still.push_back(hl);
   std::vector<const Homeless*> lost = join_to_land(still, inbox);
   if (o.join_islets) lost = join_to_triangles(lost, inbox);
   join_clusters(lost, inbox);
   land.gone.clear();
+}
+
+// The islets without room nearer than islet_clearance to each other (islet_clusters), each
+// cluster as one (place_cluster); returns the islets left (alone, or of a cluster that found no
+// place), in input order. Nothing is clustered without islet_clearance.
+std::vector<const Homeless*> IsletStep::place_clusters(const Box2& inbox) {
+  std::vector<char> done(homeless.size(), 0);
+  if (o.islet_clearance > 0) {
+    std::vector<std::vector<Point2>> shapes;
+    for (const Homeless& hl : homeless) {
+      shapes.emplace_back();
+      for (int k = 0; k + 1 < hl.shape.getNumPoints(); ++k) shapes.back().push_back({hl.shape.getX(k), hl.shape.getY(k)});
+    }
+    for (const auto& g : islet_clusters(shapes, o.islet_clearance))
+      if (g.size() > 1 && place_cluster(g, inbox))
+        for (const std::size_t i : g) done[i] = 1;
+  }
+  std::vector<const Homeless*> rest;
+  for (std::size_t i = 0; i < homeless.size(); ++i)
+    if (!done[i]) rest.push_back(&homeless[i]);
+  return rest;
+}
+
+void IsletStep::add_join(std::vector<Point2> h) {
+  OGRLinearRing jr;
+  for (Point2 q : h) jr.addPoint(q.x, q.y);
+  jr.closeRings();
+  auto jp = std::make_unique<OGRPolygon>();
+  jp->addRing(&jr);
+  joins->addGeometryDirectly(jp.release());
+  P.add_joined(std::move(h));
+}
+
+// A cluster of islets (indices into homeless) as one: their convex hull becomes an island when
+// it is at least --min-island, else one triangle stands for them (IsletPlacer::place on the
+// hull), either with the room a triangle needs; failing that the hull is joined to nearby land
+// (IsletPlacer::join). Why the hull: the water between the islets, narrower than an element,
+// becomes land, and the cluster's outer coast stays where it was. False: none of these fits.
+bool IsletStep::place_cluster(const std::vector<std::size_t>& members, const Box2& inbox) {
+  std::vector<Point2> all;
+  double sum = 0;
+  for (const std::size_t i : members) {
+    const OGRLinearRing& r = homeless[i].shape;
+    for (int k = 0; k + 1 < r.getNumPoints(); ++k) all.push_back({r.getX(k), r.getY(k)});
+    sum += homeless[i].area;
+  }
+  std::vector<Point2> h = convex_hull(std::move(all));
+  const double ha = h.size() >= 3 ? signed_area(h) : 0;
+  if (!(ha > 0)) return false;
+  const Homeless& first = homeless[members.front()];
+  const std::string what = std::to_string(members.size()) + " islets of " + num(sum) + " m^2 in all, each nearer than " +
+                           num(o.islet_clearance) + " m to the next";
+  const double n = static_cast<double>(members.size());
+  if (!(ha < o.min_island_area)) {
+    if (ha - sum <= 1.5 * o.islet_side * o.islet_side * n && P.hull_clear(land, h, inbox, P.tri_cl, true)) {
+      ++res.islets_joined;
+      res.islets_joined_area += ha - sum;
+      res.repairs.push_back({"islet_joined", first.inside, ha - sum,
+                             what + ", too small one by one (--min-island " + num(o.min_island_area) +
+                                 " m^2): kept as one island, their convex hull of " + num(ha) + " m^2; " +
+                                 num(ha - sum) + " m^2 of water between them became land",
+                             -1});
+      add_join(std::move(h));
+      return true;
+    }
+  } else {
+    // The hull's centroid (by area), where the cluster's triangle goes first.
+    Point2 c{0, 0};
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      const Point2 a = h[i] - h[0], b = h[(i + 1) % h.size()] - h[0];
+      c = c + ((a.x * b.y - a.y * b.x) / (6 * ha)) * (a + b);
+    }
+    c = h[0] + c;
+    if (P.place(land, -1, closed_ring(h), c, sum, what + " (their convex hull: " + num(ha) + " m^2)", P.tris.get()))
+      return true;
+  }
+  if (!o.join_islets) return false;
+  double taken = 0, gap = 0;
+  std::vector<Point2> j = P.join(land, -1, closed_ring(h), inbox, &taken, &gap);
+  if (j.empty()) return false;
+  ++res.islets_joined;
+  res.islets_joined_area += taken + (ha - sum);
+  res.repairs.push_back({"islet_joined", first.inside, taken + (ha - sum),
+                         what + ", too small one by one (--min-island " + num(o.min_island_area) +
+                             " m^2) with no room for a triangle; joined together to the land " + num(gap) + " m away: " +
+                             num(taken + ha - sum) + " m^2 of water became land",
+                         -1});
+  add_join(std::move(j));
+  return true;
 }
 
 // The islets still without room joined to land where they can be (IsletPlacer::join); returns
@@ -120,7 +212,7 @@ std::vector<const Homeless*> IsletStep::join_to_land(const std::vector<const Hom
   for (const Homeless* hp : still) {
     const Homeless& hl = *hp;
     double taken = 0, gap = 0;
-    std::vector<Point2> h = o.join_islets ? P.join(land, hl.ring, hl.shape, inbox, joined, &taken, &gap)
+    std::vector<Point2> h = o.join_islets ? P.join(land, hl.ring, hl.shape, inbox, &taken, &gap)
                                           : std::vector<Point2>{};
     if (!h.empty()) {
       ++res.islets_joined;
@@ -130,14 +222,7 @@ std::vector<const Homeless*> IsletStep::join_to_land(const std::vector<const Hom
                                  " m^2 (--min-island) with no room for a triangle; joined to the land " +
                                  num(gap) + " m away: " + num(taken) + " m^2 of water between them became land",
                              -1});
-      OGRLinearRing jr;
-      for (Point2 q : h) jr.addPoint(q.x, q.y);
-      jr.closeRings();
-      auto jp = std::make_unique<OGRPolygon>();
-      jp->addRing(&jr);
-      joins->addGeometryDirectly(jp.release());
-      P.joined_box.push_back(box_of(h));
-      joined.push_back(std::move(h));
+      add_join(std::move(h));
       continue;
     }
     lost.push_back(&hl);
@@ -189,12 +274,12 @@ std::vector<const Homeless*> IsletStep::join_to_triangles(const std::vector<cons
       const double ta = std::fabs(signed_area(corners_b));
       // The triangle's own islet and the triangle itself are not in the way.
       const int jr_ring = placed_ring[tb];
-      const Point2 pc = placed[tb];
-      const double pr = placed_r[tb];
-      placed[tb] = {std::numeric_limits<double>::infinity(), 0.0};
+      std::vector<Point2> own_poly;
+      std::swap(own_poly, P.placed_poly[tb]);
       if (jr_ring >= 0) land.gone[static_cast<std::size_t>(jr_ring)] = 1;
-      const bool ok = ha > 0 && ha - ta - hp->area <= 1.5 * o.islet_side * o.islet_side && P.hull_clear(land, h, inbox, joined, 0.5 * o.islet_side, true);
-      placed[tb] = pc;
+      const bool ok = ha > 0 && ha - ta - hp->area <= 1.5 * o.islet_side * o.islet_side &&
+                      P.hull_clear(land, h, inbox, P.tri_cl, true);
+      std::swap(own_poly, P.placed_poly[tb]);
       if (ok) {
         double rr = 0;
         Point2 hc{0, 0};
@@ -205,6 +290,7 @@ std::vector<const Homeless*> IsletStep::join_to_triangles(const std::vector<cons
         placed_r[tb] = rr;
         placed_grid.add(static_cast<std::uint32_t>(tb), hc, rr);
         placed_ring[tb] = -1;
+        P.placed_poly[tb] = h;
         OGRLinearRing jr;
         for (Point2 q : h) jr.addPoint(q.x, q.y);
         jr.closeRings();
@@ -222,7 +308,6 @@ std::vector<const Homeless*> IsletStep::join_to_triangles(const std::vector<cons
       } else if (jr_ring >= 0 && !land.gone.empty()) {
         land.gone[static_cast<std::size_t>(jr_ring)] = 0;
       }
-      (void)pr;
     }
     if (!done) rest.push_back(hp);
   }
@@ -231,13 +316,9 @@ std::vector<const Homeless*> IsletStep::join_to_triangles(const std::vector<cons
 
 // Clusters of the islets left (single link: nearer than islet_side to each other; ledges, chains
 // of rocks): the convex hull of a cluster becomes one island when it is at least --min-island
-// and has room (islet_side / 2 from other land, placed triangles and joins), else one triangle
+// and has room (IsletPlacer::tri_cl from other land, placed triangles and joins), else one triangle
 // for the cluster where there is room; otherwise each becomes water.
 void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Box2& inbox) {
-  // Clusters of the islets left (single link: nearer than islet_side to each other; ledges,
-  // chains of rocks): the convex hull of a cluster becomes one island when it is at least
-  // --min-island and has room (islet_side / 2 from other land, placed triangles and joins),
-  // else one triangle for the cluster where there is room; otherwise each becomes water.
   const std::size_t nl = lost.size();
   std::vector<std::size_t> up(nl);
   for (std::size_t i = 0; i < nl; ++i) up[i] = i;
@@ -283,19 +364,12 @@ void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Bo
       std::vector<Point2> h = convex_hull(all);
       const double ha = h.size() >= 3 ? signed_area(h) : 0;
       if (ha > 0 && ha - sum <= 1.5 * o.islet_side * o.islet_side * static_cast<double>(ms.size()) &&
-          P.hull_clear(land, h, inbox, joined, 0.5 * o.islet_side, true)) {
-        OGRLinearRing jr;
-        for (Point2 q : h) jr.addPoint(q.x, q.y);
-        jr.closeRings();
+          P.hull_clear(land, h, inbox, P.tri_cl, true)) {
         const std::string what = std::to_string(ms.size()) + " islets of " + num(sum) + " m^2 in all, each nearer than " +
                                  num(dmax) + " m to the next";
         bool kept = false;
         if (!(ha < o.min_island_area)) {
-          auto jp = std::make_unique<OGRPolygon>();
-          jp->addRing(&jr);
-          joins->addGeometryDirectly(jp.release());
-          P.joined_box.push_back(box_of(h));
-          joined.push_back(h);
+          add_join(h);
           ++res.islets_joined;
           res.islets_joined_area += ha - sum;
           res.repairs.push_back({"islet_joined", lost[ms[0]]->inside, ha - sum,
@@ -308,7 +382,8 @@ void IsletStep::join_clusters(const std::vector<const Homeless*>& lost, const Bo
           Point2 cen{0, 0};
           for (Point2 q : h) cen = cen + q;
           cen = (1.0 / static_cast<double>(h.size())) * cen;
-          kept = P.place(land, -1, jr, cen, sum, what + " (their convex hull: " + num(ha) + " m^2)", P.tris.get());
+          kept = P.place(land, -1, closed_ring(h), cen, sum, what + " (their convex hull: " + num(ha) + " m^2)",
+                         P.tris.get());
         }
         if (kept) continue;
       }

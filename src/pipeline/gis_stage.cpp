@@ -100,6 +100,9 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // coast/islet_placer.hpp
     fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
     fo.join_islets = !opt.keep_coast;
+    // Every islet placement and join keeps hmin/2 from all other land, so that no element needs
+    // to be narrower than that beside it; islets nearer than that to each other go as clusters.
+    fo.islet_clearance = opt.keep_coast ? 0.0 : 0.5 * hmin;
     fo.defer_removed = true;  // listed beside the stages that follow (start_features, finish_features)
     // At once when the filter holds 512 MiB or more: a large input, whose listing the rest of its
     // read hides; a smaller one's starts after the spacing stage, whose peak it would raise.
