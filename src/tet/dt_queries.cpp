@@ -74,9 +74,19 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
   out.clear();
   if (start == kNoId || dt.is_ghost(start)) return;
-  auto in_conflict = [&](TetId t) {
+  auto in_sphere = [&](TetId t) {
     const auto& v = dt.vertices(t);
     return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+  };
+  // The same test as Delaunay3's insertion: a ghost conflicts when p lies strictly beyond its hull
+  // face, or on the face's plane inside its finite neighbour's circumsphere. Points split into a
+  // facet on the hull lie on that plane, and their cavity may join its finite tetrahedra only
+  // through such ghosts.
+  auto in_conflict = [&](TetId t) {
+    if (!dt.is_ghost(t)) return in_sphere(t);
+    const auto& v = dt.vertices(t);
+    const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
+    return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
   };
   std::uint32_t* mark = next_marks(dt);
   const std::uint32_t stamp = mark_stamp();
@@ -85,12 +95,11 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
   out.push_back(start);
   mark[start] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    if (dt.is_ghost(out[k])) continue;
     for (int i = 0; i < 4; ++i) {
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      if (dt.is_ghost(n) ? beyond_hull_face(dt, n, p) : in_conflict(n)) out.push_back(n);
+      if (in_conflict(n)) out.push_back(n);
     }
   }
 }

@@ -21,8 +21,9 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 
 // The tetrahedra that inserting p would destroy, without changing dt: from `start` (a finite
 // tetrahedron whose closed circumsphere holds p, e.g. the one p lies in or the one p is the
-// circumcentre of), the finite ones whose circumsphere holds p strictly inside, connected through
-// faces, and the ghosts next to them whose hull face p lies strictly beyond (not walked further).
+// circumcentre of), those in conflict with p connected through faces, by Delaunay3's test: the
+// finite ones whose circumsphere holds p strictly inside, the ghosts whose hull face p lies
+// strictly beyond or, on the face's plane, whose finite neighbour is in conflict.
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out);
 
 // Whether p lies strictly beyond ghost g's hull face.

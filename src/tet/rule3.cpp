@@ -118,7 +118,10 @@ void Refiner3::offer(TetId t) {
 void Refiner3::try_split_tet(const BadTet& b) {
   if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
   std::vector<TetId> cavity;
-  conflict_region(dt_, b.centre, b.tet, cavity);
+  // Grown from where the centre lies, as its insertion will grow it (from the tetrahedron itself
+  // when the centre lies beyond the hull).
+  const TetId h = dt_.locate(b.centre, b.tet);
+  conflict_region(dt_, b.centre, h == kNoId || dt_.is_ghost(h) ? b.tet : h, cavity);
   const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
   if (find_encroached(b.centre, cavity, true)) {
     ++stats_.rejected;
@@ -138,13 +141,11 @@ void Refiner3::try_split_tet(const BadTet& b) {
   }
   // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
   // outside the hull it would have crossed one.
-  const TetId h = dt_.locate(b.centre, b.tet);
   if (h == kNoId || dt_.is_ghost(h) || region(h) == kOutsideRegion) {
     ++stats_.rejected;  // left bad: the final check lists it if nothing else splits it
     return;
   }
   std::vector<TetId> created;
-  note_touched(cavity);
   const Insertion ins = dt_.insert(b.centre, h, &created);
   if (ins.duplicate) return;  // as above
   ++stats_.tet_splits;
