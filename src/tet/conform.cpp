@@ -220,8 +220,6 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
   std::vector<TetId> ts;
   const TetId hint = edge_tets(dt_, a, b, ts) ? ts[0] : dt_.vertex_tet(a);
   const TetId h = dt_.locate(p, hint);
-  std::vector<TetId> cavity;
-  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, p, h, cavity);
   const Insertion ins = dt_.insert(p, h, &created);
   if (ins.duplicate) {  // the piece is too short to split in doubles
     ++stalls_;
@@ -300,29 +298,55 @@ void Refiner3::split_subfacet(std::uint32_t t) {
 }
 
 void Refiner3::conform() {
-  // Stalled splits (pieces too short for doubles) cannot go on for ever.
+  // One episode: rules 1 and 2 until the queues are empty. Stalled splits (pieces too short for
+  // doubles) and rounds that only queue again without inserting (a rejected split whose
+  // replacement cannot be made) are counted within the episode, so that a long run's earlier
+  // episodes do not shorten a later one; either reaching its cap ends the episode.
   constexpr std::size_t kMaxStalls = 1000;
-  while ((!seg_queue_.empty() || !facet_queue_.empty()) && !capped() && stalls_ < kMaxStalls) {
-    if (!seg_queue_.empty()) {
-      const QueuedSegment q = seg_queue_.front();
-      seg_queue_.pop_front();
-      if (bd_->is_subsegment(q.a, q.b) && (q.forced || segment_encroached(q.a, q.b))) split_segment(q.a, q.b);
-      continue;
-    }
-    const QueuedFacet q = facet_queue_.front();
-    facet_queue_.pop_front();
-    if (!q.forced) facet_queued_[q.tri] = 0;
-    const SubfacetTri& s = bd_->tri(q.tri);
-    // A slot that holds another subfacet than when queued: a forced entry is void, but the flag
-    // of an unforced one also stood for the new subfacet (not queued again while it was set), so
-    // that one is checked now.
-    if (!s.alive || (q.forced && s.v != q.v)) continue;
-    if (q.forced || subfacet_encroached(q.tri)) split_subfacet(q.tri);
+  constexpr std::size_t kMaxIdle = 100000;
+  stalls_ = 0;
+  std::size_t idle = 0;
+  Point3 last{};
+  while ((!seg_queue_.empty() || !facet_queue_.empty()) && !capped() && stalls_ < kMaxStalls && idle < kMaxIdle) {
+    const std::size_t vertices = dt_.num_vertices(), queued = seg_queue_.size() + facet_queue_.size();
+    conform_step(&last);
+    if (dt_.num_vertices() > vertices) idle = 0;
+    else if (seg_queue_.size() + facet_queue_.size() >= queued) ++idle;
   }
-  if (stalls_ >= kMaxStalls) note_shortfall({}, "boundary splits stalled");
+  if (stalls_ >= kMaxStalls || idle >= kMaxIdle) {
+    char what[120];
+    std::snprintf(what, sizeof what, "boundary splits %s; the last piece tried is given",
+                  stalls_ >= kMaxStalls ? "stalled (pieces too short to split)" : "made no progress");
+    note_shortfall(last, what);
+    gave_up_ = true;
+  }
   if (check_boundary_ && conforming()) {
     const std::string m = missing_boundary();
     if (!m.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), m.c_str());
+  }
+}
+
+void Refiner3::conform_step(Point3* last) {
+  if (!seg_queue_.empty()) {
+    const QueuedSegment q = seg_queue_.front();
+    seg_queue_.pop_front();
+    if (bd_->is_subsegment(q.a, q.b) && (q.forced || segment_encroached(q.a, q.b))) {
+      *last = 0.5 * (dt_.point(q.a) + dt_.point(q.b));
+      split_segment(q.a, q.b);
+    }
+    return;
+  }
+  const QueuedFacet q = facet_queue_.front();
+  facet_queue_.pop_front();
+  if (!q.forced) facet_queued_[q.tri] = 0;
+  const SubfacetTri& s = bd_->tri(q.tri);
+  // A slot that holds another subfacet than when queued: a forced entry is void, but the flag of
+  // an unforced one also stood for the new subfacet (not queued again while it was set), so that
+  // one is checked now.
+  if (!s.alive || (q.forced && s.v != q.v)) return;
+  if (q.forced || subfacet_encroached(q.tri)) {
+    *last = (1.0 / 3) * (dt_.point(s.v[0]) + dt_.point(s.v[1]) + dt_.point(s.v[2]));
+    split_subfacet(q.tri);
   }
 }
 

@@ -63,8 +63,10 @@ class Refiner3 {
   const Delaunay3& dt() const { return dt_; }
   const Boundary& boundary() const { return *bd_; }
   const TetStats& stats() const { return stats_; }
-  // No subsegment or subfacet is left queued: the last conform() recovered the whole boundary.
+  // No subsegment or subfacet is left queued after the last conform() episode.
   bool conforming() const { return seg_queue_.empty() && facet_queue_.empty(); }
+  // Whether some conform() episode stopped at its cap on stalled or fruitless splits.
+  bool gave_up() const { return gave_up_; }
   TetStats& stats() { return stats_; }
   double bound() const { return bound_; }
   const sizing::SizingField3& spacing() const { return f_; }
@@ -82,6 +84,8 @@ class Refiner3 {
     bool forced = false;
   };
   bool capped();
+  // One entry of the boundary queues taken and acted on; *last gets the piece's middle when split.
+  void conform_step(Point3* last);
   void split_segment(VertexId a, VertexId b);
   void split_subfacet(std::uint32_t t);
   void try_split_tet(const BadTet& b);
@@ -130,7 +134,8 @@ class Refiner3 {
   std::vector<VertexId> around_;  // the vertices of the tetrahedra an insertion made
   std::vector<std::uint32_t> vmark_;
   std::uint32_t vstamp_ = 0;
-  std::size_t stalls_ = 0;
+  std::size_t stalls_ = 0;     // splits of the current conform() episode that made no vertex
+  bool gave_up_ = false;       // an episode ended at its stall or progress cap
   bool check_boundary_ = false;  // the FDR_DEBUG_TET aid: missing_boundary() after every episode
   TetStats stats_;
 };
