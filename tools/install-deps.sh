@@ -12,7 +12,7 @@ for a in "$@"; do
 done
 pkgs=(build-essential cmake ninja-build pkg-config git
       libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-      libgdal-dev gdal-bin libsqlite3-dev libproj-dev proj-bin libgeographiclib-dev
+      libgdal-dev gdal-bin libsqlite3-dev libpq-dev libproj-dev proj-bin libgeographiclib-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       libmuparser-dev libcli11-dev libnetcdf-dev netcdf-bin nlohmann-json3-dev libjemalloc-dev
       gmsh python3 python3-matplotlib python3-numpy python3-gdal python3-netcdf4 python3-pytest

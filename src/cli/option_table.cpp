@@ -173,6 +173,11 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--bound", "bound", set_bound, "float", "B", "1 (2D), the 3D default keeping radius-edge <= 2 (3D)", "Refinement", "Quality bound: a triangle (tetrahedron) is bad when R/f(c) > B (need alpha*B < 1)"},
       {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q; GIS inputs: above 20 deg it gives way where a split would cut a boundary segment under f/2); 0 turns it off"},
       {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
+      {"mesh", "--no-sliver-removal", "no-sliver-removal", field<&MeshOptions::no_sliver_removal>, "flag", "", "", "Refinement",
+       "3D: keep the slivers refinement leaves (by default tetrahedra with a dihedral angle under --sliver-angle are "
+       "split by a point near their circumcentre that makes no new sliver; R/f <= B and Delaunay kept)"},
+      {"mesh", "--sliver-angle", "sliver-angle", field<&MeshOptions::sliver_angle_deg>, "float", "DEG", "15", "Refinement",
+       "3D: a tetrahedron whose smallest dihedral angle is under DEG is a sliver to remove (0 < DEG <= 30)"},
       {"mesh", "--max-steiner", "max-steiner", set_max_steiner, "int", "N", "20000000", "Refinement", "Cap on inserted Steiner points; reaching it is an error (exit 7)"},
       {"mesh", "--check", "check", field<&MeshOptions::check>, "flag", "", "", "Refinement", "Verify the mesh invariants (exit 10 if one fails); 3D: valid, Delaunay and conforming tetrahedralization "
        "with R/f(c) <= B, checked exactly before anything is written"},

@@ -1,4 +1,4 @@
-// Internals shared by the io writers and readers: temp files, boundary chains, number formatting.
+// Internals shared by the io writers and readers: boundary chains, marker names, number formatting.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -6,70 +6,18 @@
 #include <string_view>
 #include <vector>
 #include "base/error.hpp"
+#include "base/out_file.hpp"
 #include "io/boundaries.hpp"
 #include "io/writer.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace fdr::io::detail {
 
-// Output error "<path>: <reason>".
-[[noreturn]] void fail_output(const std::string& path, const std::string& reason);
-
-// A temp file "<target>.tmp-XXXXXX" next to `target`, reserved with mkstemp. commit() renames it
-// onto the target; if never committed the destructor removes it (plus any SQLite sidecars).
-class TempFile {
- public:
-  explicit TempFile(const std::string& target);  // throws kOutputError (e.g. missing folder)
-  ~TempFile();
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-
-  const std::string& path() const { return temp_; }
-  const std::string& target() const { return target_; }
-  // Closes the reserved descriptor and removes the empty file so a library (GDAL, netCDF) can
-  // create it itself under the same unique name.
-  void release_for_library();
-  // Opens the reserved file for buffered writing (owned; closed by close_stream()).
-  std::FILE* stream();
-  // Flushes and closes the stream, throwing kOutputError on any write error (disk full ...).
-  void close_stream();
-  void commit();  // rename temp -> target; throws kOutputError
-  void discard();  // remove the temp file now
-
- private:
-  std::string target_, temp_;
-  int fd_ = -1;
-  std::FILE* file_ = nullptr;
-  bool done_ = false;
-};
-
-// Writes several temp files and commits them together: if a later rename fails, the targets
-// already renamed are removed again so no partial set of files remains.
-void commit_all(const std::vector<TempFile*>& files);
-
-// Buffered text output with shortest round-trip number formatting (std::to_chars).
-class TextOut {
- public:
-  TextOut(std::FILE* f, const std::string& target) : f_(f), target_(target) { buf_.reserve(kFlush + 256); }
-  ~TextOut() = default;
-  TextOut& str(std::string_view s) { buf_.append(s); maybe_flush(); return *this; }
-  TextOut& ch(char c) { buf_.push_back(c); return *this; }
-  TextOut& num(double v);           // shortest representation that reads back bit-exactly
-  TextOut& num(std::int64_t v);
-  TextOut& num(std::uint64_t v);
-  TextOut& num(int v) { return num(static_cast<std::int64_t>(v)); }
-  TextOut& num(unsigned v) { return num(static_cast<std::uint64_t>(v)); }
-  TextOut& sp() { return ch(' '); }
-  TextOut& nl() { buf_.push_back('\n'); maybe_flush(); return *this; }
-  void flush();
-
- private:
-  static constexpr std::size_t kFlush = 1 << 20;
-  void maybe_flush() { if (buf_.size() >= kFlush) flush(); }
-  std::FILE* f_;
-  const std::string& target_;
-  std::string buf_;
-};
+// The all-or-nothing file output of base, under the names the io writers use.
+using fdr::commit_all;
+using fdr::fail_output;
+using fdr::TempFile;
+using fdr::TextOut;
 
 // Name of an edge marker: "none", "land", "island", "open", "breakline", else "marker<N>".
 std::string kind_name(std::int32_t marker);

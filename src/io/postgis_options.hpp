@@ -14,9 +14,13 @@ struct PostgisOptions {
   // Replace the tables of an existing mesh with the same prefix (within the same transaction);
   // false: refuse with kOutputError and leave them.
   bool overwrite = false;
-  // Test hook: after this many tables are written (1..5), fail as a broken connection would,
-  // so the tests can see the transaction roll back. < 0: off.
+  // Test hooks: fail as a broken connection would, so the tests can see that nothing is left.
+  // fail_after_layer: once the rows of that many tables (1..5, in the order nodes, triangles,
+  // boundaries, repairs, metadata) are in; < 0: off. fail_at: at a named step, "staging" (the
+  // staging schema made), "rows:<table>", "indexes:<table>" (<table> without the prefix), or
+  // "commit" (everything in place, before the last commit); "": off.
   int fail_after_layer = -1;
+  std::string fail_at{};
 };
 
 }  // namespace fdr::io

@@ -69,6 +69,10 @@ struct Options {
   double min_angle_deg = -1.0;           // < 0: automatic (30 for GIS inputs, 0 for .poly/.node)
   int smooth_passes = -1;                // quality smoothing sweeps; < 0: automatic (4 GIS, 0 .poly)
   std::uint64_t max_steiner = 20'000'000;
+  // 3D: sliver removal after refinement (on unless --no-sliver-removal) and its threshold on the
+  // smallest dihedral angle (unset: tet::TetOptions' default).
+  bool no_sliver_removal = false;
+  std::optional<double> sliver_angle_deg;
   bool check = false;
   bool quiet = false;
   // The command line's runs: with `quiet`, no --report and no output that stores the report (GPKG,

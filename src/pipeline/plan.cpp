@@ -90,6 +90,9 @@ Plan plan_run(const Options& opt) {
   if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt.min_angle_deg >= 60 || std::isnan(opt.min_angle_deg)) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   if (opt.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
+  if (opt.no_sliver_removal || opt.sliver_angle_deg)
+    throw Error(ExitCode::kUsage, std::string(opt.no_sliver_removal ? "--no-sliver-removal" : "--sliver-angle") +
+                                      " applies to 3D runs only; " + p.source + " is a 2D input");
   // Model-ready defaults for GIS inputs: a 30 degree angle bound and smoothing.
   TriangulateOptions& t = p.triangulate;
   t.bound = opt.bound;

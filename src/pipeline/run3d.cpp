@@ -12,7 +12,7 @@
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "sizing/spacing3d_make.hpp"
-#include "tetio/out_file.hpp"
+#include "base/out_file.hpp"
 #include "tetio/write_tets.hpp"
 
 namespace fdr::pipeline {
@@ -73,6 +73,11 @@ void check_3d_options(const Options& opt) {
     if (given) throw Error(ExitCode::kUsage, std::string(name) + " applies to 2D runs only; " + opt.input + " is a 3D input");
   if (opt.bound_given && (!(opt.bound > 0) || !std::isfinite(opt.bound)))
     throw Error(ExitCode::kUsage, "--bound must be a positive number");
+  // Above 30 degrees most of a good mesh would count as slivers.
+  if (opt.sliver_angle_deg && !(*opt.sliver_angle_deg > 0 && *opt.sliver_angle_deg <= 30))
+    throw Error(ExitCode::kUsage, "--sliver-angle must be in (0, 30] degrees");
+  if (opt.sliver_angle_deg && opt.no_sliver_removal)
+    throw Error(ExitCode::kUsage, "--sliver-angle and --no-sliver-removal contradict each other");
   for (const auto& o : opt.outputs)
     if (!tetio::is_tets_output_path(o))
       throw Error(ExitCode::kUsage, "-o " + o + ": a 3D mesh is written as .vtu, .msh or TetGen .node/.ele");
@@ -96,6 +101,8 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
   tet::TetOptions to;
   to.bound = opt.bound_given ? opt.bound : 0.0;
   to.max_vertices = static_cast<std::size_t>(opt.max_steiner) + plc.points.size();
+  to.remove_slivers = !opt.no_sliver_removal;
+  if (opt.sliver_angle_deg) to.sliver_angle_deg = *opt.sliver_angle_deg;
   to.progress = [&](double x) { report_progress(0.05 + 0.75 * std::clamp(x, 0.0, 1.0), "refine"); };
   report_progress(0.05, "refine");
   TetResult tr = fdr::tetrahedralize(plc, *f, to);
@@ -133,7 +140,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
     r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
   }
   if (!opt.report_json.empty()) {
-    tetio::OutFile out(opt.report_json);
+    OutFile out(opt.report_json);
     std::ostringstream s;
     quality::write_json3(r.report, s);
     out.write(s.str());

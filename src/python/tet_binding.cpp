@@ -125,6 +125,10 @@ py::dict tetrahedralize(Doubles v, py::sequence facets, std::optional<std::vecto
   st["tet_splits"] = s.tet_splits;
   st["rejected"] = s.rejected;
   st["capped"] = s.capped;
+  st["sliver_angle_deg"] = s.sliver_angle_deg;
+  st["sliver_splits"] = s.sliver_splits;
+  st["slivers_before"] = s.slivers_before;
+  st["slivers_left"] = s.slivers_left;
   py::list sf;
   for (const auto& x : s.shortfalls) sf.append(py::make_tuple(py::make_tuple(x.where.x, x.where.y, x.where.z), x.what));
   st["shortfalls"] = sf;

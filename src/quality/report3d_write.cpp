@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 #include "quality/report3d.hpp"
 
 namespace fdr::quality {
@@ -16,6 +17,38 @@ std::string fmt(const char* f, double v) {
 // JSON has no infinity or NaN: such values become null.
 nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+void write_histogram(const std::vector<std::size_t>& hist, std::ostream& out) {
+  for (std::size_t i = 0; i < hist.size(); ++i)
+    if (hist[i]) out << " [" << i * 10 << "," << i * 10 + 10 << ") " << hist[i];
+  out << "\n";
+}
+
+// Sliver removal: what it found, what it did, and the histogram before it ran (the one above is
+// after).
+void write_sliver_text(const tet::TetStats& s, std::ostream& out) {
+  if (s.sliver_angle_deg <= 0) {
+    out << "sliver removal: off\n";
+    return;
+  }
+  out << "sliver removal (smallest dihedral under " << fmt("%.4g", s.sliver_angle_deg) << " deg): " << s.slivers_before
+      << " before (min " << fmt("%.2f", s.min_dihedral_before_deg) << " deg), " << s.slivers_left << " left; "
+      << s.sliver_splits << " points inserted, " << s.sliver_yields << " times split the boundary instead\n";
+  out << "smallest dihedral per tetrahedron before sliver removal:";
+  write_histogram(s.dihedral_hist_before, out);
+  for (const auto& sf : s.slivers_listed)
+    out << "  sliver at (" << sf.where.x << ", " << sf.where.y << ", " << sf.where.z << "): " << sf.what << "\n";
+}
+
+nlohmann::ordered_json sliver_json(const tet::TetStats& s) {
+  using J = nlohmann::ordered_json;
+  J listed = J::array();
+  for (const auto& x : s.slivers_listed) listed.push_back({{"where", {x.where.x, x.where.y, x.where.z}}, {"what", x.what}});
+  return {{"enabled", s.sliver_angle_deg > 0}, {"angle_deg", s.sliver_angle_deg}, {"before", s.slivers_before},
+          {"left", s.slivers_left}, {"points_inserted", s.sliver_splits}, {"boundary_splits_instead", s.sliver_yields},
+          {"min_dihedral_before_deg", s.min_dihedral_before_deg}, {"min_per_tet_histogram_before", s.dihedral_hist_before},
+          {"listed", listed}};
 }
 
 }  // namespace
@@ -33,9 +66,8 @@ void write_text3(const Report3& r, std::ostream& out) {
       << " deg; tetrahedra with an angle under 5 deg: " << r.tets_under_5deg << ", under 10 deg: " << r.tets_under_10deg
       << "\n";
   out << "smallest dihedral per tetrahedron (10-degree bins):";
-  for (std::size_t i = 0; i < r.dihedral_hist.size(); ++i)
-    if (r.dihedral_hist[i]) out << " [" << i * 10 << "," << i * 10 + 10 << ") " << r.dihedral_hist[i];
-  out << "\n";
+  write_histogram(r.dihedral_hist, out);
+  write_sliver_text(r.stats, out);
   out << "edge length / f: min " << fmt("%.4f", r.min_l_over_f) << ", max " << fmt("%.4f", r.max_l_over_f) << "\n";
   out << "theorems (" << r.guarantees.note << "):\n";
   for (const auto& t : r.theorems) {
@@ -90,6 +122,7 @@ void write_json3(const Report3& r, std::ostream& out) {
   j["refinement"] = {{"input_vertices", s.input_vertices}, {"segment_splits", s.segment_splits},
                      {"facet_splits", s.facet_splits}, {"tet_splits", s.tet_splits}, {"rejected", s.rejected},
                      {"capped", s.capped}, {"shortfalls", sf}};
+  j["slivers"] = sliver_json(s);
   if (r.check_passed) j["check_passed"] = *r.check_passed;
   j["wall_s"] = r.wall_s;
   j["peak_rss_mb"] = r.peak_rss_mb;

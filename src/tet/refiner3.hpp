@@ -15,6 +15,7 @@
 #include "tet/boundary.hpp"
 #include "tet/delaunay3.hpp"
 #include "tet/refine3d.hpp"
+#include "tet/slivers.hpp"
 #include "tet/tetrahedralize.hpp"
 
 namespace fdr::tet {
@@ -47,6 +48,9 @@ class Refiner3 {
   void refine();
   // Adds a shortfall for every tetrahedron of the domain still bad (the first few).
   void list_shortfalls();
+  // After rule 3: slivers (smallest dihedral under options.sliver_angle_deg) split by a point near
+  // the circumcentre, rule 3 and the boundary rules applied as it goes (slivers.cpp).
+  void remove_slivers();
 
   // The first subsegment that is not an edge, or live subfacet that is not a face, of the
   // tetrahedralization, named with its corners; empty when the whole boundary is there.
@@ -105,6 +109,12 @@ class Refiner3 {
   // Whether the queue entries from these positions on touch a facet of an acute pair.
   bool near_small_angle(std::size_t segs_from, std::size_t facets_from) const;
   bool face_is_subfacet(TetId t, int i) const;
+  // The sliver phase's steps (slivers.cpp).
+  double tet_dihedral_cos(TetId t) const;
+  void offer_sliver(TetId t);
+  void try_split_sliver(const SliverTet& s);
+  void yield_for_sliver(const SliverTet& s, Point3 centre);
+  void list_slivers();
   void note_shortfall(Point3 where, const std::string& what);
 
   const plc::Plc& plc_;
@@ -129,6 +139,7 @@ class Refiner3 {
   bool regions_live_ = false;               // rule 3: regions kept up to date at every insertion
   std::vector<std::int32_t> region_;        // per tetrahedron slot
   std::unique_ptr<BadTetQueue> bad_;
+  std::unique_ptr<SliverState> slivers_;  // during the sliver phase only: offer() queues slivers too
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
   std::vector<VertexId> around_;  // the vertices of the tetrahedra an insertion made

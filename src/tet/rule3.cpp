@@ -113,6 +113,7 @@ bool Refiner3::tet_bad(TetId t, BadTet* out) const {
 void Refiner3::offer(TetId t) {
   BadTet b;
   if (tet_bad(t, &b)) bad_->push(b);
+  else if (slivers_) offer_sliver(t);
 }
 
 void Refiner3::try_split_tet(const BadTet& b) {
@@ -186,6 +187,7 @@ void Refiner3::refine() {
     BadTet b;
     while (!capped() && bad_->pop(dt_, &b)) try_split_tet(b);
   }
+  if (options_.remove_slivers && options_.sliver_angle_deg > 0 && !stats_.capped) remove_slivers();
   enqueue_all();
   conform();
   flood_regions();

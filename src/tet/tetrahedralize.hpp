@@ -16,6 +16,11 @@ struct TetOptions {
   double bound = 0;               // B; 0: the default, 1 as in 2D (radius-edge <= 2 is enforced apart)
   bool refine = true;             // false: the conforming Delaunay tetrahedralization only
   std::size_t max_vertices = 0;   // a cap on the vertices (0: automatic); reaching it is reported
+  // After rule 3, tetrahedra whose smallest dihedral angle is under sliver_angle_deg are split by a
+  // point near their circumcentre that makes no new sliver (tet/slivers.hpp); R/f <= B, radius-edge
+  // <= 2 and the conforming Delaunay property are kept.
+  bool remove_slivers = true;
+  double sliver_angle_deg = 15.0;
   std::function<void(double)> progress;  // fraction done in [0, 1], for the CLI's 0...10...20
 };
 
@@ -34,6 +39,18 @@ struct TetStats {
   double bound = 0;                // the B used
   bool capped = false;             // max_vertices reached before every rule was met
   std::vector<Shortfall> shortfalls;
+  // Sliver removal: the threshold used (0: not run), the points it inserted, the times a sliver's
+  // point yielded to the boundary (split instead), and the domain's smallest dihedral angles before
+  // it ran (histogram of each tetrahedron's smallest angle in 10-degree bins, as the report's) and
+  // after (slivers still under the threshold, the first few listed with their centroids).
+  double sliver_angle_deg = 0;
+  std::size_t sliver_splits = 0;
+  std::size_t sliver_yields = 0;
+  std::size_t slivers_before = 0;
+  std::size_t slivers_left = 0;
+  double min_dihedral_before_deg = 0;
+  std::vector<std::size_t> dihedral_hist_before;
+  std::vector<Shortfall> slivers_listed;
 };
 
 struct TetResult {

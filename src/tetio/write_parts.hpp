@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "base/out_file.hpp"
 #include "tet/tet_mesh.hpp"
-#include "tetio/out_file.hpp"
 #include "tetio/write_tets.hpp"
 
 namespace fdr::tetio {
@@ -16,7 +16,7 @@ Written prepare_vtu(const std::string& path, const tet::TetMesh& mesh, VtuEncodi
 Written prepare_msh(const std::string& path, const tet::TetMesh& mesh);
 Written prepare_tetgen(const std::string& path, const tet::TetMesh& mesh);
 
-// Commits every file of `parts` as one (commit_all).
+// Commits every file of `parts` as one (commit_outputs).
 void commit_written(Written& parts);
 
 }  // namespace fdr::tetio

@@ -2,7 +2,7 @@
 #include "tetio/write_poly.hpp"
 
 #include "base/error.hpp"
-#include "tetio/out_file.hpp"
+#include "base/out_file.hpp"
 
 namespace fdr::tetio {
 namespace {

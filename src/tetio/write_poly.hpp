@@ -8,7 +8,7 @@ namespace fdr::tetio {
 // TetGen .poly, 1-based: points (with markers when the PLC has them), facets (polygons, hole
 // points, markers), volume holes, regions (attribute and volume bound). Free segments become
 // facets of one 2-corner polygon each, which read_poly turns back into segments. All or nothing
-// (out_file.hpp); vertex ids out of range are Error(kInternal) before anything is written.
+// (base/out_file.hpp); vertex ids out of range are Error(kInternal) before anything is written.
 void write_poly(const std::string& path, const plc::Plc& plc);
 
 }  // namespace fdr::tetio

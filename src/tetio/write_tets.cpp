@@ -63,7 +63,7 @@ Written prepare(const std::string& path, const tet::TetMesh& mesh, VtuEncoding e
 void commit_written(Written& parts) {
   std::vector<OutFile*> files;
   for (auto& f : parts) files.push_back(f.get());
-  commit_all(files);
+  commit_outputs(files);
 }
 
 void write_tets(const std::string& path, const tet::TetMesh& mesh) { write_tets_all({path}, mesh); }

@@ -1,5 +1,5 @@
 // Writers of 3D meshes (tet::TetMesh): VTU, Gmsh MSH 4.1 (ASCII) and TetGen .node/.ele/.face.
-// Every writer is all-or-nothing (out_file.hpp): on any error nothing is left at the target.
+// Every writer is all-or-nothing (base/out_file.hpp): on any error nothing is left at the target.
 #pragma once
 #include <string>
 #include <vector>

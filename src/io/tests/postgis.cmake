@@ -17,6 +17,11 @@ target_compile_definitions(postgis_tests PRIVATE FDR_PG_STATE="${FDR_PG_STATE}")
 add_test(NAME postgis_writer COMMAND postgis_tests)
 set_tests_properties(postgis_writer PROPERTIES FIXTURES_REQUIRED postgis_server RESOURCE_LOCK postgis_db
                      SKIP_REGULAR_EXPRESSION "PostgreSQL test server not available")
+# The same on one thread: the staged load's two sides on one connection, one after the other.
+add_test(NAME postgis_writer_one_thread
+         COMMAND postgis_tests --gtest_filter=Postgis.WritesTheGeoPackageTables:Postgis.FailureAtEachStepLeavesNothing)
+set_tests_properties(postgis_writer_one_thread PROPERTIES FIXTURES_REQUIRED postgis_server RESOURCE_LOCK postgis_db
+                     ENVIRONMENT "FDR_THREADS=1" SKIP_REGULAR_EXPRESSION "PostgreSQL test server not available")
 
 # The command line in and out of the database (pytest): same 2DM as from the GeoPackage,
 # read back with ogr and SQL, exit codes and messages.

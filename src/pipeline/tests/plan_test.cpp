@@ -74,6 +74,12 @@ TEST(Plan, UsageErrorsBeforeAnyRead) {
   o = poly_options();
   o.outputs = {"x.unknown-format"};
   EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
+  o = poly_options();
+  o.no_sliver_removal = true;  // a 3D option
+  EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
+  o = poly_options();
+  o.sliver_angle_deg = 10;
+  EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
   EXPECT_EQ(usage_code(poly_options()), fdr::ExitCode::kOk);
 }
 

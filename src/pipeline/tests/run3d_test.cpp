@@ -1,5 +1,6 @@
 // The 3D run: usage errors before any I/O, what it writes, cancellation leaving nothing.
 #include <gtest/gtest.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -54,6 +55,21 @@ TEST(Run3d, TwoDimensionalOptionsAreUsageErrors) {
   f.bound_given = true;
   f.outputs = {"m.vtu", "m.msh", "m.node"};
   EXPECT_EQ(usage_code(f), 0);
+}
+
+TEST(Run3d, SliverOptionsAreChecked) {
+  Options o;
+  o.input = kData + "/3d/cube.poly";
+  o.no_sliver_removal = true;
+  EXPECT_EQ(usage_code(o), 0);
+  o.sliver_angle_deg = 10;
+  EXPECT_EQ(usage_code(o), 2);  // both at once contradict
+  o.no_sliver_removal = false;
+  EXPECT_EQ(usage_code(o), 0);
+  for (double bad : {0.0, -5.0, 31.0, std::nan("")}) {
+    o.sliver_angle_deg = bad;
+    EXPECT_EQ(usage_code(o), 2) << bad;
+  }
 }
 
 TEST(Run3d, IsThreeDimensional) {

@@ -42,7 +42,8 @@ def test_arrays_and_shapes():
     assert (vol > 0).all()
     assert vol.sum() == pytest.approx(1.0, rel=1e-12)
     assert set(r["face_markers"]) <= {1, 2, 3, 4, 5, 6}
-    assert {"segment_splits", "facet_splits", "tet_splits", "bound", "shortfalls"} <= set(r["stats"])
+    assert {"segment_splits", "facet_splits", "tet_splits", "bound", "shortfalls", "sliver_splits", "slivers_left"} <= set(r["stats"])
+    assert r["stats"]["sliver_angle_deg"] == 15 and r["stats"]["slivers_before"] >= r["stats"]["slivers_left"]
 
 
 @pytest.mark.parametrize("spacing", [0.5, "0.4 + 0.1*x", "0.2*paper-f1"])

@@ -122,6 +122,42 @@ TEST(Report3, KuhnCubeFigures) {
   EXPECT_NE(json.str().find("\"theorem_4_4_nn_over_f_min\""), std::string::npos);
 }
 
+TEST(Report3, SliverRemovalBeforeAndAfter) {
+  const tet::TetMesh m = kuhn_cube();
+  tet::TetStats st;
+  st.bound = 1.0;
+  std::ostringstream off_text, off_json;
+  const Report3 off = measure_tets(m, Const3(1.0), st);
+  write_text3(off, off_text);
+  write_json3(off, off_json);
+  EXPECT_NE(off_text.str().find("sliver removal: off"), std::string::npos);
+  EXPECT_NE(off_json.str().find("\"enabled\": false"), std::string::npos);
+  st.sliver_angle_deg = 15;
+  st.slivers_before = 7;
+  st.slivers_left = 1;
+  st.sliver_splits = 5;
+  st.sliver_yields = 2;
+  st.min_dihedral_before_deg = 1.5;
+  st.dihedral_hist_before.assign(18, 0);
+  st.dihedral_hist_before[0] = 3;
+  st.dihedral_hist_before[4] = 3;
+  st.slivers_listed.push_back({{0.5, 0.25, 0}, "sliver left with smallest dihedral angle 9 deg (centroid given)"});
+  const Report3 r = measure_tets(m, Const3(1.0), st);
+  std::ostringstream text, json;
+  write_text3(r, text);
+  write_json3(r, json);
+  const std::string t = text.str(), j = json.str();
+  EXPECT_NE(t.find("sliver removal (smallest dihedral under 15 deg): 7 before (min 1.50 deg), 1 left; 5 points inserted, "
+                   "2 times split the boundary instead"),
+            std::string::npos)
+      << t;
+  EXPECT_NE(t.find("before sliver removal: [0,10) 3 [40,50) 3"), std::string::npos) << t;
+  EXPECT_NE(t.find("sliver at (0.5, 0.25, 0)"), std::string::npos) << t;
+  for (const char* key : {"\"slivers\"", "\"angle_deg\": 15", "\"before\": 7", "\"left\": 1", "\"points_inserted\": 5",
+                          "\"boundary_splits_instead\": 2", "\"min_per_tet_histogram_before\"", "\"listed\""})
+    EXPECT_NE(j.find(key), std::string::npos) << key;
+}
+
 TEST(Report3, GuaranteesNeedAlphaBBelowOne) {
   EXPECT_FALSE(compute_guarantees3(-1, 1).valid);
   EXPECT_FALSE(compute_guarantees3(0.5, 2).valid);

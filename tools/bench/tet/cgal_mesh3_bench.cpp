@@ -1,6 +1,8 @@
 // CGAL Mesh_3 on a closed polyhedral surface (.off) with a constant size H, for the 3D benchmark:
 // cell_radius_edge_ratio = 2 and cell_size = H (B * f with B = 1, f = H), sharp edges protected.
-// Prints "tetrahedra N" for the driver; the driver measures the whole process.
+// Prints "tetrahedra N" and the dihedral angles ("dihedral min D under5 N under10 N under15 N":
+// the smallest angle and the cells whose smallest angle is under 5, 10, 15 degrees) for the
+// drivers; the driver measures the whole process.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
@@ -13,6 +15,8 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -27,6 +31,22 @@ using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<K>;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
+
+// The smallest of a tetrahedron's six dihedral angles in degrees: pi minus the largest angle
+// between two outward face normals.
+double min_dihedral_deg(const K::Point_3* p) {
+  K::Vector_3 n[4];
+  for (int i = 0; i < 4; ++i) {
+    const K::Point_3 &a = p[(i + 1) % 4], &b = p[(i + 2) % 4], &c = p[(i + 3) % 4];
+    K::Vector_3 v = CGAL::cross_product(b - a, c - a);
+    if (v * (p[i] - a) > 0) v = -v;
+    n[i] = v / std::sqrt(v.squared_length());
+  }
+  double worst = -1;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) worst = std::max(worst, -(n[i] * n[j]));
+  return std::acos(std::clamp(worst, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+}
 
 int usage() {
   std::cerr << "usage: cgal_mesh3_bench SURFACE.off H [plain|optimise]\n";
@@ -69,5 +89,15 @@ int main(int argc, char** argv) {
   else
     c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, p::perturb(), p::exude());
   std::cout << "tetrahedra " << c3t3.number_of_cells_in_complex() << "\n";
+  double lo = 180;
+  std::size_t under[3] = {0, 0, 0};
+  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
+    K::Point_3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = c3t3.triangulation().point(c, i).point();
+    const double d = min_dihedral_deg(p);
+    lo = std::min(lo, d);
+    for (int k = 0; k < 3; ++k) under[k] += d < 5.0 * (k + 1);
+  }
+  std::cout << "dihedral min " << lo << " under5 " << under[0] << " under10 " << under[1] << " under15 " << under[2] << "\n";
   return 0;
 }

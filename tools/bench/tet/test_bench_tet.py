@@ -41,3 +41,16 @@ def test_format_row_marks_counts_off_by_more_than_ten_percent():
 def test_run_child_measures_the_child(tmp_path):
     wall, cpu, rss, text = bench_tet.run_child([sys.executable, "-c", "print('hi')"], str(tmp_path))
     assert text.strip() == "hi" and wall > 0 and cpu >= 0 and rss > 1
+
+
+def test_dihedral_compare_angles_of_known_tetrahedra():
+    import numpy as np
+    import dihedral_compare
+    s = 1 / 2 ** 0.5
+    pts = np.array([[1, 0, -s], [-1, 0, -s], [0, 1, s], [0, -1, s],  # regular
+                    [0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.01]])  # a sliver
+    ang = dihedral_compare.min_dihedral_deg(pts, np.array([[0, 1, 2, 3], [4, 5, 6, 7], [1, 0, 2, 3]]))
+    assert abs(ang[0] - 70.528779) < 1e-5 and abs(ang[2] - ang[0]) < 1e-9
+    assert ang[1] < 1
+    s = dihedral_compare.summary(ang)
+    assert s["tets"] == 3 and s["under5"] == 1 and s["under15"] == 1 and s["min"] == ang[1]
