@@ -74,20 +74,6 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
   out.clear();
   if (start == kNoId || dt.is_ghost(start)) return;
-  auto in_sphere = [&](TetId t) {
-    const auto& v = dt.vertices(t);
-    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
-  };
-  // The same test as Delaunay3's insertion: a ghost conflicts when p lies strictly beyond its hull
-  // face, or on the face's plane inside its finite neighbour's circumsphere. Points split into a
-  // facet on the hull lie on that plane, and their cavity may join its finite tetrahedra only
-  // through such ghosts.
-  auto in_conflict = [&](TetId t) {
-    if (!dt.is_ghost(t)) return in_sphere(t);
-    const auto& v = dt.vertices(t);
-    const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
-    return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
-  };
   std::uint32_t* mark = next_marks(dt);
   const std::uint32_t stamp = mark_stamp();
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
@@ -99,9 +85,20 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      if (in_conflict(n)) out.push_back(n);
+      if (in_conflict(dt, n, p)) out.push_back(n);
     }
   }
+}
+
+bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
+  auto in_sphere = [&](TetId c) {
+    const auto& v = dt.vertices(c);
+    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+  };
+  if (!dt.is_ghost(t)) return in_sphere(t);
+  const auto& v = dt.vertices(t);
+  const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
+  return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
 }
 
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {
