@@ -17,6 +17,9 @@ constexpr std::array<AidInfo, static_cast<unsigned>(Aid::kCount)> kAids{{
     {Aid::kPslg, "FDR_DEBUG_PSLG", "PREFIX: a GIS run's PSLG before and after cleaning, PREFIX.before.poly and .after.poly"},
     {Aid::kFilterWkt, "FDR_DEBUG_FILTER_WKT", "PATH: the coast generalisation's result as WKT, one polygon a line"},
     {Aid::kThreads, "FDR_THREADS", "N: at most N threads (1 to 64); results do not depend on it"},
+    {Aid::kTet, "FDR_DEBUG_TET",
+     "the 3D refinement checks after every boundary episode that each subsegment is a mesh edge and each subfacet "
+     "a mesh face, and names the first that is not on stderr"},
 }};
 
 }  // namespace

@@ -17,6 +17,7 @@ enum class Aid : unsigned {
   kPslg,     // FDR_DEBUG_PSLG=PREFIX: the GIS run's PSLG before and after cleaning as .poly files
   kFilterWkt,  // FDR_DEBUG_FILTER_WKT=PATH: the coast generalisation's result as WKT, one polygon a line
   kThreads,  // FDR_THREADS=N: at most N threads (1..64)
+  kTet,      // FDR_DEBUG_TET: the 3D refinement's boundary invariant checked after every episode
   kCount
 };
 

@@ -1,4 +1,5 @@
 #include "predicates/predicates3d.hpp"
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 namespace fdr::predicates {
@@ -23,6 +24,13 @@ int diametral_side(Point3 a, Point3 b, Point3 p) {
 int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p) {
   ++counters().exact;
   return static_cast<int>(CGAL::side_of_bounded_sphere(cgal(a), cgal(b), cgal(c), cgal(p)));
+}
+
+Point3 circumcentre_exact(Point3 a, Point3 b, Point3 c, Point3 d) {
+  using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+  auto ek = [](Point3 p) { return EK::Point_3(p.x, p.y, p.z); };
+  const EK::Point_3 o = CGAL::circumcenter(ek(a), ek(b), ek(c), ek(d));
+  return {CGAL::to_double(o.x()), CGAL::to_double(o.y()), CGAL::to_double(o.z())};
 }
 
 }  // namespace fdr::predicates

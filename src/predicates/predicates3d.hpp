@@ -24,6 +24,11 @@ int diametral_side(Point3 a, Point3 b, Point3 p);
 // through a, b, c and a fourth point is not this one, so insphere cannot decide it.
 int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p);
 
+// The centre of the sphere through a, b, c, d (not coplanar), constructed exactly and rounded to
+// the nearest doubles (CGAL's exact kernel): for tetrahedra too flat for a double formula, whose
+// rounding error in the triple product can be as large as the product itself.
+Point3 circumcentre_exact(Point3 a, Point3 b, Point3 c, Point3 d);
+
 namespace detail {
 inline constexpr double kO3dBound = (7.0 + 56.0 * kEps) * kEps;
 inline constexpr double kIspBound = (16.0 + 224.0 * kEps) * kEps;

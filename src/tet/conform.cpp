@@ -1,6 +1,8 @@
 // Refiner3's start and rules 1 and 2: the conforming Delaunay tetrahedralization of the PLC.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include "base/debug.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -52,6 +54,7 @@ Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const
                    const TetOptions& options)
     : plc_(plc), ft_(ft), f_(f), options_(options) {
   bound_ = options.bound > 0 ? options.bound : kDefaultBound;
+  check_boundary_ = debug::on(debug::Aid::kTet);
   stats_.bound = bound_;
   stats_.input_vertices = plc.points.size();
   vid_ = dt_.insert_all(plc.points).vertex_of;
@@ -161,18 +164,29 @@ void Refiner3::enqueue_at(VertexId u) {
     }
 }
 
-void Refiner3::note_touched(const std::vector<TetId>& cavity) {
-  touched_segs_.clear();
-  touched_tris_.clear();
-  for (TetId t : cavity) {
-    if (dt_.is_ghost(t)) continue;  // a ghost's finite face is its finite neighbour's too
-    const auto& tv = dt_.vertices(t);
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (bd_->is_subsegment(tv[i], tv[j])) touched_segs_.push_back({tv[i], tv[j]});
-    for (int i = 0; i < 4; ++i) {
-      const std::uint32_t s = bd_->subfacet(tv[(i + 1) & 3], tv[(i + 2) & 3], tv[(i + 3) & 3]);
-      if (s != UINT32_MAX) touched_tris_.push_back(s);
+void Refiner3::enqueue_changed(VertexId v, const std::vector<TetId>& created) {
+  // Every vertex of a destroyed tetrahedron is a vertex of a created one (the cavity is
+  // star-shaped from v), so a subsegment or subfacet that the insertion destroyed, or whose
+  // neighbourhood it changed, has all its corners among the created tetrahedra's vertices. Taken
+  // from the insertion itself, not from a cavity computed before it, so that no lost piece can
+  // go unqueued whatever that computation missed.
+  if (vmark_.size() < dt_.num_vertices()) vmark_.resize(dt_.num_vertices() * 3 / 2 + 16, 0);
+  ++vstamp_;
+  around_.clear();
+  for (TetId t : created)
+    for (VertexId u : dt_.vertices(t))
+      if (u != kInfinite && u != v && vmark_[u] != vstamp_) {
+        vmark_[u] = vstamp_;
+        around_.push_back(u);
+      }
+  for (VertexId u : around_) {
+    for (VertexId w : bd_->segment_neighbours(u))
+      if (u < w && vmark_[w] == vstamp_) seg_queue_.push_back({u, w, false});
+    for (std::uint32_t t : bd_->subfacets_at(u)) {
+      const auto& c = bd_->tri(t).v;
+      if (facet_queued_[t] || vmark_[c[0]] != vstamp_ || vmark_[c[1]] != vstamp_ || vmark_[c[2]] != vstamp_) continue;
+      facet_queued_[t] = 1;
+      facet_queue_.push_back({t, c});
     }
   }
 }
@@ -190,12 +204,7 @@ void Refiner3::enqueue_all() {
 void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
   if (apex_.size() < dt_.num_vertices()) apex_.resize(dt_.num_vertices(), 0);
   if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
-  for (const auto& e : touched_segs_) seg_queue_.push_back({e[0], e[1], false});
-  for (std::uint32_t t : touched_tris_)
-    if (bd_->tri(t).alive && !facet_queued_[t]) {
-      facet_queued_[t] = 1;
-      facet_queue_.push_back({t, bd_->tri(t).v});
-    }
+  enqueue_changed(v, created);
   enqueue_at(v);  // the new pieces at v, when it was split into the boundary
   if (regions_live_) {
     assign_regions(created);
@@ -211,9 +220,6 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
   std::vector<TetId> ts;
   const TetId hint = edge_tets(dt_, a, b, ts) ? ts[0] : dt_.vertex_tet(a);
   const TetId h = dt_.locate(p, hint);
-  std::vector<TetId> cavity;
-  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, p, h, cavity);
-  note_touched(cavity);
   const Insertion ins = dt_.insert(p, h, &created);
   if (ins.duplicate) {  // the piece is too short to split in doubles
     ++stalls_;
@@ -280,7 +286,6 @@ void Refiner3::split_subfacet(std::uint32_t t) {
     return;
   }
   std::vector<TetId> created;
-  note_touched(cavity);
   const Insertion ins = dt_.insert(c, h, &created);
   if (ins.duplicate) {
     ++stalls_;
@@ -293,23 +298,78 @@ void Refiner3::split_subfacet(std::uint32_t t) {
 }
 
 void Refiner3::conform() {
-  // Stalled splits (pieces too short for doubles) cannot go on for ever.
+  // One episode: rules 1 and 2 until the queues are empty. Stalled splits (pieces too short for
+  // doubles) and rounds that only queue again without inserting (a rejected split whose
+  // replacement cannot be made) are counted within the episode, so that a long run's earlier
+  // episodes do not shorten a later one; either reaching its cap ends the episode.
   constexpr std::size_t kMaxStalls = 1000;
-  while ((!seg_queue_.empty() || !facet_queue_.empty()) && !capped() && stalls_ < kMaxStalls) {
-    if (!seg_queue_.empty()) {
-      const QueuedSegment q = seg_queue_.front();
-      seg_queue_.pop_front();
-      if (bd_->is_subsegment(q.a, q.b) && (q.forced || segment_encroached(q.a, q.b))) split_segment(q.a, q.b);
-      continue;
-    }
-    const QueuedFacet q = facet_queue_.front();
-    facet_queue_.pop_front();
-    if (!q.forced) facet_queued_[q.tri] = 0;
-    const SubfacetTri& s = bd_->tri(q.tri);
-    if (!s.alive || s.v != q.v) continue;
-    if (q.forced || subfacet_encroached(q.tri)) split_subfacet(q.tri);
+  constexpr std::size_t kMaxIdle = 100000;
+  stalls_ = 0;
+  std::size_t idle = 0;
+  Point3 last{};
+  while ((!seg_queue_.empty() || !facet_queue_.empty()) && !capped() && stalls_ < kMaxStalls && idle < kMaxIdle) {
+    const std::size_t vertices = dt_.num_vertices(), queued = seg_queue_.size() + facet_queue_.size();
+    conform_step(&last);
+    if (dt_.num_vertices() > vertices) idle = 0;
+    else if (seg_queue_.size() + facet_queue_.size() >= queued) ++idle;
   }
-  if (stalls_ >= kMaxStalls) note_shortfall({}, "boundary splits stalled");
+  if (stalls_ >= kMaxStalls || idle >= kMaxIdle) {
+    char what[120];
+    std::snprintf(what, sizeof what, "boundary splits %s; the last piece tried is given",
+                  stalls_ >= kMaxStalls ? "stalled (pieces too short to split)" : "made no progress");
+    note_shortfall(last, what);
+    gave_up_ = true;
+  }
+  if (check_boundary_ && conforming()) {
+    const std::string m = missing_boundary();
+    if (!m.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), m.c_str());
+  }
+}
+
+void Refiner3::conform_step(Point3* last) {
+  if (!seg_queue_.empty()) {
+    const QueuedSegment q = seg_queue_.front();
+    seg_queue_.pop_front();
+    if (bd_->is_subsegment(q.a, q.b) && (q.forced || segment_encroached(q.a, q.b))) {
+      *last = 0.5 * (dt_.point(q.a) + dt_.point(q.b));
+      split_segment(q.a, q.b);
+    }
+    return;
+  }
+  const QueuedFacet q = facet_queue_.front();
+  facet_queue_.pop_front();
+  if (!q.forced) facet_queued_[q.tri] = 0;
+  const SubfacetTri& s = bd_->tri(q.tri);
+  // A slot that holds another subfacet than when queued: a forced entry is void, but the flag of
+  // an unforced one also stood for the new subfacet (not queued again while it was set), so that
+  // one is checked now.
+  if (!s.alive || (q.forced && s.v != q.v)) return;
+  if (q.forced || subfacet_encroached(q.tri)) {
+    *last = (1.0 / 3) * (dt_.point(s.v[0]) + dt_.point(s.v[1]) + dt_.point(s.v[2]));
+    split_subfacet(q.tri);
+  }
+}
+
+std::string Refiner3::missing_boundary() const {
+  auto at = [&](VertexId v) {
+    const Point3 p = dt_.point(v);
+    char s[96];
+    std::snprintf(s, sizeof s, "%u (%.17g, %.17g, %.17g)", v, p.x, p.y, p.z);
+    return std::string(s);
+  };
+  std::string out;
+  std::vector<TetId> ts;
+  bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) {
+    if (out.empty() && !edge_tets(dt_, a, b, ts)) out = "subsegment " + at(a) + " - " + at(b) + " is no edge";
+  });
+  for (std::uint32_t t = 0; t < bd_->tri_slots() && out.empty(); ++t) {
+    const SubfacetTri& s = bd_->tri(t);
+    std::array<VertexId, 2> apex{};
+    if (s.alive && face_apexes(dt_, s.v[0], s.v[1], s.v[2], apex) == 0)
+      out = "subfacet " + std::to_string(t) + " of facet " + std::to_string(s.facet) + ": " + at(s.v[0]) + " " +
+            at(s.v[1]) + " " + at(s.v[2]) + " is no face";
+  }
+  return out;
 }
 
 }  // namespace fdr::tet

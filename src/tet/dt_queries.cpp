@@ -74,10 +74,6 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
   out.clear();
   if (start == kNoId || dt.is_ghost(start)) return;
-  auto in_conflict = [&](TetId t) {
-    const auto& v = dt.vertices(t);
-    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
-  };
   std::uint32_t* mark = next_marks(dt);
   const std::uint32_t stamp = mark_stamp();
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
@@ -85,14 +81,24 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
   out.push_back(start);
   mark[start] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    if (dt.is_ghost(out[k])) continue;
     for (int i = 0; i < 4; ++i) {
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      if (dt.is_ghost(n) ? beyond_hull_face(dt, n, p) : in_conflict(n)) out.push_back(n);
+      if (in_conflict(dt, n, p)) out.push_back(n);
     }
   }
+}
+
+bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
+  auto in_sphere = [&](TetId c) {
+    const auto& v = dt.vertices(c);
+    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+  };
+  if (!dt.is_ghost(t)) return in_sphere(t);
+  const auto& v = dt.vertices(t);
+  const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
+  return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
 }
 
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {

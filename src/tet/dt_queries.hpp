@@ -21,9 +21,14 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 
 // The tetrahedra that inserting p would destroy, without changing dt: from `start` (a finite
 // tetrahedron whose closed circumsphere holds p, e.g. the one p lies in or the one p is the
-// circumcentre of), the finite ones whose circumsphere holds p strictly inside, connected through
-// faces, and the ghosts next to them whose hull face p lies strictly beyond (not walked further).
+// circumcentre of), those in conflict with p (in_conflict) connected through faces.
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out);
+
+// Whether inserting p destroys t, by Delaunay3's own test: a finite tetrahedron whose circumsphere
+// holds p strictly inside; a ghost whose hull face p lies strictly beyond or, on the face's plane,
+// whose finite neighbour is in conflict (points split into a facet on the hull lie on that plane,
+// and their cavity may join its finite tetrahedra only through such ghosts).
+bool in_conflict(const Delaunay3& dt, TetId t, Point3 p);
 
 // Whether p lies strictly beyond ghost g's hull face.
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 #include "plc/plc.hpp"
 #include "plc/triangulate_facets.hpp"
@@ -51,6 +52,10 @@ class Refiner3 {
   // the circumcentre, rule 3 and the boundary rules applied as it goes (slivers.cpp).
   void remove_slivers();
 
+  // The first subsegment that is not an edge, or live subfacet that is not a face, of the
+  // tetrahedralization, named with its corners; empty when the whole boundary is there.
+  std::string missing_boundary() const;
+
   bool segment_encroached(VertexId a, VertexId b);
   bool subfacet_encroached(std::uint32_t t);
   // Whether tetrahedron t (finite, in the domain) is bad: R / f(c) > B, radius-edge above 2, or
@@ -62,8 +67,10 @@ class Refiner3 {
   const Delaunay3& dt() const { return dt_; }
   const Boundary& boundary() const { return *bd_; }
   const TetStats& stats() const { return stats_; }
-  // No subsegment or subfacet is left queued: the last conform() recovered the whole boundary.
+  // No subsegment or subfacet is left queued after the last conform() episode.
   bool conforming() const { return seg_queue_.empty() && facet_queue_.empty(); }
+  // Whether some conform() episode stopped at its cap on stalled or fruitless splits.
+  bool gave_up() const { return gave_up_; }
   TetStats& stats() { return stats_; }
   double bound() const { return bound_; }
   const sizing::SizingField3& spacing() const { return f_; }
@@ -81,17 +88,19 @@ class Refiner3 {
     bool forced = false;
   };
   bool capped();
+  // One entry of the boundary queues taken and acted on; *last gets the piece's middle when split.
+  void conform_step(Point3* last);
   void split_segment(VertexId a, VertexId b);
   void split_subfacet(std::uint32_t t);
   void try_split_tet(const BadTet& b);
   // Encroached (or, for subfacets, destroyed) subsegments and subfacets if p were inserted with
   // conflict region `cavity`; returns whether any.
   bool find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets);
-  // Before an insertion whose conflict region is `cavity`: the subsegments and subfacets that are
-  // edges and faces of its tetrahedra, the only ones whose neighbourhood the insertion changes.
-  void note_touched(const std::vector<TetId>& cavity);
+  // After the insertion of v that made `created`: queues the subsegments and subfacets it may
+  // have destroyed or changed the neighbourhood of.
+  void enqueue_changed(VertexId v, const std::vector<TetId>& created);
   void after_insert(VertexId v, const std::vector<TetId>& created);
-  // Queues every subsegment and subfacet (a sweep that catches what note_touched could miss).
+  // Queues every subsegment and subfacet (a sweep per refinement pass).
   void enqueue_all();
   void enqueue_at(VertexId u);
   void assign_regions(const std::vector<TetId>& created);
@@ -134,11 +143,12 @@ class Refiner3 {
   std::vector<TetId> created_;  // the tetrahedra the last rule-3 split made
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
-  std::vector<std::array<VertexId, 2>> touched_segs_;
-  std::vector<std::uint32_t> touched_tris_;
+  std::vector<VertexId> around_;  // the vertices of the tetrahedra an insertion made
   std::vector<std::uint32_t> vmark_;
   std::uint32_t vstamp_ = 0;
-  std::size_t stalls_ = 0;
+  std::size_t stalls_ = 0;     // splits of the current conform() episode that made no vertex
+  bool gave_up_ = false;       // an episode ended at its stall or progress cap
+  bool check_boundary_ = false;  // the FDR_DEBUG_TET aid: missing_boundary() after every episode
   TetStats stats_;
 };
 

@@ -155,7 +155,6 @@ void Refiner3::try_split_tet(const BadTet& b) {
     ++stats_.rejected;  // as above
     return;
   }
-  note_touched(cavity);
   created_.clear();
   const Insertion ins = dt_.insert_dug(&created_);
   ++stats_.tet_splits;

@@ -103,24 +103,16 @@ bool bounded_conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::si
   out.clear();
   if (start == kNoId || dt.is_ghost(start)) return true;
   next_stamp(dt, mark, stamp);
-  // As conflict_region: the start is destroyed whatever its sphere says, the finite tetrahedra
-  // whose sphere holds p strictly join through faces, ghosts whose hull face p is beyond end it.
+  // As conflict_region: the start is destroyed whatever its sphere says, the rest joins through
+  // faces by the insertion's own test (in_conflict).
   out.push_back(start);
   mark[start] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    if (dt.is_ghost(out[k])) continue;
     for (int i = 0; i < 4; ++i) {
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      bool in;
-      if (dt.is_ghost(n)) {
-        in = beyond_hull_face(dt, n, p);
-      } else {
-        const auto& v = dt.vertices(n);
-        in = predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
-      }
-      if (!in) continue;
+      if (!in_conflict(dt, n, p)) continue;
       if (out.size() >= max_size) return false;
       out.push_back(n);
     }
@@ -243,9 +235,7 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
     if (good) break;
   }
   if (pick_h != kNoId) {
-    conflict_region(dt_, pick, s.tet, cavity);
     std::vector<TetId> created;
-    note_touched(cavity);
     const Insertion ins = dt_.insert(pick, pick_h, &created);
     if (ins.duplicate) return;
     ++stats_.sliver_splits;

@@ -11,7 +11,8 @@ struct Sphere {
 };
 
 // The sphere through a, b, c, d (non-coplanar). Computed relative to a, which keeps the
-// rounding error proportional to the tetrahedron's size rather than to its distance from the origin.
+// rounding error proportional to the tetrahedron's size rather than to its distance from the
+// origin; a tetrahedron too flat for that has its centre constructed exactly and rounded.
 Sphere circumsphere(Point3 a, Point3 b, Point3 c, Point3 d);
 
 // Length of the shortest of the six edges.

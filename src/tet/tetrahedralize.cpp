@@ -16,9 +16,14 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
     r.flood_regions();
   }
   // A boundary left unrecovered lets the region flood cross it: the mesh would lose its volume.
-  if (!r.conforming() && !r.stats().capped)
-    throw Error(ExitCode::kInternal, plc.source + ": the 3D refinement stopped before every subsegment and "
-                                     "subfacet was recovered (boundary splits stalled); nothing written");
+  // At the vertex cap the run stops with its own exit code and message instead.
+  if (!r.stats().capped) {
+    const std::string missing = r.missing_boundary();
+    if (!missing.empty())
+      throw Error(ExitCode::kInternal, plc.source + ": the 3D refinement left " + missing +
+                                           (r.gave_up() ? " (boundary splits stopped at their cap)" : "") +
+                                           "; nothing written");
+  }
   TetResult out;
   out.mesh = make_tet_mesh(r, options.cell_fields);
   // Facets that enclose a volume and no tetrahedron inside: a boundary subfacet was lost and the

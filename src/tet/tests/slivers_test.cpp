@@ -109,14 +109,15 @@ TEST(Slivers, BallCentreIsInsideTheCircumsphereEvenWhenFlat) {
     EXPECT_GT(s.radius, 0) << i;
   }
   // A flat tetrahedron that rule 3 left in a box at spacing 0.15 (four nearly cocircular points on
-  // two facets): its double-precision circumcentre lies outside its exact circumsphere.
+  // two facets): the double formula's circumcentre lies outside its exact circumsphere, so
+  // circumsphere() constructs this one exactly, and the centre lies inside.
   Point3 p[4] = {{0x1.6p-1, 0x1.8p+1, 0x1.004fec04fec05p-3},
                  {0x1.6p-1, 0x1.6ffb013fb014p+1, 0x0p+0},
                  {0x1.1c1472ce58b03p-1, 0x1.8p+1, 0x1.ef1000f4a4a6cp-4},
                  {0x1.1c1472ce58b03p-1, 0x1.70877ff85adadp+1, 0x0p+0}};
   if (predicates::orient3d(p[0], p[1], p[2], p[3]) < 0) std::swap(p[0], p[1]);
   ASSERT_GT(predicates::orient3d(p[0], p[1], p[2], p[3]), 0);
-  EXPECT_LE(predicates::insphere(p[0], p[1], p[2], p[3], circumsphere(p[0], p[1], p[2], p[3]).centre), 0);
+  EXPECT_GT(predicates::insphere(p[0], p[1], p[2], p[3], circumsphere(p[0], p[1], p[2], p[3]).centre), 0);
   EXPECT_GT(predicates::insphere(p[0], p[1], p[2], p[3], sliver_ball(p[0], p[1], p[2], p[3]).centre), 0);
 }
 
