@@ -3,7 +3,7 @@
 
 namespace fdr::coast {
 
-std::size_t Meets::count(const OGRPolygon& piece) {
+std::size_t Meets::count(const OGRPolygon& piece, std::size_t* first) {
   OGREnvelope e;
   piece.getEnvelope(&e);
   e.MinX -= grow_; e.MinY -= grow_; e.MaxX += grow_; e.MaxY += grow_;
@@ -14,7 +14,9 @@ std::size_t Meets::count(const OGRPolygon& piece) {
     if (!env_[i].Intersects(e)) continue;
     if (!ungrown && !grown) grown = checked(piece.Buffer(grow_, 1), "buffer of a piece");
     if (!prep_[i]) prep_[i] = std::make_unique<Prepared>(ps_[i].get());
-    if (prep_[i]->intersects(ungrown ? static_cast<const OGRGeometry*>(&piece) : grown.get()) && ++n >= 2) break;
+    if (!prep_[i]->intersects(ungrown ? static_cast<const OGRGeometry*>(&piece) : grown.get())) continue;
+    if (n == 0 && first) *first = i;
+    if (++n >= 2) break;
   }
   return n;
 }
