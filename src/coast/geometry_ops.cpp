@@ -217,8 +217,13 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
       if (find(i) == find(j)) continue;
       const std::size_t big = npts[i] >= npts[j] ? i : j, small = big == i ? j : i;
       if (!prep[big]) prep[big] = std::make_unique<Prepared>(ps[big].get());
-      if (hair > 0 && !grown[small]) grown[small] = grown_for_contact(*ps[small], hair);
-      if (prep[big]->intersects(hair > 0 ? grown[small].get() : ps[small].get())) parent[find(i)] = find(j);
+      // Pieces that meet as they are meet grown too: the buffer only for those that do not.
+      bool meet = prep[big]->intersects(ps[small].get());
+      if (!meet && hair > 0) {
+        if (!grown[small]) grown[small] = grown_for_contact(*ps[small], hair);
+        meet = prep[big]->intersects(grown[small].get());
+      }
+      if (meet) parent[find(i)] = find(j);
     }
   }
   std::vector<std::vector<std::size_t>> groups(n);
