@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "base/parallel.hpp"
 #include "pslg/segment_grid.hpp"
@@ -22,13 +24,69 @@ bool boxes_meet(const Box2& a, const Box2& b) {
   return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
 }
 
-// The faces of one cluster's lines: noded (OGR 3.6 has no unary union: the union with one of
-// them nodes them all) and polygonized. False when GEOS fails.
+}  // namespace
+
+std::unique_ptr<OGRMultiLineString> noded_as_given(const OGRMultiLineString& lines, const std::vector<int>& members) {
+  struct PairHash {
+    std::size_t operator()(const std::pair<double, double>& p) const {
+      return static_cast<std::size_t>(point_key(p.first, p.second));
+    }
+  };
+  std::unordered_map<std::pair<double, double>, Index, PairHash> id;
+  std::vector<Point2> pts;
+  std::vector<int> uses;  // vertex occurrences (a closed line's start twice)
+  std::vector<std::vector<Index>> at(members.size());
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const OGRLineString* l = lines.getGeometryRef(members[m]);
+    for (int k = 0; k < l->getNumPoints(); ++k) {
+      const auto [it, fresh] = id.try_emplace({l->getX(k), l->getY(k)}, static_cast<Index>(pts.size()));
+      if (fresh) {
+        pts.push_back({l->getX(k), l->getY(k)});
+        uses.push_back(0);
+      }
+      ++uses[it->second];
+      at[m].push_back(it->second);
+    }
+  }
+  std::vector<pslg::Segment> segs;
+  std::unordered_set<std::uint64_t> seen;
+  for (const auto& v : at)
+    for (std::size_t k = 0; k + 1 < v.size(); ++k) {
+      const Index a = std::min(v[k], v[k + 1]), b = std::max(v[k], v[k + 1]);
+      if (a == b || !seen.insert((static_cast<std::uint64_t>(a) << 32) | b).second) return nullptr;
+      segs.push_back({v[k], v[k + 1]});
+    }
+  const pslg::Contacts ct = pslg::find_contacts(pts, segs, nullptr);
+  if (!ct.segment_pairs.empty() || !ct.vertex_on_segment.empty()) return nullptr;
+  auto out = std::make_unique<OGRMultiLineString>();
+  for (const auto& v : at) {
+    auto line = std::make_unique<OGRLineString>();
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      line->addPoint(pts[v[k]].x, pts[v[k]].y);
+      if (k > 0 && k + 1 < v.size() && uses[v[k]] > 1) {
+        out->addGeometryDirectly(line.release());
+        line = std::make_unique<OGRLineString>();
+        line->addPoint(pts[v[k]].x, pts[v[k]].y);
+      }
+    }
+    out->addGeometryDirectly(line.release());
+  }
+  return out;
+}
+
+namespace {
+
+// The faces of one cluster's lines: noded (as given when they are, noded_as_given; else by GEOS:
+// OGR 3.6 has no unary union, the union with one of them nodes them all) and polygonized. False
+// when GEOS fails.
 bool cluster_faces(const OGRMultiLineString& lines, const std::vector<int>& members, OwnedPolygons& out) {
-  OGRMultiLineString ml;
-  for (const int i : members) ml.addGeometry(lines.getGeometryRef(i));
-  std::unique_ptr<OGRGeometry> first(ml.getGeometryRef(0)->clone());
-  GeomPtr noded(ml.Union(first.get()));
+  GeomPtr noded = noded_as_given(lines, members);
+  if (!noded) {
+    OGRMultiLineString ml;
+    for (const int i : members) ml.addGeometry(lines.getGeometryRef(i));
+    std::unique_ptr<OGRGeometry> first(ml.getGeometryRef(0)->clone());
+    noded.reset(ml.Union(first.get()));
+  }
   if (!noded) return false;
   if (wkbFlatten(noded->getGeometryType()) == wkbLineString) {  // Polygonize wants a collection
     auto m = std::make_unique<OGRMultiLineString>();

@@ -1,6 +1,7 @@
 // The faces of an arrangement of lines, cluster by cluster: what the differences by faces
 // (geometry_ops.hpp) polygonize.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "coast/geometry_ops.hpp"
@@ -11,6 +12,13 @@ namespace fdr::coast {
 // different clusters never meet). Clusters in the order of their first line; each lists its
 // lines in increasing order.
 std::vector<std::vector<int>> line_clusters(const OGRMultiLineString& lines);
+
+// The lines of a cluster (indices in `members`) cut at every vertex that occurs more than once,
+// when no two of their segments cross, overlap or touch other than at a common vertex (exact,
+// pslg::find_contacts) and no segment occurs twice: then they are already noded, and GEOS's
+// noding of them (an overlay) is not needed. Null otherwise. Why: most clusters of the
+// differences by faces are runs of two rings that meet only at the vertices where they part.
+std::unique_ptr<OGRMultiLineString> noded_as_given(const OGRMultiLineString& lines, const std::vector<int>& members);
 
 // The bounded faces of the arrangement of `lines`, each a polygon with its holes, in the order
 // of the clusters (line_clusters) and, within a cluster, as GEOS polygonizes it. Each cluster is

@@ -11,6 +11,7 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "coast/box_index.hpp"
 #include "coast/convex.hpp"
 #include "coast/faces.hpp"
 #include "coast/report.hpp"
@@ -121,6 +122,8 @@ std::vector<std::unique_ptr<OGRLinearRing>> attach_holes(std::vector<std::unique
   return left;
 }
 
+}  // namespace
+
 // ps with the holes put back (attach_holes); a hole no polygon takes (cannot happen: the holes
 // touch nothing) is left to the overlay. ps is emptied.
 GeomPtr with_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, std::vector<std::unique_ptr<OGRLinearRing>>& holes,
@@ -136,6 +139,8 @@ GeomPtr with_holes(std::vector<std::unique_ptr<OGRPolygon>>& ps, std::vector<std
   }
   return checked(m->Difference(hm.get()), what);
 }
+
+namespace {
 
 // p grown by `hair` (one segment per quarter circle) for contact tests: its outer ring grown and
 // its holes shrunk, each on its own. Why: GEOS buffers a polygon with thousands of holes by
@@ -212,8 +217,13 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
       if (find(i) == find(j)) continue;
       const std::size_t big = npts[i] >= npts[j] ? i : j, small = big == i ? j : i;
       if (!prep[big]) prep[big] = std::make_unique<Prepared>(ps[big].get());
-      if (hair > 0 && !grown[small]) grown[small] = grown_for_contact(*ps[small], hair);
-      if (prep[big]->intersects(hair > 0 ? grown[small].get() : ps[small].get())) parent[find(i)] = find(j);
+      // Pieces that meet as they are meet grown too: the buffer only for those that do not.
+      bool meet = prep[big]->intersects(ps[small].get());
+      if (!meet && hair > 0) {
+        if (!grown[small]) grown[small] = grown_for_contact(*ps[small], hair);
+        meet = prep[big]->intersects(grown[small].get());
+      }
+      if (meet) parent[find(i)] = find(j);
     }
   }
   std::vector<std::vector<std::size_t>> groups(n);
@@ -281,18 +291,71 @@ Point2 inside_point(const OGRGeometry* g) {
   return p;
 }
 
+namespace {
+
+// Whether the boundary of a polygon with many rings meets a small polygon without holes: a
+// segment of one crosses or touches the other's, or a whole ring lies inside it. Why not GEOS's
+// prepared test of the boundary against the polygon: after the segments it locates one point of
+// every ring of the boundary in the polygon, for every polygon tested.
+class RingsNear {
+ public:
+  RingsNear(const OGRGeometry& b, const OGRGeometry& boundary) : segs_(&boundary) {
+    polygons_of(&b, ps_);
+    for (const auto& p : ps_)
+      for (int k = -1; k < p->getNumInteriorRings(); ++k) {
+        rings_.push_back(k < 0 ? p->getExteriorRing() : p->getInteriorRing(k));
+        env_.emplace_back();
+        rings_.back()->getEnvelope(&env_.back());
+      }
+    index_ = std::make_unique<BoxIndex>(env_);
+  }
+  bool meets(const OGRPolygon& hp) const {
+    OGRLineString line;
+    line.addSubLineString(hp.getExteriorRing());
+    if (segs_.intersects(&line)) return true;
+    OGREnvelope he;
+    hp.getEnvelope(&he);
+    std::vector<std::size_t> near;
+    index_->near(he, &near);
+    for (const std::size_t i : near) {
+      if (!he.Contains(env_[i])) continue;
+      const OGRPoint pt(rings_[i]->getX(0), rings_[i]->getY(0));
+      if (hp.Intersects(&pt)) return true;
+    }
+    return false;
+  }
+
+ private:
+  Prepared segs_;
+  OwnedPolygons ps_;
+  std::vector<const OGRLinearRing*> rings_;
+  std::vector<OGREnvelope> env_;
+  std::unique_ptr<BoxIndex> index_;
+};
+
+}  // namespace
+
 // b minus u, where u's polygons are disjoint (a union's pieces). Those strictly inside b (touching
 // neither its boundary nor each other) become holes directly; the overlay gets only the others
 // (see detach_far_holes: GEOS places every hole of an overlay's result by a linear scan).
+// A polygon without holes that misses b's boundary is connected, so it lies wholly inside b or
+// wholly outside: one of its vertices says which (GEOS's containment test of the whole polygon
+// locates every vertex and crosses every segment again).
 GeomPtr minus_disjoint(GeomPtr b, const OGRGeometry& u, const char* what) {
   std::vector<std::unique_ptr<OGRPolygon>> hps, over;
   polygons_of(&u, hps);
   std::vector<std::unique_ptr<OGRLinearRing>> free_holes;
   if (hps.size() >= 32) {
     GeomPtr bnd(b->Boundary());
-    Prepared pb(b.get()), pbnd(bnd.get());
+    Prepared pb(b.get());
+    const RingsNear near_b(*b, *bnd);
+    auto inside_b = [&pb](const OGRPolygon& hp) {
+      const OGRLinearRing* r = hp.getExteriorRing();
+      const OGRPoint pt(r->getX(0), r->getY(0));
+      return pb.contains(&pt);
+    };
     for (auto& hp : hps) {
-      if (hp->getNumInteriorRings() == 0 && !pbnd.intersects(hp.get()) && pb.contains(hp.get()))
+      if (hp->getNumInteriorRings() == 0 && !hp->IsEmpty() && !near_b.meets(*hp) && inside_b(*hp))
         free_holes.emplace_back(hp->getExteriorRing()->clone());
       else
         over.push_back(std::move(hp));

@@ -76,6 +76,10 @@ double area_of(const OGRGeometry* g);
 // A point inside g (GEOS's point on surface; the centroid when that fails).
 Point2 inside_point(const OGRGeometry* g);
 
+// ps (emptied) with the holes (emptied) put into the polygon whose outer ring holds each (by its
+// first vertex); the holes must lie inside ps and touch nothing.
+GeomPtr with_holes(OwnedPolygons& ps, std::vector<std::unique_ptr<OGRLinearRing>>& holes, const char* what);
+
 // b minus u, where u's polygons are disjoint (a union's pieces); those strictly inside b become
 // holes without an overlay.
 GeomPtr minus_disjoint(GeomPtr b, const OGRGeometry& u, const char* what);

@@ -18,8 +18,9 @@ class Meets {
       : ps_(ps), env_(ps.size()), prep_(ps.size()), grow_(grow), alone_ungrown_(alone_ungrown) {
     for (std::size_t i = 0; i < ps.size(); ++i) ps[i]->getEnvelope(&env_[i]);
   }
-  // How many polygons of the set the piece meets (0, 1 or 2: the count stops at two).
-  std::size_t count(const OGRPolygon& piece);
+  // How many polygons of the set the piece meets (0, 1 or 2: the count stops at two); `first`
+  // (optional) gets the index of the first one met.
+  std::size_t count(const OGRPolygon& piece, std::size_t* first = nullptr);
 
  private:
   const std::vector<std::unique_ptr<OGRPolygon>>& ps_;

@@ -1,12 +1,14 @@
 // Step: widening of narrow water (widen.hpp).
 #include "coast/widen.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "base/parallel.hpp"
 #include "coast/geometry_ops.hpp"
 #include "coast/meets.hpp"
 #include "coast/report.hpp"
+#include "coast/ring_union.hpp"
 
 namespace fdr::coast {
 namespace {
@@ -23,6 +25,55 @@ std::size_t vertices_of(const OGRGeometry* g, std::size_t* rings) {
   }
   if (rings) *rings = nr;
   return nv;
+}
+
+// Envelopes of grown pieces of two different bodies that meet (grown by `hair`): the pieces may
+// join those bodies, which only an overlay of them together finds.
+bool bodies_may_join(const std::vector<OwnedPolygons>& grown, double hair) {
+  std::vector<std::pair<OGREnvelope, std::size_t>> env;
+  for (std::size_t b = 0; b < grown.size(); ++b)
+    for (const auto& d : grown[b]) {
+      env.emplace_back();
+      d->getEnvelope(&env.back().first);
+      env.back().second = b;
+    }
+  std::sort(env.begin(), env.end(), [](const auto& x, const auto& y) { return x.first.MinX < y.first.MinX; });
+  for (std::size_t i = 0; i < env.size(); ++i)
+    for (std::size_t j = i + 1; j < env.size() && env[j].first.MinX <= env[i].first.MaxX + hair; ++j)
+      if (env[j].second != env[i].second && env[j].first.MinY <= env[i].first.MaxY + hair &&
+          env[i].first.MinY <= env[j].first.MaxY + hair)
+        return true;
+  return false;
+}
+
+// The water bodies with the grown pieces that meet each (grown[b] for wps[b]) added, body by
+// body and ring by ring (union_by_rings); one union of everything (union_pieces) when pieces of
+// two bodies may meet or a body's rings cannot be done one by one. wps and grown are emptied.
+GeomPtr unite_widened(OwnedPolygons& wps, std::vector<OwnedPolygons>& grown, double hair) {
+  const char* what = "union of the widened water";
+  OwnedPolygons out;
+  bool by_rings = !bodies_may_join(grown, hair);
+  std::vector<GeomPtr> united(wps.size());
+  for (std::size_t b = 0; by_rings && b < wps.size(); ++b)
+    if (!grown[b].empty()) by_rings = (united[b] = union_by_rings(*wps[b], grown[b], what)) != nullptr;
+  if (by_rings) {
+    for (std::size_t b = 0; b < wps.size(); ++b) {
+      if (united[b]) polygons_of(united[b].get(), out);
+      else out.push_back(std::move(wps[b]));
+    }
+    return multi(out);
+  }
+  std::vector<int> family;  // 0: the water bodies, 1: the grown pieces (each set disjoint)
+  for (auto& p : wps) {
+    out.push_back(std::move(p));
+    family.push_back(0);
+  }
+  for (auto& g : grown)
+    for (auto& d : g) {
+      out.push_back(std::move(d));
+      family.push_back(1);
+    }
+  return union_pieces(out, hair, what, &family);
 }
 
 // Thin water widened. The parts of W no disk of radius rw fits in, T = W - open(W, rw), that are
@@ -95,18 +146,14 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Option
   std::vector<std::unique_ptr<OGRPolygon>> wps, dps;
   polygons_of(&W, wps);
   polygons_of(D.get(), dps);
-  std::vector<std::unique_ptr<OGRPolygon>> pieces;
-  std::vector<int> family;  // 0: the water bodies, 1: the grown pieces (each set disjoint)
-  for (auto& p : wps) {
-    pieces.emplace_back(p->clone());
-    family.push_back(0);
-  }
+  std::vector<OwnedPolygons> grown(wps.size());  // the grown pieces used, by the body they meet
   // Tested grown by the close width: land thinner than that between a piece and another water
   // body would be removed by the closing below and join them all the same.
   Meets bodies(wps, 2 * s, true);
   for (auto& d : dps) {
     if (!(d->get_Area() > 0)) continue;
-    const std::size_t meets = bodies.count(*d);
+    std::size_t body = 0;
+    const std::size_t meets = bodies.count(*d, &body);
     if (meets != 1) {  // would join two water bodies (or meets none: cannot happen)
       OGREnvelope e;
       d->getEnvelope(&e);
@@ -122,12 +169,10 @@ GeomPtr widen_thin_water(const OGRGeometry& W, double rw, double s, const Option
                              "water narrower than " + num(2 * rw) + " m was widened (banks moved by about " +
                                  num(rw - 2 * s) + " m into the land); the widened part covers " + num(a) + " m^2",
                              -1});
-    pieces.push_back(std::move(d));
-    family.push_back(1);
+    grown[body].push_back(std::move(d));
   }
   lap("pieces");
-  const double hair = 1e-6 * rw;
-  GeomPtr out = union_pieces(pieces, hair, "union of the widened water", &family);
+  GeomPtr out = unite_widened(wps, grown, 1e-6 * rw);
   lap("union");
   const double added = area_of(out.get()) - area_of(&W);
   if (added > 0) res.widened_area += added;

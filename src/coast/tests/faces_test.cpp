@@ -92,3 +92,62 @@ TEST(CoastFaces, DifferenceByFacesWithNestedClustersIsTheOverlays) {
 
 }  // namespace
 }  // namespace fdr::coast
+
+namespace fdr::coast {
+namespace {
+
+std::unique_ptr<OGRLineString> polyline(const std::vector<Point2>& pts) {
+  auto l = std::make_unique<OGRLineString>();
+  for (const Point2& p : pts) l->addPoint(p.x, p.y);
+  return l;
+}
+
+TEST(CoastNodedAsGiven, LinesMeetingAtVerticesAreCutThereAndKept) {
+  OGRMultiLineString ml;
+  // A closed square and a path from its corner (2, 0) through (2, 2), a vertex of the third line.
+  ml.addGeometryDirectly(polyline({{0, 0}, {2, 0}, {2, -2}, {0, -2}, {0, 0}}).release());
+  ml.addGeometryDirectly(polyline({{2, 0}, {2, 2}, {4, 2}}).release());
+  ml.addGeometryDirectly(polyline({{0, 2}, {2, 2}, {2, 4}}).release());
+  auto noded = noded_as_given(ml, {0, 1, 2});
+  ASSERT_TRUE(noded);
+  // The square cut at (2, 0) (used by the second line), the second and third lines at (2, 2).
+  EXPECT_EQ(noded->getNumGeometries(), 6);
+}
+
+TEST(CoastNodedAsGiven, CrossingTouchingOrRepeatedSegmentsNeedGeosNoding) {
+  OGRMultiLineString cross;
+  cross.addGeometryDirectly(polyline({{0, 0}, {2, 2}}).release());
+  cross.addGeometryDirectly(polyline({{0, 2}, {2, 0}}).release());
+  EXPECT_FALSE(noded_as_given(cross, {0, 1}));
+  OGRMultiLineString touch;  // an end in the other's interior
+  touch.addGeometryDirectly(polyline({{0, 0}, {2, 0}}).release());
+  touch.addGeometryDirectly(polyline({{1, 0}, {1, 1}}).release());
+  EXPECT_FALSE(noded_as_given(touch, {0, 1}));
+  OGRMultiLineString twice;  // one segment in both lines
+  twice.addGeometryDirectly(polyline({{0, 0}, {1, 0}, {1, 1}}).release());
+  twice.addGeometryDirectly(polyline({{1, 0}, {0, 0}, {0, 1}}).release());
+  EXPECT_FALSE(noded_as_given(twice, {0, 1}));
+}
+
+TEST(CoastNodedAsGiven, FacesOfLinesNodedAsGivenAreGeosFaces) {
+  // Two rings of a difference that part at shared vertices: faces as GEOS's noding gives them.
+  OGRMultiLineString ml;
+  ml.addGeometryDirectly(polyline({{0, 0}, {4, 0}, {4, 4}}).release());
+  ml.addGeometryDirectly(polyline({{0, 0}, {1, 3}, {4, 4}}).release());
+  ml.addGeometryDirectly(polyline({{4, 4}, {0, 4}, {0, 0}}).release());
+  OwnedPolygons fs;
+  ASSERT_TRUE(arrangement_faces(ml, fs));
+  ASSERT_TRUE(noded_as_given(ml, {0, 1, 2}));
+  OGRMultiLineString copy;
+  for (int i = 0; i < 3; ++i) copy.addGeometry(ml.getGeometryRef(i));
+  std::unique_ptr<OGRGeometry> first(copy.getGeometryRef(0)->clone());
+  GeomPtr noded(copy.Union(first.get()));
+  GeomPtr theirs(noded->Polygonize());
+  OwnedPolygons ts;
+  polygons_of(theirs.get(), ts);
+  EXPECT_EQ(areas(fs), areas(ts));
+  EXPECT_EQ(fs.size(), 2u);
+}
+
+}  // namespace
+}  // namespace fdr::coast
