@@ -102,6 +102,15 @@ double triangle_min_angle_deg(const mesh::MeshView& m, std::size_t t) {
   return geom::min_angle_deg(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]);
 }
 
+double triangle_quality(const mesh::MeshView& m, std::size_t t) {
+  const auto& tr = m.triangles[t];
+  return geom::mean_ratio_quality(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]);
+}
+
+double triangle_quality(const mesh::MeshView& m, std::size_t t, const WriteOptions& o) {
+  return o.triangle_quality ? (*o.triangle_quality)[t] : triangle_quality(m, t);
+}
+
 double circumradius(const mesh::MeshView& m, std::size_t t, Point2& centre) {
   const auto& tr = m.triangles[t];
   const Point2 a = m.vertices[tr[0]], b = m.vertices[tr[1]], c = m.vertices[tr[2]];

@@ -53,6 +53,10 @@ std::vector<std::pair<std::string, std::string>> metadata_rows(const WriteOption
 
 double triangle_area(const mesh::MeshView& m, std::size_t t);
 double triangle_min_angle_deg(const mesh::MeshView& m, std::size_t t);
+// Mean-ratio quality 4 sqrt(3) area / (sum of squared edges), 1 for an equilateral triangle.
+double triangle_quality(const mesh::MeshView& m, std::size_t t);
+// The triangle's quality column: the precomputed value when given, else triangle_quality.
+double triangle_quality(const mesh::MeshView& m, std::size_t t, const WriteOptions& o);
 // Circumradius and circumcentre (local frame); R = +inf for a degenerate triangle.
 double circumradius(const mesh::MeshView& m, std::size_t t, Point2& centre);
 // Distance from each vertex to its nearest neighbour over triangle edges (+inf if isolated).

@@ -67,7 +67,7 @@ std::int64_t triangle_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const Wri
     b.f8(o.triangle_area ? (*o.triangle_area)[tr] : triangle_area(m, tr));
     b.f8(o.triangle_min_angle ? (*o.triangle_min_angle)[tr] : triangle_min_angle_deg(m, tr));
     b.f8(have_r ? r : nan);
-    b.f8(have_r && o.bound_B > 0 ? r / o.bound_B : nan);
+    b.f8(triangle_quality(m, tr, o));
   }
   return static_cast<std::int64_t>(m.triangles.size());
 }

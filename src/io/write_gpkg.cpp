@@ -210,11 +210,10 @@ void write_triangles(SqliteDb& db, GeomBlob& gb, const mesh::MeshView& m, const 
         r = circumradius(m, t, c) / (*o.f)(c);
       }
       ins.add_real_or_null(r);
-      if (o.bound_B > 0) ins.add_real_or_null(r / o.bound_B);
-      else ins.add_null();
     } else {
-      ins.add_null().add_null();
+      ins.add_null();
     }
+    ins.add_real_or_null(triangle_quality(m, t, o));
     ins.end_row();
   }
   ins.finish();

@@ -48,10 +48,10 @@ struct RepairRow {
 class BoundaryCache;  // io/boundaries.hpp
 
 struct WriteOptions {
-  // Spacing function in the mesh's local frame; when set, triangles get R/f(c) and quality
-  // columns and nodes without a per-vertex f get f evaluated at the vertex.
+  // Spacing function in the mesh's local frame; when set, triangles get an R/f(c)
+  // column and nodes without a per-vertex f get f evaluated at the vertex.
   const sizing::SizingField* f = nullptr;
-  double bound_B = 0;  // the refinement bound B (quality = (R/f(c)) / B); <= 0: quality not written
+  double bound_B = 0;  // the refinement bound B, stored in the metadata
   std::vector<std::pair<std::string, std::string>> metadata;  // version, command line, inputs, ...
   std::vector<RepairRow> repairs;
   std::string title;  // mesh name (2dm MESHNAME, fort.14 title line, msh/vtu/UGRID comment)
@@ -67,6 +67,7 @@ struct WriteOptions {
   const std::vector<double>* triangle_r_over_f = nullptr;
   const std::vector<double>* triangle_min_angle = nullptr;
   const std::vector<double>* triangle_area = nullptr;
+  const std::vector<double>* triangle_quality = nullptr;  // 4 sqrt(3) area / sum of squared edges
   // Telemac: Selafin in double precision ("SERAFIND") instead of single; LIHBOR LIUBOR LIVBOR
   // of the open-boundary nodes in the .cli (default 5 4 4: prescribed elevation, free velocity).
   bool slf_double = false;

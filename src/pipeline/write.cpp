@@ -33,13 +33,14 @@ std::string ele_path_of(const std::string& node) {
 
 // Per-triangle R/f(c), min angle and area in the metric frame, for outputs written in --output-crs.
 struct MetricTriangleValues {
-  std::vector<double> r_over_f, min_angle, area;
+  std::vector<double> r_over_f, min_angle, area, quality;
 };
 MetricTriangleValues metric_triangle_values(const mesh::MeshView& m, const sizing::SizingField& f) {
   MetricTriangleValues v;
   v.r_over_f.resize(m.triangles.size());
   v.min_angle.resize(m.triangles.size());
   v.area.resize(m.triangles.size());
+  v.quality.resize(m.triangles.size());
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const Point2 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
     double r2;
@@ -47,6 +48,7 @@ MetricTriangleValues metric_triangle_values(const mesh::MeshView& m, const sizin
     v.r_over_f[t] = std::sqrt(r2) / f(cc);
     v.min_angle[t] = geom::min_angle_deg(a, b, c);
     v.area[t] = 0.5 * geom::cross2(a, b, c);
+    v.quality[t] = geom::mean_ratio_quality(a, b, c);
   }
   return v;
 }
@@ -125,6 +127,7 @@ WrittenOutputs write_outputs(const WriteInput& w, const WriteParams& p, Clock::t
     wo.triangle_r_over_f = &metric.r_over_f;
     wo.triangle_min_angle = &metric.min_angle;
     wo.triangle_area = &metric.area;
+    wo.triangle_quality = &metric.quality;
     to_write = &projected;
   }
   if (w.triangle_values) {

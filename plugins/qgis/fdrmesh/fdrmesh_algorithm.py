@@ -312,10 +312,9 @@ def _ramp():
 
 
 def style_layer(layer, kind, bound=1.0):
-    """Renderer for one fdrmesh GeoPackage layer: triangles graduated by quality, boundaries by kind."""
-    names = layer.fields().names()
+    """Renderer for one fdrmesh GeoPackage layer: triangles graduated by R/f(c), boundaries by kind."""
     if kind == "triangles":
-        field = "quality" if "quality" in names else "R_over_f"
+        field = "R_over_f"
         # Why: fixed breaks relative to the bound B make 'bad' (R/f > B) a class of its own.
         breaks = [0.0, 0.25 * bound, 0.5 * bound, 0.75 * bound, 0.9 * bound, bound]
         ramp = _ramp()

@@ -88,7 +88,7 @@ def test_in_process_run_loads_styled_layers(qgs, tmp_path):
     assert set(layers) == {"m triangles", "m boundaries", "m repairs", "m nodes", "m.2dm"}
     tri = layers["m triangles"]
     assert isinstance(tri.renderer(), QgsGraduatedSymbolRenderer)
-    assert tri.renderer().classAttribute() in ("quality", "R_over_f")
+    assert tri.renderer().classAttribute() == "R_over_f"
     assert tri.featureCount() == results["TRIANGLES"]
     bnd = layers["m boundaries"].renderer()
     assert isinstance(bnd, QgsCategorizedSymbolRenderer)

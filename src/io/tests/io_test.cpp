@@ -417,7 +417,7 @@ TEST_F(IoRoundTrip, GeoPackageThroughOgr) {
   ASSERT_NE(srs, nullptr);
   EXPECT_STREQ(srs->GetAuthorityCode(nullptr), "32633");
 
-  // Triangle 1 = (o0, o1, h1): area 2, R/f(c) with f = 2 and quality = (R/f)/B.
+  // Triangle 1 = (o0, o1, h1): area 2, R/f(c) with f = 2, quality 4 sqrt(3) area / sum of edges².
   OGRLayer* lt = ds->GetLayerByName("triangles");
   std::unique_ptr<OGRFeature> t1(lt->GetFeature(1));
   ASSERT_TRUE(t1);
@@ -425,7 +425,7 @@ TEST_F(IoRoundTrip, GeoPackageThroughOgr) {
   EXPECT_EQ(t1->GetFieldAsInteger64("n3"), 7);
   // Circumcentre of (0,0),(4,0),(3,1) is (2,-1): R = sqrt(5).
   EXPECT_NEAR(t1->GetFieldAsDouble("R_over_f"), std::sqrt(5.0) / 2.0, 1e-12);
-  EXPECT_NEAR(t1->GetFieldAsDouble("quality"), std::sqrt(5.0) / 2.0 / 1.5, 1e-12);
+  EXPECT_NEAR(t1->GetFieldAsDouble("quality"), 2.0 * std::sqrt(3.0) / 7.0, 1e-12);  // edges² 16 + 2 + 10
   double min_angle = t1->GetFieldAsDouble("min_angle");
   EXPECT_NEAR(min_angle, std::atan2(1.0, 3.0) * 180 / M_PI, 1e-9);  // angle at o0
   // Node o0: nearest neighbour over triangle edges is h0 at sqrt(2); f = 1.0.
@@ -659,7 +659,7 @@ TEST_F(IoRoundTrip, GeoPackageValidAndSameBytesForEverySize) {
     std::int64_t unit = 0, infinite = 0;
     for (std::int64_t t = 0; t < nt; ++t) unit += t % 7 == 0, infinite += t % 11 == 0;
     EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE area = 1.0"), std::to_string(unit)) << n;
-    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE R_over_f IS NULL AND quality IS NULL"),
+    EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM triangles WHERE R_over_f IS NULL AND quality IS NOT NULL"),
               std::to_string(infinite)) << n;
     EXPECT_EQ(pragma_text(p, "SELECT COUNT(*) FROM nodes WHERE fid = id AND (z IS NULL) = ((id - 1) % 5 = 0)"),
               std::to_string(nv)) << n;
