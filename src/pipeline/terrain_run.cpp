@@ -177,17 +177,8 @@ std::vector<LayerFigures> layer_figures(const quality::Report3& rep, const plc::
 }
 
 void write_report_json(const Result3& r, const std::string& path) {
-  std::ostringstream s;
-  quality::write_json3(r.report, s);
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(s.str());
-  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
-  for (const LayerFigures& l : r.layers)
-    layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
-                      {"expected_volume", l.expected},
-                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
-  j["layers"] = layers;
   OutFile out(path);
-  out.write(j.dump(2) + "\n");
+  out.write(report_json3(r) + "\n");
   out.commit();
 }
 
@@ -208,6 +199,20 @@ void write_plc_outputs(const std::vector<std::string>& paths, const plc::Plc& p)
 }
 
 }  // namespace
+
+std::string report_json3(const Result3& r) {
+  std::ostringstream s;
+  quality::write_json3(r.report, s);
+  if (r.layers.empty()) return s.str();
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(s.str());
+  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+  for (const LayerFigures& l : r.layers)
+    layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
+                      {"expected_volume", l.expected},
+                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
+  j["layers"] = layers;
+  return j.dump(2);
+}
 
 std::optional<double> base_elevation(const std::string& base) {
   char* end = nullptr;
