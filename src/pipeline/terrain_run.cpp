@@ -14,6 +14,7 @@
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/terrain_gpkg.hpp"
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "terrain/depth_spacing.hpp"
@@ -248,9 +249,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
                                     std::to_string(tp.plc.facets.size()) + " facets, " + std::to_string(stack.size() - 1) +
                                     " layers; spacing " + f->describe());
 
-  std::vector<std::string> poly_out, mesh_out;
-  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : mesh_out).push_back(o);
-  if (!poly_out.empty() && mesh_out.empty()) {  // the PLC only: nothing to mesh
+  std::vector<std::string> poly_out, gpkg_out, mesh_out;
+  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : is_gpkg_path(o) ? gpkg_out : mesh_out).push_back(o);
+  if (!poly_out.empty() && mesh_out.empty() && gpkg_out.empty()) {  // the PLC only: nothing to mesh
     write_plc_outputs(poly_out, tp.plc);
     r.written = poly_out;
     r.measured = false;
@@ -283,8 +284,17 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   }
 
   report_progress(0.9, "write");
-  tetio::write_tets_all(mesh_out, r.mesh);
-  write_plc_outputs(poly_out, tp.plc);
+  std::vector<std::string> surfaces;
+  for (const terrain::Surface& sf : stack) surfaces.push_back(sf.name);
+  write_top_gpkgs(gpkg_out, r2, r, surfaces, opt.input);
+  try {  // all or nothing: the GeoPackages go when a later output fails
+    tetio::write_tets_all(mesh_out, r.mesh);
+    write_plc_outputs(poly_out, tp.plc);
+  } catch (...) {
+    std::error_code ec;
+    for (const std::string& g : gpkg_out) std::filesystem::remove(g, ec);
+    throw;
+  }
   r.written = opt.outputs;
   clock.lap("write");
   r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
