@@ -21,16 +21,15 @@ std::vector<std::pair<std::string, std::string>> terrain_metadata(const Result3&
   return rows;
 }
 
-void write_top_gpkgs(const std::vector<std::string>& paths, const Result& tin_run, const Result3& r,
-                     const std::vector<std::string>& surfaces, const std::string& source) {
-  if (paths.empty()) return;
+void write_top_gpkg(const std::string& path, const Result& tin_run, const Result3& r,
+                    const std::vector<std::string>& surfaces, const std::string& source) {
   io::WriteOptions wo;
   wo.f = tin_run.f.get();
   wo.title = source;
   wo.repairs = tin_run.repair_rows;
   wo.metadata = {{"software", std::string("fdrmesh ") + kVersion}, {"input", source}, {"crs", tin_run.crs_name}};
   for (auto& row : terrain_metadata(r, surfaces)) wo.metadata.push_back(std::move(row));
-  for (const std::string& p : paths) io::write_mesh(tin_run.mesh, p, io::Format::kGpkg, wo);
+  io::write_mesh(tin_run.mesh, path, io::Format::kGpkg, wo);
 }
 
 }  // namespace fdr::pipeline

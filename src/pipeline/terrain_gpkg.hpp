@@ -15,8 +15,8 @@ namespace fdr::pipeline {
 std::vector<std::pair<std::string, std::string>> terrain_metadata(const Result3& r, const std::vector<std::string>& surfaces);
 
 // Writes the 2D run's terrain TIN (nodes with z = the DEM's elevation, triangles, boundaries =
-// the outline of the side walls, repairs) and terrain_metadata() to each path, atomically per file.
-void write_top_gpkgs(const std::vector<std::string>& paths, const Result& tin_run, const Result3& r,
-                     const std::vector<std::string>& surfaces, const std::string& source);
+// the outline of the side walls, repairs) and terrain_metadata() to `path`, atomically.
+void write_top_gpkg(const std::string& path, const Result& tin_run, const Result3& r,
+                    const std::vector<std::string>& surfaces, const std::string& source);
 
 }  // namespace fdr::pipeline

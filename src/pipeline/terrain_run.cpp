@@ -286,13 +286,17 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   report_progress(0.9, "write");
   std::vector<std::string> surfaces;
   for (const terrain::Surface& sf : stack) surfaces.push_back(sf.name);
-  write_top_gpkgs(gpkg_out, r2, r, surfaces, opt.input);
-  try {  // all or nothing: the GeoPackages go when a later output fails
+  std::vector<std::string> gpkg_done;
+  try {  // all or nothing: the GeoPackages written go when a later output fails
+    for (const std::string& g : gpkg_out) {
+      write_top_gpkg(g, r2, r, surfaces, opt.input);
+      gpkg_done.push_back(g);
+    }
     tetio::write_tets_all(mesh_out, r.mesh);
     write_plc_outputs(poly_out, tp.plc);
   } catch (...) {
     std::error_code ec;
-    for (const std::string& g : gpkg_out) std::filesystem::remove(g, ec);
+    for (const std::string& g : gpkg_done) std::filesystem::remove(g, ec);
     throw;
   }
   r.written = opt.outputs;
