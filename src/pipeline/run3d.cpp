@@ -3,6 +3,7 @@
 #include "pipeline/run3d.hpp"
 #include "pipeline/summary.hpp"
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -71,6 +72,13 @@ void add_cell_fields(tet::TetMesh& m, quality::TetValues&& v) {
 
 }  // namespace
 
+bool is_gpkg_path(const std::string& path) {
+  if (path.size() < 5) return false;
+  std::string ext = path.substr(path.size() - 5);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".gpkg";
+}
+
 bool is_3d_run(const Options& opt) { return !opt.dem.empty() || fdr::is_3d_input(opt.input); }
 
 void check_no_terrain_options(const Options& opt) {
@@ -112,8 +120,9 @@ void check_terrain_options(const Options& opt) {
   if (opt.hmin && opt.hmax && *opt.hmin > *opt.hmax) throw Error(ExitCode::kUsage, "--hmin must not exceed --hmax");
   check_tet_options(opt);
   for (const auto& o : opt.outputs)
-    if (!tetio::is_tets_output_path(o) && !is_poly_path(o))
-      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh, TetGen .node/.ele or its PLC as .poly");
+    if (!tetio::is_tets_output_path(o) && !is_poly_path(o) && !is_gpkg_path(o))
+      throw Error(ExitCode::kUsage, "-o " + o + ": a terrain volume is written as .vtu, .msh, TetGen .node/.ele, its PLC as .poly "
+                                                 "or its top surface as .gpkg");
 }
 
 void check_3d_options(const Options& opt) {

@@ -45,10 +45,13 @@ void check_tet_options(const Options& opt);
 // The mesher's options from the run's: B, the vertex cap over the PLC's own points, slivers.
 tet::TetOptions tet_options(const Options& opt, std::size_t plc_points);
 
+// True if `path` names a GeoPackage (.gpkg, any case): the top surface of a terrain run.
+bool is_gpkg_path(const std::string& path);
+
 // Every usage error of a terrain run (--dem), before any I/O: a base missing, --raster given
-// beside --dem, no domain, outputs that are not 3D formats or .poly (the terrain PLC), a negative
-// depth grade or minimum thickness, hmin above hmax, a bound that is not positive. Throws
-// Error(kUsage).
+// beside --dem, no domain, outputs that are not 3D formats, .poly (the terrain PLC) or .gpkg (the
+// top surface), a negative depth grade or minimum thickness, hmin above hmax, a bound that is not
+// positive. Throws Error(kUsage).
 void check_terrain_options(const Options& opt);
 
 // The terrain options given to a run without --dem (usage error naming the first); used by the 2D

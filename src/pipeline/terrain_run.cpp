@@ -14,6 +14,7 @@
 #include "gis/crs.hpp"
 #include "gis/raster_input.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/terrain_gpkg.hpp"
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "terrain/depth_spacing.hpp"
@@ -177,17 +178,8 @@ std::vector<LayerFigures> layer_figures(const quality::Report3& rep, const plc::
 }
 
 void write_report_json(const Result3& r, const std::string& path) {
-  std::ostringstream s;
-  quality::write_json3(r.report, s);
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(s.str());
-  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
-  for (const LayerFigures& l : r.layers)
-    layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
-                      {"expected_volume", l.expected},
-                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
-  j["layers"] = layers;
   OutFile out(path);
-  out.write(j.dump(2) + "\n");
+  out.write(report_json3(r) + "\n");
   out.commit();
 }
 
@@ -208,6 +200,20 @@ void write_plc_outputs(const std::vector<std::string>& paths, const plc::Plc& p)
 }
 
 }  // namespace
+
+std::string report_json3(const Result3& r) {
+  std::ostringstream s;
+  quality::write_json3(r.report, s);
+  if (r.layers.empty()) return s.str();
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(s.str());
+  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+  for (const LayerFigures& l : r.layers)
+    layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
+                      {"expected_volume", l.expected},
+                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
+  j["layers"] = layers;
+  return j.dump(2);
+}
 
 std::optional<double> base_elevation(const std::string& base) {
   char* end = nullptr;
@@ -243,9 +249,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
                                     std::to_string(tp.plc.facets.size()) + " facets, " + std::to_string(stack.size() - 1) +
                                     " layers; spacing " + f->describe());
 
-  std::vector<std::string> poly_out, mesh_out;
-  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : mesh_out).push_back(o);
-  if (!poly_out.empty() && mesh_out.empty()) {  // the PLC only: nothing to mesh
+  std::vector<std::string> poly_out, gpkg_out, mesh_out;
+  for (const std::string& o : opt.outputs) (is_poly(o) ? poly_out : is_gpkg_path(o) ? gpkg_out : mesh_out).push_back(o);
+  if (!poly_out.empty() && mesh_out.empty() && gpkg_out.empty()) {  // the PLC only: nothing to mesh
     write_plc_outputs(poly_out, tp.plc);
     r.written = poly_out;
     r.measured = false;
@@ -278,8 +284,21 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   }
 
   report_progress(0.9, "write");
-  tetio::write_tets_all(mesh_out, r.mesh);
-  write_plc_outputs(poly_out, tp.plc);
+  std::vector<std::string> surfaces;
+  for (const terrain::Surface& sf : stack) surfaces.push_back(sf.name);
+  std::vector<std::string> gpkg_done;
+  try {  // all or nothing: the GeoPackages written go when a later output fails
+    for (const std::string& g : gpkg_out) {
+      write_top_gpkg(g, r2, r, surfaces, opt.input);
+      gpkg_done.push_back(g);
+    }
+    tetio::write_tets_all(mesh_out, r.mesh);
+    write_plc_outputs(poly_out, tp.plc);
+  } catch (...) {
+    std::error_code ec;
+    for (const std::string& g : gpkg_done) std::filesystem::remove(g, ec);
+    throw;
+  }
   r.written = opt.outputs;
   clock.lap("write");
   r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

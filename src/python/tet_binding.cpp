@@ -7,6 +7,9 @@
 #include <vector>
 #include "api/tetrahedralize.hpp"
 #include "base/error.hpp"
+#include "cli/cli.hpp"
+#include "pipeline/run3d.hpp"
+#include "pipeline/terrain_run.hpp"
 
 namespace py = pybind11;
 
@@ -52,6 +55,21 @@ py::array_t<T> array_of(const T* data, std::vector<py::ssize_t> shape) {
   py::array_t<T> a(shape);
   std::copy(data, data + a.size(), a.mutable_data());
   return a;
+}
+
+// The tetrahedra, their materials and the faces and edges that tile the input, as numpy arrays.
+py::dict tet_arrays(const TetMesh& m) {
+  const auto n = static_cast<py::ssize_t>(m.points.size()), nt = static_cast<py::ssize_t>(m.tets.size());
+  const auto nf = static_cast<py::ssize_t>(m.faces.size()), ne = static_cast<py::ssize_t>(m.edges.size());
+  py::dict d;
+  d["points"] = array_of<double>(n ? &m.points[0].x : nullptr, {n, 3});
+  d["tets"] = array_of<VertexId>(nt ? m.tets[0].data() : nullptr, {nt, 4});
+  d["materials"] = array_of<std::int32_t>(m.tet_material.data(), {static_cast<py::ssize_t>(m.tet_material.size())});
+  d["faces"] = array_of<VertexId>(nf ? m.faces[0].data() : nullptr, {nf, 3});
+  d["face_markers"] = array_of<std::int32_t>(m.face_marker.data(), {static_cast<py::ssize_t>(m.face_marker.size())});
+  d["edges"] = array_of<VertexId>(ne ? m.edges[0].data() : nullptr, {ne, 2});
+  d["edge_markers"] = array_of<std::int32_t>(m.edge_marker.data(), {static_cast<py::ssize_t>(m.edge_marker.size())});
+  return d;
 }
 
 // _tetrahedralize(vertices, facets, facet_markers, holes, regions, spacing_spec, grid, bound, max_vertices)
@@ -105,17 +123,7 @@ py::dict tetrahedralize(Doubles v, py::sequence facets, std::optional<std::vecto
     if (f) r = fdr::tetrahedralize(plc, *f, o);
     else r = fdr::tetrahedralize(plc, spec.empty() ? default_spacing3(plc) : spec, o);
   }
-  const TetMesh& m = r.mesh;
-  const auto n = static_cast<py::ssize_t>(m.points.size()), nt = static_cast<py::ssize_t>(m.tets.size());
-  const auto nf = static_cast<py::ssize_t>(m.faces.size()), ne = static_cast<py::ssize_t>(m.edges.size());
-  py::dict d;
-  d["points"] = array_of<double>(n ? &m.points[0].x : nullptr, {n, 3});
-  d["tets"] = array_of<VertexId>(nt ? m.tets[0].data() : nullptr, {nt, 4});
-  d["materials"] = array_of<std::int32_t>(m.tet_material.data(), {static_cast<py::ssize_t>(m.tet_material.size())});
-  d["faces"] = array_of<VertexId>(nf ? m.faces[0].data() : nullptr, {nf, 3});
-  d["face_markers"] = array_of<std::int32_t>(m.face_marker.data(), {static_cast<py::ssize_t>(m.face_marker.size())});
-  d["edges"] = array_of<VertexId>(ne ? m.edges[0].data() : nullptr, {ne, 2});
-  d["edge_markers"] = array_of<std::int32_t>(m.edge_marker.data(), {static_cast<py::ssize_t>(m.edge_marker.size())});
+  py::dict d = tet_arrays(r.mesh);
   const TetStats& s = r.stats;
   py::dict st;
   st["bound"] = s.bound;
@@ -136,10 +144,37 @@ py::dict tetrahedralize(Doubles v, py::sequence facets, std::optional<std::vecto
   return d;
 }
 
+// _mesh3(args): a 3D run of `fdrmesh mesh` (a terrain volume with --dem, or a 3D PLC file) with the
+// command line's arguments: the tetrahedra as numpy arrays, the names of the markers and
+// materials, the per-tetrahedron quality values, the report (JSON text with the layers), the files
+// written and the log.
+py::dict mesh3(const std::vector<std::string>& args) {
+  const pipeline::Options o = cli::parse_mesh_args(args);
+  std::vector<std::pair<int, std::string>> log;
+  const LogFn collect = [&log](LogLevel lvl, std::string_view s) { log.push_back({static_cast<int>(lvl), std::string(s)}); };
+  pipeline::Result3 r;
+  {
+    py::gil_scoped_release nogil;
+    r = pipeline::run3d(o, {}, collect);
+  }
+  py::dict d = tet_arrays(r.mesh);
+  d["material_names"] = r.mesh.material_names;
+  d["marker_names"] = r.mesh.marker_names;
+  py::dict fields;
+  for (const auto& [name, v] : r.mesh.cell_fields)
+    fields[py::str(name)] = array_of<double>(v.data(), {static_cast<py::ssize_t>(v.size())});
+  d["cell_fields"] = fields;
+  d["report_json"] = pipeline::report_json3(r);
+  d["written"] = r.written;
+  d["log"] = log;
+  return d;
+}
+
 }  // namespace
 
 void bind_tetrahedralize(py::module_& mod) {
   mod.def("_tetrahedralize", &tetrahedralize);
+  mod.def("_mesh3", &mesh3);
   mod.def("default_spacing3", [](Doubles v) {
     plc::Plc p;
     p.points = points3(v, "vertices");

@@ -1,7 +1,9 @@
-# Processing provider "fdrmesh": the "fdrmesh executable" setting, availability check, one algorithm.
+# Processing provider "fdrmesh": the "fdrmesh executable" setting, availability check, the coastal
+# mesh and terrain volume algorithms.
 from qgis.core import Qgis, QgsMessageLog, QgsProcessingProvider
 
 from .fdrmesh_algorithm import LOG_TAG, SETTING_NAME, FdrmeshMeshCoastalAlgorithm, plugin_version, probe
+from .terrain_algorithm import FdrmeshTerrainVolumeAlgorithm
 
 try:  # the Processing plugin's settings page; absent only in a bare PyQGIS session
     from processing.core.ProcessingConfig import ProcessingConfig, Setting
@@ -58,3 +60,4 @@ class FdrmeshProvider(QgsProcessingProvider):
         else:
             QgsMessageLog.logMessage("fdrmesh provider unavailable: " + st["reason"], LOG_TAG, Qgis.Critical)
         self.addAlgorithm(FdrmeshMeshCoastalAlgorithm())
+        self.addAlgorithm(FdrmeshTerrainVolumeAlgorithm())

@@ -9,6 +9,7 @@
 #include <unistd.h>
 #include "base/error.hpp"
 #include "pipeline/run3d.hpp"
+#include "pipeline/terrain_gpkg.hpp"
 #include "pipeline/terrain_run.hpp"
 
 namespace fdr::pipeline {
@@ -85,6 +86,8 @@ TEST(TerrainRun, UsageErrors) {
   Options f = o;
   f.outputs = {"m.vtu", "m.poly"};
   EXPECT_EQ(usage_code(f), 0);
+  f.outputs = {"m.vtu", "top.GPKG"};
+  EXPECT_EQ(usage_code(f), 0);
   // Terrain options without --dem, on a 3D PLC and in the 2D plan.
   Options g;
   g.input = kData + "/3d/cube.poly";
@@ -154,6 +157,37 @@ TEST(TerrainRun, PlcOnly) {
   const Result3 r = run3d(o, {}, {});
   EXPECT_TRUE(r.mesh.tets.empty());
   EXPECT_NE(slurp(dir / "t.poly").find("500"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(TerrainRun, IsGpkgPath) {
+  EXPECT_TRUE(is_gpkg_path("top.gpkg"));
+  EXPECT_TRUE(is_gpkg_path("dir/Top.GPKG"));
+  EXPECT_FALSE(is_gpkg_path(".gpk"));
+  EXPECT_FALSE(is_gpkg_path("top.gpkg.vtu"));
+}
+
+// The top surface's GeoPackage goes with the volume: written beside it, removed when a later
+// output cannot be written.
+TEST(TerrainRun, TopGpkgAllOrNothing) {
+  const fs::path dir = fresh_dir("gpkg");
+  Options o = synthetic(dir);
+  o.outputs = {(dir / "top.gpkg").string(), (dir / "m.vtu").string()};
+  const Result3 r = run3d(o, {}, {});
+  EXPECT_TRUE(fs::exists(dir / "top.gpkg"));
+  EXPECT_EQ(r.written, o.outputs);
+  const auto meta = terrain_metadata(r, {"top", "synthetic_h1", "base"});
+  const std::vector<std::pair<std::string, std::string>> names = {
+      {"terrain_surfaces", "top,synthetic_h1,base"}, {"terrain_marker_1", "top"}, {"terrain_marker_2", "base"},
+      {"terrain_marker_3", "side"}, {"terrain_marker_4", "synthetic_h1"}, {"terrain_layer_1", "top-synthetic_h1"},
+      {"terrain_layer_2", "synthetic_h1-base"}};
+  for (const auto& kv : names) EXPECT_NE(std::find(meta.begin(), meta.end(), kv), meta.end()) << kv.first;
+  EXPECT_EQ(meta.back().first, "terrain_layers");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  o.outputs = {(dir / "top.gpkg").string(), (dir / "no_such_dir" / "m.vtu").string()};
+  EXPECT_EQ(run_code(o), 8);
+  EXPECT_TRUE(fs::is_empty(dir));
   fs::remove_all(dir);
 }
 

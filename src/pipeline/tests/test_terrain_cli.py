@@ -25,7 +25,7 @@ def run(tmp_path_factory):
             "--horizon", os.path.join(DATA, "terrain", "lux_h1.tif"),
             "--horizon", os.path.join(DATA, "terrain", "lux_h2.tif"),
             "--hmin", "1000", "--hmax", "4000", "--vertical-tol", "20", "--check", "-q",
-            "-o", str(out / "m.vtu"), "-o", str(out / "m.msh"), "--report", str(out / "r.json")]
+            "-o", str(out / "m.vtu"), "-o", str(out / "m.msh"), "-o", str(out / "top.gpkg"), "--report", str(out / "r.json")]
     p = subprocess.run(args, capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr
     return out
@@ -64,3 +64,41 @@ def test_msh_groups(run):
     names = text[text.index("$PhysicalNames"):text.index("$EndPhysicalNames")]
     for g in ["top", "base", "side", "lux_h1", "lux_h2", "top-lux_h1", "lux_h1-lux_h2", "lux_h2-base"]:
         assert f'"{g}"' in names, g
+
+
+def test_top_surface_gpkg(run):
+    """The GIS user's GeoPackage: the top TIN with the DEM's elevations, the walls' outline, the names."""
+    ogr = pytest.importorskip("osgeo.ogr")
+    meshio = pytest.importorskip("meshio")
+    ds = ogr.Open(str(run / "top.gpkg"))
+    assert ds is not None
+    nodes, tris, bnd = ds.GetLayerByName("nodes"), ds.GetLayerByName("triangles"), ds.GetLayerByName("boundaries")
+    assert nodes.GetFeatureCount() > 100 and tris.GetFeatureCount() > 100 and bnd.GetFeatureCount() >= 1
+    assert "UTM" in nodes.GetSpatialRef().ExportToWkt()
+    # Every node is a vertex of the volume's top, at the elevation the volume has there.
+    m = meshio.read(run / "m.vtu")
+    pts = np.asarray(m.points, dtype=float)
+    top = {(round(p[0], 3), round(p[1], 3)): p[2] for p in pts}
+    xyz = []
+    for f in nodes:
+        g = f.GetGeometryRef()
+        xyz.append((g.GetX(), g.GetY(), f.GetField("z")))
+    xyz = np.array(xyz)
+    for x, y, z in xyz:
+        assert (round(x, 3), round(y, 3)) in top
+    assert xyz[:, 2].min() > 100 and xyz[:, 2].max() < 600  # the DEM of Remich, not a horizon or the base
+    highest = {}
+    for p in pts:
+        k = (round(p[0], 3), round(p[1], 3))
+        highest[k] = max(highest.get(k, -1e9), p[2])
+    for x, y, z in xyz:
+        assert highest[(round(x, 3), round(y, 3))] == pytest.approx(z, abs=1e-6)
+    # The side walls stand on the closed outline of the domain.
+    closed = [f.GetField("closed") for f in bnd]
+    assert all(closed)
+    meta = {f.GetField("key"): f.GetField("value") for f in ds.GetLayerByName("metadata")}
+    assert meta["terrain_surfaces"] == "top,lux_h1,lux_h2,base"
+    assert [meta[f"terrain_marker_{k}"] for k in (1, 2, 3, 4, 5)] == ["top", "base", "side", "lux_h1", "lux_h2"]
+    assert [meta[f"terrain_layer_{k}"] for k in (1, 2, 3)] == ["top-lux_h1", "lux_h1-lux_h2", "lux_h2-base"]
+    layers = json.loads(meta["terrain_layers"])
+    assert layers == json.loads((run / "r.json").read_text())["layers"]

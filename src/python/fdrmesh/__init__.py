@@ -210,14 +210,12 @@ def _arg(value):
     return str(value)
 
 
-def mesh(input=None, **options):
-    """Runs the GIS pipeline, as `fdrmesh mesh INPUT --option value ...`: the options are the
-    command line's long options in snake_case (layer, raster, hmin, hmax, open_boundary,
-    breaklines, t_srs, output=[...], report, check=True, ...; see fdrmesh.MESH_OPTIONS and
-    `fdrmesh --help`). Flags take True/False, repeatable options a list, extent a 4-tuple.
-    Returns a Mesh with depths, crs_wkt, segment kinds (boundaries), repairs and report."""
+def _mesh_args(input, options):
+    """The command line of `fdrmesh mesh INPUT ...` from snake_case options."""
     args = []
     for name, value in options.items():
+        if name == "horizons":  # the plural reads better for a list; --horizon repeated
+            name = "horizon"
         if name not in MESH_OPTIONS:
             raise UsageError(f"unknown option '{name}' (fdrmesh.MESH_OPTIONS lists them)")
         key, typ, repeat, positional = MESH_OPTIONS[name]
@@ -234,4 +232,34 @@ def mesh(input=None, **options):
             args += ["--" + key, _arg(x)]
     if input is not None:
         args += ["--", str(input)]
+    return args
+
+
+def _volume(result):
+    """The dict of a terrain run; its warnings become RuntimeWarnings, its report a dict."""
+    for level, message in result["log"]:
+        if level >= 2:  # LogLevel::kWarning, kError
+            _warnings.warn(message, RuntimeWarning, stacklevel=3)
+    result["report"] = _json.loads(result.pop("report_json"))
+    return result
+
+
+def mesh(input=None, **options):
+    """Runs the GIS pipeline, as `fdrmesh mesh INPUT --option value ...`: the options are the
+    command line's long options in snake_case (layer, raster, hmin, hmax, open_boundary,
+    breaklines, t_srs, output=[...], report, check=True, ...; see fdrmesh.MESH_OPTIONS and
+    `fdrmesh --help`). Flags take True/False, repeatable options a list, extent a 4-tuple.
+    Returns a Mesh with depths, crs_wkt, segment kinds (boundaries), repairs and report.
+
+    With dem=... it is a terrain volume (docs/terrain3d.md), as `fdrmesh mesh DOMAIN --dem DEM
+    --base Z --horizon H ...`: base (an elevation or a raster), horizons (a list of rasters, from
+    the top down), depth_grade, min_thickness, bound, check. Returns the CLI's tetrahedra as a dict
+    (world coordinates of the working CRS): points (n,3), tets (t,4), materials (t,) (layer i from
+    the top is material i), faces (f,3) with face_markers (f,) (1 top, 2 base, 3 side, 4.. the
+    horizons), edges (e,2) with edge_markers (e,), material_names and marker_names (name of
+    material / marker m at m), cell_fields (r_over_f, radius_edge, min_dihedral_deg per tet),
+    report (the JSON report, with `layers`), written (files of output=[...]) and log."""
+    args = _mesh_args(input, options)
+    if options.get("dem") is not None:
+        return _volume(_core._mesh3(args))
     return _result(_core._mesh(args))
