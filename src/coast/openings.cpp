@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "base/memory.hpp"
 #include "coast/meets.hpp"
 #include "coast/report.hpp"
 #include "coast/restore.hpp"
@@ -91,6 +92,9 @@ GeomPtr open_water(const GeomPtr& W, const Options& o, Result& res) {
   const double r1 = 0.5 * o.close_width;
   const double r2 = 0.5 * std::clamp(o.min_feature, 0.0, o.close_width);
   auto [O1, O2] = two_openings(*W, r1, r2, 0.05 * o.close_width, o.restore_full_rounds);
+  // The openings' freed intermediates back to the system: the steps after them work partly on
+  // other threads, whose allocator arenas would not reuse these pages but grow beside them.
+  release_free_memory();
   lap("O1+O2");
   std::vector<std::unique_ptr<OGRPolygon>> comps;
   polygons_of(O1.get(), comps);
