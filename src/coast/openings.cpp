@@ -4,39 +4,31 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "base/parallel.hpp"
+#include "base/memory.hpp"
 #include "coast/meets.hpp"
 #include "coast/report.hpp"
 #include "coast/restore.hpp"
 
 namespace fdr::coast {
-namespace {
 
-// The two openings O1 = open(W, r1) and O2 = open(W, r2) (W itself for r2 = 0). They are
-// independent: one on each core (OGR gives every GEOS call its own context, so this is
-// thread-safe; the result does not depend on the thread count). Each opening gives the closed
-// water's exact coast back where it runs within the snapping distance of it (CoastRestorer), so
-// O1 and O2 coincide bitwise there.
-void openings(const GeomPtr& W, double r1, double r2, double hair, bool full_rounds, GeomPtr& O1, GeomPtr& O2) {
-  FilterLaps l1("  O1");
-  const CoastRestorer restorer(W.get(), hair, full_rounds);  // read by both (restore() is const)
-  l1("restorer");
-  run_beside(
-      [&W, &restorer, r2, &O2] {
-        GdalQuiet q2;
-        FilterLaps l2("  O2");
-        GeomPtr op = r2 > 0 ? opening(*W, r2) : nullptr;
-        l2("opening");
-        O2 = r2 > 0 ? restorer.restore(std::move(op)) : GeomPtr(W->clone());
-        l2("restore");
-      },
-      [&] {
-        GeomPtr op1 = opening(*W, r1);
-        l1("opening");
-        O1 = restorer.restore(std::move(op1));
-        l1("restore");
-      });
+// One opening after the other on this thread, not one beside the other: each opening's GEOS
+// intermediates are several times its result, and two of them alive at once set the
+// generalisation's peak memory; one thread also lets the second opening reuse the pages the first
+// freed (jemalloc gives another thread another arena). The buffers inside each opening still use
+// both cores where a polygon is big (offset).
+TwoOpenings two_openings(const OGRGeometry& W, double r1, double r2, double hair, bool full_rounds) {
+  FilterLaps lap("  openings:");
+  const CoastRestorer restorer(&W, hair, full_rounds);
+  lap("restorer");
+  TwoOpenings out;
+  out.O1 = restorer.restore(opening(W, r1));
+  lap("O1");
+  out.O2 = r2 > 0 ? restorer.restore(opening(W, r2)) : GeomPtr(W.clone());
+  lap("O2");
+  return out;
 }
+
+namespace {
 
 // Dropping a dead end next to a kept channel can leave two kept parts touching at a point (GEOS
 // calls that valid, the mesher would need zero-size elements there): R opened once more at the
@@ -99,8 +91,10 @@ GeomPtr open_water(const GeomPtr& W, const Options& o, Result& res) {
   std::vector<std::unique_ptr<OGRPolygon>> dropped;  // dead-end water closed
   const double r1 = 0.5 * o.close_width;
   const double r2 = 0.5 * std::clamp(o.min_feature, 0.0, o.close_width);
-  GeomPtr O1, O2;
-  openings(W, r1, r2, 0.05 * o.close_width, o.restore_full_rounds, O1, O2);
+  auto [O1, O2] = two_openings(*W, r1, r2, 0.05 * o.close_width, o.restore_full_rounds);
+  // The openings' freed intermediates back to the system: the steps after them work partly on
+  // other threads, whose allocator arenas would not reuse these pages but grow beside them.
+  release_free_memory();
   lap("O1+O2");
   std::vector<std::unique_ptr<OGRPolygon>> comps;
   polygons_of(O1.get(), comps);

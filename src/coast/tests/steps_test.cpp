@@ -180,6 +180,35 @@ TEST(CoastSteps, ConnectionNarrowerThanMinFeatureCutsOffTheSmallerBody) {
   EXPECT_GT(res.cut_off_area, 9.9e5);
 }
 
+std::string wkt(const OGRGeometry& g) {
+  char* w = nullptr;
+  g.exportToWkt(&w);
+  std::string s(w ? w : "");
+  CPLFree(w);
+  return s;
+}
+
+// The two openings one after the other are bitwise what each opening and restoration of the
+// water alone give: neither depends on the other (nor on the restorer having served the other).
+TEST(CoastSteps, TwoOpeningsAreEachOpeningAlone) {
+  // A basin with a dead-end inlet, a channel to a second basin, and islands far out and near
+  // the coast (holes: the opening grows them and gives their coast back).
+  Polygons ps = two_basins(10);
+  ps[0].push_back({{300, 300}, {300, 340}, {340, 340}, {340, 300}});
+  ps[0].push_back({{12, 600}, {12, 630}, {30, 630}, {30, 600}});
+  ps[0].push_back({{500, 800}, {500, 803}, {520, 803}, {520, 800}});
+  const GeomPtr W = water(ps);
+  ASSERT_TRUE(W->IsValid());
+  const double r1 = 15, r2 = 2.5, hair = 1.5;
+  const TwoOpenings both = two_openings(*W, r1, r2, hair);
+  const CoastRestorer alone(W.get(), hair);
+  EXPECT_EQ(wkt(*both.O1), wkt(*alone.restore(opening(*W, r1))));
+  EXPECT_EQ(wkt(*both.O2), wkt(*CoastRestorer(W.get(), hair).restore(opening(*W, r2))));
+  EXPECT_GT(area_of(both.O2.get()), area_of(both.O1.get()));
+  // r2 = 0: O2 is W itself.
+  EXPECT_EQ(wkt(*two_openings(*W, r1, 0, hair).O2), wkt(*W));
+}
+
 Options islet_opts(bool join) {  // hmin 100
   Options o;
   o.min_island_area = 3000;
