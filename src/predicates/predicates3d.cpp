@@ -26,11 +26,23 @@ int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p) {
   return static_cast<int>(CGAL::side_of_bounded_sphere(cgal(a), cgal(b), cgal(c), cgal(p)));
 }
 
+namespace {
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+EK::Point_3 ek(Point3 p) { return {p.x, p.y, p.z}; }
+Point3 rounded(const EK::Point_3& o) { return {CGAL::to_double(o.x()), CGAL::to_double(o.y()), CGAL::to_double(o.z())}; }
+}  // namespace
+
 Point3 circumcentre_exact(Point3 a, Point3 b, Point3 c, Point3 d) {
-  using EK = CGAL::Exact_predicates_exact_constructions_kernel;
-  auto ek = [](Point3 p) { return EK::Point_3(p.x, p.y, p.z); };
-  const EK::Point_3 o = CGAL::circumcenter(ek(a), ek(b), ek(c), ek(d));
-  return {CGAL::to_double(o.x()), CGAL::to_double(o.y()), CGAL::to_double(o.z())};
+  return rounded(CGAL::circumcenter(ek(a), ek(b), ek(c), ek(d)));
+}
+
+Point3 triangle_circumcentre_exact(Point3 a, Point3 b, Point3 c) {
+  return rounded(CGAL::circumcenter(ek(a), ek(b), ek(c)));
+}
+
+bool collinear3d(Point3 a, Point3 b, Point3 c) {
+  ++counters().exact;
+  return CGAL::collinear(cgal(a), cgal(b), cgal(c));
 }
 
 }  // namespace fdr::predicates

@@ -28,6 +28,12 @@ int equatorial_side(Point3 a, Point3 b, Point3 c, Point3 p);
 // the nearest doubles (CGAL's exact kernel): for tetrahedra too flat for a double formula, whose
 // rounding error in the triple product can be as large as the product itself.
 Point3 circumcentre_exact(Point3 a, Point3 b, Point3 c, Point3 d);
+// The centre of the circle through a, b, c (in their plane), constructed exactly and rounded to
+// the nearest doubles, for triangles too close to collinear for the double formula; a, b, c not
+// collinear (collinear3d says so exactly).
+Point3 triangle_circumcentre_exact(Point3 a, Point3 b, Point3 c);
+// True when a, b, c lie on one line (or two of them coincide), decided exactly.
+bool collinear3d(Point3 a, Point3 b, Point3 c);
 
 namespace detail {
 inline constexpr double kO3dBound = (7.0 + 56.0 * kEps) * kEps;

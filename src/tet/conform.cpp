@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include "base/debug.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
@@ -46,6 +47,18 @@ Point3 segment_split_point(Point3 a, Point3 b, bool a_apex, bool b_apex) {
 
 Point3 triangle_circumcentre(Point3 a, Point3 b, Point3 c) {
   const Point3 ab = b - a, ac = c - a, n = cross(ab, ac);
+  // The normal's rounding error is a few units in the last place of |ab| |ac|; a triangle whose
+  // normal is within a million times that has a double centre that may be anywhere (or NaN when
+  // the normal rounds to zero), so it is constructed exactly, as circumsphere does for tetrahedra.
+  constexpr double kFlat = 1e6 * 8 * std::numeric_limits<double>::epsilon();
+  const double scale = norm2(ab) * norm2(ac);
+  if (!(norm2(n) > kFlat * kFlat * scale) || !std::isfinite(scale)) {
+    if (predicates::collinear3d(a, b, c)) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      return {nan, nan, nan};
+    }
+    return predicates::triangle_circumcentre_exact(a, b, c);
+  }
   const double s = 0.5 / norm2(n);
   return a + s * (norm2(ac) * cross(n, ab) + norm2(ab) * cross(ac, n));
 }
@@ -270,6 +283,12 @@ bool Refiner3::find_encroached(Point3 p, const std::vector<TetId>& cavity, bool 
 void Refiner3::split_subfacet(std::uint32_t t) {
   const SubfacetTri s = bd_->tri(t);
   const Point3 c = triangle_circumcentre(dt_.point(s.v[0]), dt_.point(s.v[1]), dt_.point(s.v[2]));
+  if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
+    // Collinear corners: the piece has no circumcentre to split it at (a stall, as a duplicate is).
+    ++stalls_;
+    note_shortfall(dt_.point(s.v[0]), "subfacet with collinear corners cannot be split");
+    return;
+  }
   const FacetLocation loc = bd_->locate_in_facet(t, c);
   if (loc.tri == UINT32_MAX) {  // beyond a subsegment of the facet: it is encroached
     seg_queue_.push_back({loc.seg[0], loc.seg[1], true});

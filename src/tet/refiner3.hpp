@@ -26,7 +26,9 @@ namespace fdr::tet {
 // stop encroaching each other's pieces).
 Point3 segment_split_point(Point3 a, Point3 b, bool a_apex, bool b_apex);
 
-// The centre of the circle through a, b, c in their plane (double precision, relative to a).
+// The centre of the circle through a, b, c in their plane: double precision relative to a, or
+// constructed exactly for a triangle too close to collinear for it; a point with NaN coordinates
+// when a, b, c are exactly collinear (no such circle), which no caller may insert.
 Point3 triangle_circumcentre(Point3 a, Point3 b, Point3 c);
 
 // Tetrahedron region codes besides indices into Plc::regions.

@@ -164,3 +164,15 @@ TEST(Predicates3d, EquatorialSideUsesTheSmallestSphere) {
   EXPECT_EQ(equatorial_side(ta, tb, tc, o + Point3{0.5, 0, -0.5}), 1);
   EXPECT_EQ(equatorial_side(ta, tb, tc, o + Point3{1.5, 0, -1.5}), -1);
 }
+
+TEST(Predicates3d, TriangleCircumcentreExactAndCollinear) {
+  const Point3 a{0, 0, 0}, b{2, 0, 0}, c{0, 2, 0};
+  EXPECT_EQ(triangle_circumcentre_exact(a, b, c), (Point3{1, 1, 0}));
+  const Point3 o{1e3, 2e3, -5e2};
+  EXPECT_EQ(triangle_circumcentre_exact(o + Point3{3, 0, 4}, o + Point3{-3, 0, -4}, o + Point3{0, 5, 0}), o);
+  EXPECT_FALSE(collinear3d(a, b, c));
+  EXPECT_TRUE(collinear3d(a, b, {5, 0, 0}));
+  EXPECT_TRUE(collinear3d(a, a, c));
+  // A point off the line by one unit in the last place is not collinear.
+  EXPECT_FALSE(collinear3d({0, 0, 0}, {1, 1, 1}, {0.5, 0.5, std::nextafter(0.5, 1.0)}));
+}

@@ -10,6 +10,7 @@
 #include "tet/refiner3.hpp"
 #include "tet/tet_geometry.hpp"
 #include "tet/tet_output.hpp"
+#include "predicates/predicates3d.hpp"
 #include "tet/tetrahedralize.hpp"
 #include "plc/check.hpp"
 
@@ -117,6 +118,34 @@ TEST(TetRefineSteps, TriangleCircumcentreIsEquidistantAndInPlane) {
   EXPECT_NEAR(dist(o, a), dist(o, b), 1e-12);
   EXPECT_NEAR(dist(o, a), dist(o, c), 1e-12);
   EXPECT_NEAR(dot(o - a, cross(b - a, c - a)), 0, 1e-10);
+}
+
+// Subfacets met on a terrain PLC (testdata/terrain/pinch_nan.poly): exactly collinear corners,
+// which have no circumcentre (the double formula gave NaN and the run stopped on it), and the same
+// corners one unit in the last place off the line, for which the double formula divides by a
+// normal that rounds to almost nothing.
+TEST(TetRefineSteps, TriangleCircumcentreOfCollinearSubfacetIsNaN) {
+  const Point3 a{500969.4209470693, 5500585.2645549849, 343.85335662810866};
+  const Point3 b{500969.42094713834, 5500585.264555213, 343.85335663739295};
+  const Point3 c{500969.42094700027, 5500585.2645547567, 343.85335661882436};
+  ASSERT_TRUE(predicates::collinear3d(a, b, c));
+  EXPECT_TRUE(std::isnan(triangle_circumcentre(a, b, c).x));
+  const Point3 d{500969.42094748304, 5500585.264556353, 343.85335668376462};
+  const Point3 e{500969.42094748304, 5500585.264556353, 343.85335668376001};
+  const Point3 g{500969.42094748304, 5500585.264556353, 343.85335668376524};
+  ASSERT_TRUE(predicates::collinear3d(d, e, g));
+  EXPECT_TRUE(std::isnan(triangle_circumcentre(d, e, g).x));
+}
+
+TEST(TetRefineSteps, TriangleCircumcentreOfNearlyCollinearSubfacetIsExact) {
+  const Point3 a{500969.4209470693, 5500585.2645549849, 343.85335662810866};
+  const Point3 b{500969.42094713834, 5500585.264555213, 343.85335663739295};
+  const Point3 c{500969.42094700027, 5500585.2645547567, std::nextafter(343.85335661882436, 1e3)};
+  ASSERT_FALSE(predicates::collinear3d(a, b, c));
+  const Point3 o = triangle_circumcentre(a, b, c);
+  ASSERT_TRUE(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z));
+  const Point3 exact = predicates::triangle_circumcentre_exact(a, b, c);
+  EXPECT_LE(dist(o, exact), 1e-6 * dist(exact, a));
 }
 
 TEST(TetRefineSteps, MinDihedralOfRegularAndFlatTetrahedra) {
