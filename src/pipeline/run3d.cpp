@@ -135,6 +135,15 @@ void check_3d_options(const Options& opt) {
       throw Error(ExitCode::kUsage, "-o " + o + ": a 3D mesh is written as .vtu, .msh or TetGen .node/.ele");
 }
 
+void time_report3(Result3& r, std::chrono::steady_clock::time_point t_start) {
+  r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  r.report.peak_rss_mb = quality::peak_rss_mb_value().value_or(0);
+  for (const auto& s : r.stages) {
+    r.report.stage_seconds.emplace_back(s.name, s.seconds);
+    r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
+  }
+}
+
 Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   if (!opt.dem.empty()) {
     check_terrain_options(opt);  // usage errors before the GIS library is loaded
@@ -185,12 +194,7 @@ Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log) 
   tetio::write_tets_all(opt.outputs, r.mesh);
   r.written = opt.outputs;
   clock.lap("write");
-  r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  r.report.peak_rss_mb = quality::peak_rss_mb_value().value_or(0);
-  for (const auto& s : r.stages) {
-    r.report.stage_seconds.emplace_back(s.name, s.seconds);
-    r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
-  }
+  time_report3(r, t_start);
   if (!opt.report_json.empty()) {
     OutFile out(opt.report_json);
     std::ostringstream s;

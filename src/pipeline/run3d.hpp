@@ -1,5 +1,6 @@
 // The 3D run of `fdrmesh mesh`: read the PLC, make f, tetrahedralize (FDR), measure, check, write.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -57,6 +58,9 @@ void check_terrain_options(const Options& opt);
 // The terrain options given to a run without --dem (usage error naming the first); used by the 2D
 // plan and by the 3D run of a PLC file.
 void check_no_terrain_options(const Options& opt);
+
+// The run's whole wall time since t_start, its peak RSS and its stages' times, into r.report.
+void time_report3(Result3& r, std::chrono::steady_clock::time_point t_start);
 
 // Runs one 3D meshing job (a terrain volume through the GIS side: terrain_run.hpp); the same all-or-nothing writing as pipeline::run. Throws fdr::Error.
 Result3 run3d(const Options& opt, const ProgressFn& progress, const LogFn& log);

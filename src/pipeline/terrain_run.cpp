@@ -301,12 +301,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   }
   r.written = opt.outputs;
   clock.lap("write");
-  r.report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  r.report.peak_rss_mb = quality::peak_rss_mb_value().value_or(0);
-  for (const auto& s : r.stages) {
-    r.report.stage_seconds.emplace_back(s.name, s.seconds);
-    r.report.stage_peak_mb.emplace_back(s.name, s.peak_rss_mb);
-  }
+  time_report3(r, t_start);
   if (!opt.report_json.empty()) {
     write_report_json(r, opt.report_json);
     r.written.push_back(opt.report_json);
