@@ -1,4 +1,6 @@
 #include "tet/dt_queries.hpp"
+
+#include <limits>
 #include <algorithm>
 #include "predicates/predicates3d.hpp"
 
@@ -72,8 +74,12 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 }
 
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
+  conflict_region(dt, p, start, out, std::numeric_limits<std::size_t>::max());
+}
+
+bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out, std::size_t max_size) {
   out.clear();
-  if (start == kNoId || dt.is_ghost(start)) return;
+  if (start == kNoId || dt.is_ghost(start)) return true;
   std::uint32_t* mark = next_marks(dt);
   const std::uint32_t stamp = mark_stamp();
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
@@ -85,9 +91,12 @@ void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      if (in_conflict(dt, n, p)) out.push_back(n);
+      if (!in_conflict(dt, n, p)) continue;
+      if (out.size() >= max_size) return false;
+      out.push_back(n);
     }
   }
+  return true;
 }
 
 bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {

@@ -23,6 +23,9 @@ int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::ar
 // tetrahedron whose closed circumsphere holds p, e.g. the one p lies in or the one p is the
 // circumcentre of), those in conflict with p (in_conflict) connected through faces.
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out);
+// The same, giving up (false) once the region would hold more than `max_size` tetrahedra: e.g. a
+// candidate point that would destroy that many is no local repair.
+bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out, std::size_t max_size);
 
 // Whether inserting p destroys t, by Delaunay3's own test: a finite tetrahedron whose circumsphere
 // holds p strictly inside; a ghost whose hull face p lies strictly beyond or, on the face's plane,

@@ -98,28 +98,6 @@ std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta
   return out;
 }
 
-bool bounded_conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::size_t max_size, std::vector<TetId>& out,
-                             std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
-  out.clear();
-  if (start == kNoId || dt.is_ghost(start)) return true;
-  next_stamp(dt, mark, stamp);
-  // As conflict_region: the start is destroyed whatever its sphere says, the rest joins through
-  // faces by the insertion's own test (in_conflict).
-  out.push_back(start);
-  mark[start] = stamp;
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    for (int i = 0; i < 4; ++i) {
-      const TetId n = dt.neighbour(out[k], i);
-      if (mark[n] == stamp) continue;
-      mark[n] = stamp;
-      if (!in_conflict(dt, n, p)) continue;
-      if (out.size() >= max_size) return false;
-      out.push_back(n);
-    }
-  }
-  return true;
-}
-
 InsertionAngles insertion_angles(const Delaunay3& dt, Point3 p, const std::vector<TetId>& cavity,
                                  std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
   next_stamp(dt, mark, stamp);
@@ -220,7 +198,7 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
   for (const Point3& p : sliver_candidates(sp.centre, sp.radius, kSliverBallDelta, kSliverCandidates)) {
     // Only a point strictly inside the sliver's circumsphere destroys it.
     if (predicates::insphere(a, b, c, d, p) <= 0) continue;
-    if (!bounded_conflict_region(dt_, p, s.tet, kSliverMaxCavity, cavity, slivers_->mark, slivers_->stamp)) continue;
+    if (!conflict_region(dt_, p, s.tet, cavity, kSliverMaxCavity)) continue;
     const InsertionAngles ang = insertion_angles(dt_, p, cavity, slivers_->mark, slivers_->stamp);
     const bool good = ang.created_cos <= slivers_->cos_threshold;
     if (!good && !(ang.created_cos < ang.destroyed_cos && ang.created_cos < pick_cos)) continue;

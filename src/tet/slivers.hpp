@@ -31,12 +31,6 @@ Sphere sliver_ball(Point3 a, Point3 b, Point3 c, Point3 d);
 // Corput sequence, so the two are not correlated). The same arguments give the same points.
 std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta, int count);
 
-// conflict_region (tet/dt_queries.hpp) that gives up, returning false, once the region has more
-// than `max_size` tetrahedra: a candidate that would destroy that many is no local repair, and
-// near a thin wedge such regions are large and slow to walk. `mark`/`stamp` as below.
-bool bounded_conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::size_t max_size, std::vector<TetId>& out,
-                             std::vector<std::uint32_t>& mark, std::uint32_t& stamp);
-
 // What inserting p with conflict region `cavity` would do to the dihedral angles: the cosine of
 // the smallest angle among the finite tetrahedra it destroys and among those it creates (each
 // face of the cavity's boundary joined to p). `mark`/`stamp` are scratch (one entry per
