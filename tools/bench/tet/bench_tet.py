@@ -121,18 +121,26 @@ def format_row(name, r, target):
             f"{r['rss'] * 1048576 / r['tets']:7.0f} B/tet{mark}")
 
 
+def programs(build, who):
+    """fdrmesh and cgal_mesh3_bench of the build folder `build` (an absolute path or one relative to
+    the checkout); exits naming `who` when one of them, or tetgen, is missing."""
+    build = os.path.join(ROOT, build)
+    fdr = os.path.join(build, "bin", "fdrmesh")
+    cgal = os.path.join(build, "tools", "bench", "tet", "cgal_mesh3_bench")
+    for exe in (fdr, cgal):
+        if not os.access(exe, os.X_OK):
+            sys.exit(f"{who}: {exe} not built")
+    if not shutil.which("tetgen"):
+        sys.exit(f"{who}: tetgen not on PATH (Debian package tetgen)")
+    return fdr, cgal
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--size", choices=["quick", "large"], default="quick")
     args = ap.parse_args()
-    fdr = os.path.join(args.build, "bin", "fdrmesh")
-    cgal = os.path.join(args.build, "tools", "bench", "tet", "cgal_mesh3_bench")
-    for exe in (fdr, cgal):
-        if not os.access(exe, os.X_OK):
-            sys.exit(f"bench_tet: {exe} not built")
-    if not shutil.which("tetgen"):
-        sys.exit("bench_tet: tetgen not on PATH (Debian package tetgen)")
+    fdr, cgal = programs(args.build, "bench_tet")
     print("3D benchmark: tetrahedra at about fdrmesh's count; wall = whole process, user+sys and peak RSS")
     print("  (ru_maxrss) from wait4 of each child, B/tet = peak / tetrahedra; TetGen and CGAL take one")
     print("  correction step from a first run (the first CGAL run, cell_size = H, is shown too)")

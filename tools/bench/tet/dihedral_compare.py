@@ -26,21 +26,9 @@ import tets as verify_tets  # noqa: E402
 
 
 def min_dihedral_deg(points, tets):
-    """Each tetrahedron's smallest dihedral angle in degrees (pi minus the largest angle between
-    two outward face normals), for an (n, 3) array of points and an (m, 4) array of tetrahedra."""
-    p = points[tets]  # (m, 4, 3)
-    normals = []
-    for i in range(4):
-        q0, q1, q2 = p[:, (i + 1) % 4], p[:, (i + 2) % 4], p[:, (i + 3) % 4]
-        v = np.cross(q1 - q0, q2 - q0)
-        side = np.einsum("ij,ij->i", v, p[:, i] - q0)
-        v[side > 0] *= -1
-        normals.append(v / np.linalg.norm(v, axis=1)[:, None])
-    worst = np.full(len(tets), -1.0)
-    for i in range(4):
-        for j in range(i + 1, 4):
-            worst = np.maximum(worst, -np.einsum("ij,ij->i", normals[i], normals[j]))
-    return np.degrees(np.arccos(np.clip(worst, -1.0, 1.0)))
+    """Each tetrahedron's smallest dihedral angle in degrees (the checker's six angles; either
+    orientation), for an (n, 3) array of points and an (m, 4) array of tetrahedra."""
+    return verify_tets.dihedral_angles(points, tets).min(axis=1)
 
 
 def summary(angles):
@@ -93,13 +81,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(bench_tet.ROOT, "build"))
     ap.add_argument("--size", choices=["quick", "large"], default="quick")
     args = ap.parse_args()
-    fdr = os.path.join(args.build, "bin", "fdrmesh")
-    cgal = os.path.join(args.build, "tools", "bench", "tet", "cgal_mesh3_bench")
-    for exe in (fdr, cgal):
-        if not os.access(exe, os.X_OK):
-            sys.exit(f"dihedral_compare: {exe} not built")
-    if not shutil.which("tetgen"):
-        sys.exit("dihedral_compare: tetgen not on PATH (Debian package tetgen)")
+    fdr, cgal = bench_tet.programs(args.build, "dihedral_compare")
     print("smallest dihedral angle per tetrahedron: the minimum and the tetrahedra under 5, 10, 15 degrees")
     for name, file, hq, hl in bench_tet.INPUTS:
         h = hq if args.size == "quick" else hl
