@@ -617,6 +617,16 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
 
     # ------------------------------------------------------------------ run
     def processAlgorithm(self, parameters, context, feedback):
+        outputs, rep = self._command_and_report(parameters, context, feedback)
+        results = dict(outputs)
+        results["VERTICES"] = rep.get("vertices")
+        results["TRIANGLES"] = rep.get("triangles")
+        self._load_results(parameters, context, feedback, outputs, rep)
+        return results
+
+    def _command_and_report(self, parameters, context, feedback):
+        """Builds and runs the command, its --report in a temporary file unless REPORT is asked
+        for; returns the outputs and the report's JSON."""
         ok, why = self.canExecute()
         if not ok:
             raise QgsProcessingException(why)
@@ -642,11 +652,7 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
                     os.remove(tmp_report)
                 except OSError:
                     pass
-        results = dict(outputs)
-        results["VERTICES"] = rep.get("vertices")
-        results["TRIANGLES"] = rep.get("triangles")
-        self._load_results(parameters, context, feedback, outputs, rep)
-        return results
+        return outputs, rep
 
     def _run(self, args, output_paths, feedback):
         """Runs the CLI; ticks -> progress, stdout -> log, cancel -> kill; raises with the ERROR line."""

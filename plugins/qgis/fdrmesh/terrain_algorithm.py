@@ -5,9 +5,7 @@ top surface GeoPackage (triangles styled by quality, the outline of the side wal
 DEM's elevation) when one is asked for.  The tetrahedra (VTU, Gmsh msh) are files for the modeller's
 tools: QGIS has no layer type for them."""
 
-import json
 import os
-import tempfile
 
 from qgis.core import (
     QgsProcessing,
@@ -25,8 +23,8 @@ from qgis.core import (
     QgsVectorLayer,
 )
 
-from .fdrmesh_algorithm import (_OGR_FORMATS, FdrmeshMeshCoastalAlgorithm, _quote, _StylePostProcessor,
-                                _post_processors, gpkg_metadata, redact_passwords, style_layer)
+from .fdrmesh_algorithm import (_OGR_FORMATS, FdrmeshMeshCoastalAlgorithm, _StylePostProcessor, _post_processors,
+                                gpkg_metadata, style_layer)
 
 # (parameter, CLI option, label, advanced): the numbers the CLI takes; left empty, the CLI's default.
 _NUMBERS = [
@@ -151,28 +149,7 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
         return args, outputs
 
     def processAlgorithm(self, parameters, context, feedback):
-        ok, why = self.canExecute()
-        if not ok:
-            raise QgsProcessingException(why)
-        args, outputs = self.build_command(parameters, context, feedback)
-        report = outputs.get("REPORT")
-        tmp_report = None
-        if not report:
-            fd, tmp_report = tempfile.mkstemp(prefix="fdrmesh-report-", suffix=".json")
-            os.close(fd)
-            report = tmp_report
-            args += ["--report", report]
-        feedback.pushCommandInfo(redact_passwords(" ".join(_quote(a) for a in args)))
-        try:
-            self._run(args, list(outputs.values()), feedback)
-            with open(report, encoding="utf-8") as f:
-                rep = json.load(f)
-        finally:
-            if tmp_report:
-                try:
-                    os.remove(tmp_report)
-                except OSError:
-                    pass
+        outputs, rep = self._command_and_report(parameters, context, feedback)
         for layer in rep.get("layers", []):
             feedback.pushInfo("layer %d %s: %d tetrahedra, %.6g m3 (expected %.6g m3)"
                               % (layer["material"], layer["name"], layer["tets"], layer["volume"],
