@@ -736,15 +736,11 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             msg = parser.errors[-1] if parser.errors else "fdrmesh exited with code %d" % proc.returncode
             raise QgsProcessingException(msg)
 
-    def _load_results(self, parameters, context, feedback, outputs, rep):
-        gpkg = outputs["OUTPUT"]
-        meta = gpkg_metadata(gpkg)
-        try:
-            bound = float(meta.get("bound_B", "") or rep.get("bound_B") or 1.0)
-        except ValueError:
-            bound = 1.0
+    def _load_gpkg_layers(self, context, feedback, gpkg, layer_names, bound):
+        """The GeoPackage's layers on the map when the algorithm completes, styled (triangles by R/f
+        against `bound`, boundaries by kind)."""
         base = os.path.splitext(os.path.basename(gpkg))[0]
-        for layer_name in ("triangles", "boundaries", "repairs", "nodes"):
+        for layer_name in layer_names:
             lyr = QgsVectorLayer("%s|layername=%s" % (gpkg, layer_name), "%s %s" % (base, layer_name), "ogr")
             if not lyr.isValid():
                 feedback.pushWarning("%s: layer '%s' could not be opened" % (gpkg, layer_name))
@@ -756,6 +752,15 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
             _post_processors.append(pp)
             details.setPostProcessor(pp)
             context.addLayerToLoadOnCompletion(lyr.id(), details)
+
+    def _load_results(self, parameters, context, feedback, outputs, rep):
+        gpkg = outputs["OUTPUT"]
+        meta = gpkg_metadata(gpkg)
+        try:
+            bound = float(meta.get("bound_B", "") or rep.get("bound_B") or 1.0)
+        except ValueError:
+            bound = 1.0
+        self._load_gpkg_layers(context, feedback, gpkg, ("triangles", "boundaries", "repairs", "nodes"), bound)
         # Why: a .2dm carries no CRS; the coordinates are in --output-crs if given, else the working CRS.
         crs = QgsCoordinateReferenceSystem()
         if parameters.get("OUTPUT_CRS"):

@@ -1,15 +1,12 @@
 # Processing algorithm "Mesh terrain volume (FDR)": the terrain volume of `fdrmesh mesh DOMAIN --dem`.
 """Runs ``fdrmesh mesh DOMAIN --dem DEM --base Z --horizon H ... -o model.vtu`` (docs/terrain3d.md)
 with the coastal algorithm's executable lookup, progress, cancel and error handling, and loads the
-top surface GeoPackage (triangles styled by quality, the outline of the side walls, nodes with the
+top surface GeoPackage (triangles styled by R/f, the outline of the side walls, nodes with the
 DEM's elevation) when one is asked for.  The tetrahedra (VTU, Gmsh msh) are files for the modeller's
 tools: QGIS has no layer type for them."""
 
-import os
-
 from qgis.core import (
     QgsProcessing,
-    QgsProcessingContext,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
@@ -20,11 +17,9 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProcessingParameterRasterLayer,
     QgsProcessingParameterString,
-    QgsVectorLayer,
 )
 
-from .fdrmesh_algorithm import (_OGR_FORMATS, FdrmeshMeshCoastalAlgorithm, _StylePostProcessor, _post_processors,
-                                gpkg_metadata, style_layer)
+from .fdrmesh_algorithm import _OGR_FORMATS, FdrmeshMeshCoastalAlgorithm, gpkg_metadata
 
 # (parameter, CLI option, label, advanced): the numbers the CLI takes; left empty, the CLI's default.
 _NUMBERS = [
@@ -168,16 +163,4 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
             bound = float(gpkg_metadata(gpkg).get("bound_B", "") or 1.0)
         except ValueError:
             bound = 1.0
-        base = os.path.splitext(os.path.basename(gpkg))[0]
-        for layer_name in ("triangles", "boundaries", "nodes"):
-            lyr = QgsVectorLayer("%s|layername=%s" % (gpkg, layer_name), "%s %s" % (base, layer_name), "ogr")
-            if not lyr.isValid():
-                feedback.pushWarning("%s: layer '%s' could not be opened" % (gpkg, layer_name))
-                continue
-            style_layer(lyr, layer_name, bound)
-            context.temporaryLayerStore().addMapLayer(lyr)
-            details = QgsProcessingContext.LayerDetails(lyr.name(), context.project(), "OUTPUT")
-            pp = _StylePostProcessor(layer_name, bound)
-            _post_processors.append(pp)
-            details.setPostProcessor(pp)
-            context.addLayerToLoadOnCompletion(lyr.id(), details)
+        self._load_gpkg_layers(context, feedback, gpkg, ("triangles", "boundaries", "nodes"), bound)
