@@ -166,6 +166,13 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "--vertical-tol (0 without it)", "Terrain",
        "Terrain volumes: where a layer is thinner than M metres at a TIN vertex its horizon moves onto the surface above "
        "(or the base): the layer collapses there instead of ending in a thin wedge (0: only where they cross)"},
+      {"mesh", "--wells", "wells", field<&MeshOptions::wells>, "vector_in", "FILE", "", "Terrain",
+       "Terrain volumes: wells as vertical segments refined around (points with fields top/bottom elevations or "
+       "depth_from/depth_to depths below the DEM, or LineString Z); docs/terrain3d.md"},
+      {"mesh", "--wells-layer", "wells-layer", field<&MeshOptions::wells_layer>, "string", "NAME", "", "Terrain",
+       "Layer of --wells to read (default: the first)"},
+      {"mesh", "--well-spacing", "well-spacing", field<&MeshOptions::well_spacing>, "float", "M", "--hmin", "Terrain",
+       "Terrain volumes: the spacing along the wells is at most M metres (graded away by --gradation)"},
       {"mesh", "--gradation", "gradation", field<&MeshOptions::gradation>, "float", "ALPHA", "0.15", "Spacing", "Gradient limit |grad f| <= ALPHA applied to raster spacing"},
       {"mesh", "--cell-size", "cell-size", field<&MeshOptions::cell_size>, "float", "M", "max(hmin, sqrt(box area / 4e6))", "Spacing", "Cell size of the spacing grid (metres)"},
       {"mesh", "--write-spacing", "write-spacing", field<&MeshOptions::write_spacing>, "file_out", "FILE.tif", "", "Spacing", "Write the final spacing f as GeoTIFF"},

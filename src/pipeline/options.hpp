@@ -52,6 +52,10 @@ struct Options {
   std::vector<std::string> horizons;
   std::optional<double> depth_grade;
   std::optional<double> min_thickness;   // thinner layers collapse locally (default: a fraction of hmin)
+  // Wells (an OGR source of points with a depth range, or 3D lines): vertical segments in the
+  // volume with the spacing at most well_spacing along them (default: hmin).
+  std::string wells, wells_layer;
+  std::optional<double> well_spacing;
   std::optional<double> cell_size;       // sizing grid cell (metres); default from the raster
   // Model-ready coast (GIS runs; coast/generalise.hpp, pslg/resample.hpp).
   bool keep_coast = false;               // keep every input vertex, close nothing (as before 0.2)

@@ -85,7 +85,10 @@ void check_no_terrain_options(const Options& opt) {
   const Options d;
   const std::pair<const char*, bool> given[] = {{"--base", opt.base != d.base}, {"--horizon", opt.horizons != d.horizons},
                                                 {"--depth-grade", opt.depth_grade.has_value()},
-                                                {"--min-thickness", opt.min_thickness.has_value()}};
+                                                {"--min-thickness", opt.min_thickness.has_value()},
+                                                {"--wells", !opt.wells.empty()},
+                                                {"--wells-layer", !opt.wells_layer.empty()},
+                                                {"--well-spacing", opt.well_spacing.has_value()}};
   for (const auto& [name, g] : given)
     if (g) throw Error(ExitCode::kUsage, std::string(name) + " needs --dem (a terrain volume)");
 }
@@ -114,7 +117,11 @@ void check_terrain_options(const Options& opt) {
   if (opt.dem.empty()) throw Error(ExitCode::kUsage, "a terrain volume needs --dem");
   if (!opt.raster.empty()) throw Error(ExitCode::kUsage, "--raster and --dem: the DEM is the terrain run's raster, give it once");
   if (opt.base.empty()) throw Error(ExitCode::kUsage, "--dem needs --base (an elevation in metres or a raster)");
-  if (opt.input.empty()) throw Error(ExitCode::kUsage, "--dem needs the domain polygon (INPUT)");
+  if (!opt.wells.empty() && !opt.points.empty())
+    throw Error(ExitCode::kUsage, "--points and --wells: the wells are the terrain TIN's fixed points; give one of them");
+  if (opt.wells.empty() && (!opt.wells_layer.empty() || opt.well_spacing))
+    throw Error(ExitCode::kUsage, "--wells-layer and --well-spacing need --wells");
+  if (opt.well_spacing && !(*opt.well_spacing > 0)) throw Error(ExitCode::kUsage, "--well-spacing must be > 0");
   if (opt.depth_grade && !(*opt.depth_grade >= 0)) throw Error(ExitCode::kUsage, "--depth-grade must be >= 0");
   if (opt.min_thickness && !(*opt.min_thickness >= 0)) throw Error(ExitCode::kUsage, "--min-thickness must be >= 0");
   if (opt.hmin && opt.hmax && *opt.hmin > *opt.hmax) throw Error(ExitCode::kUsage, "--hmin must not exceed --hmax");

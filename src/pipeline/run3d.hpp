@@ -50,9 +50,10 @@ tet::TetOptions tet_options(const Options& opt, std::size_t plc_points);
 bool is_gpkg_path(const std::string& path);
 
 // Every usage error of a terrain run (--dem), before any I/O: a base missing, --raster given
-// beside --dem, no domain, outputs that are not 3D formats, .poly (the terrain PLC) or .gpkg (the
+// beside --dem, --points beside --wells, outputs that are not 3D formats, .poly (the terrain PLC) or .gpkg (the
 // top surface), a negative depth grade or minimum thickness, hmin above hmax, a bound that is not
-// positive. Throws Error(kUsage).
+// positive, a well spacing that is not. Without INPUT (nor --land) the DEM's valid data is the
+// domain. Throws Error(kUsage).
 void check_terrain_options(const Options& opt);
 
 // The terrain options given to a run without --dem (usage error naming the first); used by the 2D

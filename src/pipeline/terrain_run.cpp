@@ -15,6 +15,7 @@
 #include "gis/raster_input.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/terrain_gpkg.hpp"
+#include "pipeline/terrain_wells.hpp"
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "terrain/depth_spacing.hpp"
@@ -33,8 +34,14 @@ constexpr double kSpacingCells = 1e6;
 // Default growth of the spacing per metre of depth below the top.
 constexpr double kDefaultDepthGrade = 0.25;
 // The 2D run's options: the terrain TIN of the domain with the DEM as its raster, nothing written.
-Options tin_options(const Options& opt) {
+// Without INPUT the domain is the DEM's valid-data box; the wells are fixed points of the TIN.
+Options tin_options(const Options& opt, const TerrainInputs& in) {
   Options o = opt;
+  if (!in.domain.path().empty()) o.input = in.domain.path();
+  if (!in.points.path().empty()) o.points = in.points.path();
+  o.wells.clear();
+  o.wells_layer.clear();
+  o.well_spacing.reset();
   o.raster = opt.dem;
   o.dem.clear();
   o.base.clear();
@@ -132,20 +139,29 @@ std::vector<double> top_per_column(const sizing::Grid3& g, const std::vector<Poi
   return gis::sample_depths(bins, terrain::column_centres(g));
 }
 
-// f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, gradient-limited to --gradation;
-// hmin and hmax default to the 2D spacing's range (hmax grown by the grade over the box's height).
-// Made from the local-frame PLC and TIN; the grid returned is in world coordinates (+ origin).
-sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
-                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin) {
-  Box3 box;
-  for (const Point3& q : p.points) box.add(q);
-  // The 2D spacing's range on the TIN's vertices sets the defaults and the grid's cell (hmin / 2).
+// The 2D spacing's range on the TIN's vertices, with --hmin for its low end when given: the
+// defaults of the terrain spacing's bounds and of the well spacing.
+std::pair<double, double> spacing_range(const Options& opt, const sizing::SizingField& f2, const std::vector<Point2>& xy) {
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
   for (const Point2 q : xy) {
     const double h = f2(q);
     if (std::isfinite(h)) lo = std::min(lo, h), hi = std::max(hi, h);
   }
   if (opt.hmin) lo = *opt.hmin;
+  return {lo, hi};
+}
+
+// f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, at most well_h along the wells,
+// gradient-limited to --gradation; hmin and hmax default to the 2D spacing's range (hmax grown by
+// the grade over the box's height). Made from the local-frame PLC and TIN; the grid returned is
+// in world coordinates (+ origin).
+sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
+                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin,
+                                   const std::vector<std::array<Point3, 2>>& wells, double well_h) {
+  Box3 box;
+  for (const Point3& q : p.points) box.add(q);
+  // The grid's cell is hmin / 2 at the finest.
+  const auto [lo, hi] = spacing_range(opt, f2, xy);
   sizing::Grid3 g = terrain::spacing_grid_geometry(box, kSpacingCells, 0.5 * lo);
   const std::vector<Point2> cols = terrain::column_centres(g);
   std::vector<double> h2(cols.size());
@@ -155,6 +171,8 @@ sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const 
   ds.hmin = lo;
   ds.hmax = opt.hmax.value_or(hi + ds.grade * (box.hi.z - box.lo.z));
   ds.alpha = opt.gradation;
+  ds.near_segments = wells;
+  ds.near_h = well_h;
   terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
   g.x0 += origin.x;  // the mesh is made in world coordinates (plc_to_world)
   g.y0 += origin.y;
@@ -231,7 +249,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   Result3 r;
   StageClock clock(&r.stages);
   const ProgressFn tin_progress = [&](double f, std::string_view s) { return !progress || progress(0.3 * f, s); };
-  Result r2 = run(tin_options(opt), tin_progress, log);
+  const TerrainInputs inputs = terrain_inputs(opt);
+  Result r2 = run(tin_options(opt, inputs), tin_progress, log);
   clock.lap("tin");
   if (r2.mesh.z.size() != r2.mesh.vertices.size()) throw Error(ExitCode::kInternal, "terrain TIN without elevations");
   const terrain::Tin tin = tin_of(r2.mesh);
@@ -241,8 +260,16 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   const double min_thickness = opt.min_thickness.value_or(opt.vertical_tol.value_or(0.0));
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
-  tp.plc.source = opt.input;
-  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin);
+  tp.plc.source = opt.input.empty() ? opt.dem : opt.input;
+  const double well_h = opt.well_spacing.value_or(spacing_range(opt, *r2.f, tin.xy).first);
+  TerrainWells wells;
+  if (!opt.wells.empty()) {
+    const Box2 b = box_of(tin.xy);
+    const double match = std::max(opt.snap.value_or(0.0), 1e-6 * std::hypot(b.width(), b.height()));
+    wells = add_terrain_wells(opt, frame, tin, stack, tp, well_h, match, log);
+  }
+  const sizing::SizingPtr3 f =
+      terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin, wells.lines, well_h);
   plc_to_world(tp.plc, r2.mesh.origin);
   clock.lap("surfaces");
   if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +
@@ -255,7 +282,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
     write_plc_outputs(poly_out, tp.plc);
     r.written = poly_out;
     r.measured = false;
-    r.report.input_file = opt.input;
+    r.report.input_file = tp.plc.source;
     r.report.vertices = tp.plc.points.size();
     return r;
   }
@@ -266,6 +293,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   TetResult tr = fdr::tetrahedralize(tp.plc, *f, to);
   clock.lap("tetrahedralize");
   r.mesh = std::move(tr.mesh);
+  if (!wells.chains.empty()) mark_well_edges(r.mesh, wells, tp.plc);
 
   report_progress(0.85, "report");
   r.measured = true;  // the layer volumes need the per-material figures
@@ -274,7 +302,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   r.mesh.cell_fields.emplace_back("r_over_f", std::move(values.r_over_f));
   r.mesh.cell_fields.emplace_back("radius_edge", std::move(values.radius_edge));
   r.mesh.cell_fields.emplace_back("min_dihedral_deg", std::move(values.min_dihedral_deg));
-  r.report.input_file = opt.input;
+  r.report.input_file = tp.plc.source;
   r.layers = layer_figures(r.report, tp.plc, terrain::layer_volumes(tin, stack));
   clock.lap("report");
   if (opt.check) {
@@ -289,8 +317,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   std::vector<std::string> gpkg_done;
   try {  // all or nothing: the GeoPackages written go when a later output fails
     for (const std::string& g : gpkg_out) {
-      write_top_gpkg(g, r2, r, surfaces, opt.input);
+      write_top_gpkg(g, r2, r, surfaces, tp.plc.source);
       gpkg_done.push_back(g);
+      if (!wells.chains.empty()) terrain::write_wells_layer(g, r2.mesh.crs_wkt, well_lines(wells, tp.plc));
     }
     tetio::write_tets_all(mesh_out, r.mesh);
     write_plc_outputs(poly_out, tp.plc);

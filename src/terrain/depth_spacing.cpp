@@ -4,6 +4,7 @@
 #include <cmath>
 #include "base/error.hpp"
 #include "sizing/spacing3d_limiter.hpp"
+#include "terrain/wells.hpp"
 
 namespace fdr::terrain {
 
@@ -54,6 +55,7 @@ void fill_depth_spacing(sizing::Grid3& g, const std::vector<double>& h2, const s
       if (!std::isfinite(h)) h = opt.hmax;  // a column off the DEM and the 2D spacing: no constraint
       g.v[k * cols + c] = std::clamp(h, opt.hmin, opt.hmax);
     }
+  if (!opt.near_segments.empty()) cap_near_segments(g, opt.near_segments, opt.near_h);
   // The limiter bounds differences between neighbouring cells; the trilinear interpolant's gradient
   // has one such bound per axis, so limiting by alpha / sqrt(3) makes the field alpha-Lipschitz.
   sizing::limit_gradient3(g, opt.alpha / std::sqrt(3.0));

@@ -1,6 +1,7 @@
 // The spacing of a terrain volume: the 2D spacing of the surface run, growing with depth below
 // the top, on a 3D grid gradient-limited in 3D.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <vector>
 #include "base/point3.hpp"
@@ -14,6 +15,9 @@ struct DepthSpacing {
   double hmax = 0;   // >= hmin: no value above it
   double grade = 0;  // G >= 0: the spacing grows by G metres per metre of depth below the top
   double alpha = 0;  // > 0: the gradient limit |grad f| <= alpha in 3D
+  // Segments (wells) along which f is at most near_h (cap_near_segments, before the limiter).
+  std::vector<std::array<Point3, 2>> near_segments;
+  double near_h = 0;
 };
 
 // An empty grid (no values) over `box` with at most about max_cells cells: square cells in x and

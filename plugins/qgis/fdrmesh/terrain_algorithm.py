@@ -28,6 +28,7 @@ _NUMBERS = [
     ("VERTICAL_TOL", "--vertical-tol", "Vertical tolerance of the top TIN against the DEM (m)", False),
     ("DEPTH_GRADE", "--depth-grade", "Spacing growth per metre of depth below the DEM (default 0.25)", True),
     ("MIN_THICKNESS", "--min-thickness", "Layers thinner than this collapse (m; default: the vertical tolerance)", True),
+    ("WELL_SPACING", "--well-spacing", "Element size along the wells (m; default hmin)", False),
     ("GRADATION", "--gradation", "Gradation of the spacing (Lipschitz constant)", True),
     ("BOUND", "--bound", "Refinement bound B on R/f(c) (default: the 3D default)", True),
 ]
@@ -35,7 +36,8 @@ _NUMBERS = [
 _OUTPUTS = [
     ("OUTPUT_VTU", "Output volume mesh (VTU: tetrahedra with material, quality)", "VTK unstructured grid (*.vtu)", False),
     ("OUTPUT_MSH", "Output Gmsh MSH 4.1 (physical groups top, base, side, horizons, layers)", "Gmsh mesh (*.msh)", True),
-    ("OUTPUT", "Output top surface GeoPackage (TIN with elevations, outline, layer names)", "GeoPackage (*.gpkg)", True),
+    ("OUTPUT", "Output top surface GeoPackage (TIN with elevations, outline, wells, layer names)", "GeoPackage (*.gpkg)",
+     True),
 ]
 
 
@@ -55,8 +57,9 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
             lines.append("<p><b>fdrmesh is unavailable:</b> %s</p>" % st["reason"])
         lines.append("<p>Tetrahedralizes the volume under a DEM with Functional Delaunay Refinement "
                      "(<code>fdrmesh mesh DOMAIN --dem DEM --base Z --horizon H ...</code>): the domain "
-                     "polygon's TIN of the DEM is the top, the base an elevation or a raster, each horizon "
-                     "raster (from the top down) cuts a layer; layer i from the top is material i. "
+                     "polygon's TIN of the DEM is the top (without a domain polygon, the box of the DEM's valid data), the base an elevation or a raster, each horizon "
+                     "raster (from the top down) cuts a layer; layer i from the top is material i; wells are "
+                     "vertical segments refined to the well spacing. "
                      "Writes VTU and Gmsh MSH, and loads the top surface GeoPackage.</p>")
         return "\n".join(lines)
 
@@ -64,7 +67,8 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
         if not self.status()["ok"]:
             return
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "INPUT", "Domain polygon", [QgsProcessing.TypeVectorPolygon]))
+            "INPUT", "Domain polygon (empty: the box of the DEM's valid data)", [QgsProcessing.TypeVectorPolygon],
+            optional=True))
         self.addParameter(QgsProcessingParameterRasterLayer("DEM", "DEM (the top surface)"))
         self.addParameter(QgsProcessingParameterString("BASE", "Base elevation (m)", defaultValue="-500",
                                                        optional=True))
@@ -72,6 +76,9 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
             "BASE_RASTER", "Base raster (instead of the base elevation)", optional=True))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             "HORIZONS", "Horizon rasters, from the top down", QgsProcessing.TypeRaster, optional=True))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "WELLS", "Wells (points with top/bottom or depth_from/depth_to fields, or 3D lines)",
+            [QgsProcessing.TypeVectorPoint, QgsProcessing.TypeVectorLine], optional=True))
         for name, _flag, label, advanced in _NUMBERS:
             p = QgsProcessingParameterNumber(name, label, QgsProcessingParameterNumber.Double, optional=True)
             if advanced:
@@ -110,7 +117,9 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
     def build_command(self, parameters, context, feedback):
         """The fdrmesh argument list and the output paths for these parameter values."""
         args = [self.status()["exe"], "mesh"]
-        domain, layer = self._vector_args(parameters, "INPUT", context, feedback, None, "--layer")
+        domain, layer = [], []
+        if parameters.get("INPUT"):
+            domain, layer = self._vector_args(parameters, "INPUT", context, feedback, None, "--layer")
         args += domain + layer + ["--dem", self._raster_path(parameters, "DEM", context)]
         base = self._raster_path(parameters, "BASE_RASTER", context) if parameters.get("BASE_RASTER") else None
         if base is None:
@@ -129,6 +138,9 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
             lines, line_layer = self._vector_args(parameters, "BREAKLINES", context, feedback, "--breaklines",
                                                   "--breaklines-layer")
             args += lines + line_layer
+        if parameters.get("WELLS"):
+            wells, wells_layer = self._vector_args(parameters, "WELLS", context, feedback, "--wells", "--wells-layer")
+            args += wells + wells_layer
         if self.parameterAsBoolean(parameters, "CHECK", context):
             args.append("--check")
         outputs = {}
@@ -154,13 +166,14 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
         results["VERTICES"] = counts.get("vertices")
         results["TETRAHEDRA"] = counts.get("tetrahedra")
         if "OUTPUT" in outputs:
-            self._load_top(context, feedback, outputs["OUTPUT"])
+            self._load_top(context, feedback, outputs["OUTPUT"], bool(parameters.get("WELLS")))
         return results
 
-    def _load_top(self, context, feedback, gpkg):
+    def _load_top(self, context, feedback, gpkg, wells=False):
         """The top surface GeoPackage's layers on the map, styled as the coastal algorithm's."""
         try:
             bound = float(gpkg_metadata(gpkg).get("bound_B", "") or 1.0)
         except ValueError:
             bound = 1.0
-        self._load_gpkg_layers(context, feedback, gpkg, ("triangles", "boundaries", "nodes"), bound)
+        names = ("triangles", "boundaries", "nodes") + (("wells",) if wells else ())
+        self._load_gpkg_layers(context, feedback, gpkg, names, bound)

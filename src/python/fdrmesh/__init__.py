@@ -253,10 +253,12 @@ def mesh(input=None, **options):
 
     With dem=... it is a terrain volume (docs/terrain3d.md), as `fdrmesh mesh DOMAIN --dem DEM
     --base Z --horizon H ...`: base (an elevation or a raster), horizons (a list of rasters, from
-    the top down), depth_grade, min_thickness, bound, check. Returns the CLI's tetrahedra as a dict
+    the top down), depth_grade, min_thickness, wells (an OGR source: points with top/bottom or
+    depth_from/depth_to fields, or 3D lines), well_spacing, bound, check; without INPUT the box of
+    the DEM's valid data is the domain. Returns the CLI's tetrahedra as a dict
     (world coordinates of the working CRS): points (n,3), tets (t,4), materials (t,) (layer i from
     the top is material i), faces (f,3) with face_markers (f,) (1 top, 2 base, 3 side, 4.. the
-    horizons), edges (e,2) with edge_markers (e,), material_names and marker_names (name of
+    horizons), edges (e,2) with edge_markers (e,) (well k's pieces: the marker named well_<name>), material_names and marker_names (name of
     material / marker m at m), cell_fields (r_over_f, radius_edge, min_dihedral_deg per tet),
     report (the JSON report, with `layers`), written (files of output=[...]) and log."""
     args = _mesh_args(input, options)

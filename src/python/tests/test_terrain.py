@@ -86,3 +86,22 @@ def test_errors_are_the_cli_codes(tmp_path):
                      horizons=[TERRAIN / "synthetic_high.tif"], hmin=150, hmax=400)
     with pytest.raises(fdrmesh.UsageError, match="needs --dem"):
         fdrmesh.mesh(TERRAIN / "synthetic_domain.geojson", base=-200)
+
+
+def test_wells_and_the_domain_from_the_dem():
+    """No domain: the DEM's valid-data box; wells=... gives one edge group per well, on one vertical each."""
+    r = fdrmesh.mesh(dem=OPTIONS["dem"], base=-200, hmin=300, hmax=600,
+                     wells=TERRAIN / "synthetic_wells.geojson", well_spacing=60)
+    p = r["points"]
+    assert p[:, 0].min() == 500050 and p[:, 0].max() == 502350
+    names = r["marker_names"]
+    wells = [m for m, n in enumerate(names) if n.startswith("well_")]
+    assert [names[m] for m in wells] == ["well_BH1", "well_BH2"]
+    for m in wells:
+        e = r["edges"][r["edge_markers"] == m]
+        assert len(e) >= 4
+        xy = p[e.ravel(), :2]
+        assert (xy == xy[0]).all()
+    with pytest.raises(fdrmesh.GeometryError, match="far"):
+        fdrmesh.mesh(TERRAIN / "synthetic_domain.geojson", dem=OPTIONS["dem"], base=-200, hmin=300, hmax=600,
+                     wells=TERRAIN / "synthetic_wells_outside.geojson")
