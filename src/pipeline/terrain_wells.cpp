@@ -2,7 +2,6 @@
 #include "pipeline/terrain_wells.hpp"
 #include <cmath>
 #include <map>
-#include <sstream>
 #include <utility>
 #include "base/error.hpp"
 #include "base/num_format.hpp"
@@ -43,10 +42,14 @@ TerrainWells add_terrain_wells(const Options& opt, const gis::Frame& frame, cons
     out.columns.push_back(terrain::place_well(w, static_cast<VertexId>(v), terrain::column_at(stack, static_cast<VertexId>(v)),
                                               0.5 * well_h, &rep));
     if (log && (rep.clipped_top || rep.clipped_base || rep.snapped)) {
-      std::ostringstream s;
-      s << w.where << ": " << (rep.clipped_top ? "clipped to the DEM; " : "") << (rep.clipped_base ? "clipped to the base; " : "")
-        << (rep.snapped ? std::to_string(rep.snapped) + " end(s) moved onto a surface nearer than " + num6(0.5 * well_h) + " m" : "");
-      log(LogLevel::kWarning, s.str());
+      std::vector<std::string> what;
+      if (rep.clipped_top) what.push_back("clipped to the DEM");
+      if (rep.clipped_base) what.push_back("clipped to the base");
+      if (rep.snapped)
+        what.push_back(std::to_string(rep.snapped) + " end(s) moved onto a surface nearer than " + num6(0.5 * well_h) + " m");
+      std::string msg = w.where + ": ";
+      for (std::size_t i = 0; i < what.size(); ++i) msg += (i ? "; " : "") + what[i];
+      log(LogLevel::kWarning, msg);
     }
     clipped += rep.clipped_top + rep.clipped_base;
     snapped += rep.snapped;

@@ -44,6 +44,8 @@ def kind_of(body):
         return "fdr"
     if first.startswith("bench_gis:"):
         return "gis"
+    if first.startswith("Terrain benchmark:"):
+        return "terrain"
     return "verbatim"
 
 
@@ -180,6 +182,16 @@ then the whole process's wall clock, peak and CPU time (user + system over every
 the second core the run used).
 """
 
+TERRAIN_INTRO = """\
+## Terrain volumes from GIS layers against the cube
+
+`tools/bench/tet/bench_terrain.py --size large` runs two whole `fdrmesh` processes at about a million
+tetrahedra each: the terrain volume of [terrain3d.md](terrain3d.md) on the Luxembourg DEM under its
+border polygon (base −500 m, no horizons) and `bench_tet.py`'s cube. The target of the terrain
+work is a GIS run within 2× the cube's time; the last line gives the ratio of the user+sys CPU
+times and of the times per tetrahedron.
+"""
+
 VERBATIM_INTRO = """\
 ## Other saved outputs
 
@@ -224,7 +236,7 @@ Save any of their outputs in `docs/bench/` with the three header lines and it ap
 
 
 def render(bench_dir):
-    saved = {"fdr": [], "gis": [], "verbatim": []}
+    saved = {"fdr": [], "gis": [], "terrain": [], "verbatim": []}
     for path in sorted(glob.glob(os.path.join(bench_dir, "*.txt"))):
         head, body = read_saved(path)
         saved[kind_of(body)].append((head, body, os.path.basename(path)))
@@ -235,6 +247,10 @@ def render(bench_dir):
             out += [f"### `docs/bench/{name}`", ""] + fdr_section([(head, body)])
     if saved["gis"]:
         out += [GIS_INTRO] + gis_section([(h, b) for h, b, _ in saved["gis"]])
+    if saved["terrain"]:
+        out.append(TERRAIN_INTRO)
+        for head, body, name in saved["terrain"]:
+            out += [f"### `docs/bench/{name}`", "", "```"] + body + ["```", ""] + provenance([(head, body)]) + [""]
     if saved["verbatim"]:
         out.append(VERBATIM_INTRO)
         for head, body, name in saved["verbatim"]:

@@ -68,5 +68,25 @@ def test_help_lists_the_parameters(profile):
     h = qgis_process(profile, "help", "fdrmesh:meshterrain")
     assert h.returncode == 0, h.stdout + h.stderr
     for name in ("INPUT", "DEM", "BASE", "BASE_RASTER", "HORIZONS", "HMIN", "HMAX", "VERTICAL_TOL", "DEPTH_GRADE",
-                 "MIN_THICKNESS", "BOUND", "CHECK", "OUTPUT_VTU", "OUTPUT_MSH", "OUTPUT", "REPORT"):
+                 "MIN_THICKNESS", "WELLS", "WELL_SPACING", "BOUND", "CHECK", "OUTPUT_VTU", "OUTPUT_MSH", "OUTPUT", "REPORT"):
         assert name in h.stdout, name
+
+
+def test_in_process_wells_without_a_domain(qgs, tmp_path):
+    """No INPUT: the DEM's valid-data box; WELLS: the wells layer of the top GeoPackage loaded beside the others."""
+    from qgis.core import QgsProcessingContext, QgsProcessingFeedback, QgsProject
+    from fdrmesh.terrain_algorithm import FdrmeshTerrainVolumeAlgorithm
+    alg = FdrmeshTerrainVolumeAlgorithm().create()
+    context = QgsProcessingContext()
+    context.setProject(QgsProject.instance())
+    feedback = QgsProcessingFeedback()
+    params = terrain_params(tmp_path, OUTPUT_VTU="m.vtu", OUTPUT="top.gpkg")
+    del params["INPUT"]
+    params.update({"WELLS": os.path.join(TERRAIN, "synthetic_wells.geojson"), "WELL_SPACING": "60", "HMIN": "300",
+                   "HMAX": "600"})
+    results, ok = alg.run(params, context, feedback)
+    assert ok, feedback.textLog()
+    names = {context.temporaryLayerStore().mapLayer(lid).name() for lid in context.layersToLoadOnCompletion()}
+    assert names == {"top triangles", "top boundaries", "top nodes", "top wells"}
+    assert results["TETRAHEDRA"] > 0
+    context.temporaryLayerStore().removeAllMapLayers()
