@@ -69,6 +69,23 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
+// Rows of a TetGen file as written (1-based ids), the header row dropped.
+std::vector<std::vector<double>> tetgen_rows(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    std::vector<double> r;
+    for (double v; ls >> v;) r.push_back(v);
+    if (!header) rows.push_back(std::move(r));
+    header = false;
+  }
+  return rows;
+}
+
 double circumradius(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   const Point3 u = b - a, v = c - a, w = d - a;
   const Point3 n = dot(u, u) * cross(v, w) + dot(v, v) * cross(w, u) + dot(w, w) * cross(u, v);
@@ -82,15 +99,27 @@ TEST(TerrainWells, SegmentsAreMeshEdgesAndTheTetsAroundThemSmall) {
   o.well_spacing = 40;
   o.check = true;
   o.outputs.push_back((dir / "top.gpkg").string());
+  o.outputs.push_back((dir / "m.node").string());
   const Outcome oc = run_outcome(o);  // for the warnings: BH1's top is above the DEM
   ASSERT_EQ(oc.code, 0) << oc.message;
   EXPECT_NE(oc.warnings.find("BH1) at (501000, 5501000): clipped to the DEM"), std::string::npos) << oc.warnings;
   const Result3 r = run3d(o, {}, {});
-  const tet::TetMesh& m = r.mesh;
+  // The written mesh (TetGen .node/.ele/.edge), the markers' names from the run.
+  tet::TetMesh m;
+  m.marker_names = r.mesh.marker_names;
+  for (const auto& row : tetgen_rows(dir / "m.node")) m.points.push_back({row.at(1), row.at(2), row.at(3)});
+  for (const auto& row : tetgen_rows(dir / "m.ele"))
+    m.tets.push_back({static_cast<VertexId>(row.at(1) - 1), static_cast<VertexId>(row.at(2) - 1),
+                      static_cast<VertexId>(row.at(3) - 1), static_cast<VertexId>(row.at(4) - 1)});
+  EXPECT_EQ(m.points, r.mesh.points);
+  EXPECT_EQ(m.tets.size(), r.mesh.tets.size());
   ASSERT_GE(m.marker_names.size(), 7u);
   std::map<std::int32_t, std::vector<std::array<VertexId, 2>>> by_well;
-  for (std::size_t e = 0; e < m.edges.size(); ++e)
-    if (m.marker_names.at(m.edge_marker[e]).rfind("well_", 0) == 0) by_well[m.edge_marker[e]].push_back(m.edges[e]);
+  for (const auto& row : tetgen_rows(dir / "m.edge")) {
+    const auto marker = static_cast<std::int32_t>(row.at(3));
+    if (m.marker_names.at(marker).rfind("well_", 0) == 0)
+      by_well[marker].push_back({static_cast<VertexId>(row.at(1) - 1), static_cast<VertexId>(row.at(2) - 1)});
+  }
   ASSERT_EQ(by_well.size(), 2u);
   // Each well is a chain of mesh edges on one vertical, from the DEM (BH1, clipped) or 20 m below
   // it (BH2) down to its bottom, without gaps; every piece no longer than the well spacing allows.
