@@ -258,9 +258,10 @@ def mesh(input=None, **options):
     the DEM's valid data is the domain. Returns the CLI's tetrahedra as a dict
     (world coordinates of the working CRS): points (n,3), tets (t,4), materials (t,) (layer i from
     the top is material i), faces (f,3) with face_markers (f,) (1 top, 2 base, 3 side, 4.. the
-    horizons), edges (e,2) with edge_markers (e,) (well k's pieces: the marker named well_<name>), material_names and marker_names (name of
-    material / marker m at m), cell_fields (r_over_f, radius_edge, min_dihedral_deg per tet),
-    report (the JSON report, with `layers`), written (files of output=[...]) and log."""
+    horizons, then one per well named well_<name>), edges (e,2) with edge_markers (e,) (a well's
+    pieces carry its marker), material_names and marker_names (name of material / marker m at m),
+    cell_fields (r_over_f, radius_edge, min_dihedral_deg per tet), report (the JSON report, with
+    `layers`), written (files of output=[...]) and log."""
     args = _mesh_args(input, options)
     if options.get("dem") is not None:
         return _volume(_core._mesh3(args))
