@@ -1,4 +1,5 @@
-"""Tests of the 3D benchmark driver's steps: .poly reading, the .off surface, the rows, the child."""
+"""Tests of the 3D benchmark drivers' steps: .poly reading, the .off surface, the rows, the child; the terrain
+benchmark's commands and count."""
 import os
 import sys
 
@@ -54,3 +55,15 @@ def test_dihedral_compare_angles_of_known_tetrahedra():
     assert ang[1] < 1
     s = dihedral_compare.summary(ang)
     assert s["tets"] == 3 and s["under5"] == 1 and s["under15"] == 1 and s["min"] == ang[1]
+
+
+def test_terrain_bench_commands_and_count(tmp_path):
+    import bench_terrain
+    t = bench_terrain.terrain_command("fdrmesh", 140, 280)
+    assert t[2].endswith("lux.shp") and t[t.index("--base") + 1] == "-500" and t[t.index("--hmin") + 1] == "140"
+    assert os.path.exists(t[2]) and os.path.exists(t[t.index("--dem") + 1])
+    c = bench_terrain.cube_command("fdrmesh", 0.165)
+    assert c[2].endswith("cube10.poly") and c[c.index("--spacing") + 1] == "0.165"
+    vtu = tmp_path / "m.vtu"
+    vtu.write_text('<VTKFile><UnstructuredGrid><Piece NumberOfPoints="8" NumberOfCells="12">')
+    assert bench_terrain.count_tets(str(vtu)) == 12
