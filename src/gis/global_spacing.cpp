@@ -239,13 +239,31 @@ LonLatGrid sphere_spacing(const SphereRules& r, double lat_min, const std::vecto
 }
 
 StereoSpacing::StereoSpacing(std::shared_ptr<const LonLatGrid> g, SphereStereo proj, double alpha, double rho_max,
-                             std::string label)
-    : g_(std::move(g)), proj_(proj), label_(std::move(label)) {
+                             double bound, std::string label)
+    : g_(std::move(g)), proj_(proj), bound_(bound), alpha_(1.05 * alpha), label_(std::move(label)) {
+  if (!(bound > 0)) throw Error(ExitCode::kUsage, "--bound must be positive");
   double hmax = 0;
   for (double v : g_->v) hmax = std::max(hmax, v);
-  // d(k f)/dp = f grad k + k grad_p f; |grad k| = |p| / (2 R^2) and k |grad_p f| = |grad_sphere f|
-  // <= alpha (with a margin for the bilinear interpolation between cell centres).
-  lipschitz_ = 1.05 * alpha + hmax * rho_max / (2.0 * proj_.radius() * proj_.radius());
+  // d(k g)/dp = g grad k + k grad_p g; |grad k| = |p| / (2 R^2) and k |grad_p g| = |grad_sphere g|.
+  lipschitz_ = 1.1 * (alpha + hmax * rho_max / (2.0 * proj_.radius() * proj_.radius()));
+}
+
+double StereoSpacing::operator()(Point2 p) const {
+  const double r = proj_.radius();
+  const double k = proj_.scale(p);
+  auto plane = [&](double g) {
+    const double t = std::tan(bound_ * g / r);
+    return r / bound_ * 2.0 * t * k / (1.0 + std::sqrt(1.0 + t * t * k));
+  };
+  const double g = g_->sample(proj_.inverse(p));
+  // The sphere circle's centre is not the image of c: it lies on the meridian through c, at
+  // polar angle (theta(a + rho) + theta(a - rho)) / 2, farther out the larger the circle. g is
+  // lowered by alpha times that offset for the largest circle accepted, so that B g bounds the
+  // radius against the spacing at the true centre of every accepted circle.
+  const double a = std::hypot(p.x, p.y), rho = bound_ * plane(g);
+  const double mid = std::atan((a + rho) / (2 * r)) + std::atan((a - rho) / (2 * r));
+  const double offset = r * std::fabs(mid - 2.0 * std::atan(a / (2 * r)));
+  return plane(std::max(0.5 * g, g - alpha_ * offset));
 }
 
 }  // namespace fdr::gis

@@ -69,13 +69,21 @@ void limit_gradient_sphere(LonLatGrid& g, double alpha, double radius = kEarthRa
 LonLatGrid sphere_spacing(const SphereRules& rules, double lat_min, const std::vector<Point3>& shore,
                           const LonLatRaster* elevation, std::string* describe = nullptr);
 
-// f in the stereographic plane: scale(p) * g(inverse(p)), thread-safe. Its Lipschitz constant in
-// the plane bounds alpha_sphere + hmax |grad scale| over the points within rho_max of the centre.
+// f in the stereographic plane, chosen so that the refinement's test in the plane is the test on
+// the sphere: a plane circle of centre c and radius r is the image of a sphere circle of radius
+// R (theta(|c| + r) - theta(|c| - r)) / 2, theta(rho) = 2 atan(rho / 2R), so r <= B f(c) exactly
+// when that radius is <= B g(inverse(c)), g the ground spacing:
+//   f(c) = (R / B) 2 t k / (1 + sqrt(1 + t^2 k)),  t = tan(B g / R),  k = 1 + |c|^2 / 4R^2,
+// which is k g (the scale factor times g) for g << R; g is lowered by alpha times the distance
+// between inverse(c) and the sphere circle's centre (operator()). Thread-safe. Its Lipschitz constant in the
+// plane is bounded by that of k g: alpha_sphere + max g |grad k| over the points within rho_max
+// of the centre, with a margin for the terms of higher order in g / R and for the bilinear
+// interpolation between cell centres.
 class StereoSpacing final : public sizing::SizingField {
  public:
-  StereoSpacing(std::shared_ptr<const LonLatGrid> g, SphereStereo proj, double alpha, double rho_max,
+  StereoSpacing(std::shared_ptr<const LonLatGrid> g, SphereStereo proj, double alpha, double rho_max, double bound,
                 std::string label);
-  double operator()(Point2 p) const override { return proj_.scale(p) * g_->sample(proj_.inverse(p)); }
+  double operator()(Point2 p) const override;
   double lipschitz() const override { return lipschitz_; }
   bool thread_safe() const override { return true; }
   std::string describe() const override { return label_; }
@@ -85,6 +93,8 @@ class StereoSpacing final : public sizing::SizingField {
  private:
   std::shared_ptr<const LonLatGrid> g_;
   SphereStereo proj_;
+  double bound_;
+  double alpha_;  // of the ground spacing on the sphere, with a margin for the interpolation
   double lipschitz_;
   std::string label_;
 };

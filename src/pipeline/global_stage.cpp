@@ -59,7 +59,7 @@ GisSpacing global_spacing(const Options& opt, const gis::GisInput& g, StageClock
   auto grid = std::make_shared<const gis::LonLatGrid>(gis::sphere_spacing(r, lat_min, shore, sp.lonlat_dem.get(), &desc));
   clock.lap("sizing");
   info("spacing: " + desc + " (" + std::to_string(shore.size()) + " shore points)");
-  sp.sphere_f = std::make_shared<const gis::StereoSpacing>(grid, proj, r.gradation, rho_max, desc);
+  sp.sphere_f = std::make_shared<const gis::StereoSpacing>(grid, proj, r.gradation, rho_max, opt.bound, desc);
   sp.f = sp.sphere_f;
   sp.hmin = r.hmin;
   const double kmax = proj.scale({rho_max, 0});

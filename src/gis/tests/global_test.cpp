@@ -133,6 +133,28 @@ TEST(GlobalSpacing, DistanceAndLimiterOnTheSphere) {
     }
 }
 
+TEST(GlobalSpacing, PlaneCircleOfRadiusBfIsASphereCircleOfRadiusBg) {
+  for (const double g : {1e4, 1e5, 1e6}) {
+    auto grid = std::make_shared<LonLatGrid>(lonlat_grid(1.0, -90, 90, g));
+    const SphereStereo proj;
+    for (const double bound : {1.0, 0.7}) {
+      const StereoSpacing f(grid, proj, 0.15, 2e8, bound, "test");
+      for (const double lat : {80.0, 30.0, 0.0, -40.0, -60.0, -75.0}) {
+        const Point2 c = proj.forward({25, lat});
+        const double r = bound * f(c), a = std::hypot(c.x, c.y);
+        // The plane circle's nearest and farthest points from the centre of projection are the
+        // ends of a diameter of its image on the sphere.
+        const Point2 u{c.x / a, c.y / a};
+        const LonLat p1 = proj.inverse({(a - r) * u.x, (a - r) * u.y}), p2 = proj.inverse({(a + r) * u.x, (a + r) * u.y});
+        // Its radius is B g, less alpha times the offset of its centre (zero at the centre).
+        EXPECT_LE(haversine(p1, p2), 2 * bound * g * (1 + 1e-9)) << "g " << g << " lat " << lat;
+        EXPECT_GE(haversine(p1, p2), 2 * bound * g * (1 - 0.15 * 1.05 * 0.5 * g / kR * 40)) << "g " << g << " lat " << lat;
+        EXPECT_NEAR(f(c) / (proj.scale(c) * g), 1.0, g / kR * 2);  // k g for g << R
+      }
+    }
+  }
+}
+
 TEST(GlobalMeasure, OctahedronClosesAndMatchesHaversine) {
   // The octahedron's 6 vertices on the sphere, projected from the south pole's antipode plane.
   const SphereStereo proj({0, -89});  // pole beside a vertex: every vertex projects finitely
