@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
 #include "base/error.hpp"
 #include "base/num_format.hpp"
+#include "base/step_laps.hpp"
 #include "gis/raster_input.hpp"
 
 namespace fdr::gis {
@@ -18,23 +20,21 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Unit vectors of the cell centres: per row (cos, sin of latitude), per column (cos, sin of longitude).
-struct CellVectors {
-  std::vector<double> cl, sl, co, so;
-  explicit CellVectors(const LonLatGrid& g) : cl(g.ny), sl(g.ny), co(g.nx), so(g.nx) {
-    for (std::size_t j = 0; j < g.ny; ++j) {
-      const double phi = g.centre(0, j).lat_deg * kDeg;
-      cl[j] = std::cos(phi);
-      sl[j] = std::sin(phi);
-    }
-    for (std::size_t i = 0; i < g.nx; ++i) {
-      const double lam = g.centre(i, 0).lon_deg * kDeg;
-      co[i] = std::cos(lam);
-      so[i] = std::sin(lam);
-    }
+// Unit vectors of the cell centres, row-major as the grid.
+std::vector<Point3> cell_vectors(const LonLatGrid& g) {
+  std::vector<double> co(g.nx), so(g.nx);
+  for (std::size_t i = 0; i < g.nx; ++i) {
+    const double lam = g.centre(i, 0).lon_deg * kDeg;
+    co[i] = std::cos(lam);
+    so[i] = std::sin(lam);
   }
-  Point3 at(std::size_t i, std::size_t j) const { return {cl[j] * co[i], cl[j] * so[i], sl[j]}; }
-};
+  std::vector<Point3> u(g.nx * g.ny);
+  for (std::size_t j = 0; j < g.ny; ++j) {
+    const double phi = g.centre(0, j).lat_deg * kDeg, cl = std::cos(phi), sl = std::sin(phi);
+    for (std::size_t i = 0; i < g.nx; ++i) u[j * g.nx + i] = {cl * co[i], cl * so[i], sl};
+  }
+  return u;
+}
 
 // Alternating raster sweeps over the grid's 8-neighbourhood (longitude wrapping) until a pair of
 // sweeps changes nothing; offer(c, nb) returns true when cell c took something from cell nb.
@@ -46,7 +46,9 @@ void sweep_until_stable(const LonLatGrid& g, Offer&& offer) {
   };
   for (int pass = 0; pass < 1000; ++pass) {
     bool changed = false;
-    for (std::int64_t j = 0; j < ny; ++j)
+    // Each row also runs back the other way (Danielsson's scheme): a value travels along its row
+    // in both directions within one sweep.
+    for (std::int64_t j = 0; j < ny; ++j) {
       for (std::int64_t i = 0; i < nx; ++i) {
         const std::size_t c = id(i, j);
         changed |= offer(c, id(i - 1, j));
@@ -56,7 +58,9 @@ void sweep_until_stable(const LonLatGrid& g, Offer&& offer) {
           changed |= offer(c, id(i + 1, j - 1));
         }
       }
-    for (std::int64_t j = ny - 1; j >= 0; --j)
+      for (std::int64_t i = nx - 1; i >= 0; --i) changed |= offer(id(i, j), id(i + 1, j));
+    }
+    for (std::int64_t j = ny - 1; j >= 0; --j) {
       for (std::int64_t i = nx - 1; i >= 0; --i) {
         const std::size_t c = id(i, j);
         changed |= offer(c, id(i + 1, j));
@@ -66,7 +70,9 @@ void sweep_until_stable(const LonLatGrid& g, Offer&& offer) {
           changed |= offer(c, id(i - 1, j + 1));
         }
       }
-    if (!changed) return;
+      for (std::int64_t i = 0; i < nx; ++i) changed |= offer(id(i, j), id(i - 1, j));
+    }
+    if (!changed) { if (debug::on(debug::Aid::kSizing)) std::fprintf(stderr, "sphere sweeps: %d pass pairs\n", pass + 1); return; }
   }
 }
 
@@ -143,8 +149,10 @@ LonLatRaster read_lonlat_raster(const std::string& path) {
   return r;
 }
 
-void distance_to_shore_sphere(LonLatGrid& g, const std::vector<Point3>& shore, double radius) {
-  const CellVectors cv(g);
+void distance_to_shore_sphere(LonLatGrid& g, const std::vector<Point3>& shore, double radius, double max_distance) {
+  const std::vector<Point3> cv = cell_vectors(g);
+  // Dot products below this are farther than max_distance: not offered on.
+  const double min_dot = max_distance / radius < std::numbers::pi ? std::cos(max_distance / radius) : -2.0;
   std::vector<std::int64_t> src(g.v.size(), -1);
   std::vector<double> best(g.v.size(), -2.0);  // dot product with the source: larger is nearer
   for (std::size_t k = 0; k < shore.size(); ++k) {
@@ -153,26 +161,42 @@ void distance_to_shore_sphere(LonLatGrid& g, const std::vector<Point3>& shore, d
     const auto i = static_cast<std::size_t>(std::clamp(fi, 0.0, static_cast<double>(g.nx - 1)));
     const auto j = static_cast<std::size_t>(std::clamp(fj, 0.0, static_cast<double>(g.ny - 1)));
     const std::size_t c = j * g.nx + i;
-    const double d = dot(cv.at(i, j), shore[k]);
+    const double d = dot(cv[c], shore[k]);
     if (d > best[c]) { best[c] = d; src[c] = static_cast<std::int64_t>(k); }
   }
   sweep_until_stable(g, [&](std::size_t c, std::size_t nb) {
     if (src[nb] < 0 || src[nb] == src[c]) return false;
-    const double d = dot(cv.at(c % g.nx, c / g.nx), shore[static_cast<std::size_t>(src[nb])]);
-    if (!(d > best[c])) return false;
+    const double d = dot(cv[c], shore[static_cast<std::size_t>(src[nb])]);
+    if (!(d > best[c]) || d < min_dot) return false;
     best[c] = d;
     src[c] = src[nb];
     return true;
   });
   for (std::size_t c = 0; c < g.v.size(); ++c) {
     if (src[c] < 0) { g.v[c] = kInf; continue; }
-    g.v[c] = great_circle(cv.at(c % g.nx, c / g.nx), shore[static_cast<std::size_t>(src[c])], radius);
+    g.v[c] = great_circle(cv[c], shore[static_cast<std::size_t>(src[c])], radius);
   }
+}
+
+bool lipschitz_on_grid(const LonLatGrid& g, const std::vector<Point3>& cv, double alpha, double radius) {
+  const double ar = alpha * radius;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const std::size_t c = j * g.nx + i;
+      const std::size_t right = j * g.nx + (i + 1) % g.nx;
+      if (std::fabs(g.v[c] - g.v[right]) > ar * dist(cv[c], cv[right])) return false;
+      if (j + 1 == g.ny) continue;
+      for (const std::size_t up : {c + g.nx, (j + 1) * g.nx + (i + 1) % g.nx, (j + 1) * g.nx + (i + g.nx - 1) % g.nx})
+        if (std::fabs(g.v[c] - g.v[up]) > ar * dist(cv[c], cv[up])) return false;
+    }
+  return true;
 }
 
 void limit_gradient_sphere(LonLatGrid& g, double alpha, double radius) {
   if (!(alpha >= 0) || !std::isfinite(alpha)) throw Error(ExitCode::kUsage, "gradation must be a finite number >= 0");
-  const CellVectors cv(g);
+  const std::vector<Point3> cv = cell_vectors(g);
+  // An alpha-Lipschitz grid (the distance rule alone, whose grade is below alpha) stays as it is.
+  if (lipschitz_on_grid(g, cv, alpha, radius)) return;
   const std::vector<double> base = g.v;
   std::vector<std::size_t> src(g.v.size());
   for (std::size_t c = 0; c < src.size(); ++c) src[c] = c;
@@ -180,7 +204,7 @@ void limit_gradient_sphere(LonLatGrid& g, double alpha, double radius) {
   sweep_until_stable(g, [&](std::size_t c, std::size_t nb) {
     const std::size_t s = src[nb];
     if (s == src[c] || !std::isfinite(base[s])) return false;
-    const double cand = base[s] + ar * dist(cv.at(c % g.nx, c / g.nx), cv.at(s % g.nx, s / g.nx));
+    const double cand = base[s] + ar * dist(cv[c], cv[s]);
     if (!(cand < g.v[c] * (1 - 1e-12))) return false;
     g.v[c] = cand;
     src[c] = s;
@@ -188,19 +212,24 @@ void limit_gradient_sphere(LonLatGrid& g, double alpha, double radius) {
   });
 }
 
+double default_cell_deg(double hmin) { return std::clamp(2 * hmin / (kEarthRadius * kDeg), 0.02, 0.5); }
+
 LonLatGrid sphere_spacing(const SphereRules& r, double lat_min, const std::vector<Point3>& shore,
                           const LonLatRaster* elevation, std::string* describe) {
   if (!(r.hmin > 0) || !(r.hmax >= r.hmin))
     throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num6(r.hmin) + ", hmax " +
                                                num6(r.hmax) + ")");
   const double metres_per_deg = kEarthRadius * kDeg;
-  const double cell = r.cell_deg > 0 ? r.cell_deg : std::clamp(r.hmin / metres_per_deg, 0.02, 0.5);
+  const double cell = r.cell_deg > 0 ? r.cell_deg : default_cell_deg(r.hmin);
   const bool any = r.dist_grade || r.slope || r.wavelength;
   const double grade = r.dist_grade.value_or(any ? -1.0 : 0.1);
+  StepLaps lap(debug::Aid::kSizing, "sphere spacing");
   LonLatGrid g = lonlat_grid(cell, std::max(-90.0, lat_min - 2 * cell), 90.0, kInf);
   std::vector<std::string> names;
   if (grade >= 0) {
-    distance_to_shore_sphere(g, shore);
+    // Beyond (hmax - hmin) / grade the rule gives hmax: the distance is not needed there.
+    distance_to_shore_sphere(g, shore, kEarthRadius, grade > 0 ? (r.hmax - r.hmin) / grade + 2 * cell * 111195.0 : kInf);
+    lap("distance");
     for (double& v : g.v) v = r.hmin + grade * v;
     names.push_back("hmin + " + num6(grade) + " * great-circle distance to shore");
   }
@@ -227,7 +256,9 @@ LonLatGrid sphere_spacing(const SphereRules& r, double lat_min, const std::vecto
     if (r.slope) names.push_back("slope " + num6(*r.slope));
   }
   for (double& v : g.v) v = std::isnan(v) ? r.hmax : std::clamp(v, r.hmin, r.hmax);
+  lap("rules");
   limit_gradient_sphere(g, r.gradation);
+  lap("limit");
   if (describe) {
     std::string s = "sphere grid " + std::to_string(g.nx) + "x" + std::to_string(g.ny) + " of " + num6(g.dlon) +
                     " deg: min(";

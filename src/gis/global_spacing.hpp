@@ -3,6 +3,7 @@
 // the stereographic plane (ground spacing times the projection's exact scale factor).
 #pragma once
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,19 +50,27 @@ struct SphereRules {
   std::optional<double> wavelength;         // h = T sqrt(g depth) / wl
   double wave_period_s = 44712.0;
   double gradation = 0.15;                  // alpha on the sphere
-  double cell_deg = 0;                      // 0: about hmin
+  double cell_deg = 0;                      // 0: default_cell_deg(hmin)
 };
+
+// The grid cell of the spacing (degrees): about 2 hmin on the ground, within [0.02, 0.5]. Why
+// not finer: the rules' spacing grows from hmin at the coast, and a cone of slope 0.1 is
+// interpolated from cells of 2 hmin within 0.1 hmin.
+double default_cell_deg(double hmin);
 
 // Great-circle distance (metres) from every cell centre to the nearest of `shore` (unit
 // vectors), by nearest-source propagation over the grid (8 neighbours, longitude wrapping):
 // each cell keeps the shore point its distance is measured to. Exact at the points' cells; a
-// cell may keep a shore point slightly farther than the nearest one elsewhere. No points: +inf.
-void distance_to_shore_sphere(LonLatGrid& g, const std::vector<Point3>& shore, double radius = kEarthRadius);
+// cell may keep a shore point slightly farther than the nearest one elsewhere. No points, or
+// farther than max_distance (not propagated beyond it): +inf.
+void distance_to_shore_sphere(LonLatGrid& g, const std::vector<Point3>& shore, double radius = kEarthRadius,
+                              double max_distance = std::numeric_limits<double>::infinity());
 
 // Lowers g so that |g(x) - g(y)| <= alpha |x - y|_chord between neighbouring cells (chord of the
 // sphere, never longer than the great circle): each cell keeps the cell its value comes from and
 // offers value(source) + alpha chord(x, source) to its neighbours, in alternating sweeps until
-// nothing changes. Hence alpha-Lipschitz in great-circle distance along the grid.
+// nothing changes. Hence alpha-Lipschitz in great-circle distance along the grid. A grid that is
+// alpha-Lipschitz between neighbours already is returned unchanged after one read-only pass.
 void limit_gradient_sphere(LonLatGrid& g, double alpha, double radius = kEarthRadius);
 
 // The rules combined by minimum, clamped to [hmin, hmax], gradient-limited; the depth rules read

@@ -53,7 +53,7 @@ GisSpacing global_spacing(const Options& opt, const gis::GisInput& g, StageClock
     lat_min = std::min(lat_min, proj.inverse(p).lat_deg);
     rho_max = std::max(rho_max, std::hypot(p.x, p.y));
   }
-  const double cell_m = (r.cell_deg > 0 ? r.cell_deg : std::clamp(r.hmin / 111195.0, 0.02, 0.5)) * 111195.0;
+  const double cell_m = (r.cell_deg > 0 ? r.cell_deg : gis::default_cell_deg(r.hmin)) * gis::kEarthRadius * std::numbers::pi / 180.0;
   const std::vector<Point3> shore = shore_points(g.raw, proj, 0.5 * cell_m);
   std::string desc;
   auto grid = std::make_shared<const gis::LonLatGrid>(gis::sphere_spacing(r, lat_min, shore, sp.lonlat_dem.get(), &desc));
