@@ -304,14 +304,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   out.frame = std::make_shared<const gis::Frame>(frame);
   out.dem = sp.dem;
   out.spacing_grid = sp.spacing_grid;
-  if (sp.sphere_f) {
-    out.sphere_f = sp.sphere_f;
-    out.lonlat_dem = sp.lonlat_dem;
-    out.metadata.push_back({"sphere_radius_m", num(gis::kEarthRadius)});
-    out.sphere_figures = [sp, bound = opt.bound, md = opt.min_depth_m, log](const mesh::MeshView& m, auto& figs) {
-      add_sphere_figures(m, sp, bound, sp.hmin, md, log, figs);
-    };
-  }
+  if (sp.sphere_f) attach_sphere(out, sp, opt, log);
   // The filter's removed-water listing (started beside the stages since the spacing), then the
   // figures and repairs that need it. Deferred: run by complete_input() once the refinement is
   // done, so that the listing has the core the refinement leaves free (and its memory does not

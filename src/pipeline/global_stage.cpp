@@ -107,4 +107,13 @@ void add_sphere_figures(const mesh::MeshView& m, const GisSpacing& sp, double bo
             " other boundary edges, " + std::to_string(s.edges_over_two) + " edges of 3+ triangles)");
 }
 
+void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt, const LogFn& log) {
+  out.sphere_f = sp.sphere_f;
+  out.lonlat_dem = sp.lonlat_dem;
+  out.metadata.push_back({"sphere_radius_m", std::to_string(gis::kEarthRadius)});
+  out.sphere_figures = [sp, bound = opt.bound, md = opt.min_depth_m, log](const mesh::MeshView& m, auto& figs) {
+    add_sphere_figures(m, sp, bound, sp.hmin, md, log, figs);
+  };
+}
+
 }  // namespace fdr::pipeline

@@ -20,4 +20,8 @@ std::vector<double> global_depths(const mesh::MeshView& m, const PreparedInput& 
 void add_sphere_figures(const mesh::MeshView& m, const GisSpacing& sp, double bound, double hmin, double min_depth_m,
                         const LogFn& log, std::vector<std::pair<std::string, double>>& out);
 
+// The --global parts of the prepared input: the spacing on the sphere, the lon/lat raster, the
+// sphere's radius in the metadata and PreparedInput::sphere_figures (add_sphere_figures).
+void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt, const LogFn& log);
+
 }  // namespace fdr::pipeline

@@ -2,7 +2,7 @@
 """Draw a global mesh (fort.14 or hgrid.ll in lon/lat, as fdrmesh --global writes them) in an
 orthographic view of the globe and, beside it, a lon/lat window (a coast zoom) to one PNG.
 
-Usage: plot_globe.py MESH.14 -o OUT.png [--centre LON,LAT] [--zoom XMIN,YMIN,XMAX,YMAX]
+Usage: plot_globe.py MESH.14 -o OUT.png [--centre=LON,LAT] [--zoom=XMIN,YMIN,XMAX,YMAX] [--colors N]
 """
 import argparse
 import math
@@ -66,6 +66,7 @@ def main():
     ap.add_argument("--centre", default="-30,20", help="LON,LAT the globe is seen from")
     ap.add_argument("--zoom", default="-10,48,12,62", help="lon/lat window XMIN,YMIN,XMAX,YMAX")
     ap.add_argument("--dpi", type=int, default=150)
+    ap.add_argument("--colors", type=int, default=0, help="quantize the PNG to this many colours (0: no)")
     a = ap.parse_args()
     xy, tri, coast = read_lonlat_mesh(a.mesh)
     lon0, lat0 = (float(v) for v in a.centre.split(","))
@@ -104,6 +105,9 @@ def main():
     w.set_title(f"lon/lat window {a.zoom} (coast red)")
     fig.tight_layout()
     fig.savefig(a.output, dpi=a.dpi)
+    if a.colors > 0:  # a palette PNG: a fraction of the size for line drawings
+        from PIL import Image
+        Image.open(a.output).convert("RGB").quantize(colors=a.colors).save(a.output, optimize=True)
 
 
 if __name__ == "__main__":

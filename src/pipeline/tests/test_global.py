@@ -120,3 +120,17 @@ def test_gpkg_in_epsg_4326(run):
     assert srs == {4326}
     n = db.execute("select count(*) from triangles").fetchone()[0]
     assert n == run["figures"]["sphere_triangles"]
+    # Triangles across the antimeridian continue past +-180: none spans more than 180 degrees,
+    # and some reach beyond 180 (the ocean crosses it in the Pacific and the Southern Ocean).
+    ogr = pytest.importorskip("osgeo.ogr")
+    ds = ogr.Open(str(run["dir"] / "m.gpkg"))  # kept: its layer dies with it
+    lay = ds.GetLayerByName("triangles")
+    beyond = 0
+    for f in lay:
+        r = f.GetGeometryRef().GetGeometryRef(0)
+        xs = [r.GetX(i) for i in range(r.GetPointCount())]
+        ys = [r.GetY(i) for i in range(r.GetPointCount())]
+        if max(abs(y) for y in ys) < 80:  # a triangle around the north pole spans every longitude
+            assert max(xs) - min(xs) < 180
+        beyond += max(xs) > 180 or min(xs) < -180
+    assert beyond > 0
