@@ -134,3 +134,27 @@ def test_gpkg_in_epsg_4326(run):
             assert max(xs) - min(xs) < 180
         beyond += max(xs) > 180 or min(xs) < -180
     assert beyond > 0
+
+
+@pytest.mark.parametrize("args", [
+    ["--pole", "0,-90"],                                    # --pole needs --global
+    ["--global", "--hmin", "1e4"],                          # --global needs --hmin and --hmax
+    ["--global", "--hmin", "1e4", "--hmax", "1e5", "--extent", "0,0,1,1"],
+    ["--global", "--hmin", "1e4", "--hmax", "1e5", "--pole", "0,-95"],
+    ["--global", "--hmin", "1e4", "--hmax", "1e5", "--spacing", "1000"],
+])
+def test_usage_errors(args, tmp_path):
+    if not FDRMESH:
+        pytest.skip("set FDRMESH")
+    r = subprocess.run([FDRMESH, "mesh", "--land", LAND] + args + ["-o", str(tmp_path / "m.14")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2, r.stderr
+    assert not (tmp_path / "m.14").exists()
+
+
+def test_pole_outside_land_is_refused(tmp_path):
+    if not FDRMESH or not os.path.exists(LAND):
+        pytest.skip("set FDRMESH and the shared data")
+    r = subprocess.run([FDRMESH, "mesh", "--land", LAND, "--global", "--pole", "-30,0", "--hmin", "2e5", "--hmax", "1e6",
+                        "-o", str(tmp_path / "m.14")], capture_output=True, text=True)
+    assert r.returncode != 0 and "no land polygon holds the pole" in r.stderr
