@@ -69,6 +69,24 @@ void set_extent(Request& r, const std::string&, const std::vector<std::string>& 
   r.mesh.extent = box;
 }
 
+void set_pole(Request& r, const std::string&, const std::vector<std::string>& v) {
+  if (v.empty() || v.back().empty()) return;
+  std::array<double, 2> p{};
+  std::stringstream ss(v.back());
+  std::string tok;
+  int k = 0;
+  while (std::getline(ss, tok, ',')) {
+    char* end = nullptr;
+    if (k >= 2) throw Error(ExitCode::kUsage, "--pole takes LON,LAT");
+    p[k] = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, "--pole: '" + tok + "' is not a number");
+    ++k;
+  }
+  if (k != 2 || !(p[0] >= -180 && p[0] <= 180) || !(p[1] >= -90 && p[1] <= 90))
+    throw Error(ExitCode::kUsage, "--pole takes LON,LAT in degrees (-180..180, -90..90)");
+  r.mesh.pole = p;
+}
+
 void set_min_angle(Request& r, const std::string& key, const std::vector<std::string>& v) {
   if (v.empty()) return;  // automatic: 30 for GIS inputs, 0 for .poly (pipeline::plan_run)
   r.mesh.min_angle_deg = parse_number(key, v.back());
@@ -126,6 +144,8 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--layer", "layer", field<&MeshOptions::layer>, "string", "NAME", "", "Input", "Layer of INPUT to read (default: the first)"},
       {"mesh", "--where", "where", field<&MeshOptions::where>, "string", "SQL", "", "Input", "OGR attribute filter on INPUT features"},
       {"mesh", "--land", "land", field<&MeshOptions::land>, "vector_in", "FILE", "", "Input", "Land polygons subtracted from --extent (instead of water polygons)"},
+      {"mesh", "--global", "global", field<&MeshOptions::global>, "flag", "", "", "Input", "Mesh the whole ocean: the sphere minus --land (no --extent), in a stereographic plane whose pole lies inside Antarctica; outputs in lon/lat (docs/global.md)"},
+      {"mesh", "--pole", "pole", set_pole, "string", "LON,LAT", "0,-90", "Input", "--global: the point sent to infinity by the stereographic projection, inside the land polygon that bounds the ocean"},
       {"mesh", "--extent", "extent", set_extent, "bbox", "XMIN,YMIN,XMAX,YMAX", "", "Input", "Box (lon/lat degrees) from which --land is subtracted"},
       {"mesh", "--breaklines", "breaklines", field<&MeshOptions::breaklines>, "vector_in", "FILE", "", "Input", "Lines kept as mesh edges (rivers, levees, channels); clipped to the domain"},
       {"mesh", "--points", "points", field<&MeshOptions::points>, "vector_in", "FILE", "", "Input", "Fixed vertices (points inside the domain)"},

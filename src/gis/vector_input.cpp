@@ -17,6 +17,7 @@
 
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
+#include "gis/global_domain.hpp"
 #include "gis/vector_layers.hpp"
 #include "base/edge_kind.hpp"
 #include "predicates/predicates.hpp"
@@ -436,6 +437,10 @@ void check_domain_options(const DomainOptions& o) {
   if (o.domain.given() == (o.land.given() || o.extent.has_value()))
     throw Error(ExitCode::kUsage, o.domain.given() ? "give either a domain layer or --land with --extent, not both"
                                                    : "no domain: give a polygon layer, or --land with --extent");
+  if (o.global_pole) {
+    if (!o.land.given() || o.extent) throw Error(ExitCode::kUsage, "--global takes --land and no --extent");
+    return;
+  }
   if (o.land.given() != o.extent.has_value())
     throw Error(ExitCode::kUsage, o.land.given() ? "--land needs --extent xmin,ymin,xmax,ymax" : "--extent needs --land");
 }
@@ -692,6 +697,38 @@ void add_points(const DomainOptions& o, const std::vector<Ring>& rings, GisInput
   }
 }
 
+// --global: the sphere minus land (gis/global_domain.hpp) in its stereographic frame, as rings
+// (the outer coast a land boundary, every other coast an island); areas on the sphere.
+LayerData global_domain(const DomainOptions& o, GisInput& in, std::vector<Ring>& rings) {
+  const SphereStereo proj(*o.global_pole);
+  in.frame = Frame::from_crs(proj.proj_string(), {0, 0});
+  // Land edges follow their lon/lat line before projection (0.1 degree unless --densify says).
+  GlobalWater gw = global_water(o.land, o.s_srs, proj, o.densify_deg > 0 ? o.densify_deg : 0.1);
+  in.counts.densify_points += gw.densify_points;
+  in.domain_area_m2 = gw.water_area_m2;
+  LayerData dom;
+  dom.file = gw.file;
+  dom.layer = gw.layer + " (sphere minus land)";
+  dom.srs.importFromEPSG(4326);
+  dom.srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  for (auto& poly : gw.polygons) {
+    ++in.counts.polygon_features;
+    ++in.counts.polygons;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      Ring r;
+      r.pts = poly[k];
+      r.hole = k > 0;
+      r.open.assign(r.pts.size(), 0);
+      r.part = static_cast<int>(in.parts.size());
+      in.parts.push_back({gw.file, gw.layer, r.hole ? -1 : gw.pole_fid, r.hole ? "hole" : "outer ring", r.hole ? -1 : 0});
+      (r.hole ? in.counts.holes : in.counts.outer_rings) += 1;
+      rings.push_back(std::move(r));
+    }
+  }
+  in.domain_polygons = std::move(gw.polygons);
+  return dom;
+}
+
 }  // namespace
 
 GisInput read_domain(const DomainOptions& o) {
@@ -700,21 +737,23 @@ GisInput read_domain(const DomainOptions& o) {
 
   GisInput in;
   std::vector<std::vector<std::vector<char>>> on_box;
-  LayerData dom = o.domain.given() ? read_layer(o.domain, o.s_srs, "--where") : land_minus_box(o, on_box);
-
-  std::vector<LonLat> sample;
-  sample_lonlat(dom, sample);
-  in.frame = choose_frame(sample, o.t_srs);
-  const Frame& frame = in.frame;
-
+  LayerData dom;
   std::vector<Ring> rings;
   std::vector<std::vector<std::uint32_t>> seg_source;  // per ring: source segment of each segment
-  add_polygon_rings(dom, frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
-                    in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
+  if (o.global_pole) {
+    dom = global_domain(o, in, rings);
+  } else {
+    dom = o.domain.given() ? read_layer(o.domain, o.s_srs, "--where") : land_minus_box(o, on_box);
+    std::vector<LonLat> sample;
+    sample_lonlat(dom, sample);
+    in.frame = choose_frame(sample, o.t_srs);
+    add_polygon_rings(dom, in.frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
+                      in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
+    for (const auto& poly : in.domain_polygons)
+      for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(ring_area(poly[k]));
+  }
   if (rings.empty())
     throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
-  for (const auto& poly : in.domain_polygons)
-    for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(ring_area(poly[k]));
 
   Box2 bb;
   for (const auto& r : rings)

@@ -28,6 +28,9 @@ struct DomainOptions {
   LayerRef domain;          // polygons of the meshing domain (e.g. water); or use land + extent
   LayerRef land;            // land polygons subtracted from `extent` (needs `extent`)
   std::optional<std::array<double, 4>> extent;  // xmin, ymin, xmax, ymax
+  // Global run: the sphere minus `land` (no extent), in the stereographic frame whose point at
+  // infinity is this pole inside the land that bounds the ocean (gis/global_domain.hpp).
+  std::optional<LonLat> global_pole;
   bool extent_in_lonlat = true;  // false: `extent` is in the land layer's CRS
   LayerRef open_boundary;   // lines on which boundary segments become EdgeKind::kOpen
   LayerRef breaklines;      // lines clipped to the domain, EdgeKind::kBreakline

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "base/step_laps.hpp"
+#include "io/antimeridian_ll.hpp"
 #include "io/detail.hpp"
 #include "io/gdal_util.hpp"
 #include "io/gpkg_geom.hpp"
@@ -196,6 +197,7 @@ void write_triangles(SqliteDb& db, GeomBlob& gb, const mesh::MeshView& m, const 
     const auto& tr = m.triangles[t];
     Point2 w[3];
     for (int k = 0; k < 3; ++k) w[k] = m.world(tr[k]);
+    if (o.continue_across_antimeridian) continue_longitudes(w, 3, true);
     const std::string& g = gb.polygon(w, 3);
     ins.add_blob(g.data(), g.size()).add_int(static_cast<std::int64_t>(t + 1));
     for (int k = 0; k < 3; ++k) ins.add_int(static_cast<std::int64_t>(tr[k]) + 1);
@@ -221,7 +223,7 @@ void write_triangles(SqliteDb& db, GeomBlob& gb, const mesh::MeshView& m, const 
 
 // boundaries: geom, id, kind, marker, part, closed, num_nodes. Returns each chain's envelope.
 std::vector<IndexBox> write_boundaries(SqliteDb& db, GeomBlob& gb, const mesh::MeshView& m,
-                                       const std::vector<Chain>& chains, Extent& ext) {
+                                       const std::vector<Chain>& chains, Extent& ext, bool antimeridian) {
   BatchInsert ins(db, "boundaries", {"geom", "id", "kind", "marker", "part", "closed", "num_nodes"}, 32);
   std::vector<IndexBox> boxes;
   std::vector<Point2> pts;
@@ -229,6 +231,7 @@ std::vector<IndexBox> write_boundaries(SqliteDb& db, GeomBlob& gb, const mesh::M
     const Chain& c = chains[i];
     pts.clear();
     for (Index v : c.nodes) pts.push_back(m.world(v));
+    if (antimeridian) continue_longitudes(pts.data(), pts.size(), c.closed);
     const std::string& g = gb.linestring(pts.data(), static_cast<std::uint32_t>(pts.size()), c.closed);
     ins.add_blob(g.data(), g.size()).add_int(static_cast<std::int64_t>(i + 1)).add_text(kind_name(c.marker));
     ins.add_int(c.marker).add_int(c.part).add_int(c.closed ? 1 : 0).add_int(static_cast<std::int64_t>(c.nodes.size()));
@@ -263,7 +266,7 @@ void write_metadata(SqliteDb& db, const WriteOptions& o) {
 }
 
 // The spatial indexes of the four feature tables, each box the envelope its geometry blob has.
-void write_indexes(SqliteDb& db, const mesh::MeshView& m, const std::vector<IndexBox>& chain_boxes,
+void write_indexes(SqliteDb& db, const mesh::MeshView& m, bool antimeridian, const std::vector<IndexBox>& chain_boxes,
                    const std::vector<RepairRow>& repairs, StepLaps& lap) {
   build_gpkg_rtree(db, "nodes", "geom", m.vertices.size(), [&m](std::size_t v, IndexBox& b) {
     const Point2 p = m.world(static_cast<Index>(v));
@@ -271,9 +274,10 @@ void write_indexes(SqliteDb& db, const mesh::MeshView& m, const std::vector<Inde
     return true;
   });
   lap("node rtree");
-  build_gpkg_rtree(db, "triangles", "geom", m.triangles.size(), [&m](std::size_t t, IndexBox& b) {
+  build_gpkg_rtree(db, "triangles", "geom", m.triangles.size(), [&m, antimeridian](std::size_t t, IndexBox& b) {
     Point2 w[3];
     for (int k = 0; k < 3; ++k) w[k] = m.world(m.triangles[t][k]);
+    if (antimeridian) continue_longitudes(w, 3, true);
     b = {w[0].x, w[0].x, w[0].y, w[0].y};
     for (int k = 1; k < 3; ++k) {
       b.minx = std::min(b.minx, w[k].x), b.maxx = std::max(b.maxx, w[k].x);
@@ -314,7 +318,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   lap("nodes");
   write_triangles(db, gb, m, o);
   lap("triangles");
-  const std::vector<IndexBox> chain_boxes = write_boundaries(db, gb, m, build_chains(m), mesh_ext);
+  const std::vector<IndexBox> chain_boxes = write_boundaries(db, gb, m, build_chains(m), mesh_ext, o.continue_across_antimeridian);
   write_repairs(db, gb, o.repairs, repair_ext);
   write_metadata(db, o);
   // Table order as OGR lists layers: the order of gpkg_contents rows.
@@ -324,7 +328,7 @@ void write_gpkg(const mesh::MeshView& m, const std::string& path, const WriteOpt
   register_table(db, "repairs", "POINT", srs.id, repair_ext);
   register_table(db, "metadata", nullptr, 0, {});
   lap("boundaries, repairs, metadata");
-  if (o.gpkg_spatial_index) write_indexes(db, m, chain_boxes, o.repairs, lap);
+  if (o.gpkg_spatial_index) write_indexes(db, m, o.continue_across_antimeridian, chain_boxes, o.repairs, lap);
   db.exec("COMMIT");
   db.close();
   tf.commit();

@@ -62,6 +62,9 @@ struct WriteOptions {
   // GeoPackage R-tree spatial indexes on the nodes/triangles/boundaries/repairs layers (what QGIS
   // uses for fast panning), bulk-loaded after the rows are written.
   bool gpkg_spatial_index = true;
+  // GeoPackage in lon/lat of a global mesh: triangles and boundary lines across the antimeridian
+  // written with their longitudes continued past +-180 (io/antimeridian_ll.hpp).
+  bool continue_across_antimeridian = false;
   // Per-triangle values precomputed in the metric frame (used instead of computing them from the
   // written coordinates, e.g. when nodes are reprojected to lon/lat by --output-crs).
   const std::vector<double>* triangle_r_over_f = nullptr;

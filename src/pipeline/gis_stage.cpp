@@ -18,6 +18,7 @@
 #include "gis/reproject.hpp"
 #include "gis/united_domain.hpp"
 #include "gis/vector_input.hpp"
+#include "pipeline/global_stage.hpp"
 #include "pipeline/memory_policy.hpp"
 #include "pipeline/plan.hpp"
 #include "pslg/poly_io.hpp"
@@ -62,8 +63,12 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
   gis::DomainOptions d;
   if (!opt.land.empty()) {
     d.land = {opt.land, opt.layer, opt.where};
-    d.extent = opt.extent;
-    if (!opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
+    if (opt.global) {
+      d.global_pole = opt.pole ? LonLat{(*opt.pole)[0], (*opt.pole)[1]} : LonLat{0, -90};
+    } else {
+      d.extent = opt.extent;
+      if (!opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
+    }
   } else {
     d.domain = {opt.input, opt.layer, opt.where};
   }
@@ -136,6 +141,7 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
 
 GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
                        const LogFn& log) {
+  if (opt.global) return global_spacing(opt, g, clock, log);
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   const gis::Frame& frame = g.frame;
   // Spacing, in ground metres on a grid over the domain box, then to grid units.
@@ -213,7 +219,7 @@ GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& c
   info("projection scale factor: max |k - 1| = " + num(kdev) + (kdev > 1e-3 ? " (spacing corrected)" : ""));
 
   if (progress) progress(0.03, "clean");
-  return {f, zgrid, fgrid, hmin, kdev};
+  return {f, zgrid, fgrid, hmin, kdev, nullptr, nullptr};
 }
 
 PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpacing& sp, StageClock& clock,
@@ -298,6 +304,7 @@ PreparedInput clean_gis_input(const Options& opt, gis::GisInput g, const GisSpac
   out.frame = std::make_shared<const gis::Frame>(frame);
   out.dem = sp.dem;
   out.spacing_grid = sp.spacing_grid;
+  if (sp.sphere_f) attach_sphere(out, sp, opt, log);
   // The filter's removed-water listing (started beside the stages since the spacing), then the
   // figures and repairs that need it. Deferred: run by complete_input() once the refinement is
   // done, so that the listing has the core the refinement leaves free (and its memory does not
@@ -382,6 +389,7 @@ PreparedInput prepare_gis_input(const Options& opt, StageClock& clock, const Pro
 }
 
 std::vector<double> sample_depths(const mesh::MeshView& m, const PreparedInput& in, const LogFn& log) {
+  if (in.lonlat_dem) return global_depths(m, in);
   if (!in.dem) return {};
   int filled = 0;
   std::vector<double> z = gis::sample_depths(*in.dem, m.vertices, &filled);

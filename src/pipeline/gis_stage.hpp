@@ -16,6 +16,13 @@
 #include "sizing/grid.hpp"
 #include "sizing/sizing_field.hpp"
 
+namespace fdr::gis {
+// --global runs (gis/global_spacing.hpp): held here by pointer only, so that the core pipeline,
+// which passes them on, never runs their code.
+class StereoSpacing;
+struct LonLatRaster;
+}  // namespace fdr::gis
+
 namespace fdr::pipeline {
 
 struct PreparedInput {
@@ -31,6 +38,11 @@ struct PreparedInput {
   std::string crs_wkt;                    // WKT of the working CRS ("" for .poly)
   std::shared_ptr<const sizing::Grid> dem;           // --raster in the local frame: depths, TIN error
   std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid in ground metres (--write-spacing)
+  // --global runs: the spacing on the sphere (f is it), the lon/lat raster for the depths, and
+  // what measures the finished mesh on the sphere (figures appended to coast_figures).
+  std::shared_ptr<const gis::StereoSpacing> sphere_f;
+  std::shared_ptr<const gis::LonLatRaster> lonlat_dem;
+  std::function<void(const mesh::MeshView&, std::vector<std::pair<std::string, double>>&)> sphere_figures;
   // Model-readiness inputs for the report (GIS runs).
   double hmin = 0;                        // metres
   std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame
@@ -63,6 +75,8 @@ struct GisSpacing {
   std::shared_ptr<const sizing::Grid> spacing_grid;  // final f grid, ground metres (--write-spacing)
   double hmin = 0;                                   // metres
   double kdev = 0;                                   // max |k - 1| of the projection's scale
+  std::shared_ptr<const gis::StereoSpacing> sphere_f;  // --global: f (the same object)
+  std::shared_ptr<const gis::LonLatRaster> lonlat_dem; // --global: --raster in lon/lat
 };
 GisSpacing gis_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const ProgressFn& progress,
                        const LogFn& log);

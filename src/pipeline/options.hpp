@@ -14,6 +14,10 @@ struct Options {
   std::string layer, where;              // OGR layer and attribute filter of the domain
   std::string land;                      // land polygons subtracted from --extent
   std::optional<std::array<double, 4>> extent;  // xmin,ymin,xmax,ymax (lon/lat)
+  // Global run: the sphere minus --land, meshed in the stereographic plane whose point at
+  // infinity is `pole` (lon, lat; default the south pole, inside Antarctica); outputs in lon/lat.
+  bool global = false;
+  std::optional<std::array<double, 2>> pole;
   std::string breaklines, points, open_boundary;
   // Layers of those sources (default: the first layer of each file).
   std::string breaklines_layer, points_layer, open_boundary_layer;

@@ -93,6 +93,10 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
     m.z = gis_backend().sample_depths(m, in, log);
   }
   clock.lap("depths");
+  if (in.sphere_figures) {  // --global: the mesh measured on the sphere, in the report's figures
+    in.sphere_figures(m, in.coast_figures);
+    clock.lap("sphere");
+  }
 
   quality::TriangleValues tri_values;
   quality::TriangleValues* values = plan.triangle_values ? &tri_values : nullptr;

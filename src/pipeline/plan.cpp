@@ -11,9 +11,26 @@
 namespace fdr::pipeline {
 namespace {
 
+// --global: land without an extent, explicit hmin and hmax (the plane's box says nothing about
+// the sphere's sizes), the spacing rules that are evaluated on the sphere.
+void check_global_options(const Options& opt) {
+  if (opt.pole && !opt.global) throw Error(ExitCode::kUsage, "--pole needs --global");
+  if (!opt.global) return;
+  if (opt.land.empty() || !opt.input.empty() || opt.extent)
+    throw Error(ExitCode::kUsage, "--global takes --land LAND and neither INPUT nor --extent");
+  if (!opt.hmin || !opt.hmax) throw Error(ExitCode::kUsage, "--global needs --hmin and --hmax (metres on the sphere)");
+  if (!opt.size_raster.empty() || opt.vertical_tol || !opt.spacing.empty() || !opt.write_spacing.empty())
+    throw Error(ExitCode::kUsage, "--global spacing: --hmin, --hmax, --dist-grade, --slope-rule, --wavelength-rule and "
+                                  "--gradation only (no --size-raster, --vertical-tol, --spacing, --write-spacing)");
+  if (!opt.open_boundary.empty() || !opt.breaklines.empty() || !opt.points.empty())
+    throw Error(ExitCode::kUsage, "--global takes no --open-boundary, --breaklines or --points");
+}
+
 // GIS options that need another option (checked again where they are used).
 void check_gis_options(const Options& opt) {
-  if (!opt.land.empty() && !opt.extent) throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX");
+  if (!opt.land.empty() && !opt.extent && !opt.global)
+    throw Error(ExitCode::kUsage, "--land needs --extent XMIN,YMIN,XMAX,YMAX (or --global)");
+  check_global_options(opt);
   check_layer_options(opt);
   auto negative = [](const std::optional<double>& v) { return v && !(*v >= 0); };
   if (negative(opt.close_width) || negative(opt.min_feature) || negative(opt.min_island_factor))
@@ -48,7 +65,7 @@ WriteParams write_params(const Options& opt, const Plan& p, std::vector<io::Form
   w.gis = p.gis;
   w.outputs = opt.outputs;
   w.formats = std::move(formats);
-  w.output_crs = opt.output_crs;
+  w.output_crs = output_crs_of(opt);
   w.write_spacing = opt.write_spacing;
   w.report_json = opt.report_json;
   w.source = p.source;
@@ -70,6 +87,10 @@ void check_layer_options(const Options& opt) {
     throw Error(ExitCode::kUsage, "--breaklines-layer needs --breaklines FILE");
   if (opt.points.empty() && !opt.points_layer.empty())
     throw Error(ExitCode::kUsage, "--points-layer needs --points FILE");
+}
+
+std::string output_crs_of(const Options& opt) {
+  return opt.output_crs.empty() && opt.global ? std::string("EPSG:4326") : opt.output_crs;
 }
 
 bool is_poly_input(const std::string& path) {
@@ -116,7 +137,7 @@ Plan plan_run(const Options& opt) {
                                                      "write .gr3 instead or mesh from GIS layers");
   if (p.gis) check_gis_options(opt);
   p.measure_report = report_is_read(opt, formats);
-  p.triangle_values = opt.output_crs.empty() && stores_triangle_values(formats);
+  p.triangle_values = output_crs_of(opt).empty() && stores_triangle_values(formats);
   p.measure = measure_params(opt, p, formats);
   p.write = write_params(opt, p, std::move(formats));
   return p;

@@ -25,6 +25,10 @@ Plan plan_run(const Options& opt);
 // there.
 void check_layer_options(const Options& opt);
 
+// The CRS the outputs are written in: --output-crs, else EPSG:4326 for --global runs (lon/lat on
+// the mesh's sphere), else "" (the working CRS).
+std::string output_crs_of(const Options& opt);
+
 // Whether anything reads the quality report: always, unless Options::report_only_if_read, and then
 // when it is printed (not quiet), written (--report) or stored by an output (GPKG, VTU, UGRID,
 // D-Flow FM net file).

@@ -123,6 +123,8 @@ WrittenOutputs write_outputs(const WriteInput& w, const WriteParams& p, Clock::t
     metric = metric_triangle_values(w.mesh, *w.in.f);
     projected = w.mesh;
     gis_backend().reproject_mesh(projected, w.in, p.output_crs);
+    // A global mesh in lon/lat: its GeoPackage geometries continue across the antimeridian.
+    wo.continue_across_antimeridian = w.in.sphere_f != nullptr && p.output_crs == "EPSG:4326";
     wo.f = nullptr;
     wo.triangle_r_over_f = &metric.r_over_f;
     wo.triangle_min_angle = &metric.min_angle;

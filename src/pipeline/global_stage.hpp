@@ -1,0 +1,27 @@
+// The stages of a --global run that differ from a regional GIS run: the spacing computed on the
+// sphere, depths sampled in lon/lat and the mesh measured on the sphere (GIS side).
+#pragma once
+#include "gis/global_spacing.hpp"
+#include "pipeline/gis_stage.hpp"
+
+namespace fdr::pipeline {
+
+// Spacing stage, --global: the rules on a lon/lat grid in ground metres (distance to shore along
+// great circles, the depth rules from a lon/lat --raster), gradient-limited on the sphere, read
+// in the stereographic plane times its exact scale factor (gis/global_spacing.hpp). Laps
+// "raster", "sizing".
+GisSpacing global_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const LogFn& log);
+
+// Depths stage, --global: the lon/lat raster sampled at the vertices' lon/lat.
+std::vector<double> global_depths(const mesh::MeshView& m, const PreparedInput& in);
+
+// What PreparedInput::sphere_figures runs: the mesh measured on the sphere (gis/global_measure.hpp),
+// its figures appended to `out` and logged.
+void add_sphere_figures(const mesh::MeshView& m, const GisSpacing& sp, double bound, double hmin, double min_depth_m,
+                        const LogFn& log, std::vector<std::pair<std::string, double>>& out);
+
+// The --global parts of the prepared input: the spacing on the sphere, the lon/lat raster, the
+// sphere's radius in the metadata and PreparedInput::sphere_figures (add_sphere_figures).
+void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt, const LogFn& log);
+
+}  // namespace fdr::pipeline
