@@ -10,6 +10,8 @@
 
 namespace fdr::pipeline {
 namespace {
+// --frontal's default (0: circumcentres only).
+constexpr double kDefaultFrontalRadius = 0.0;
 
 // GIS options that need another option (checked again where they are used).
 void check_gis_options(const Options& opt) {
@@ -94,6 +96,7 @@ Plan plan_run(const Options& opt) {
   if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt.min_angle_deg >= 60 || std::isnan(opt.min_angle_deg)) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   if (opt.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
+  if (!(opt.frontal_radius < 1) || std::isnan(opt.frontal_radius)) throw Error(ExitCode::kUsage, "--frontal must be in [0, 1)");
   if (opt.no_sliver_removal || opt.sliver_angle_deg)
     throw Error(ExitCode::kUsage, std::string(opt.no_sliver_removal ? "--no-sliver-removal" : "--sliver-angle") +
                                       " applies to 3D runs only; " + p.source + " is a 2D input");
@@ -103,6 +106,7 @@ Plan plan_run(const Options& opt) {
   t.min_angle_deg = opt.min_angle_deg >= 0 ? opt.min_angle_deg : (p.gis ? 30.0 : 0.0);
   t.angle_split_min_f = p.gis ? 0.5 : 0.0;
   t.smooth_passes = opt.smooth_passes >= 0 ? opt.smooth_passes : (p.gis ? 4 : 0);
+  t.frontal_radius = opt.frontal_radius >= 0 ? opt.frontal_radius : kDefaultFrontalRadius;
   t.max_steiner = opt.max_steiner;
   t.check = opt.check;
   t.source = p.source;

@@ -15,6 +15,7 @@
 #include "base/parallel.hpp"
 #include "cdt/locate.hpp"
 #include "predicates/predicates.hpp"
+#include "refine/frontal.hpp"
 
 namespace fdr::refine {
 using mesh::Triangulation;
@@ -64,6 +65,11 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
     zscale_ = w > 0 ? 65535.0 / w : 0.0;
   }
   mark_clusters();
+  if (opt_.frontal) {
+    if (!(opt_.frontal_radius > 0 && opt_.frontal_radius < 1))
+      throw Error(ExitCode::kUsage, "the frontal radius must lie in (0, 1) (a fraction of B f)");
+    front_ = std::make_unique<Front>();
+  }
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
     const double s = std::sin(opt_.min_angle_deg * std::numbers::pi / 180.0);
@@ -211,6 +217,7 @@ void Refiner::evaluate(TriangleId t) {
   ++stats_.triangles_tested;
   bool exempt = false;
   const double k = badness(t, &exempt);
+  if (front_) front_->set_key(t, k > 1 ? k : 0);
   if (k > 1) push_bad(t, k);
 }
 
@@ -262,6 +269,9 @@ void Refiner::init() {
     check_encroached_edges(t);
     evaluate(t);
   }
+  if (front_)
+    for (TriangleId t = 0; t < tri_.num_slots(); ++t)
+      if (!tri_.dead(t)) front_->offer(tri_, t);
 }
 
 Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const {
@@ -314,6 +324,7 @@ void Refiner::split_subsegment(Index a, Index b) {
     check_encroached_edges(t);
     evaluate(t);
   }
+  if (front_) front_->note_new(T, ins_.new_triangles(), v);
 }
 
 // Why the give-up rule: a triangle that is bad only by the --min-angle criterion next to a
@@ -409,9 +420,9 @@ void Refiner::split_triangle(const BadEntry& e) {
       if (T.constrained(h) && diametral(T.point(T.org(h)), T.point(T.dst(h)), cc) > 0)
         seg_tmp_.push_back({T.org(h), T.dst(h)});
     if (seg_tmp_.empty()) {
-      ins_.commit(cc, VertexKind::kFree);
+      const Index v = ins_.commit(cc, VertexKind::kFree);
       ++stats_.circumcenters;
-      for (TriangleId t : ins_.new_triangles()) evaluate(t);
+      after_insert(v);
       return;
     }
     ins_.abort();
@@ -437,6 +448,137 @@ void Refiner::split_triangle(const BadEntry& e) {
   enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());
   const double k = badness(e.t);
   if (k > 1) push_bad(e.t, k);
+}
+
+void Refiner::after_insert(Index v) {
+  for (TriangleId t : ins_.new_triangles()) evaluate(t);
+  if (front_) front_->note_new(tri_, ins_.new_triangles(), v);
+}
+
+// The front edge of t to build on: an edge on the front no longer than the triangle the front
+// asks for there (a longer one would give a point on or inside its diametral circle; such a
+// triangle waits for the circumcentre rule), the one nearest that size. *rho: the circumradius
+// asked for at its midpoint.
+HalfEdge Refiner::choose_front_edge(TriangleId t, double* rho) const {
+  const auto& T = tri_;
+  const double kr = opt_.frontal_radius * opt_.bound;
+  HalfEdge best = kNoId;
+  double best_err = std::numeric_limits<double>::infinity();
+  for (Index k = 0; k < 3; ++k) {
+    const HalfEdge h = 3 * t + k;
+    if (!front_->front_edge(T, h)) continue;
+    const Point2 p = T.point(T.org(h)), q = T.point(T.dst(h));
+    const double fm = f_(0.5 * (p + q));
+    if (!(fm > 0) || !std::isfinite(fm)) continue;
+    const double r = kr * fm, len = dist(p, q);
+    if (0.5 * len > kLongEdge * opt_.bound * fm) continue;
+    const double err = std::fabs(len - std::sqrt(3.0) * r);
+    if (err < best_err) {
+      best_err = err;
+      best = h;
+      *rho = r;
+    }
+  }
+  return best;
+}
+
+// One frontal split of a front triangle (RefineOptions::frontal). kWait: not R/f(c)-bad, or no
+// front edge fits (it stays in the largest-first queue); kFallback: the frontal point is not
+// usable, split at the circumcenter.
+Refiner::Frontal Refiner::split_frontal(const BadEntry& e) {
+  auto& T = tri_;
+  const Point2 a = T.point(T.corner(e.t, 0)), b = T.point(T.corner(e.t, 1)), c = T.point(T.corner(e.t, 2));
+  double r2;
+  const Point2 cc = geom::circumcentre(a, b, c, &r2);
+  const double fc = f_(cc);
+  if (!(fc > 0) || !std::isfinite(fc) || !(r2 / (fc * fc) * b2_inv_ > 1)) return Frontal::kWait;
+  double rho = 0;
+  const HalfEdge h = choose_front_edge(e.t, &rho);
+  if (h == kNoId) return split_long_front_segment(e.t) ? Frontal::kDone : Frontal::kWait;
+  const Point2 p = T.point(T.org(h)), q = T.point(T.dst(h));
+  const double r = std::sqrt(r2);
+  FrontalPoint fp = frontal_point(p, q, cc, r, rho);
+  // The size asked for where the new triangle's circumcentre falls (f was taken at the edge).
+  const double fn = f_(fp.centre);
+  if (fn > 0 && std::isfinite(fn)) fp = frontal_point(p, q, cc, r, opt_.frontal_radius * opt_.bound * fn);
+  const Point2 x = fp.x;
+  ++stats_.frontal_fallbacks;  // taken back below when the point is used or rejected
+  if (predicates::incircle(a, b, c, x) <= 0) return Frontal::kFallback;
+  const cdt::Location loc = cdt::locate_straight(T, e.t, x);
+  if (loc.kind == cdt::LocateKind::kBlocked || loc.kind == cdt::LocateKind::kOnVertex ||
+      (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)))
+    return Frontal::kFallback;
+  if (!ins_.build_cavity(x, loc)) return Frontal::kFallback;
+  const auto& cav = ins_.cavity();
+  const double fx = f_(x);
+  double rx2 = std::numeric_limits<double>::infinity();  // squared insertion radius
+  for (HalfEdge g : ins_.boundary()) rx2 = std::min(rx2, norm2(T.point(T.org(g)) - x));
+  // The proofs ask of an inserted point what a circumcentre has: no vertex nearer than B f.
+  if (std::find(cav.begin(), cav.end(), e.t) == cav.end() || !(fx > 0) ||
+      rx2 < opt_.bound * opt_.bound * fx * fx) {
+    ins_.abort();
+    return Frontal::kFallback;
+  }
+  --stats_.frontal_fallbacks;
+  seg_tmp_.clear();
+  for (HalfEdge g : ins_.boundary())
+    if (T.constrained(g) && diametral(T.point(T.org(g)), T.point(T.dst(g)), x) > 0)
+      seg_tmp_.push_back({T.org(g), T.dst(g)});
+  if (!seg_tmp_.empty()) {
+    // Rejected: split the encroached subsegments first; the triangle stays queued (both queues).
+    ins_.abort();
+    ++stats_.rejected_circumcenters;
+    enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());
+    front_->offer(T, e.t);
+    return Frontal::kDone;
+  }
+  const Index v = ins_.commit(x, VertexKind::kFree);
+  ++stats_.circumcenters;
+  ++stats_.frontal_points;
+  after_insert(v);
+  return Frontal::kDone;
+}
+
+// A front triangle whose front edges are all too long: its longest subsegment is split where its
+// pieces are at least B f long (so the split point has the insertion radius the proofs ask for:
+// the subsegment is not encroached, its diametral disk is empty). Why: else the circumcentre rule
+// would fill the domain with coarse vertices before the boundary is fine enough to start a front.
+bool Refiner::split_long_front_segment(TriangleId t) {
+  const auto& T = tri_;
+  HalfEdge best = kNoId;
+  double best_len = 0;
+  for (Index k = 0; k < 3; ++k) {
+    const HalfEdge h = 3 * t + k;
+    if (!T.constrained(h)) continue;
+    Index apex;
+    int ex;
+    const Point2 m = split_point(T.org(h), T.dst(h), &apex, &ex);
+    const double fm = f_(m);
+    const Point2 p = T.point(T.org(h)), q = T.point(T.dst(h));
+    if (!(fm > 0) || !std::isfinite(fm) || std::min(dist(p, m), dist(m, q)) < opt_.bound * fm) continue;
+    if (dist(p, q) > best_len) {
+      best_len = dist(p, q);
+      best = h;
+    }
+  }
+  if (best == kNoId) return false;
+  enc_.push_back({T.org(best), T.dst(best)});
+  return true;
+}
+
+// The next front triangle, split; false when the front holds no bad triangle to split now.
+bool Refiner::step_front() {
+  Front::Entry f;
+  while (front_->pop(&f)) {
+    const auto& T = tri_;
+    if (T.dead(f.t) || T.corner(f.t, 2) != f.c || !front_->bad(f.t)) continue;
+    const BadEntry e{f.t, f.c, 0};
+    const Frontal r = split_frontal(e);
+    if (r == Frontal::kWait) continue;
+    if (r == Frontal::kFallback) split_triangle(e);
+    return true;
+  }
+  return false;
 }
 
 RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
@@ -535,6 +677,7 @@ bool Refiner::step() {
     if (stats_.segment_splits != before) return true;
   }
   if (!conforming_done_) record_conforming();  // no encroached subsegment left: this is M_c
+  if (front_ && step_front()) return true;
   while (top_ >= 0) {
     auto& bk = buckets_[top_];
     if (bk.empty()) {
