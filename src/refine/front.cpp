@@ -1,5 +1,6 @@
 // Front bookkeeping of frontal refinement (see front.hpp).
 #include "refine/front.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace fdr::refine {
@@ -26,9 +27,20 @@ bool Front::has_front_edge(const mesh::Triangulation& T, TriangleId t) const {
   return false;
 }
 
+int Front::bucket_of(double key) {
+  if (!(key < 0x1p64)) return kSub * kDoublings - 1;
+  int e;
+  const double m = std::frexp(key, &e);  // key = m 2^e, m in [0.5, 1), e >= 1 for a bad key
+  const int i = (e - 1) * kSub + static_cast<int>((2 * m - 1) * kSub);
+  return std::clamp(i, 0, kSub * kDoublings - 1);
+}
+
 void Front::offer(const mesh::Triangulation& T, TriangleId t) {
   if (!bad(t) || !has_front_edge(T, t)) return;
-  heap_.push({key_[t], seq_++, t, T.corner(t, 2)});
+  const int b = bucket_of(key_[t]);
+  buckets_[static_cast<std::size_t>(b)].push_back({t, T.corner(t, 2)});
+  ++size_;
+  top_ = std::max(top_, b);
 }
 
 void Front::note_new(const mesh::Triangulation& T, const std::vector<TriangleId>& fresh, Index v) {
@@ -50,9 +62,12 @@ void Front::note_new(const mesh::Triangulation& T, const std::vector<TriangleId>
 }
 
 bool Front::pop(Entry* e) {
-  if (heap_.empty()) return false;
-  *e = heap_.top();
-  heap_.pop();
+  if (size_ == 0) return false;
+  while (buckets_[static_cast<std::size_t>(top_)].empty()) --top_;
+  auto& b = buckets_[static_cast<std::size_t>(top_)];
+  *e = b.back();
+  b.pop_back();
+  --size_;
   return true;
 }
 

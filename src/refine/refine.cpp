@@ -217,7 +217,10 @@ void Refiner::evaluate(TriangleId t) {
   ++stats_.triangles_tested;
   bool exempt = false;
   const double k = badness(t, &exempt);
-  if (front_) front_->set_key(t, k > 1 ? k : 0);
+  if (front_) {
+    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh, on the front or here
+    return;
+  }
   if (k > 1) push_bad(t, k);
 }
 
@@ -269,9 +272,21 @@ void Refiner::init() {
     check_encroached_edges(t);
     evaluate(t);
   }
-  if (front_)
+  if (front_) {
+    std::vector<TriangleId> live;
     for (TriangleId t = 0; t < tri_.num_slots(); ++t)
-      if (!tri_.dead(t)) front_->offer(tri_, t);
+      if (!tri_.dead(t)) live.push_back(t);
+    queue_fresh(live, kNoId);
+  }
+}
+
+// Frontal mode: bad triangles on the front go to the front's queue, the others to the
+// largest-first queue. Why not both: the front takes nearly every triangle, and its entries
+// would lie stale in the largest-first queue until the end (memory).
+void Refiner::queue_fresh(const std::vector<TriangleId>& fresh, Index v) {
+  front_->note_new(tri_, fresh, v);
+  for (TriangleId t : fresh)
+    if (front_->bad(t) && !front_->has_front_edge(tri_, t)) push_bad(t, front_->key(t));
 }
 
 Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const {
@@ -324,7 +339,7 @@ void Refiner::split_subsegment(Index a, Index b) {
     check_encroached_edges(t);
     evaluate(t);
   }
-  if (front_) front_->note_new(T, ins_.new_triangles(), v);
+  if (front_) queue_fresh(ins_.new_triangles(), v);
 }
 
 // Why the give-up rule: a triangle that is bad only by the --min-angle criterion next to a
@@ -452,7 +467,7 @@ void Refiner::split_triangle(const BadEntry& e) {
 
 void Refiner::after_insert(Index v) {
   for (TriangleId t : ins_.new_triangles()) evaluate(t);
-  if (front_) front_->note_new(tri_, ins_.new_triangles(), v);
+  if (front_) queue_fresh(ins_.new_triangles(), v);
 }
 
 // The front edge of t to build on: an edge on the front no longer than the triangle the front
@@ -574,7 +589,10 @@ bool Refiner::step_front() {
     if (T.dead(f.t) || T.corner(f.t, 2) != f.c || !front_->bad(f.t)) continue;
     const BadEntry e{f.t, f.c, 0};
     const Frontal r = split_frontal(e);
-    if (r == Frontal::kWait) continue;
+    if (r == Frontal::kWait) {
+      push_bad(e.t, front_->key(e.t));  // for the circumcentre rule when the front is done
+      continue;
+    }
     if (r == Frontal::kFallback) split_triangle(e);
     return true;
   }

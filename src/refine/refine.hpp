@@ -134,6 +134,7 @@ class Refiner {
   // at least a right one, is then good).
   static constexpr double kLongEdge = 0.95;
   void after_insert(Index v);
+  void queue_fresh(const std::vector<TriangleId>& fresh, Index v);
   Point2 steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
   bool below_floor(Point2 a, Point2 b, Point2 c) const;

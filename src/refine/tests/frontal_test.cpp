@@ -3,6 +3,7 @@
 // mesh, termination at the Steiner cap, the same mesh every time).
 #include <gtest/gtest.h>
 #include <cmath>
+#include <limits>
 #include <random>
 #include "base/error.hpp"
 #include "base/triangle_geometry.hpp"
@@ -113,7 +114,7 @@ TEST(Front, OffersOnlyBadTrianglesLargestFirst) {
   F.set_key(live[1], 5.0);
   F.offer(T, live[0]);
   F.offer(T, live[1]);
-  F.offer(T, live[0]);  // twice: both entries kept, the older first among equals
+  F.offer(T, live[0]);  // twice: both entries kept
   EXPECT_EQ(F.size(), 3u);
   refine::Front::Entry e;
   ASSERT_TRUE(F.pop(&e));
@@ -121,13 +122,25 @@ TEST(Front, OffersOnlyBadTrianglesLargestFirst) {
   EXPECT_EQ(e.c, T.corner(live[1], 2));
   ASSERT_TRUE(F.pop(&e));
   EXPECT_EQ(e.t, live[0]);
-  const auto first_seq = e.seq;
   ASSERT_TRUE(F.pop(&e));
-  EXPECT_GT(e.seq, first_seq);
+  EXPECT_EQ(e.t, live[0]);
   EXPECT_FALSE(F.pop(&e));
   F.set_key(live[1], 0.0);
   F.offer(T, live[1]);  // accepted: not queued
   EXPECT_TRUE(F.empty());
+}
+
+TEST(Front, BucketsRiseWithTheKey) {
+  int last = refine::Front::bucket_of(1.0);
+  EXPECT_EQ(last, 0);
+  for (double k = 1.01; k < 1e25; k *= 1.07) {
+    const int b = refine::Front::bucket_of(k);
+    EXPECT_GE(b, last) << k;
+    last = b;
+  }
+  EXPECT_EQ(refine::Front::bucket_of(std::numeric_limits<double>::infinity()),
+            refine::Front::kSub * refine::Front::kDoublings - 1);
+  EXPECT_LT(refine::Front::bucket_of(1.5), refine::Front::bucket_of(1.7));  // finer than a doubling
 }
 
 TEST(Front, NoteNewQueuesOldBadNeighboursOfAcceptedTriangles) {
