@@ -10,8 +10,11 @@
 
 namespace fdr::pipeline {
 namespace {
-// --frontal's default (0: circumcentres only).
-constexpr double kDefaultFrontalRadius = 0.0;
+// --frontal's default for GIS inputs (.poly inputs: 0, the paper's circumcentre rule). Why 0.75:
+// the triangles made on the front are then about as large as the circumcentre rule's on average
+// (a few per cent more triangles), with a mean quality well above it; 0.8 gives a few per cent
+// fewer triangles and a little less quality.
+constexpr double kGisFrontalRadius = 0.75;
 
 // GIS options that need another option (checked again where they are used).
 void check_gis_options(const Options& opt) {
@@ -106,7 +109,7 @@ Plan plan_run(const Options& opt) {
   t.min_angle_deg = opt.min_angle_deg >= 0 ? opt.min_angle_deg : (p.gis ? 30.0 : 0.0);
   t.angle_split_min_f = p.gis ? 0.5 : 0.0;
   t.smooth_passes = opt.smooth_passes >= 0 ? opt.smooth_passes : (p.gis ? 4 : 0);
-  t.frontal_radius = opt.frontal_radius >= 0 ? opt.frontal_radius : kDefaultFrontalRadius;
+  t.frontal_radius = opt.frontal_radius >= 0 ? opt.frontal_radius : (p.gis ? kGisFrontalRadius : 0.0);
   t.max_steiner = opt.max_steiner;
   t.check = opt.check;
   t.source = p.source;
