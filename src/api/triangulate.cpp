@@ -151,6 +151,8 @@ RefineOutcome refine_stage(mesh::Triangulation& tri, const SizingField& f, const
   ro.bound = opt.bound;
   ro.min_angle_deg = opt.min_angle_deg;
   ro.angle_split_min_f = opt.angle_split_min_f;
+  ro.frontal = opt.frontal_radius > 0;
+  if (ro.frontal) ro.frontal_radius = opt.frontal_radius;
   ro.max_steiner = opt.max_steiner;
   ro.region_max_area = opt.region_max_area;
   ro.expected_steiner = expected / 2;
@@ -200,6 +202,7 @@ Triangulator::Triangulator(const Pslg& in, const TriangulateOptions& opt) : opt_
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt_.min_angle_deg < 0 || opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   if (opt_.smooth_passes < 0 || opt_.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
+  if (!(opt_.frontal_radius >= 0 && opt_.frontal_radius < 1)) throw Error(ExitCode::kUsage, "--frontal must be in [0, 1)");
   predicates::reset_counters();
   std::vector<pslg::Repair> reps;
   pslg_ = prepare_pslg(in, opt_.source, opt_.strict, &reps);

@@ -41,6 +41,9 @@ struct TriangulateOptions {
   // as Triangle; GIS inputs: 0.5). See refine::RefineOptions::angle_split_min_f.
   double angle_split_min_f = 0.0;
   int smooth_passes = 0;                 // quality smoothing sweeps after refinement, [0, 100] (--smooth)
+  // Frontal point placement with this target circumradius, a fraction of B f, in (0, 1); 0: the
+  // circumcentre rule alone (--frontal; refine::RefineOptions::frontal).
+  double frontal_radius = 0.0;
   std::uint64_t max_steiner = 20'000'000;  // Steiner point cap; reaching it is Error(kWorkLimit)
   bool check = false;                    // verify the invariants, Error(kCheckFailed) if one fails (--check)
   // Mesh the convex hull of the input, not the regions bounded by segments (--convex-hull).

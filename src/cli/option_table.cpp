@@ -100,6 +100,13 @@ void set_smooth(Request& r, const std::string& key, const std::vector<std::strin
   r.mesh.smooth_passes = static_cast<int>(sm);
 }
 
+void set_frontal(Request& r, const std::string& key, const std::vector<std::string>& v) {
+  if (v.empty()) return;  // automatic: 0.75 for GIS inputs, 0 for .poly (pipeline::plan_run)
+  const double k = parse_number(key, v.back());
+  if (!(k >= 0 && k < 1)) throw Error(ExitCode::kUsage, "--frontal must be in [0, 1)");
+  r.mesh.frontal_radius = k;
+}
+
 void set_bound(Request& r, const std::string& key, const std::vector<std::string>& v) {
   if (v.empty()) return;  // 2D: 1; 3D: the 3D default (tet::TetOptions)
   r.mesh.bound = parse_number(key, v.back());
@@ -215,6 +222,7 @@ const std::vector<OptSpec>& option_table() {
       {"mesh", "--bound", "bound", set_bound, "float", "B", "1 (2D), the 3D default keeping radius-edge <= 2 (3D)", "Refinement", "Quality bound: a triangle (tetrahedron) is bad when R/f(c) > B (need alpha*B < 1)"},
       {"mesh", "--min-angle", "min-angle", set_min_angle, "float", "DEG", "30 for GIS inputs, 0 for .poly", "Refinement", "Extra minimum-angle bound combined with FDR (like Triangle -q; GIS inputs: above 20 deg it gives way where a split would cut a boundary segment under f/2); 0 turns it off"},
       {"mesh", "--smooth", "smooth", set_smooth, "int", "N", "4 for GIS inputs, 0 for .poly", "Refinement", "Quality smoothing sweeps after refinement (moves kept only if exact checks pass; 0: off)"},
+      {"mesh", "--frontal", "frontal", set_frontal, "float", "K", "0.75 for GIS inputs, 0 for .poly", "Refinement", "Frontal point placement: a bad triangle next to accepted ones is split where the new triangle's circumradius is K*B*f (0 < K < 1), if no vertex is nearer than B*f there; 0: circumcentres only"},
       {"mesh", "--no-sliver-removal", "no-sliver-removal", field<&MeshOptions::no_sliver_removal>, "flag", "", "", "Refinement",
        "3D: keep the slivers refinement leaves (by default tetrahedra with a dihedral angle under --sliver-angle are "
        "split by a point near their circumcentre that makes no new sliver; R/f <= B and Delaunay kept)"},

@@ -84,6 +84,7 @@ struct Options {
   bool bound_given = false;              // --bound was given
   double min_angle_deg = -1.0;           // < 0: automatic (30 for GIS inputs, 0 for .poly/.node)
   int smooth_passes = -1;                // quality smoothing sweeps; < 0: automatic (4 GIS, 0 .poly)
+  double frontal_radius = -1.0;          // frontal placement radius (fraction of B f); 0: off; < 0: automatic
   std::uint64_t max_steiner = 20'000'000;
   // 3D: sliver removal after refinement (on unless --no-sliver-removal) and its threshold on the
   // smallest dihedral angle (unset: tet::TetOptions' default).

@@ -10,6 +10,11 @@
 
 namespace fdr::pipeline {
 namespace {
+// --frontal's default for GIS inputs (.poly inputs: 0, the paper's circumcentre rule). Why 0.75:
+// the triangles made on the front are then about as large as the circumcentre rule's on average
+// (a few per cent more triangles), with a mean quality well above it; 0.8 gives a few per cent
+// fewer triangles and a little less quality.
+constexpr double kGisFrontalRadius = 0.75;
 
 // --global: land without an extent, explicit hmin and hmax (the plane's box says nothing about
 // the sphere's sizes), the spacing rules that are evaluated on the sphere.
@@ -115,6 +120,7 @@ Plan plan_run(const Options& opt) {
   if (!(opt.bound > 0) || !std::isfinite(opt.bound)) throw Error(ExitCode::kUsage, "--bound must be a positive number");
   if (opt.min_angle_deg >= 60 || std::isnan(opt.min_angle_deg)) throw Error(ExitCode::kUsage, "--min-angle must be in [0, 60)");
   if (opt.smooth_passes > 100) throw Error(ExitCode::kUsage, "--smooth must be in [0, 100]");
+  if (!(opt.frontal_radius < 1) || std::isnan(opt.frontal_radius)) throw Error(ExitCode::kUsage, "--frontal must be in [0, 1)");
   if (opt.no_sliver_removal || opt.sliver_angle_deg)
     throw Error(ExitCode::kUsage, std::string(opt.no_sliver_removal ? "--no-sliver-removal" : "--sliver-angle") +
                                       " applies to 3D runs only; " + p.source + " is a 2D input");
@@ -124,6 +130,7 @@ Plan plan_run(const Options& opt) {
   t.min_angle_deg = opt.min_angle_deg >= 0 ? opt.min_angle_deg : (p.gis ? 30.0 : 0.0);
   t.angle_split_min_f = p.gis ? 0.5 : 0.0;
   t.smooth_passes = opt.smooth_passes >= 0 ? opt.smooth_passes : (p.gis ? 4 : 0);
+  t.frontal_radius = opt.frontal_radius >= 0 ? opt.frontal_radius : (p.gis ? kGisFrontalRadius : 0.0);
   t.max_steiner = opt.max_steiner;
   t.check = opt.check;
   t.source = p.source;

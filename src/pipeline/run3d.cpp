@@ -46,7 +46,7 @@ std::vector<std::pair<const char*, bool>> options_2d_only(const Options& o) {
           {"--min-depth", o.min_depth_m != d.min_depth_m}, {"--channel-elements", o.channel_elements != d.channel_elements},
           {"--simplify", o.simplify.has_value()}, {"--snap", o.snap.has_value()}, {"--strict", o.strict != d.strict},
           {"--convex-hull", o.convex_hull != d.convex_hull}, {"--min-angle", o.min_angle_deg != d.min_angle_deg},
-          {"--smooth", o.smooth_passes != d.smooth_passes}};
+          {"--smooth", o.smooth_passes != d.smooth_passes}, {"--frontal", o.frontal_radius != d.frontal_radius}};
 }
 
 bool is_poly_path(const std::string& p) {

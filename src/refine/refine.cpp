@@ -64,6 +64,11 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
     zscale_ = w > 0 ? 65535.0 / w : 0.0;
   }
   mark_clusters();
+  if (opt_.frontal) {
+    if (!(opt_.frontal_radius > 0 && opt_.frontal_radius < 1))
+      throw Error(ExitCode::kUsage, "the frontal radius must lie in (0, 1) (a fraction of B f)");
+    front_ = std::make_unique<Front>();
+  }
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
     const double s = std::sin(opt_.min_angle_deg * std::numbers::pi / 180.0);
@@ -211,6 +216,10 @@ void Refiner::evaluate(TriangleId t) {
   ++stats_.triangles_tested;
   bool exempt = false;
   const double k = badness(t, &exempt);
+  if (front_) {
+    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh, on the front or here
+    return;
+  }
   if (k > 1) push_bad(t, k);
 }
 
@@ -262,7 +271,14 @@ void Refiner::init() {
     check_encroached_edges(t);
     evaluate(t);
   }
+  if (front_) {
+    std::vector<TriangleId> live;
+    for (TriangleId t = 0; t < tri_.num_slots(); ++t)
+      if (!tri_.dead(t)) live.push_back(t);
+    queue_fresh(live, kNoId);
+  }
 }
+
 
 Point2 Refiner::split_point(Index a, Index b, Index* apex, int* shell_exp) const {
   const auto& T = tri_;
@@ -314,6 +330,7 @@ void Refiner::split_subsegment(Index a, Index b) {
     check_encroached_edges(t);
     evaluate(t);
   }
+  if (front_) queue_fresh(ins_.new_triangles(), v);
 }
 
 // Why the give-up rule: a triangle that is bad only by the --min-angle criterion next to a
@@ -409,9 +426,9 @@ void Refiner::split_triangle(const BadEntry& e) {
       if (T.constrained(h) && diametral(T.point(T.org(h)), T.point(T.dst(h)), cc) > 0)
         seg_tmp_.push_back({T.org(h), T.dst(h)});
     if (seg_tmp_.empty()) {
-      ins_.commit(cc, VertexKind::kFree);
+      const Index v = ins_.commit(cc, VertexKind::kFree);
       ++stats_.circumcenters;
-      for (TriangleId t : ins_.new_triangles()) evaluate(t);
+      after_insert(v);
       return;
     }
     ins_.abort();
@@ -437,6 +454,11 @@ void Refiner::split_triangle(const BadEntry& e) {
   enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());
   const double k = badness(e.t);
   if (k > 1) push_bad(e.t, k);
+}
+
+void Refiner::after_insert(Index v) {
+  for (TriangleId t : ins_.new_triangles()) evaluate(t);
+  if (front_) queue_fresh(ins_.new_triangles(), v);
 }
 
 RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
@@ -535,6 +557,7 @@ bool Refiner::step() {
     if (stats_.segment_splits != before) return true;
   }
   if (!conforming_done_) record_conforming();  // no encroached subsegment left: this is M_c
+  if (front_ && step_front()) return true;
   while (top_ >= 0) {
     auto& bk = buckets_[top_];
     if (bk.empty()) {

@@ -36,6 +36,7 @@ TEST(Plan, PolyRunStageParameters) {
   EXPECT_FALSE(p.gis);
   EXPECT_EQ(p.triangulate.min_angle_deg, 0.0);  // .poly: no automatic angle bound
   EXPECT_EQ(p.triangulate.smooth_passes, 0);
+  EXPECT_EQ(p.triangulate.frontal_radius, 0.0);  // .poly: the paper's circumcentre rule
   EXPECT_TRUE(p.measure.vertex_f);              // .node carries f at the vertices
   EXPECT_FALSE(p.measure.keep_adjacency);       // neither output has boundary lists
   EXPECT_FALSE(p.measure.gis);
@@ -57,6 +58,12 @@ TEST(Plan, GisDefaultsAndBoundaryOutputs) {
   const Plan p = plan_run(o);  // no file is read
   EXPECT_TRUE(p.gis);
   EXPECT_EQ(p.triangulate.min_angle_deg, 30.0);
+  EXPECT_EQ(p.triangulate.frontal_radius, 0.75);
+  o.frontal_radius = 0;  // --frontal 0: circumcentres only
+  EXPECT_EQ(plan_run(o).triangulate.frontal_radius, 0.0);
+  o.frontal_radius = 1;  // the triangle made on the front would be bad
+  EXPECT_EQ(usage_code(o), fdr::ExitCode::kUsage);
+  o.frontal_radius = -1;
   EXPECT_TRUE(p.measure.keep_adjacency);  // fort.14 lists its boundaries
   EXPECT_FALSE(p.measure.vertex_f);
   EXPECT_EQ(p.write.telemac_codes, (std::array<int, 3>{5, 5, 5}));
