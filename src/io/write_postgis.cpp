@@ -156,21 +156,33 @@ void clear_target(pg::Connection& c, const Job& j, bool drop) {
   c.exec(sql, "cannot drop the old tables (" + list + ")");
 }
 
-// Creates table i in `schema` and streams its rows with binary COPY; returns how many. The
-// caller's transaction created the table, so COPY may FREEZE the rows (no later vacuum has to
-// rewrite them).
-std::int64_t copy_rows(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
+void create_table(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
+  c.exec("CREATE TABLE " + j.table(schema, i) + " (fid bigserial, " + j.tables[i].columns + ")",
+         "cannot create table " + j.schema + "." + j.p.prefix + j.tables[i].name);
+}
+
+// Streams rows into table i of `schema` with binary COPY, `send` writing them; returns how many.
+// FREEZE (no later vacuum rewrites the rows) only where the caller's transaction created the table.
+template <class Send>
+std::int64_t copy_into(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i, bool freeze,
+                       Send&& send) {
   const PgTable& t = j.tables[i];
-  const std::string q = j.table(schema, i);
-  const std::string shown = j.schema + "." + j.p.prefix + t.name;
-  c.exec("CREATE TABLE " + q + " (fid bigserial, " + t.columns + ")", "cannot create table " + shown);
-  c.copy_begin("COPY " + q + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary, FREEZE)",
-               "writing the rows of " + shown + " failed");
+  c.copy_begin("COPY " + j.table(schema, i) + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary" +
+                   (freeze ? ", FREEZE)" : ")"),
+               "writing the rows of " + j.schema + "." + j.p.prefix + t.name + " failed");
   pg::CopyBuffer b([&c](const char* d, std::size_t n) { c.copy_put(d, n); });
-  const std::int64_t rows = pg_rows(i, b, j.m, j.o, j.srid);
+  const std::int64_t rows = send(b);
   b.finish();
   c.copy_end();
-  j.step(std::string("rows:") + t.name);
+  return rows;
+}
+
+// Creates table i in `schema` and streams all its rows; returns how many.
+std::int64_t copy_rows(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
+  create_table(c, j, schema, i);
+  const std::int64_t rows =
+      copy_into(c, j, schema, i, true, [&](pg::CopyBuffer& b) { return pg_rows(i, b, j.m, j.o, j.srid); });
+  j.step(std::string("rows:") + j.tables[i].name);
   return rows;
 }
 
@@ -227,33 +239,72 @@ void in_transaction(pg::Connection& c, Fn&& fn) {
 
 constexpr std::size_t kTriangles = 1;  // the index in pg_tables
 
-// Loads every table into the staging schema on two connections (one when the sizing field may
-// not be called from two threads). The triangles, the largest table, take one: rows, then
-// spatial index and statistics. The other takes the rest, then the triangles' fid index, built
-// beside their spatial index (the two do not lock each other out; ANALYZE and an index build do).
-void load_staged(const Job& j, const std::string& staging) {
-  std::promise<void> rows_in;
-  std::shared_future<void> triangles_in = rows_in.get_future().share();
-  // Opens its connection when given none; whatever fails before the rows are in also stops the
-  // other side's wait.
-  auto triangles = [&](std::unique_ptr<pg::Connection>& c) {
-    std::int64_t rows = 0;
+// One side's news for the other: set once (done or failed), awaited by the other side, so that a
+// failure on one side also ends the other's wait.
+class Handoff {
+ public:
+  template <class Fn>
+  void deliver(Fn&& fn) {
     try {
-      if (!c) c = staging_session(j);
-      in_transaction(*c, [&] { rows = copy_rows(*c, j, staging, kTriangles); });
+      fn();
     } catch (...) {
-      rows_in.set_exception(std::current_exception());
+      done_.set_exception(std::current_exception());
       throw;
     }
-    rows_in.set_value();
-    in_transaction(*c, [&] { build_indexes(*c, j, staging, kTriangles, rows, false); });
+    done_.set_value();
+  }
+  void wait() { in_.get(); }
+
+ private:
+  std::promise<void> done_;
+  std::shared_future<void> in_ = done_.get_future().share();
+};
+
+// Sends triangles [begin, end) into the staging triangles table (made beforehand by the first
+// connection, so that both sides can fill it) in a transaction of their own; `part` names the
+// step, 1 or 2.
+void copy_triangle_part(pg::Connection& c, const Job& j, const std::string& staging, std::size_t begin,
+                        std::size_t end, int part) {
+  in_transaction(c, [&] {
+    copy_into(c, j, staging, kTriangles, false,
+              [&](pg::CopyBuffer& b) { return pg_triangle_rows(b, j.m, j.o, j.srid, begin, end); });
+    j.step("rows:triangles:" + std::to_string(part));
+  });
+}
+
+// Loads every table into the staging schema on two connections (one when the sizing field may
+// not be called from two threads). The triangles, the largest table, come first, half on each
+// connection: the first connection then builds their spatial index and statistics while the
+// other sends the rest and then every table's fid index (an index build beside another does not
+// lock it out; ANALYZE and an index build do).
+void load_staged(const Job& j, const std::string& staging) {
+  const std::size_t n = j.m.triangles.size(), half = n / 2;
+  Handoff first_half, second_half;
+  // Each side opens its connection when given none, inside its handoff, so that a connection
+  // that cannot be opened also ends the other side's wait.
+  auto first_rows = [&](std::unique_ptr<pg::Connection>& c) {
+    first_half.deliver([&] {
+      if (!c) c = staging_session(j);
+      copy_triangle_part(*c, j, staging, 0, half, 1);
+    });
+  };
+  auto triangle_indexes = [&](pg::Connection& c) {
+    second_half.wait();
+    j.step("rows:triangles");
+    in_transaction(c, [&] { build_indexes(c, j, staging, kTriangles, static_cast<std::int64_t>(n), false); });
+  };
+  auto second_rows = [&](std::unique_ptr<pg::Connection>& c) {
+    second_half.deliver([&] {
+      if (!c) c = staging_session(j);
+      copy_triangle_part(*c, j, staging, half, n, 2);
+    });
   };
   auto rest = [&](pg::Connection& c) {
     for (std::size_t i = 0; i < j.tables.size(); ++i) {
       if (i == kTriangles) continue;
       in_transaction(c, [&] { build_indexes(c, j, staging, i, copy_rows(c, j, staging, i), false); });
     }
-    triangles_in.get();
+    first_half.wait();
     in_transaction(c, [&] {
       std::string sql;
       for (std::size_t i = 0; i < j.tables.size(); ++i) sql += fid_index(j, staging, i);
@@ -261,17 +312,24 @@ void load_staged(const Job& j, const std::string& staging) {
     });
   };
   if ((j.o.f && !j.o.f->thread_safe()) || max_threads() < 2) {
-    auto c = staging_session(j);
-    triangles(c);
+    std::unique_ptr<pg::Connection> c;
+    first_rows(c);
+    second_rows(c);
+    triangle_indexes(*c);
     rest(*c);
     return;
   }
   run_beside(
       [&] {
         std::unique_ptr<pg::Connection> c;
-        triangles(c);
+        first_rows(c);
+        triangle_indexes(*c);
       },
-      [&] { rest(*staging_session(j)); });
+      [&] {
+        std::unique_ptr<pg::Connection> c;
+        second_rows(c);
+        rest(*c);
+      });
 }
 
 // The one transaction that puts the staged tables in place: the old mesh dropped (with
@@ -348,6 +406,8 @@ void write_tables(const mesh::MeshView& m, const std::string& conn, const WriteO
   }
   try {
     j.step("staging");
+    create_table(c, j, staging, kTriangles);
+    j.step("table:triangles");
     load_staged(j, staging);
     swap_in(c, j, staging);
   } catch (const Error& e) {

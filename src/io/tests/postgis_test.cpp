@@ -321,7 +321,7 @@ TEST(Postgis, FailureAtEachStepLeavesNothing) {
   Db db(conn);
   ASSERT_TRUE(db.ds);
   db.drop("t6_");
-  std::vector<std::string> steps = {"staging", "commit"};
+  std::vector<std::string> steps = {"staging", "table:triangles", "rows:triangles:1", "rows:triangles:2", "commit"};
   for (const char* t : {"nodes", "triangles", "boundaries", "repairs", "metadata"}) {
     steps.push_back(std::string("rows:") + t);
     steps.push_back(std::string("indexes:") + t);
