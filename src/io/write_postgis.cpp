@@ -1,7 +1,8 @@
 // PostGIS writer: the same tables and columns as the GeoPackage writer, loaded with binary COPY
 // (EWKB geometries built here) over libpq. The tables are filled and indexed in a private staging
-// schema, two at a time over separate connections, then moved into place in one short
-// transaction; a failure anywhere drops the staging schema and leaves the database as it was.
+// schema over two connections at once (the triangles, the largest, half on each), then moved into
+// place in one short transaction; a failure anywhere drops the staging schema and leaves the
+// database as it was.
 #include "io/write_postgis.hpp"
 
 #include <ogr_spatialref.h>

@@ -151,6 +151,10 @@ TEST(Postgis, WritesTheGeoPackageTables) {
   EXPECT_EQ(db.value("SELECT count(*) FROM t1_nodes"), "9");
   EXPECT_EQ(db.value("SELECT count(*) FROM t1_triangles WHERE ST_IsValid(geom)"), "8");
   EXPECT_EQ(db.value("SELECT sum(ST_Area(geom)) FROM t1_triangles"), "16");
+  // The two connections' halves of the triangles make the rows of the GeoPackage, fid = id.
+  EXPECT_EQ(db.value("SELECT string_agg(fid || ':' || id || ':' || n1 || ',' || n2 || ',' || n3, ' ' ORDER BY fid) "
+                     "FROM t1_triangles"),
+            "1:1:1,2,9 2:2:2,3,9 3:3:3,4,9 4:4:4,5,9 5:5:5,6,9 6:6:6,7,9 7:7:7,8,9 8:8:8,1,9");
   EXPECT_EQ(db.value("SELECT Find_SRID('public', 't1_triangles', 'geom')"), "32618");
   EXPECT_EQ(db.value("SELECT z FROM t1_nodes WHERE id = 3"), "-3");
   EXPECT_EQ(db.value("SELECT string_agg(kind, ',' ORDER BY kind) FROM t1_boundaries"), "land,open");
