@@ -171,9 +171,15 @@ std::int64_t copy_into(pg::Connection& c, const Job& j, const std::string& schem
   c.copy_begin("COPY " + j.table(schema, i) + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary" +
                    (freeze ? ", FREEZE)" : ")"),
                "writing the rows of " + j.schema + "." + j.p.prefix + t.name + " failed");
-  pg::CopyBuffer b([&c](const char* d, std::size_t n) { c.copy_put(d, n); });
-  const std::int64_t rows = send(b);
-  b.finish();
+  std::int64_t rows = 0;
+  try {
+    pg::CopyBuffer b([&c](const char* d, std::size_t n) { c.copy_put(d, n); });
+    rows = send(b);
+    b.finish();
+  } catch (...) {
+    c.copy_abort();
+    throw;
+  }
   c.copy_end();
   return rows;
 }
@@ -220,21 +226,22 @@ std::string primary_keys(const Job& j, const std::string& schema) {
 }
 
 // GiST builds sort in memory up to this (the server's default is a few tens of MB).
-constexpr const char* kIndexMemory = "SET maintenance_work_mem = '256MB'";
+constexpr const char* kIndexMemory = "SET LOCAL maintenance_work_mem = '256MB'";
 
-// A connection for one side of the staged load, each table in a transaction of its own. Those
-// commits need not reach the disk before the swap's own commit, which flushes the log up to
-// itself.
-std::unique_ptr<pg::Connection> staging_session(const Job& j) {
-  auto c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
-  c->exec(std::string(kIndexMemory) + "; SET synchronous_commit = off", "cannot configure the session");
-  return c;
-}
-
+// One step of the staged load in a transaction of its own. Its commit need not reach the disk
+// before the swap's own commit, which flushes the log up to itself. A failed step is rolled back
+// at once: its locks would otherwise hold up the other connection, which is waited for before
+// the error goes on.
 template <class Fn>
 void in_transaction(pg::Connection& c, Fn&& fn) {
-  c.exec("BEGIN", "cannot start a transaction");
-  fn();
+  c.exec(std::string("BEGIN; SET LOCAL synchronous_commit = off; ") + kIndexMemory, "cannot start a transaction");
+  try {
+    fn();
+  } catch (...) {
+    std::string state;
+    c.try_exec("ROLLBACK", state);
+    throw;
+  }
   c.exec("COMMIT", "commit failed");
 }
 
@@ -273,30 +280,26 @@ void copy_triangle_part(pg::Connection& c, const Job& j, const std::string& stag
   });
 }
 
-// Loads every table into the staging schema on two connections (one when the sizing field may
-// not be called from two threads). The triangles, the largest table, come first, half on each
-// connection: the first connection then builds their spatial index and statistics while the
-// other sends the rest and then every table's fid index (an index build beside another does not
-// lock it out; ANALYZE and an index build do).
-void load_staged(const Job& j, const std::string& staging) {
+// Loads every table into the staging schema over `first` (the connection that made it) and a
+// second connection (none when the sizing field may not be called from two threads: then `first`
+// takes every step in turn). The triangles, the largest table, come first, half on each
+// connection; then `first` builds their spatial index and statistics while the second sends the
+// rest and then every table's fid index (an index build beside another does not lock it out;
+// ANALYZE and an index build do).
+void load_staged(pg::Connection& first, const Job& j, const std::string& staging) {
   const std::size_t n = j.m.triangles.size(), half = n / 2;
   Handoff first_half, second_half;
-  // Each side opens its connection when given none, inside its handoff, so that a connection
-  // that cannot be opened also ends the other side's wait.
-  auto first_rows = [&](std::unique_ptr<pg::Connection>& c) {
-    first_half.deliver([&] {
-      if (!c) c = staging_session(j);
-      copy_triangle_part(*c, j, staging, 0, half, 1);
-    });
-  };
-  auto triangle_indexes = [&](pg::Connection& c) {
+  auto first_rows = [&] { first_half.deliver([&] { copy_triangle_part(first, j, staging, 0, half, 1); }); };
+  auto triangle_indexes = [&] {
     second_half.wait();
     j.step("rows:triangles");
-    in_transaction(c, [&] { build_indexes(c, j, staging, kTriangles, static_cast<std::int64_t>(n), false); });
+    in_transaction(first, [&] { build_indexes(first, j, staging, kTriangles, static_cast<std::int64_t>(n), false); });
   };
+  // The second connection is opened inside its handoff, so that one that cannot be opened also
+  // ends the first side's wait.
   auto second_rows = [&](std::unique_ptr<pg::Connection>& c) {
     second_half.deliver([&] {
-      if (!c) c = staging_session(j);
+      if (!c) c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
       copy_triangle_part(*c, j, staging, half, n, 2);
     });
   };
@@ -313,23 +316,21 @@ void load_staged(const Job& j, const std::string& staging) {
     });
   };
   if ((j.o.f && !j.o.f->thread_safe()) || max_threads() < 2) {
-    std::unique_ptr<pg::Connection> c;
-    first_rows(c);
-    second_rows(c);
-    triangle_indexes(*c);
-    rest(*c);
+    first_rows();
+    second_half.deliver([&] { copy_triangle_part(first, j, staging, half, n, 2); });
+    triangle_indexes();
+    rest(first);
     return;
   }
   run_beside(
       [&] {
         std::unique_ptr<pg::Connection> c;
-        first_rows(c);
-        triangle_indexes(*c);
-      },
-      [&] {
-        std::unique_ptr<pg::Connection> c;
         second_rows(c);
         rest(*c);
+      },
+      [&] {
+        first_rows();
+        triangle_indexes();
       });
 }
 
@@ -409,7 +410,7 @@ void write_tables(const mesh::MeshView& m, const std::string& conn, const WriteO
     j.step("staging");
     create_table(c, j, staging, kTriangles);
     j.step("table:triangles");
-    load_staged(j, staging);
+    load_staged(c, j, staging);
     swap_in(c, j, staging);
   } catch (const Error& e) {
     throw without_staging(c, j, staging, e);
