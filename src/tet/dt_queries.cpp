@@ -131,6 +131,11 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
   return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
 }
 
+void release_query_scratch() {
+  std::vector<std::uint32_t>().swap(marks);
+  stamp_now = 0;
+}
+
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {
   const auto& v = dt.vertices(g);
   return predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p) > 0;
