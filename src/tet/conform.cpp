@@ -70,6 +70,14 @@ Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const
   check_boundary_ = debug::on(debug::Aid::kTet);
   stats_.bound = bound_;
   stats_.input_vertices = plc.points.size();
+  const double est = estimated_vertices(plc, f);
+  cap_ = options.max_vertices ? options.max_vertices
+                              : static_cast<std::size_t>(std::min(20 * est, 4e9)) + 50 * plc.points.size() + 10000;
+  // The estimate is of the right order for most spacings; room for it spares the copies of
+  // growth, and a refinement that goes beyond it grows as usual. Capped so that an absurd
+  // estimate asks for no more address space than a large machine has memory.
+  constexpr double kMaxReserved = 1 << 24;
+  dt_.reserve(std::min<std::size_t>(cap_, static_cast<std::size_t>(std::min(est, kMaxReserved)) + plc.points.size()));
   vid_ = dt_.insert_all(plc.points).vertex_of;
   std::vector<int> uses(plc.points.size(), 0);
   for (const auto& s : ft.subsegments) ++uses[s.a], ++uses[s.b];
@@ -77,9 +85,6 @@ Refiner3::Refiner3(const plc::Plc& plc, const plc::FacetTriangulation& ft, const
   for (std::size_t p = 0; p < plc.points.size(); ++p) apex_[vid_[p]] = uses[p] >= 2;
   bd_ = std::make_unique<Boundary>(dt_, plc, ft, vid_);
   find_acute_facet_pairs();
-  const double est = estimated_vertices(plc, f);
-  cap_ = options.max_vertices ? options.max_vertices
-                              : static_cast<std::size_t>(std::min(20 * est, 4e9)) + 50 * plc.points.size() + 10000;
   bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) { seg_queue_.push_back({a, b, false}); });
   for (std::uint32_t t = 0; t < bd_->tri_slots(); ++t)
     if (bd_->tri(t).alive) facet_queue_.push_back({t, bd_->tri(t).v});
@@ -245,32 +250,56 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
 }
 
 bool Refiner3::find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets) {
+  constexpr std::size_t kSmallCavity = 64;
   bool any = false;
   if (vmark_.size() < dt_.num_vertices()) vmark_.resize(dt_.num_vertices() * 3 / 2 + 16, 0);
   if (facet_queued_.size() < bd_->tri_slots()) facet_queued_.resize(bd_->tri_slots(), 0);
-  if (tmark_.size() < dt_.tet_slots()) tmark_.resize(dt_.tet_slots() * 3 / 2 + 16, 0);
-  ++tstamp_;
-  for (TetId t : cavity) tmark_[t] = tstamp_;
-  ++vstamp_;
+  // Two stamps: a vertex seen here, and one seen that is a corner of some subfacet. Only a face
+  // with three such corners can be a subfacet, so a cavity away from the facets (the usual case)
+  // makes no face look-up at all.
+  if (vstamp_ > UINT32_MAX - 2) {
+    std::fill(vmark_.begin(), vmark_.end(), 0);
+    vstamp_ = 0;
+  }
+  const std::uint32_t seen = ++vstamp_, on_facets = ++vstamp_;
+  bool tmarked = false;
   for (TetId t : cavity) {
     const auto& tv = dt_.vertices(t);
+    int corners = 0;  // vertices of t on some facet
     for (VertexId u : tv) {
-      if (u == kInfinite || vmark_[u] == vstamp_) continue;
-      vmark_[u] = vstamp_;
+      if (u == kInfinite) continue;
+      if (vmark_[u] == seen) continue;
+      if (vmark_[u] == on_facets) {
+        ++corners;
+        continue;
+      }
+      vmark_[u] = bd_->subfacets_at(u).empty() ? seen : on_facets;
+      corners += vmark_[u] == on_facets;
       for (VertexId w : bd_->segment_neighbours(u))
         if (u < w && predicates::diametral_side(dt_.point(u), dt_.point(w), p) >= 0) {
           seg_queue_.push_back({u, w, true});
           any = true;
         }
     }
-    if (!facets || dt_.is_ghost(t)) continue;
+    if (!facets || corners < 3 || dt_.is_ghost(t)) continue;
+    // Which tetrahedra are in the cavity: a search of a small one, marks for a large one (marks
+    // over every slot would cost bytes per tetrahedron for a question rarely asked).
+    const bool small = cavity.size() <= kSmallCavity;
+    if (!small && !tmarked) {
+      if (tmark_.size() < dt_.tet_slots()) tmark_.resize(dt_.tet_slots() * 3 / 2 + 16, 0);
+      ++tstamp_;
+      for (TetId c : cavity) tmark_[c] = tstamp_;
+      tmarked = true;
+    }
     for (int i = 0; i < 4; ++i) {
-      if (!face_is_subfacet(t, i)) continue;
       const std::array<VertexId, 3> f{tv[(i + 1) & 3], tv[(i + 2) & 3], tv[(i + 3) & 3]};
+      if (vmark_[f[0]] != on_facets || vmark_[f[1]] != on_facets || vmark_[f[2]] != on_facets) continue;
       const std::uint32_t s = bd_->subfacet(f[0], f[1], f[2]);
+      if (s == UINT32_MAX) continue;
       const TetId n = dt_.neighbour(t, i);
       // A subfacet inside the cavity would be destroyed: split it as if encroached.
-      const bool destroyed = tmark_[n] == tstamp_;
+      const bool destroyed =
+          small ? std::find(cavity.begin(), cavity.end(), n) != cavity.end() : tmark_[n] == tstamp_;
       if (destroyed || predicates::equatorial_side(dt_.point(f[0]), dt_.point(f[1]), dt_.point(f[2]), p) >= 0) {
         facet_queue_.push_back({s, bd_->tri(s).v, true});
         any = true;

@@ -47,6 +47,15 @@ VertexId Delaunay3::add_vertex(Point3 p) {
   return static_cast<VertexId>(pts_.size() - 1);
 }
 
+void Delaunay3::reserve(std::size_t vertices) {
+  pts_.reserve(vertices);
+  vtet_.reserve(vertices);
+  vlocal_.reserve(vertices);
+  // About 6.75 tetrahedra per vertex, plus the hull's ghosts and the free slots.
+  cells_.reserve(vertices * 7 + 1024);
+  in_cavity_.reserve(cells_.capacity());
+}
+
 BulkInsertion Delaunay3::insert_all(std::span<const Point3> pts) {
   BulkInsertion out;
   for (const Point3& p : pts) require_finite(p);  // before any change

@@ -47,6 +47,11 @@ class Delaunay3 {
   // anything changes.
   BulkInsertion insert_all(std::span<const Point3> pts);
 
+  // Room for about `vertices` vertices in all, and the tetrahedra they make, without the copies
+  // that growing the arrays would make (a copy holds the old and the new buffer at once, at the
+  // largest size: the run's peak). Room reserved and never used costs address space, not memory.
+  void reserve(std::size_t vertices);
+
   // Inserts one point, starting the search at `hint` (any live tetrahedron; kNoId: the last one
   // made). The tetrahedra it makes, ghosts included, are appended to *created when given. Until
   // four points span 3D, points are only kept (dimension() < 3) and no tetrahedron exists.
@@ -73,6 +78,8 @@ class Delaunay3 {
   std::size_t num_finite_tets() const { return finite_; }
   // Tetrahedron slots: ids below this are live (finite or ghost) or free (alive() false).
   std::size_t tet_slots() const { return cells_.size(); }
+  // Slots that exist or have room reserved (reserve()).
+  std::size_t tet_capacity() const { return cells_.capacity(); }
   bool alive(TetId t) const { return cells_[t].v[0] != kNoId; }
   bool is_ghost(TetId t) const { return cells_[t].v[3] == kInfinite; }
   const std::array<VertexId, 4>& vertices(TetId t) const { return cells_[t].v; }

@@ -52,7 +52,7 @@ void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
 }
 
 bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& out) {
-  std::vector<TetId> star;
+  thread_local std::vector<TetId> star;  // scratch: a call allocates nothing once it has grown
   vertex_star(dt, a, star);
   out.clear();
   for (TetId t : star)
@@ -61,16 +61,37 @@ bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& 
 }
 
 int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::array<VertexId, 2>& apex) {
-  std::vector<TetId> ts;
-  if (!edge_tets(dt, a, b, ts)) return 0;
-  int n = 0;
-  for (TetId t : ts) {
-    const auto& v = dt.vertices(t);
-    if (!holds(v, c)) continue;
-    for (int i = 0; i < 4; ++i)
-      if (v[i] != a && v[i] != b && v[i] != c && n < 2) apex[n++] = v[i];
+  // The star of a, walked only until a tetrahedron with the face turns up: the other one is its
+  // neighbour across that face.
+  if (dt.dimension() < 3) return 0;
+  const TetId t0 = dt.vertex_tet(a);
+  if (t0 == kNoId) return 0;
+  thread_local std::vector<TetId> todo;
+  todo.clear();
+  std::uint32_t* mark = next_marks(dt);
+  const std::uint32_t stamp = mark_stamp();
+  todo.push_back(t0);
+  mark[t0] = stamp;
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const TetId t = todo[k];
+    const auto& tv = dt.vertices(t);
+    if (holds(tv, b) && holds(tv, c)) {
+      int i = 0;
+      while (tv[i] == a || tv[i] == b || tv[i] == c) ++i;
+      apex[0] = tv[i];
+      apex[1] = dt.vertices(dt.neighbour(t, i))[dt.mirror_index(t, i)];
+      return 2;
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (tv[i] == a) continue;  // the face opposite a does not hold a
+      const TetId n = dt.neighbour(t, i);
+      if (mark[n] != stamp) {
+        mark[n] = stamp;
+        todo.push_back(n);
+      }
+    }
   }
-  return n;
+  return 0;
 }
 
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
@@ -108,6 +129,11 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
   const auto& v = dt.vertices(t);
   const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
   return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
+}
+
+void release_query_scratch() {
+  std::vector<std::uint32_t>().swap(marks);
+  stamp_now = 0;
 }
 
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {

@@ -33,6 +33,10 @@ bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
 // and their cavity may join its finite tetrahedra only through such ghosts).
 bool in_conflict(const Delaunay3& dt, TetId t, Point3 p);
 
+// Frees the calling thread's marks that the walks above keep between calls (4 bytes per
+// tetrahedron slot), e.g. once refinement is over and the mesh is copied out.
+void release_query_scratch();
+
 // Whether p lies strictly beyond ghost g's hull face.
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p);
 

@@ -1,4 +1,5 @@
 #include "tet/refine3d.hpp"
+#include "base/prefetch.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -60,6 +61,9 @@ bool BadTetQueue::pop(const Delaunay3& dt, BadTet* out) {
       const Entry e = heap.back();
       heap.pop_back();
       --size_;
+      // The next entry's tetrahedron lies anywhere in the array: have it fetched now, so that
+      // its staleness test does not wait for memory.
+      if (!heap.empty()) fdr::prefetch(&dt.vertices(heap.front().tet));
       if (!dt.alive(e.tet) || dt.vertices(e.tet) != e.v) continue;
       const auto& v = e.v;
       *out = {e.ratio, e.tet, v, circumsphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3])).centre};

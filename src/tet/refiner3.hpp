@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "base/large_array.hpp"
 #include "plc/plc.hpp"
 #include "plc/triangulate_facets.hpp"
 #include "sizing/spacing3d.hpp"
@@ -139,7 +140,7 @@ class Refiner3 {
   std::deque<QueuedFacet> facet_queue_;
   std::vector<std::uint8_t> facet_queued_;  // per subfacet slot
   bool regions_live_ = false;               // rule 3: regions kept up to date at every insertion
-  std::vector<std::int32_t> region_;        // per tetrahedron slot
+  LargeArray<std::int32_t> region_;         // per tetrahedron slot, room for the slots reserved
   std::unique_ptr<BadTetQueue> bad_;
   std::unique_ptr<SliverState> slivers_;  // during the sliver phase only: offer() queues slivers too
   std::vector<TetId> created_;  // the tetrahedra the last rule-3 split made

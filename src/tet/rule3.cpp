@@ -41,6 +41,7 @@ void Refiner3::flood(TetId start, std::int32_t code, std::vector<std::uint32_t>&
 
 void Refiner3::flood_regions() {
   const std::size_t n = dt_.tet_slots();
+  region_.reserve(dt_.tet_capacity());  // as the slots grow, without copies while they fit
   region_.assign(n, kUnknownRegion);
   std::vector<std::uint32_t> mark(n, 0);
   std::uint32_t stamp = 1;
@@ -67,7 +68,10 @@ void Refiner3::flood_regions() {
 }
 
 void Refiner3::assign_regions(const std::vector<TetId>& created) {
-  if (region_.size() < dt_.tet_slots()) region_.resize(dt_.tet_slots(), kUnknownRegion);
+  if (region_.size() < dt_.tet_slots()) {
+    if (region_.capacity() < dt_.tet_slots()) region_.reserve(std::max(dt_.tet_capacity(), 2 * region_.capacity()));
+    region_.resize(dt_.tet_slots(), kUnknownRegion);
+  }
   const bool hull_domain = plc_.facets.empty();  // a point set: every finite tetrahedron is inside
   for (TetId t : created)
     region_[t] = dt_.is_ghost(t) ? kOutsideRegion : (hull_domain ? kDefaultRegion : kUnknownRegion);

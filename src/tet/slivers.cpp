@@ -21,15 +21,6 @@ std::size_t histogram_bin(double deg) {
   return std::min(kHistogramBins - 1, static_cast<std::size_t>(std::max(0.0, deg) / 10.0));
 }
 
-// A fresh stamp for marks over dt's tetrahedron slots (grown as needed; cleared when it wraps).
-void next_stamp(const Delaunay3& dt, std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
-  if (mark.size() < dt.tet_slots()) mark.resize(dt.tet_slots() * 3 / 2 + 16, 0);
-  if (++stamp == 0) {
-    std::fill(mark.begin(), mark.end(), 0);
-    stamp = 1;
-  }
-}
-
 // The radical inverse of k in base 2: 1/2, 1/4, 3/4, 1/8, ... (evenly spread in (0, 1)).
 double van_der_corput(unsigned k) {
   double x = 0, scale = 0.5;
@@ -99,20 +90,28 @@ std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta
 }
 
 InsertionAngles insertion_angles(const Delaunay3& dt, Point3 p, const std::vector<TetId>& cavity,
-                                 std::vector<std::uint32_t>& mark, std::uint32_t& stamp) {
-  next_stamp(dt, mark, stamp);
-  for (TetId t : cavity) mark[t] = stamp;
+                                 std::vector<TetId>& scratch, double good_cos, double rival_cos) {
+  // The cavity sorted, to tell its boundary faces (a search in a few dozen slots instead of marks
+  // over every slot of the mesh).
+  scratch.assign(cavity.begin(), cavity.end());
+  std::sort(scratch.begin(), scratch.end());
   InsertionAngles out;
   for (TetId t : cavity) {
+    if (dt.is_ghost(t)) continue;
     const auto& v = dt.vertices(t);
-    if (!dt.is_ghost(t))
-      out.destroyed_cos = std::max(out.destroyed_cos, smallest_dihedral_cos(dt.point(v[0]), dt.point(v[1]),
-                                                                            dt.point(v[2]), dt.point(v[3])));
+    out.destroyed_cos = std::max(out.destroyed_cos, smallest_dihedral_cos(dt.point(v[0]), dt.point(v[1]),
+                                                                          dt.point(v[2]), dt.point(v[3])));
+  }
+  // Past this the candidate is neither good nor an improvement: the rest need not be measured.
+  const double useless = std::min(out.destroyed_cos, rival_cos);
+  for (TetId t : cavity) {
+    const auto& v = dt.vertices(t);
     for (int i = 0; i < 4; ++i) {
-      if (mark[dt.neighbour(t, i)] == stamp) continue;
+      if (std::binary_search(scratch.begin(), scratch.end(), dt.neighbour(t, i))) continue;
       const VertexId a = v[(i + 1) & 3], b = v[(i + 2) & 3], c = v[(i + 3) & 3];
       if (a == kInfinite || b == kInfinite || c == kInfinite) continue;  // the new tetrahedron is a ghost
       out.created_cos = std::max(out.created_cos, smallest_dihedral_cos(dt.point(a), dt.point(b), dt.point(c), p));
+      if (out.created_cos > good_cos && out.created_cos >= useless) return out;
     }
   }
   return out;
@@ -199,7 +198,8 @@ void Refiner3::try_split_sliver(const SliverTet& s) {
     // Only a point strictly inside the sliver's circumsphere destroys it.
     if (predicates::insphere(a, b, c, d, p) <= 0) continue;
     if (!conflict_region(dt_, p, s.tet, cavity, kSliverMaxCavity)) continue;
-    const InsertionAngles ang = insertion_angles(dt_, p, cavity, slivers_->mark, slivers_->stamp);
+    const InsertionAngles ang =
+        insertion_angles(dt_, p, cavity, slivers_->sorted, slivers_->cos_threshold, pick_cos);
     const bool good = ang.created_cos <= slivers_->cos_threshold;
     if (!good && !(ang.created_cos < ang.destroyed_cos && ang.created_cos < pick_cos)) continue;
     const std::size_t segs = seg_queue_.size(), facets = facet_queue_.size();

@@ -33,14 +33,17 @@ std::vector<Point3> sliver_candidates(Point3 centre, double radius, double delta
 
 // What inserting p with conflict region `cavity` would do to the dihedral angles: the cosine of
 // the smallest angle among the finite tetrahedra it destroys and among those it creates (each
-// face of the cavity's boundary joined to p). `mark`/`stamp` are scratch (one entry per
-// tetrahedron slot, grown as needed).
+// face of the cavity's boundary joined to p). `scratch` is reused memory.
+// A caller that only wants p when it creates no angle with cosine above `good_cos`, or else
+// improves on both the destroyed tetrahedra and `rival_cos`, gets the created tetrahedra measured
+// only until p fails both: created_cos is then a lower bound (above good_cos and at least
+// min(destroyed_cos, rival_cos)). The defaults measure them all.
 struct InsertionAngles {
   double destroyed_cos = -1;
   double created_cos = -1;
 };
 InsertionAngles insertion_angles(const Delaunay3& dt, Point3 p, const std::vector<TetId>& cavity,
-                                 std::vector<std::uint32_t>& mark, std::uint32_t& stamp);
+                                 std::vector<TetId>& scratch, double good_cos = 2, double rival_cos = 2);
 
 // A sliver waiting for removal, with the vertices it had when queued (its slot may be reused).
 struct SliverTet {
@@ -78,8 +81,7 @@ struct SliverState {
   double cos_threshold = 1;  // a tetrahedron with a larger smallest-angle cosine is a sliver
   double cos_floor = 1;      // slivers flatter than this may split the boundary at acute facet pairs
   SliverQueue queue;
-  std::vector<std::uint32_t> mark;
-  std::uint32_t stamp = 0;
+  std::vector<TetId> sorted;  // scratch of insertion_angles
   std::vector<TetId> cavity;
 };
 

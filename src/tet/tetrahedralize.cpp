@@ -1,6 +1,7 @@
 #include "tet/tetrahedralize.hpp"
 #include "base/error.hpp"
 #include "plc/check.hpp"
+#include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
 #include "tet/tet_output.hpp"
 
@@ -24,6 +25,7 @@ TetResult tetrahedralize(const plc::Plc& plc, const sizing::SizingField3& f, con
                                            (r.gave_up() ? " (boundary splits stopped at their cap)" : "") +
                                            "; nothing written");
   }
+  release_query_scratch();  // before the mesh is copied out beside the tetrahedralization
   TetResult out;
   out.mesh = make_tet_mesh(r, options.cell_fields);
   // Facets that enclose a volume and no tetrahedron inside: a boundary subfacet was lost and the

@@ -154,9 +154,8 @@ TEST(Slivers, InsertionAnglesPredictTheNewTetrahedra) {
     ASSERT_FALSE(dt.is_ghost(h));
     std::vector<TetId> cavity;
     conflict_region(dt, p, h, cavity);
-    std::vector<std::uint32_t> mark;
-    std::uint32_t stamp = 0;
-    const InsertionAngles ang = insertion_angles(dt, p, cavity, mark, stamp);
+    std::vector<TetId> scratch;
+    const InsertionAngles ang = insertion_angles(dt, p, cavity, scratch);
     double destroyed = -1;
     for (TetId t : cavity) {
       const auto& v = dt.vertices(t);
@@ -173,6 +172,42 @@ TEST(Slivers, InsertionAnglesPredictTheNewTetrahedra) {
     EXPECT_DOUBLE_EQ(ang.destroyed_cos, destroyed) << trial;
     EXPECT_DOUBLE_EQ(ang.created_cos, made) << trial;
   }
+}
+
+TEST(Slivers, InsertionAnglesStopOnlyOnceTheCandidateIsUseless) {
+  // With a threshold and a rival, the created tetrahedra are measured until the candidate is
+  // neither good nor better than both: a candidate that could be chosen gets its exact figure.
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts;
+  for (int i = 0; i < 60; ++i) pts.push_back({u(rng), u(rng), u(rng)});
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  std::vector<TetId> cavity, scratch;
+  int stopped = 0, exact = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Point3 p{0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng)};
+    const TetId h = dt.locate(p);
+    ASSERT_FALSE(dt.is_ghost(h));
+    conflict_region(dt, p, h, cavity);
+    const InsertionAngles all = insertion_angles(dt, p, cavity, scratch);
+    for (const double good : {-1.0, 0.5, 0.9})
+      for (const double rival : {-1.0, 0.95, 2.0}) {
+        const InsertionAngles r = insertion_angles(dt, p, cavity, scratch, good, rival);
+        EXPECT_EQ(r.destroyed_cos, all.destroyed_cos);
+        const bool useless = all.created_cos > good && all.created_cos >= std::min(all.destroyed_cos, rival);
+        if (!useless) {
+          EXPECT_EQ(r.created_cos, all.created_cos) << trial;
+          ++exact;
+        } else {
+          EXPECT_LE(r.created_cos, all.created_cos) << trial;
+          EXPECT_TRUE(r.created_cos > good && r.created_cos >= std::min(r.destroyed_cos, rival)) << trial;
+          stopped += r.created_cos < all.created_cos;
+        }
+      }
+  }
+  EXPECT_GT(exact, 0);
+  EXPECT_GT(stopped, 0);  // some measurements did stop early
 }
 
 TEST(Slivers, CappedConflictRegionIsTheConflictRegionOrGivesUp) {
