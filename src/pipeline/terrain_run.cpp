@@ -18,6 +18,7 @@
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "terrain/depth_spacing.hpp"
+#include "terrain/layer_spacing.hpp"
 #include "terrain/surfaces.hpp"
 #include "terrain/terrain_plc.hpp"
 #include "base/out_file.hpp"
@@ -136,7 +137,10 @@ std::vector<double> top_per_column(const sizing::Grid3& g, const std::vector<Poi
 // hmin and hmax default to the 2D spacing's range (hmax grown by the grade over the box's height).
 // Made from the local-frame PLC and TIN; the grid returned is in world coordinates (+ origin).
 sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
-                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin) {
+                                   const terrain::Tin& tin, const std::vector<terrain::Surface>& stack, Point2 origin,
+                                   const LogFn& log) {
+  const std::vector<Point2>& xy = tin.xy;
+  const std::vector<double>& top = stack.front().z;
   Box3 box;
   for (const Point3& q : p.points) box.add(q);
   // The 2D spacing's range on the TIN's vertices sets the defaults and the grid's cell (hmin / 2).
@@ -156,10 +160,24 @@ sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const 
   ds.hmax = opt.hmax.value_or(hi + ds.grade * (box.hi.z - box.lo.z));
   ds.alpha = opt.gradation;
   terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
+  terrain::LayerSpacing ls;
+  ls.hmin = ds.hmin;
+  const terrain::LayerSpacingResult lr = terrain::bound_by_layer_thickness(g, tin, stack, ls);
+  if (log && !lr.places.empty()) {
+    std::ostringstream w;
+    w.precision(10);
+    w << "the layers' thickness took the spacing below hmin (" << ds.hmin << " m) in " << lr.cells_below_hmin
+      << " grid cells, down to " << lr.smallest << " m; thinnest:";
+    for (const terrain::ThinPlace& tp : lr.places)
+      w << " " << p.material_names.at(tp.layer + 1) << " " << tp.thickness << " m at (" << tp.at.x + origin.x << ", "
+        << tp.at.y + origin.y << ", " << tp.at.z << ");";
+    log(LogLevel::kWarning, w.str());
+  }
   g.x0 += origin.x;  // the mesh is made in world coordinates (plc_to_world)
   g.y0 += origin.y;
   std::ostringstream label;
-  label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "]";
+  label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "], at most "
+        << ls.factor << " x layer thickness (graded " << ls.grade << ")";
   return fdr::grid_spacing3(std::move(g), label.str());
 }
 
@@ -242,7 +260,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
   tp.plc.source = opt.input;
-  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin);
+  const sizing::SizingPtr3 f = terrain_spacing(opt, tp.plc, *r2.f, tin, stack, r2.mesh.origin, log);
   plc_to_world(tp.plc, r2.mesh.origin);
   clock.lap("surfaces");
   if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +
