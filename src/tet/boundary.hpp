@@ -80,13 +80,6 @@ class Boundary {
   struct SegHash {
     std::size_t operator()(const SegKey& k) const;
   };
-  struct FaceKey {
-    VertexId a, b, c;
-    bool operator==(const FaceKey&) const = default;
-  };
-  struct FaceHash {
-    std::size_t operator()(const FaceKey& k) const;
-  };
   struct DirKey {  // directed edge ab of a triangle of facet f
     std::uint32_t f;
     VertexId a, b;
@@ -96,7 +89,6 @@ class Boundary {
     std::size_t operator()(const DirKey& k) const;
   };
   static SegKey seg_key(VertexId a, VertexId b);
-  static FaceKey face_key(VertexId a, VertexId b, VertexId c);
   void grow(VertexId v);
   void add_segment(VertexId a, VertexId b, std::uint32_t origin);
   void remove_segment(VertexId a, VertexId b);
@@ -116,7 +108,6 @@ class Boundary {
   std::vector<std::vector<VertexId>> seg_nbrs_;
   std::vector<SubfacetTri> tris_;
   std::vector<std::uint32_t> free_tris_;
-  std::unordered_map<FaceKey, std::uint32_t, FaceHash> faces_;
   std::unordered_map<DirKey, std::uint32_t, DirHash> dir_;
   std::vector<std::vector<std::uint32_t>> vtris_;
   std::vector<std::uint32_t> cav_mark_;  // per triangle slot: == cav_stamp_ while in the cavity at hand
