@@ -19,6 +19,7 @@
 #include "quality/check3d.hpp"
 #include "quality/rss.hpp"
 #include "terrain/depth_spacing.hpp"
+#include "terrain/layer_spacing.hpp"
 #include "terrain/surfaces.hpp"
 #include "terrain/terrain_plc.hpp"
 #include "base/out_file.hpp"
@@ -151,13 +152,15 @@ std::pair<double, double> spacing_range(const Options& opt, const sizing::Sizing
   return {lo, hi};
 }
 
-// f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, at most well_h along the wells,
-// gradient-limited to --gradation; hmin and hmax default to the 2D spacing's range (hmax grown by
+// f(x, y, z) = clamp(f2D(x, y) + G depth, hmin, hmax) on a 3D grid, at most well_h along the wells
+// and at most the thickness of a layer near it, gradient-limited to --gradation; hmin and hmax default to the 2D spacing's range (hmax grown by
 // the grade over the box's height). Made from the local-frame PLC and TIN; the grid returned is
 // in world coordinates (+ origin).
 sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
-                                   const std::vector<Point2>& xy, const std::vector<double>& top, Point2 origin,
-                                   const std::vector<std::array<Point3, 2>>& wells, double well_h) {
+                                   const terrain::Tin& tin, const std::vector<terrain::Surface>& stack, Point2 origin,
+                                   const std::vector<std::array<Point3, 2>>& wells, double well_h, const LogFn& log) {
+  const std::vector<Point2>& xy = tin.xy;
+  const std::vector<double>& top = stack.front().z;
   Box3 box;
   for (const Point3& q : p.points) box.add(q);
   // The grid's cell is hmin / 2 at the finest.
@@ -174,10 +177,24 @@ sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const 
   ds.near_segments = wells;
   ds.near_h = well_h;
   terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
+  terrain::LayerSpacing ls;
+  ls.hmin = ds.hmin;
+  const terrain::LayerSpacingResult lr = terrain::bound_by_layer_thickness(g, tin, stack, ls);
+  if (log && !lr.places.empty()) {
+    std::ostringstream w;
+    w.precision(10);
+    w << "the layers' thickness took the spacing below hmin (" << ds.hmin << " m) in " << lr.cells_below_hmin
+      << " grid cells, down to " << lr.smallest << " m; thinnest:";
+    for (const terrain::ThinPlace& tp : lr.places)
+      w << " " << p.material_names.at(tp.layer + 1) << " " << tp.thickness << " m at (" << tp.at.x + origin.x << ", "
+        << tp.at.y + origin.y << ", " << tp.at.z << ");";
+    log(LogLevel::kWarning, w.str());
+  }
   g.x0 += origin.x;  // the mesh is made in world coordinates (plc_to_world)
   g.y0 += origin.y;
   std::ostringstream label;
-  label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "]";
+  label << "terrain: 2D spacing + " << ds.grade << " x depth, in [" << ds.hmin << ", " << ds.hmax << "], at most "
+        << ls.factor << " x layer thickness (graded " << ls.grade << ")";
   return fdr::grid_spacing3(std::move(g), label.str());
 }
 
@@ -269,7 +286,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
     wells = add_terrain_wells(opt, frame, tin, stack, tp, well_h, match, log);
   }
   const sizing::SizingPtr3 f =
-      terrain_spacing(opt, tp.plc, *r2.f, tin.xy, stack.front().z, r2.mesh.origin, wells.lines, well_h);
+      terrain_spacing(opt, tp.plc, *r2.f, tin, stack, r2.mesh.origin, wells.lines, well_h, log);
   plc_to_world(tp.plc, r2.mesh.origin);
   clock.lap("surfaces");
   if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +

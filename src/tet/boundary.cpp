@@ -13,16 +13,9 @@ std::size_t mix(std::size_t h, std::uint64_t x) {
 }  // namespace
 
 std::size_t Boundary::SegHash::operator()(const SegKey& k) const { return mix(mix(1, k.a), k.b); }
-std::size_t Boundary::FaceHash::operator()(const FaceKey& k) const { return mix(mix(mix(2, k.a), k.b), k.c); }
 std::size_t Boundary::DirHash::operator()(const DirKey& k) const { return mix(mix(mix(3, k.f), k.a), k.b); }
 
 Boundary::SegKey Boundary::seg_key(VertexId a, VertexId b) { return a < b ? SegKey{a, b} : SegKey{b, a}; }
-
-Boundary::FaceKey Boundary::face_key(VertexId a, VertexId b, VertexId c) {
-  std::array<VertexId, 3> s{a, b, c};
-  std::sort(s.begin(), s.end());
-  return {s[0], s[1], s[2]};
-}
 
 Boundary::Boundary(const Delaunay3& dt, const plc::Plc& plc, const plc::FacetTriangulation& ft,
                    std::span<const VertexId> vid)
@@ -97,9 +90,20 @@ void Boundary::split_segment(VertexId a, VertexId b, VertexId v) {
 }
 
 std::uint32_t Boundary::subfacet(VertexId a, VertexId b, VertexId c) const {
-  if (subfacets_at(a).empty() || subfacets_at(b).empty() || subfacets_at(c).empty()) return UINT32_MAX;
-  const auto it = faces_.find(face_key(a, b, c));
-  return it == faces_.end() ? UINT32_MAX : it->second;
+  // The shortest of the corners' lists is scanned: a few triangles in cache, where a hash map of
+  // all subfacets cost a miss or two per query (and the tetrahedra's faces are queried by the
+  // million near layers whose vertices all lie on facets).
+  const std::vector<std::uint32_t>* l = &subfacets_at(a);
+  for (VertexId u : {b, c}) {
+    const std::vector<std::uint32_t>& m = subfacets_at(u);
+    if (m.size() < l->size()) l = &m;
+  }
+  for (std::uint32_t t : *l) {
+    const auto& v = tris_[t].v;
+    const auto has = [&](VertexId x) { return v[0] == x || v[1] == x || v[2] == x; };
+    if (has(a) && has(b) && has(c)) return t;
+  }
+  return UINT32_MAX;
 }
 
 const std::vector<std::uint32_t>& Boundary::subfacets_at(VertexId v) const {
@@ -123,7 +127,6 @@ std::uint32_t Boundary::add_tri(std::array<VertexId, 3> v, std::uint32_t f) {
     id = static_cast<std::uint32_t>(tris_.size());
     tris_.push_back({v, f, true});
   }
-  faces_[face_key(v[0], v[1], v[2])] = id;
   for (int k = 0; k < 3; ++k) {
     dir_[{f, v[k], v[(k + 1) % 3]}] = id;
     grow(v[k]);
@@ -134,7 +137,6 @@ std::uint32_t Boundary::add_tri(std::array<VertexId, 3> v, std::uint32_t f) {
 
 void Boundary::kill_tri(std::uint32_t t) {
   SubfacetTri& s = tris_[t];
-  faces_.erase(face_key(s.v[0], s.v[1], s.v[2]));
   for (int k = 0; k < 3; ++k) {
     dir_.erase({s.facet, s.v[k], s.v[(k + 1) % 3]});
     auto& vt = vtris_[s.v[k]];

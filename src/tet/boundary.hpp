@@ -64,6 +64,10 @@ class Boundary {
   // Inserts vertex v (inside triangle `seed` or on its boundary, up to rounding) into seed's facet
   // by Bowyer-Watson in the facet's plane, not across subsegments.
   void insert_in_facet(std::uint32_t seed, VertexId v);
+  // Insertions whose cavity in a facet reached kMaxFacetCavity triangles and stopped growing there
+  // (the facet's triangulation is valid but not Delaunay around the point; the caller reports it).
+  std::size_t capped_cavities() const { return capped_cavities_; }
+  static constexpr std::size_t kMaxFacetCavity = 4096;
   int facet_marker(std::uint32_t f) const { return plc_.facets[f].marker; }
   const plc::FacetFrame& frame(std::uint32_t f) const { return ft_.frames[f]; }
   const plc::Subsegment& origin(std::uint32_t o) const { return ft_.subsegments[o]; }
@@ -76,13 +80,6 @@ class Boundary {
   struct SegHash {
     std::size_t operator()(const SegKey& k) const;
   };
-  struct FaceKey {
-    VertexId a, b, c;
-    bool operator==(const FaceKey&) const = default;
-  };
-  struct FaceHash {
-    std::size_t operator()(const FaceKey& k) const;
-  };
   struct DirKey {  // directed edge ab of a triangle of facet f
     std::uint32_t f;
     VertexId a, b;
@@ -92,7 +89,6 @@ class Boundary {
     std::size_t operator()(const DirKey& k) const;
   };
   static SegKey seg_key(VertexId a, VertexId b);
-  static FaceKey face_key(VertexId a, VertexId b, VertexId c);
   void grow(VertexId v);
   void add_segment(VertexId a, VertexId b, std::uint32_t origin);
   void remove_segment(VertexId a, VertexId b);
@@ -101,6 +97,7 @@ class Boundary {
   std::uint32_t across(std::uint32_t f, VertexId a, VertexId b) const;  // the triangle with edge b a
   int orient_in_facet(std::uint32_t f, VertexId a, VertexId b, Point3 p) const;
   bool in_circle(std::uint32_t t, Point3 p) const;
+  bool in_cavity(std::uint32_t t) const;
   void insert_with_cavity(std::vector<std::uint32_t> cavity, std::size_t forced, VertexId v,
                           std::array<VertexId, 2> split_edge);
 
@@ -111,9 +108,11 @@ class Boundary {
   std::vector<std::vector<VertexId>> seg_nbrs_;
   std::vector<SubfacetTri> tris_;
   std::vector<std::uint32_t> free_tris_;
-  std::unordered_map<FaceKey, std::uint32_t, FaceHash> faces_;
   std::unordered_map<DirKey, std::uint32_t, DirHash> dir_;
   std::vector<std::vector<std::uint32_t>> vtris_;
+  std::vector<std::uint32_t> cav_mark_;  // per triangle slot: == cav_stamp_ while in the cavity at hand
+  std::uint32_t cav_stamp_ = 0;
+  std::size_t capped_cavities_ = 0;
 };
 
 }  // namespace fdr::tet

@@ -34,6 +34,47 @@ double estimated_vertices(const plc::Plc& plc, const sizing::SizingField3& f) {
   return n;
 }
 
+// Facet pairs that share a vertex but no segment and leave that vertex in nearly the same direction
+// (an edge of one within 15 degrees of an edge of the other): the wedge between them, such as a
+// layer pinching out to a point, is as thin as at a small dihedral angle, and their splits feed
+// each other toward the vertex in the same way. 15 degrees stays below the angles of a quality 2D
+// triangulation, so facets of one flat surface around a vertex are not taken; like the dihedral
+// test this picks a policy only, in double precision.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> vertex_wedge_pairs(const plc::Plc& plc, const plc::FacetTriangulation& ft) {
+  constexpr double kSmallWedgeCos = 0.96592582628906831;  // cos 15 degrees
+  // A vertex with more edges than this is the apex of a fan, not the tip of a wedge of two layers:
+  // its pairs are not tried.
+  constexpr std::size_t kMaxRays = 256;
+  struct Ray {
+    std::uint32_t facet;
+    Point3 d;  // unit direction
+  };
+  std::vector<std::vector<Ray>> rays(plc.points.size());
+  for (std::uint32_t f = 0; f < ft.triangles.size(); ++f)
+    for (const auto& t : ft.triangles[f])
+      for (int k = 0; k < 3; ++k)
+        for (int j = 1; j < 3; ++j) {
+          const Point3 d = plc.points[t[(k + j) % 3]] - plc.points[t[k]];
+          const double len = std::sqrt(norm2(d));
+          if (len > 0) rays[t[k]].push_back({f, (1.0 / len) * d});
+        }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> shared, out;
+  for (const plc::Subsegment& s : ft.subsegments)
+    for (std::size_t i = 0; i < s.facets.size(); ++i)
+      for (std::size_t j = i + 1; j < s.facets.size(); ++j) shared.push_back({s.facets[i], s.facets[j]});
+  std::sort(shared.begin(), shared.end());
+  for (const auto& rs : rays) {
+    if (rs.size() > kMaxRays) continue;
+    for (std::size_t i = 0; i < rs.size(); ++i)
+      for (std::size_t j = i + 1; j < rs.size(); ++j) {
+        if (rs[i].facet == rs[j].facet || dot(rs[i].d, rs[j].d) <= kSmallWedgeCos) continue;
+        const std::pair<std::uint32_t, std::uint32_t> key{std::min(rs[i].facet, rs[j].facet), std::max(rs[i].facet, rs[j].facet)};
+        if (!std::binary_search(shared.begin(), shared.end(), key)) out.push_back(key);
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 Point3 segment_split_point(Point3 a, Point3 b, bool a_apex, bool b_apex) {
@@ -118,6 +159,8 @@ void Refiner3::find_acute_facet_pairs() {
             dot(away[i].second, away[j].second) > kSmallDihedralCos * std::sqrt(norm2(away[i].second) * norm2(away[j].second)))
           acute_.push_back({std::min(away[i].first, away[j].first), std::max(away[i].first, away[j].first)});
   }
+  const auto wedges = vertex_wedge_pairs(plc_, ft_);
+  acute_.insert(acute_.end(), wedges.begin(), wedges.end());
   std::sort(acute_.begin(), acute_.end());
   acute_.erase(std::unique(acute_.begin(), acute_.end()), acute_.end());
 }
@@ -244,7 +287,9 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
     note_shortfall(p, "subsegment too short to split");
     return;
   }
+  const std::size_t capped = bd_->capped_cavities();
   bd_->split_segment(a, b, ins.vertex);
+  if (bd_->capped_cavities() > capped) note_shortfall(p, "facet cavity capped at a subsegment split (facet left non-Delaunay there)");
   ++stats_.segment_splits;
   after_insert(ins.vertex, created);
 }
@@ -340,7 +385,9 @@ void Refiner3::split_subfacet(std::uint32_t t) {
     note_shortfall(c, "subfacet circumcentre repeats a vertex");
     return;
   }
+  const std::size_t capped = bd_->capped_cavities();
   bd_->insert_in_facet(loc.tri, ins.vertex);
+  if (bd_->capped_cavities() > capped) note_shortfall(c, "facet cavity capped at a subfacet split (facet left non-Delaunay there)");
   ++stats_.facet_splits;
   after_insert(ins.vertex, created);
 }

@@ -8,8 +8,6 @@
 namespace fdr::tet {
 namespace {
 
-bool contains(const std::vector<std::uint32_t>& v, std::uint32_t x) { return std::find(v.begin(), v.end(), x) != v.end(); }
-
 bool same_edge(VertexId u, VertexId w, std::array<VertexId, 2> e) {
   return (u == e[0] && w == e[1]) || (u == e[1] && w == e[0]);
 }
@@ -52,53 +50,74 @@ FacetLocation Boundary::locate_in_facet(std::uint32_t t, Point3 p) const {
 
 void Boundary::insert_in_facet(std::uint32_t seed, VertexId v) { insert_with_cavity({seed}, 1, v, {kNoId, kNoId}); }
 
+bool Boundary::in_cavity(std::uint32_t t) const { return t < cav_mark_.size() && cav_mark_[t] == cav_stamp_; }
+
 void Boundary::insert_with_cavity(std::vector<std::uint32_t> cavity, std::size_t forced, VertexId v,
                                   std::array<VertexId, 2> split_edge) {
   const std::uint32_t f = tris_[cavity[0]].facet;
   const Point3 p = dt_.point(v);
-  // Grow across edges that are not subsegments into triangles whose circle holds p.
+  // Membership by stamp per triangle slot: a cavity can hold thousands of triangles where a facet
+  // is refined toward a small feature, and a search of the list per test made that quadratic.
+  if (cav_mark_.size() < tris_.size()) cav_mark_.resize(tris_.size() * 3 / 2 + 16, 0);
+  if (++cav_stamp_ == 0) {  // wrapped: stale marks would read as members
+    std::fill(cav_mark_.begin(), cav_mark_.end(), 0);
+    cav_stamp_ = 1;
+  }
+  for (std::uint32_t t : cavity) cav_mark_[t] = cav_stamp_;
+  // Grow across edges that are not subsegments into triangles whose circle holds p, up to the cap:
+  // beyond it the facet's triangulation stays non-Delaunay around p (counted, see capped_cavities).
+  bool capped = false;
   for (std::size_t k = 0; k < cavity.size(); ++k) {
     const auto tv = tris_[cavity[k]].v;
     for (int e = 0; e < 3; ++e) {
       const VertexId u = tv[e], w = tv[(e + 1) % 3];
       if (same_edge(u, w, split_edge) || is_subsegment(u, w)) continue;
       const std::uint32_t n = across(f, u, w);
-      if (n == UINT32_MAX || contains(cavity, n)) continue;
-      if (in_circle(n, p)) cavity.push_back(n);
+      if (n == UINT32_MAX || in_cavity(n) || !in_circle(n, p)) continue;
+      if (cavity.size() >= kMaxFacetCavity) {
+        capped = true;
+        continue;
+      }
+      cav_mark_[n] = cav_stamp_;
+      cavity.push_back(n);
     }
   }
+  if (capped) ++capped_cavities_;
   // Keep the cavity star-shaped from p: a triangle (not forced) with a boundary edge that p does
   // not see strictly from inside leaves it (rounded points may break the empty-circle property).
-  auto boundary_edges = [&](std::vector<std::array<VertexId, 2>>& out) {
-    out.clear();
-    for (std::uint32_t t : cavity) {
-      const auto tv = tris_[t].v;
-      for (int e = 0; e < 3; ++e) {
-        const VertexId u = tv[e], w = tv[(e + 1) % 3];
-        if (same_edge(u, w, split_edge)) continue;
-        const std::uint32_t n = across(f, u, w);
-        if (n != UINT32_MAX && contains(cavity, n)) continue;
-        out.push_back({u, w});
-      }
-    }
-  };
+  // Removing a triangle only adds boundary edges, so the triangles kept are the largest such set
+  // whatever the order of removal: passes until none leaves, the survivors in their order.
   for (bool changed = true; changed;) {
     changed = false;
-    for (std::size_t k = forced; k < cavity.size() && !changed; ++k) {
+    for (std::size_t k = forced; k < cavity.size(); ++k) {
       const auto tv = tris_[cavity[k]].v;
-      for (int e = 0; e < 3 && !changed; ++e) {
+      for (int e = 0; e < 3; ++e) {
         const VertexId u = tv[e], w = tv[(e + 1) % 3];
         const std::uint32_t n = across(f, u, w);
-        if (n != UINT32_MAX && contains(cavity, n)) continue;
+        if (n != UINT32_MAX && in_cavity(n)) continue;
         if (orient_in_facet(f, u, w, p) <= 0) {
-          cavity.erase(cavity.begin() + static_cast<std::ptrdiff_t>(k));
+          cav_mark_[cavity[k]] = cav_stamp_ - 1;
           changed = true;
+          break;
         }
       }
     }
+    if (changed)
+      cavity.erase(std::remove_if(cavity.begin() + static_cast<std::ptrdiff_t>(forced), cavity.end(),
+                                  [&](std::uint32_t t) { return !in_cavity(t); }),
+                   cavity.end());
   }
   std::vector<std::array<VertexId, 2>> edges;
-  boundary_edges(edges);
+  for (std::uint32_t t : cavity) {
+    const auto tv = tris_[t].v;
+    for (int e = 0; e < 3; ++e) {
+      const VertexId u = tv[e], w = tv[(e + 1) % 3];
+      if (same_edge(u, w, split_edge)) continue;
+      const std::uint32_t n = across(f, u, w);
+      if (n != UINT32_MAX && in_cavity(n)) continue;
+      edges.push_back({u, w});
+    }
+  }
   for (std::uint32_t t : cavity) kill_tri(t);
   for (const auto& e : edges) add_tri({e[0], e[1], v}, f);
 }
