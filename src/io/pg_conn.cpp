@@ -175,12 +175,6 @@ void Connection::copy_end() {
   if (!ok) fail(copy_what_);
 }
 
-void Connection::copy_abort() noexcept {
-  if (!c_ || PQputCopyEnd(c_, "the client could not make every row") != 1) return;
-  while (Result r{PQgetResult(c_)}) {
-  }
-}
-
 bool Connection::alive() const { return c_ && PQstatus(c_) == CONNECTION_OK; }
 
 }  // namespace fdr::io::pg

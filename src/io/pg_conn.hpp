@@ -47,9 +47,6 @@ class Connection {
   void copy_begin(const std::string& sql, const std::string& what);
   void copy_put(const char* data, std::size_t n);
   void copy_end();
-  // Ends a COPY whose rows could not all be made, so that the server rolls it back and the
-  // connection takes statements again (a ROLLBACK); never throws.
-  void copy_abort() noexcept;
   // False once the server or the socket is gone.
   bool alive() const;
   [[noreturn]] void fail(const std::string& what) const;

@@ -24,6 +24,56 @@ void CopyBuffer::flush_if_full() {
   buf_.clear();
 }
 
+void CopyBuffer::be16(std::uint16_t v) {
+  const char b[2] = {static_cast<char>(v >> 8), static_cast<char>(v)};
+  buf_.append(b, 2);
+}
+
+void CopyBuffer::be32(std::uint32_t v) {
+  const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                     static_cast<char>(v)};
+  buf_.append(b, 4);
+}
+
+void CopyBuffer::be64(std::uint64_t v) {
+  be32(static_cast<std::uint32_t>(v >> 32));
+  be32(static_cast<std::uint32_t>(v));
+}
+
+void CopyBuffer::le32(std::uint32_t v) {
+  const char b[4] = {static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+                     static_cast<char>(v >> 24)};
+  buf_.append(b, 4);
+}
+
+void CopyBuffer::le64(std::uint64_t v) {
+  le32(static_cast<std::uint32_t>(v));
+  le32(static_cast<std::uint32_t>(v >> 32));
+}
+
+void CopyBuffer::row(std::int16_t fields) {
+  flush_if_full();
+  be16(static_cast<std::uint16_t>(fields));
+}
+
+void CopyBuffer::null() { be32(0xFFFFFFFFu); }
+
+void CopyBuffer::i32(std::int32_t v) {
+  be32(4);
+  be32(static_cast<std::uint32_t>(v));
+}
+
+void CopyBuffer::i64(std::int64_t v) {
+  be32(8);
+  be64(static_cast<std::uint64_t>(v));
+}
+
+void CopyBuffer::f8(double v) {
+  if (!std::isfinite(v)) return null();
+  be32(8);
+  be64(std::bit_cast<std::uint64_t>(v));
+}
+
 void CopyBuffer::boolean(bool v) {
   be32(1);
   buf_.push_back(v ? '\1' : '\0');

@@ -1,7 +1,6 @@
 // The five PostGIS tables of a mesh and their rows (see pg_mesh_rows.hpp).
 #include "io/pg_mesh_rows.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "base/redact.hpp"
@@ -41,16 +40,11 @@ std::int64_t node_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const WriteOp
   return static_cast<std::int64_t>(m.vertices.size());
 }
 
-}  // namespace
-
 // geom, id, n1, n2, n3, area, min_angle, R_over_f, quality: as the GeoPackage's triangles.
-std::int64_t pg_triangle_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const WriteOptions& o, std::int32_t srid,
-                              std::size_t begin, std::size_t end) {
+std::int64_t triangle_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const WriteOptions& o, std::int32_t srid) {
   const double nan = std::nan("");
   double ring[8];
-  end = std::min(end, m.triangles.size());
-  begin = std::min(begin, end);
-  for (std::size_t tr = begin; tr < end; ++tr) {
+  for (std::size_t tr = 0; tr < m.triangles.size(); ++tr) {
     const auto& v = m.triangles[tr];
     for (int k = 0; k <= 3; ++k) {
       const Point2 w = m.world(v[k % 3]);
@@ -75,10 +69,8 @@ std::int64_t pg_triangle_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const 
     b.f8(have_r ? r : nan);
     b.f8(triangle_quality(m, tr, o));
   }
-  return static_cast<std::int64_t>(end - begin);
+  return static_cast<std::int64_t>(m.triangles.size());
 }
-
-namespace {
 
 // geom, id, kind, marker, part, closed, num_nodes: the boundary chains, as in the GeoPackage.
 std::int64_t boundary_rows(pg::CopyBuffer& b, const mesh::MeshView& m, std::int32_t srid) {
@@ -164,7 +156,7 @@ std::int64_t pg_rows(std::size_t i, pg::CopyBuffer& b, const mesh::MeshView& m, 
                      std::int32_t srid) {
   switch (i) {
     case 0: return node_rows(b, m, o, srid);
-    case 1: return pg_triangle_rows(b, m, o, srid, 0, m.triangles.size());
+    case 1: return triangle_rows(b, m, o, srid);
     case 2: return boundary_rows(b, m, srid);
     case 3: return repair_rows(b, o, srid);
     default: return metadata_table_rows(b, o);

@@ -26,9 +26,4 @@ std::vector<PgTable> pg_tables(std::int32_t srid);
 std::int64_t pg_rows(std::size_t i, pg::CopyBuffer& b, const mesh::MeshView& m, const WriteOptions& o,
                      std::int32_t srid);
 
-// The rows of triangles [begin, end) only (fids begin + 1 to end), so that two connections can
-// send one table in two parts; returns how many.
-std::int64_t pg_triangle_rows(pg::CopyBuffer& b, const mesh::MeshView& m, const WriteOptions& o, std::int32_t srid,
-                              std::size_t begin, std::size_t end);
-
 }  // namespace fdr::io::detail

@@ -17,9 +17,7 @@ struct PostgisOptions {
   // Test hooks: fail as a broken connection would, so the tests can see that nothing is left.
   // fail_after_layer: once the rows of that many tables (1..5, in the order nodes, triangles,
   // boundaries, repairs, metadata) are in; < 0: off. fail_at: at a named step, "staging" (the
-  // staging schema made), "table:triangles" (the staging triangles table made for both
-  // connections), "rows:triangles:1" and "rows:triangles:2" (each connection's part of the
-  // triangles sent), "rows:<table>", "indexes:<table>" (<table> without the prefix), or
+  // staging schema made), "rows:<table>", "indexes:<table>" (<table> without the prefix), or
   // "commit" (everything in place, before the last commit); "": off.
   int fail_after_layer = -1;
   std::string fail_at{};

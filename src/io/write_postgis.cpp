@@ -1,8 +1,7 @@
 // PostGIS writer: the same tables and columns as the GeoPackage writer, loaded with binary COPY
 // (EWKB geometries built here) over libpq. The tables are filled and indexed in a private staging
-// schema over two connections at once (the triangles, the largest, half on each), then moved into
-// place in one short transaction; a failure anywhere drops the staging schema and leaves the
-// database as it was.
+// schema, two at a time over separate connections, then moved into place in one short
+// transaction; a failure anywhere drops the staging schema and leaves the database as it was.
 #include "io/write_postgis.hpp"
 
 #include <ogr_spatialref.h>
@@ -157,39 +156,21 @@ void clear_target(pg::Connection& c, const Job& j, bool drop) {
   c.exec(sql, "cannot drop the old tables (" + list + ")");
 }
 
-void create_table(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
-  c.exec("CREATE TABLE " + j.table(schema, i) + " (fid bigserial, " + j.tables[i].columns + ")",
-         "cannot create table " + j.schema + "." + j.p.prefix + j.tables[i].name);
-}
-
-// Streams rows into table i of `schema` with binary COPY, `send` writing them; returns how many.
-// FREEZE (no later vacuum rewrites the rows) only where the caller's transaction created the table.
-template <class Send>
-std::int64_t copy_into(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i, bool freeze,
-                       Send&& send) {
-  const PgTable& t = j.tables[i];
-  c.copy_begin("COPY " + j.table(schema, i) + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary" +
-                   (freeze ? ", FREEZE)" : ")"),
-               "writing the rows of " + j.schema + "." + j.p.prefix + t.name + " failed");
-  std::int64_t rows = 0;
-  try {
-    pg::CopyBuffer b([&c](const char* d, std::size_t n) { c.copy_put(d, n); });
-    rows = send(b);
-    b.finish();
-  } catch (...) {
-    c.copy_abort();
-    throw;
-  }
-  c.copy_end();
-  return rows;
-}
-
-// Creates table i in `schema` and streams all its rows; returns how many.
+// Creates table i in `schema` and streams its rows with binary COPY; returns how many. The
+// caller's transaction created the table, so COPY may FREEZE the rows (no later vacuum has to
+// rewrite them).
 std::int64_t copy_rows(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i) {
-  create_table(c, j, schema, i);
-  const std::int64_t rows =
-      copy_into(c, j, schema, i, true, [&](pg::CopyBuffer& b) { return pg_rows(i, b, j.m, j.o, j.srid); });
-  j.step(std::string("rows:") + j.tables[i].name);
+  const PgTable& t = j.tables[i];
+  const std::string q = j.table(schema, i);
+  const std::string shown = j.schema + "." + j.p.prefix + t.name;
+  c.exec("CREATE TABLE " + q + " (fid bigserial, " + t.columns + ")", "cannot create table " + shown);
+  c.copy_begin("COPY " + q + " (" + t.copy_columns + ") FROM STDIN (FORMAT binary, FREEZE)",
+               "writing the rows of " + shown + " failed");
+  pg::CopyBuffer b([&c](const char* d, std::size_t n) { c.copy_put(d, n); });
+  const std::int64_t rows = pg_rows(i, b, j.m, j.o, j.srid);
+  b.finish();
+  c.copy_end();
+  j.step(std::string("rows:") + t.name);
   return rows;
 }
 
@@ -226,89 +207,53 @@ std::string primary_keys(const Job& j, const std::string& schema) {
 }
 
 // GiST builds sort in memory up to this (the server's default is a few tens of MB).
-constexpr const char* kIndexMemory = "SET LOCAL maintenance_work_mem = '256MB'";
+constexpr const char* kIndexMemory = "SET maintenance_work_mem = '256MB'";
 
-// One step of the staged load in a transaction of its own. Its commit need not reach the disk
-// before the swap's own commit, which flushes the log up to itself. A failed step is rolled back
-// at once: its locks would otherwise hold up the other connection, which is waited for before
-// the error goes on.
+// A connection for one side of the staged load, each table in a transaction of its own. Those
+// commits need not reach the disk before the swap's own commit, which flushes the log up to
+// itself.
+std::unique_ptr<pg::Connection> staging_session(const Job& j) {
+  auto c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
+  c->exec(std::string(kIndexMemory) + "; SET synchronous_commit = off", "cannot configure the session");
+  return c;
+}
+
 template <class Fn>
 void in_transaction(pg::Connection& c, Fn&& fn) {
-  c.exec(std::string("BEGIN; SET LOCAL synchronous_commit = off; ") + kIndexMemory, "cannot start a transaction");
-  try {
-    fn();
-  } catch (...) {
-    std::string state;
-    c.try_exec("ROLLBACK", state);
-    throw;
-  }
+  c.exec("BEGIN", "cannot start a transaction");
+  fn();
   c.exec("COMMIT", "commit failed");
 }
 
 constexpr std::size_t kTriangles = 1;  // the index in pg_tables
 
-// One side's news for the other: set once (done or failed), awaited by the other side, so that a
-// failure on one side also ends the other's wait.
-class Handoff {
- public:
-  template <class Fn>
-  void deliver(Fn&& fn) {
+// Loads every table into the staging schema on two connections (one when the sizing field may
+// not be called from two threads). The triangles, the largest table, take one: rows, then
+// spatial index and statistics. The other takes the rest, then the triangles' fid index, built
+// beside their spatial index (the two do not lock each other out; ANALYZE and an index build do).
+void load_staged(const Job& j, const std::string& staging) {
+  std::promise<void> rows_in;
+  std::shared_future<void> triangles_in = rows_in.get_future().share();
+  // Opens its connection when given none; whatever fails before the rows are in also stops the
+  // other side's wait.
+  auto triangles = [&](std::unique_ptr<pg::Connection>& c) {
+    std::int64_t rows = 0;
     try {
-      fn();
+      if (!c) c = staging_session(j);
+      in_transaction(*c, [&] { rows = copy_rows(*c, j, staging, kTriangles); });
     } catch (...) {
-      done_.set_exception(std::current_exception());
+      rows_in.set_exception(std::current_exception());
       throw;
     }
-    done_.set_value();
-  }
-  void wait() { in_.get(); }
-
- private:
-  std::promise<void> done_;
-  std::shared_future<void> in_ = done_.get_future().share();
-};
-
-// Sends triangles [begin, end) into the staging triangles table (made beforehand by the first
-// connection, so that both sides can fill it) in a transaction of their own; `part` names the
-// step, 1 or 2.
-void copy_triangle_part(pg::Connection& c, const Job& j, const std::string& staging, std::size_t begin,
-                        std::size_t end, int part) {
-  in_transaction(c, [&] {
-    copy_into(c, j, staging, kTriangles, false,
-              [&](pg::CopyBuffer& b) { return pg_triangle_rows(b, j.m, j.o, j.srid, begin, end); });
-    j.step("rows:triangles:" + std::to_string(part));
-  });
-}
-
-// Loads every table into the staging schema over `first` (the connection that made it) and a
-// second connection (none when the sizing field may not be called from two threads: then `first`
-// takes every step in turn). The triangles, the largest table, come first, half on each
-// connection; then `first` builds their spatial index and statistics while the second sends the
-// rest and then every table's fid index (an index build beside another does not lock it out;
-// ANALYZE and an index build do).
-void load_staged(pg::Connection& first, const Job& j, const std::string& staging) {
-  const std::size_t n = j.m.triangles.size(), half = n / 2;
-  Handoff first_half, second_half;
-  auto first_rows = [&] { first_half.deliver([&] { copy_triangle_part(first, j, staging, 0, half, 1); }); };
-  auto triangle_indexes = [&] {
-    second_half.wait();
-    j.step("rows:triangles");
-    in_transaction(first, [&] { build_indexes(first, j, staging, kTriangles, static_cast<std::int64_t>(n), false); });
-  };
-  // The second connection is opened inside its handoff, so that one that cannot be opened also
-  // ends the first side's wait.
-  auto second_rows = [&](std::unique_ptr<pg::Connection>& c) {
-    second_half.deliver([&] {
-      if (!c) c = std::make_unique<pg::Connection>(j.conn.libpq, j.label);
-      copy_triangle_part(*c, j, staging, half, n, 2);
-    });
+    rows_in.set_value();
+    in_transaction(*c, [&] { build_indexes(*c, j, staging, kTriangles, rows, false); });
   };
   auto rest = [&](pg::Connection& c) {
     for (std::size_t i = 0; i < j.tables.size(); ++i) {
       if (i == kTriangles) continue;
       in_transaction(c, [&] { build_indexes(c, j, staging, i, copy_rows(c, j, staging, i), false); });
     }
-    first_half.wait();
+    triangles_in.get();
     in_transaction(c, [&] {
       std::string sql;
       for (std::size_t i = 0; i < j.tables.size(); ++i) sql += fid_index(j, staging, i);
@@ -316,22 +261,17 @@ void load_staged(pg::Connection& first, const Job& j, const std::string& staging
     });
   };
   if ((j.o.f && !j.o.f->thread_safe()) || max_threads() < 2) {
-    first_rows();
-    second_half.deliver([&] { copy_triangle_part(first, j, staging, half, n, 2); });
-    triangle_indexes();
-    rest(first);
+    auto c = staging_session(j);
+    triangles(c);
+    rest(*c);
     return;
   }
   run_beside(
       [&] {
         std::unique_ptr<pg::Connection> c;
-        second_rows(c);
-        rest(*c);
+        triangles(c);
       },
-      [&] {
-        first_rows();
-        triangle_indexes();
-      });
+      [&] { rest(*staging_session(j)); });
 }
 
 // The one transaction that puts the staged tables in place: the old mesh dropped (with
@@ -408,9 +348,7 @@ void write_tables(const mesh::MeshView& m, const std::string& conn, const WriteO
   }
   try {
     j.step("staging");
-    create_table(c, j, staging, kTriangles);
-    j.step("table:triangles");
-    load_staged(c, j, staging);
+    load_staged(j, staging);
     swap_in(c, j, staging);
   } catch (const Error& e) {
     throw without_staging(c, j, staging, e);

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,7 +17,6 @@
 #include "io/pg_conn.hpp"
 #include "io/pg_copy.hpp"
 #include "io/writer.hpp"
-#include "sizing/sizing_field.hpp"
 
 using namespace fdr;
 namespace pg = fdr::io::pg;
@@ -153,10 +151,6 @@ TEST(Postgis, WritesTheGeoPackageTables) {
   EXPECT_EQ(db.value("SELECT count(*) FROM t1_nodes"), "9");
   EXPECT_EQ(db.value("SELECT count(*) FROM t1_triangles WHERE ST_IsValid(geom)"), "8");
   EXPECT_EQ(db.value("SELECT sum(ST_Area(geom)) FROM t1_triangles"), "16");
-  // The two connections' halves of the triangles make the rows of the GeoPackage, fid = id.
-  EXPECT_EQ(db.value("SELECT string_agg(fid || ':' || id || ':' || n1 || ',' || n2 || ',' || n3, ' ' ORDER BY fid) "
-                     "FROM t1_triangles"),
-            "1:1:1,2,9 2:2:2,3,9 3:3:3,4,9 4:4:4,5,9 5:5:5,6,9 6:6:6,7,9 7:7:7,8,9 8:8:8,1,9");
   EXPECT_EQ(db.value("SELECT Find_SRID('public', 't1_triangles', 'geom')"), "32618");
   EXPECT_EQ(db.value("SELECT z FROM t1_nodes WHERE id = 3"), "-3");
   EXPECT_EQ(db.value("SELECT string_agg(kind, ',' ORDER BY kind) FROM t1_boundaries"), "land,open");
@@ -327,7 +321,7 @@ TEST(Postgis, FailureAtEachStepLeavesNothing) {
   Db db(conn);
   ASSERT_TRUE(db.ds);
   db.drop("t6_");
-  std::vector<std::string> steps = {"staging", "table:triangles", "rows:triangles:1", "rows:triangles:2", "commit"};
+  std::vector<std::string> steps = {"staging", "commit"};
   for (const char* t : {"nodes", "triangles", "boundaries", "repairs", "metadata"}) {
     steps.push_back(std::string("rows:") + t);
     steps.push_back(std::string("indexes:") + t);
@@ -412,41 +406,4 @@ TEST(Postgis, ExactRealsSequenceAndNewCrs) {
   db.drop("t8_");
   OGRLayer* r = db.ds->ExecuteSQL(("DELETE FROM spatial_ref_sys WHERE srid = " + srid).c_str(), nullptr, nullptr);
   if (r) db.ds->ReleaseResultSet(r);
-}
-
-// A sizing field that fails at the circumcentres of the second and third triangles of square(),
-// both in the first connection's half, as a field that cannot be evaluated would.
-class FailingField : public sizing::SizingField {
- public:
-  explicit FailingField(bool thread_safe) : thread_safe_(thread_safe) {}
-  double operator()(Point2 p) const override {
-    if (p.x > 2.5 && p.y < 2) throw std::runtime_error("sizing field failed at (" + std::to_string(p.x) + ")");
-    return 2.0;
-  }
-  bool thread_safe() const override { return thread_safe_; }
-  std::string describe() const override { return "failing"; }
-
- private:
-  bool thread_safe_;
-};
-
-// Rows that cannot be made half-way through a COPY (here on the connection that made the staging
-// schema, which then also drops it) leave no table and no staging schema, on two connections or
-// one.
-TEST(Postgis, RowsFailingMidCopyLeaveNothing) {
-  NEED_SERVER(conn);
-  const mesh::MeshView m = square();
-  Db db(conn);
-  ASSERT_TRUE(db.ds);
-  db.drop("t9_");
-  for (bool thread_safe : {true, false}) {
-    const FailingField f(thread_safe);
-    io::WriteOptions o = options("t9_");
-    o.f = &f;
-    const Error e = write_error(m, conn, o);
-    EXPECT_EQ(e.code(), ExitCode::kOutputError) << e.what();
-    EXPECT_NE(std::string(e.what()).find("sizing field failed"), std::string::npos) << e.what();
-    EXPECT_EQ(db.tables("t9_"), 0) << thread_safe;
-    EXPECT_EQ(db.staging(), "0") << thread_safe;
-  }
 }
