@@ -51,38 +51,36 @@ void field(Request& r, const std::string& key, const std::vector<std::string>& v
   }
 }
 
-void set_extent(Request& r, const std::string&, const std::vector<std::string>& v) {
-  if (v.empty() || v.back().empty()) return;
-  std::array<double, 4> box{};
-  std::stringstream ss(v.back());
+// A comma-separated list of exactly N numbers, or a usage error that shows the expected form.
+template <std::size_t N>
+std::array<double, N> parse_number_list(const std::string& key, const std::string& text, const std::string& form) {
+  std::array<double, N> out{};
+  std::stringstream ss(text);
   std::string tok;
-  int k = 0;
+  std::size_t k = 0;
   while (std::getline(ss, tok, ',')) {
     char* end = nullptr;
-    if (k >= 4) throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX");
-    box[k] = std::strtod(tok.c_str(), &end);
-    if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, "--extent: '" + tok + "' is not a number");
+    if (k >= N) throw Error(ExitCode::kUsage, key + " takes " + form);
+    out[k] = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, key + ": '" + tok + "' is not a number");
     ++k;
   }
-  if (k != 4 || !(box[0] < box[2]) || !(box[1] < box[3]))
+  if (k != N) throw Error(ExitCode::kUsage, key + " takes " + form);
+  return out;
+}
+
+void set_extent(Request& r, const std::string&, const std::vector<std::string>& v) {
+  if (v.empty() || v.back().empty()) return;
+  const std::array<double, 4> box = parse_number_list<4>("--extent", v.back(), "XMIN,YMIN,XMAX,YMAX");
+  if (!(box[0] < box[2]) || !(box[1] < box[3]))
     throw Error(ExitCode::kUsage, "--extent takes XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
   r.mesh.extent = box;
 }
 
 void set_pole(Request& r, const std::string&, const std::vector<std::string>& v) {
   if (v.empty() || v.back().empty()) return;
-  std::array<double, 2> p{};
-  std::stringstream ss(v.back());
-  std::string tok;
-  int k = 0;
-  while (std::getline(ss, tok, ',')) {
-    char* end = nullptr;
-    if (k >= 2) throw Error(ExitCode::kUsage, "--pole takes LON,LAT");
-    p[k] = std::strtod(tok.c_str(), &end);
-    if (end == tok.c_str() || *end) throw Error(ExitCode::kUsage, "--pole: '" + tok + "' is not a number");
-    ++k;
-  }
-  if (k != 2 || !(p[0] >= -180 && p[0] <= 180) || !(p[1] >= -90 && p[1] <= 90))
+  const std::array<double, 2> p = parse_number_list<2>("--pole", v.back(), "LON,LAT");
+  if (!(p[0] >= -180 && p[0] <= 180) || !(p[1] >= -90 && p[1] <= 90))
     throw Error(ExitCode::kUsage, "--pole takes LON,LAT in degrees (-180..180, -90..90)");
   r.mesh.pole = p;
 }
