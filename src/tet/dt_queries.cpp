@@ -26,19 +26,21 @@ bool holds(const std::array<VertexId, 4>& v, VertexId x) {
   return v[0] == x || v[1] == x || v[2] == x || v[3] == x;
 }
 
-}  // namespace
-
-void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
+// The tetrahedra around v, breadth first from dt.vertex_tet(v), into out; the walk stops at the
+// first tetrahedron for which stop(t) holds and returns it (kNoId when none does).
+template <class Stop>
+TetId walk_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out, Stop stop) {
   out.clear();
-  if (dt.dimension() < 3) return;
+  if (dt.dimension() < 3) return kNoId;
   const TetId t0 = dt.vertex_tet(v);
-  if (t0 == kNoId) return;
+  if (t0 == kNoId) return kNoId;
   std::uint32_t* mark = next_marks(dt);
   const std::uint32_t stamp = mark_stamp();
   out.push_back(t0);
   mark[t0] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
     const TetId t = out[k];
+    if (stop(t)) return t;
     const auto& tv = dt.vertices(t);
     for (int i = 0; i < 4; ++i) {
       if (tv[i] == v) continue;  // the face opposite v does not hold v
@@ -49,6 +51,13 @@ void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
       }
     }
   }
+  return kNoId;
+}
+
+}  // namespace
+
+void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
+  walk_star(dt, v, out, [](TetId) { return false; });
 }
 
 bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& out) {
@@ -63,35 +72,18 @@ bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& 
 int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::array<VertexId, 2>& apex) {
   // The star of a, walked only until a tetrahedron with the face turns up: the other one is its
   // neighbour across that face.
-  if (dt.dimension() < 3) return 0;
-  const TetId t0 = dt.vertex_tet(a);
-  if (t0 == kNoId) return 0;
-  thread_local std::vector<TetId> todo;
-  todo.clear();
-  std::uint32_t* mark = next_marks(dt);
-  const std::uint32_t stamp = mark_stamp();
-  todo.push_back(t0);
-  mark[t0] = stamp;
-  for (std::size_t k = 0; k < todo.size(); ++k) {
-    const TetId t = todo[k];
-    const auto& tv = dt.vertices(t);
-    if (holds(tv, b) && holds(tv, c)) {
-      int i = 0;
-      while (tv[i] == a || tv[i] == b || tv[i] == c) ++i;
-      apex[0] = tv[i];
-      apex[1] = dt.vertices(dt.neighbour(t, i))[dt.mirror_index(t, i)];
-      return 2;
-    }
-    for (int i = 0; i < 4; ++i) {
-      if (tv[i] == a) continue;  // the face opposite a does not hold a
-      const TetId n = dt.neighbour(t, i);
-      if (mark[n] != stamp) {
-        mark[n] = stamp;
-        todo.push_back(n);
-      }
-    }
-  }
-  return 0;
+  thread_local std::vector<TetId> star;  // scratch: a call allocates nothing once it has grown
+  const TetId t = walk_star(dt, a, star, [&](TetId x) {
+    const auto& xv = dt.vertices(x);
+    return holds(xv, b) && holds(xv, c);
+  });
+  if (t == kNoId) return 0;
+  const auto& tv = dt.vertices(t);
+  int i = 0;
+  while (tv[i] == a || tv[i] == b || tv[i] == c) ++i;
+  apex[0] = tv[i];
+  apex[1] = dt.vertices(dt.neighbour(t, i))[dt.mirror_index(t, i)];
+  return 2;
 }
 
 void conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<TetId>& out) {
