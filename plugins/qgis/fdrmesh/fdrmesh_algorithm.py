@@ -414,11 +414,14 @@ class FdrmeshMeshCoastalAlgorithm(QgsProcessingAlgorithm):
         st = self.status()
         return (True, "") if st["ok"] else (False, "fdrmesh is unavailable: " + st["reason"])
 
+    def _help_head(self):
+        """The help's first lines: why fdrmesh cannot run, when it cannot."""
+        st = self.status()
+        return [] if st["ok"] else ["<p><b>fdrmesh is unavailable:</b> %s</p>" % st["reason"]]
+
     def shortHelpString(self):
         st = self.status()
-        lines = []
-        if not st["ok"]:
-            lines.append("<p><b>fdrmesh is unavailable:</b> %s</p>" % st["reason"])
+        lines = self._help_head()
         lines.append("<p>Meshes a coastal water domain with Functional Delaunay Refinement by running "
                      "the <code>fdrmesh mesh</code> command-line tool, and loads the GeoPackage layers "
                      "(nodes, triangles styled by quality, boundaries by kind, repairs) and the 2DM or "

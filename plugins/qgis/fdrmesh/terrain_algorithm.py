@@ -51,10 +51,7 @@ class FdrmeshTerrainVolumeAlgorithm(FdrmeshMeshCoastalAlgorithm):
         return "Mesh terrain volume (FDR)"
 
     def shortHelpString(self):
-        st = self.status()
-        lines = []
-        if not st["ok"]:
-            lines.append("<p><b>fdrmesh is unavailable:</b> %s</p>" % st["reason"])
+        lines = self._help_head()
         lines.append("<p>Tetrahedralizes the volume under a DEM with Functional Delaunay Refinement "
                      "(<code>fdrmesh mesh DOMAIN --dem DEM --base Z --horizon H ...</code>): the domain "
                      "polygon's TIN of the DEM is the top (without a domain polygon, the box of the DEM's valid data), the base an elevation or a raster, each horizon "
