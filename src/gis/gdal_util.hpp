@@ -30,4 +30,14 @@ using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 DatasetPtr open_vector(const std::string& path);
 DatasetPtr open_raster(const std::string& path);
 
+// The layer `layer` (the first when empty) of the vector source `path`, a file or a "PG:"
+// connection, with its dataset and the source's name for messages (never a password);
+// kInputUnreadable naming the source and its layers when there is no such layer.
+struct OpenedLayer {
+  DatasetPtr ds;
+  OGRLayer* layer = nullptr;
+  std::string source;
+};
+OpenedLayer open_layer(const std::string& path, const std::string& layer);
+
 }  // namespace fdr::gis

@@ -127,24 +127,31 @@ void check_coordinates(const OGRGeometry* g, const CoordLimits& lim, const std::
 
 }  // namespace
 
-LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* option) {
-  GdalQuiet quiet;
-  const std::string name = source_label(ref.path);  // a "PG:" database without its password
-  DatasetPtr ds = is_pg_connection(ref.path) ? open_pg_vector(ref.path) : open_vector(ref.path);
-  OGRLayer* lyr = nullptr;
-  if (ref.layer.empty()) {
-    if (ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, name + ": no layers");
-    lyr = ds->GetLayer(0);
+OpenedLayer open_layer(const std::string& path, const std::string& layer) {
+  OpenedLayer o;
+  o.source = source_label(path);  // a "PG:" database without its password
+  o.ds = is_pg_connection(path) ? open_pg_vector(path) : open_vector(path);
+  if (layer.empty()) {
+    if (o.ds->GetLayerCount() == 0) throw Error(ExitCode::kInputUnreadable, o.source + ": no layers");
+    o.layer = o.ds->GetLayer(0);
   } else {
-    lyr = ds->GetLayerByName(ref.layer.c_str());
-    if (!lyr) {
+    o.layer = o.ds->GetLayerByName(layer.c_str());
+    if (!o.layer) {
       std::string names;
-      for (int i = 0; i < ds->GetLayerCount(); ++i)
-        names += (i ? ", " : "") + std::string(ds->GetLayer(i)->GetName());
-      throw Error(ExitCode::kInputUnreadable, name + ": no layer '" + ref.layer + "' (layers: " + names + ")");
+      for (int i = 0; i < o.ds->GetLayerCount(); ++i)
+        names += (i ? ", " : "") + std::string(o.ds->GetLayer(i)->GetName());
+      throw Error(ExitCode::kInputUnreadable, o.source + ": no layer '" + layer + "' (layers: " + names + ")");
     }
   }
-  if (is_pg_connection(ref.path)) check_pg_layer(*lyr, ref.path);
+  if (is_pg_connection(path)) check_pg_layer(*o.layer, path);
+  return o;
+}
+
+LayerData read_layer(const LayerRef& ref, const std::string& s_srs, const char* option) {
+  GdalQuiet quiet;
+  const OpenedLayer opened = open_layer(ref.path, ref.layer);
+  OGRLayer* lyr = opened.layer;
+  const std::string& name = opened.source;
   LayerData out;
   out.file = name;
   out.layer = lyr->GetName();

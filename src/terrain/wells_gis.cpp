@@ -71,11 +71,9 @@ void point_range(const OGRFeature& f, RawWell& w) {
 RawWells read_raw(const WellsSource& src) {
   gis::ensure_gdal_registered();
   gis::GdalQuiet quiet;
-  gis::DatasetPtr ds = gis::open_vector(src.path);
-  OGRLayer* lyr = src.layer.empty() ? (ds->GetLayerCount() > 0 ? ds->GetLayer(0) : nullptr)
-                                    : ds->GetLayerByName(src.layer.c_str());
-  if (!lyr) throw Error(ExitCode::kInputUnreadable, "--wells " + src.path + ": no layer '" + src.layer + "'");
-  const std::string label = "--wells " + src.path + ": layer '" + lyr->GetName() + "'";
+  const gis::OpenedLayer opened = gis::open_layer(src.path, src.layer);
+  OGRLayer* lyr = opened.layer;
+  const std::string label = "--wells " + opened.source + ": layer '" + lyr->GetName() + "'";
   RawWells out;
   if (const OGRSpatialReference* s = lyr->GetSpatialRef()) out.srs = *s;
   else if (src.s_srs.empty() || out.srs.SetFromUserInput(src.s_srs.c_str()) != OGRERR_NONE)
