@@ -180,19 +180,21 @@ std::string fid_index(const Job& j, const std::string& schema, std::size_t i) {
   return "CREATE UNIQUE INDEX " + quote_ident(name + "_pkey") + " ON " + j.table(schema, i) + " (fid);";
 }
 
-// Over the loaded rows of table i: its fid index (unless built elsewhere), spatial index, fid
-// sequence past the rows and planner statistics (QGIS asks for extents). Built once the rows
-// are in: kept up row by row they cost a B-tree and a GiST insert per row.
+// Over the loaded rows of table i: its fid index (unless built elsewhere), spatial index and fid
+// sequence past the rows. Built once the rows are in: kept up row by row they cost a B-tree and a
+// GiST insert per row. No ANALYZE: autovacuum analyses the new tables anyway once they are in
+// place (their rows count as changes), so running it here would double the work on the write's
+// own critical path; the index builds already set the tables' row counts for the planner.
 void build_indexes(pg::Connection& c, const Job& j, const std::string& schema, std::size_t i, std::int64_t rows,
                    bool with_fid_index) {
   const PgTable& t = j.tables[i];
   const std::string name = j.p.prefix + t.name;
   const std::string q = j.table(schema, i);
-  std::string sql = with_fid_index ? fid_index(j, schema, i) : std::string();
-  if (t.spatial) sql += "CREATE INDEX " + quote_ident(name + "_geom_idx") + " ON " + q + " USING GIST (geom);";
-  sql += "SELECT setval(pg_get_serial_sequence(" + quote_literal(q) + ", 'fid'), " + std::to_string(rows + 1) +
-         ", false);ANALYZE " + q;
-  c.exec(sql, "cannot build the indexes of " + j.schema + "." + name);
+  const std::string what = "cannot build the indexes of " + j.schema + "." + name;
+  if (with_fid_index) c.exec(fid_index(j, schema, i), what);
+  if (t.spatial) c.exec("CREATE INDEX " + quote_ident(name + "_geom_idx") + " ON " + q + " USING GIST (geom)", what);
+  c.exec("SELECT setval(pg_get_serial_sequence(" + quote_literal(q) + ", 'fid'), " + std::to_string(rows + 1) +
+             ", false)", what);
   j.step(std::string("indexes:") + t.name);
 }
 
@@ -206,8 +208,11 @@ std::string primary_keys(const Job& j, const std::string& schema) {
   return sql;
 }
 
-// GiST builds sort in memory up to this (the server's default is a few tens of MB).
-constexpr const char* kIndexMemory = "SET maintenance_work_mem = '256MB'";
+// The index builds sort in memory up to this (the server's default is a few tens of MB; the
+// triangles' GiST sort of a million rows takes about 70 MB). No parallel workers: the writer
+// already keeps two sessions busy, and each worker of a parallel B-tree build writes its sorted
+// share to a temporary file for the leader to merge.
+constexpr const char* kIndexMemory = "SET maintenance_work_mem = '256MB'; SET max_parallel_maintenance_workers = 0";
 
 // A connection for one side of the staged load, each table in a transaction of its own. Those
 // commits need not reach the disk before the swap's own commit, which flushes the log up to
@@ -229,8 +234,8 @@ constexpr std::size_t kTriangles = 1;  // the index in pg_tables
 
 // Loads every table into the staging schema on two connections (one when the sizing field may
 // not be called from two threads). The triangles, the largest table, take one: rows, then
-// spatial index and statistics. The other takes the rest, then the triangles' fid index, built
-// beside their spatial index (the two do not lock each other out; ANALYZE and an index build do).
+// spatial index. The other takes the rest, then the triangles' fid index, built beside their
+// spatial index (two index builds do not lock each other out).
 void load_staged(const Job& j, const std::string& staging) {
   std::promise<void> rows_in;
   std::shared_future<void> triangles_in = rows_in.get_future().share();
@@ -255,9 +260,7 @@ void load_staged(const Job& j, const std::string& staging) {
     }
     triangles_in.get();
     in_transaction(c, [&] {
-      std::string sql;
-      for (std::size_t i = 0; i < j.tables.size(); ++i) sql += fid_index(j, staging, i);
-      c.exec(sql, "cannot build the fid indexes");
+      for (std::size_t i = 0; i < j.tables.size(); ++i) c.exec(fid_index(j, staging, i), "cannot build the fid indexes");
     });
   };
   if ((j.o.f && !j.o.f->thread_safe()) || max_threads() < 2) {
