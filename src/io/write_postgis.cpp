@@ -208,11 +208,11 @@ std::string primary_keys(const Job& j, const std::string& schema) {
   return sql;
 }
 
-// The index builds sort in memory up to this (the server's default is a few tens of MB; the
-// triangles' GiST sort of a million rows takes about 70 MB). No parallel workers: the writer
-// already keeps two sessions busy, and each worker of a parallel B-tree build writes its sorted
-// share to a temporary file for the leader to merge (set through pg_settings: a server older than
-// PostgreSQL 11 has neither the setting nor parallel builds).
+// The index builds sort in memory up to this (the server's default of a few tens of MB is less
+// than a million triangles' bounding boxes take, and a sort that spills to disk is slower). No
+// parallel workers: the writer already keeps two sessions busy, and each worker of a parallel
+// B-tree build writes its sorted share to a temporary file for the leader to merge (set through
+// pg_settings: a server older than PostgreSQL 11 has neither the setting nor parallel builds).
 constexpr const char* kIndexMemory =
     "SET maintenance_work_mem = '256MB'; SELECT set_config(name, '0', false) FROM pg_settings "
     "WHERE name = 'max_parallel_maintenance_workers'";
