@@ -21,10 +21,18 @@ TwoOpenings two_openings(const OGRGeometry& W, double r1, double r2, double hair
   const CoastRestorer restorer(&W, hair, full_rounds);
   lap("restorer");
   TwoOpenings out;
-  out.O1 = restorer.restore(opening(W, r1));
-  lap("O1");
-  out.O2 = r2 > 0 ? restorer.restore(opening(W, r2)) : GeomPtr(W.clone());
-  lap("O2");
+  GeomPtr o1 = opening(W, r1);
+  lap("O1 opening");
+  out.O1 = restorer.restore(std::move(o1));
+  lap("O1 restored");
+  if (r2 > 0) {
+    GeomPtr o2 = opening(W, r2);
+    lap("O2 opening");
+    out.O2 = restorer.restore(std::move(o2));
+    lap("O2 restored");
+  } else {
+    out.O2 = GeomPtr(W.clone());
+  }
   return out;
 }
 
