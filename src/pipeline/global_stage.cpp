@@ -28,6 +28,13 @@ std::vector<Point3> shore_points(const pslg::Pslg& raw, const gis::SphereStereo&
 
 }  // namespace
 
+std::vector<Point3> sphere_points(const mesh::MeshView& m, const gis::SphereStereo& proj) {
+  std::vector<Point3> out(m.vertices.size());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = gis::sphere_xyz(proj.inverse(m.world(static_cast<Index>(i))), proj.radius());
+  return out;
+}
+
 GisSpacing global_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const LogFn& log) {
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
   const gis::SphereStereo proj(opt.pole ? LonLat{(*opt.pole)[0], (*opt.pole)[1]} : LonLat{0, -90});
@@ -114,6 +121,8 @@ void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt,
   out.sphere_figures = [sp, bound = opt.bound, md = opt.min_depth_m, log](const mesh::MeshView& m, auto& figs) {
     add_sphere_figures(m, sp, bound, sp.hmin, md, log, figs);
   };
+  out.sphere_radius = sp.sphere_f->projection().radius();
+  out.sphere_xyz = [sp](const mesh::MeshView& m) { return sphere_points(m, sp.sphere_f->projection()); };
 }
 
 }  // namespace fdr::pipeline

@@ -20,8 +20,13 @@ std::vector<double> global_depths(const mesh::MeshView& m, const PreparedInput& 
 void add_sphere_figures(const mesh::MeshView& m, const GisSpacing& sp, double bound, double hmin, double min_depth_m,
                         const LogFn& log, std::vector<std::pair<std::string, double>>& out);
 
+// The vertices of `m` (in the stereographic frame of `proj`) on its sphere: Earth-centred x, y, z in
+// metres, x towards (0, 0), z towards the north pole.
+std::vector<Point3> sphere_points(const mesh::MeshView& m, const gis::SphereStereo& proj);
+
 // The --global parts of the prepared input: the spacing on the sphere, the lon/lat raster, the
-// sphere's radius in the metadata and PreparedInput::sphere_figures (add_sphere_figures).
+// sphere's radius in the metadata, PreparedInput::sphere_figures (add_sphere_figures) and
+// PreparedInput::sphere_xyz (sphere_points) for the VTU and msh outputs.
 void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt, const LogFn& log);
 
 }  // namespace fdr::pipeline
