@@ -20,6 +20,14 @@ std::vector<double> global_depths(const mesh::MeshView& m, const PreparedInput& 
 void add_sphere_figures(const mesh::MeshView& m, const GisSpacing& sp, double bound, double hmin, double min_depth_m,
                         const LogFn& log, std::vector<std::pair<std::string, double>>& out);
 
+// The coast deviation on the sphere, both ways between `input_boundary` (the input coast, segments
+// in the frame of m.vertices) and the mesh's land and island edges, both taken as great-circle
+// arcs, sampled every hmin/2 on the ground (gis/global_coast.hpp): figures
+// sphere_coast_{input_to_mesh,mesh_to_input}_{max,p99}_m appended to `out` and logged.
+void add_sphere_coast_deviation(const mesh::MeshView& m, const std::vector<std::pair<Point2, Point2>>& input_boundary,
+                                const gis::SphereStereo& proj, double hmin, const LogFn& log,
+                                std::vector<std::pair<std::string, double>>& out);
+
 // The vertices of `m` (in the stereographic frame of `proj`) on its sphere: Earth-centred x, y, z in
 // metres, x towards (0, 0), z towards the north pole.
 std::vector<Point3> sphere_points(const mesh::MeshView& m, const gis::SphereStereo& proj);

@@ -161,3 +161,31 @@ def test_mdal_reads_the_global_mesh(qgs, run, name, crs, tol):
     assert all(abs(g - w) <= tol for g, w in zip(m["extent"], expect)), (m["extent"], expect)
     # The whole ocean in lon/lat: every longitude, the Southern Ocean and the Arctic.
     assert expect[0] < -179.9 and expect[2] > 179.9 and expect[1] < -70 and expect[3] > 85
+
+
+def test_coast_deviation_on_the_sphere(run):
+    figs = {}
+
+    def walk(o):
+        if isinstance(o, dict):
+            for k, v in o.items():
+                if k.startswith("sphere_coast_"):
+                    figs[k] = v
+                walk(v)
+        elif isinstance(o, list):
+            for x in o:
+                walk(x)
+    walk(run["report"])
+    hmin = 200000
+    for way in ("input_to_mesh", "mesh_to_input"):
+        mx, p99 = figs[f"sphere_coast_{way}_max_m"], figs[f"sphere_coast_{way}_p99_m"]
+        assert 0 < p99 <= mx
+        # Great-circle metres, not the stereographic plane's (up to 100 times longer near
+        # Antarctica): at this coarse spacing the coast stays within a few hmin of the input.
+        assert p99 <= hmin and mx <= 3 * hmin, (way, p99, mx)
+        assert -180 <= figs[f"sphere_coast_{way}_max_lon"] <= 180 and -90 <= figs[f"sphere_coast_{way}_max_lat"] <= 90
+    # The farthest mesh coast point lies on the mesh coast: within half a coast edge of a coast node.
+    p = sphere_point(figs["sphere_coast_mesh_to_input_max_lon"], figs["sphere_coast_mesh_to_input_max_lat"])
+    xyz = {u: sphere_point(*run["lonlat"][u]) for e in run["coast"] for u in e}
+    longest = max(math.dist(xyz[u], xyz[v]) for u, v in run["coast"])
+    assert min(math.dist(p, q) for q in xyz.values()) <= 0.51 * longest
