@@ -112,7 +112,12 @@ void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOpti
   TempFile tf(path);
   TextOut out(tf.stream(), path);
   out.str("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
-  if (!o.title.empty()) out.str("$Comments\n").str(one_line(o.title)).str("\n$EndComments\n");
+  if (!o.title.empty() || sphere) {
+    out.str("$Comments\n");
+    if (!o.title.empty()) out.str(one_line(o.title)).nl();
+    if (sphere) out.str(detail::kMshSphereComment).sp().num(o.sphere_radius).nl();
+    out.str("$EndComments\n");
+  }
   out.str("$PhysicalNames\n").num(static_cast<std::uint64_t>(markers.size() + 1)).nl();
   for (std::int32_t mk : markers)
     out.str("1 ").num(physical_tag(mk)).str(" \"").str(detail::kind_name(mk)).str("\"").nl();

@@ -14,6 +14,7 @@
 
 #include "base/error.hpp"
 #include "gis/global_sphere.hpp"
+#include "io/reader.hpp"
 #include "io/writer.hpp"
 
 namespace fs = std::filesystem;
@@ -137,6 +138,30 @@ TEST(SphereOut, MshNodesAreEarthCentredWithElevationAsNodeData) {
   ASSERT_GE(ent.size(), 11u);
   EXPECT_EQ(ent[7], std::min({s.xyz[0].z, s.xyz[1].z, s.xyz[2].z, s.xyz[3].z}));
   EXPECT_EQ(ent[10], std::max({s.xyz[0].z, s.xyz[1].z, s.xyz[2].z, s.xyz[3].z}));
+}
+
+TEST(SphereOut, MshOnTheSphereReadsBackInLonLat) {
+  SphereMesh s;
+  TmpDir tmp;
+  const std::string p = tmp / "m.msh";
+  io::write_mesh(s.m, p, Format::kMsh, s.options());
+  EXPECT_NE(slurp(p).find("$Comments\nsphere test\nfdrmesh sphere_radius_m 6371008.8\n$EndComments\n"),
+            std::string::npos);
+  const mesh::MeshView r = io::read_mesh(p);
+  ASSERT_EQ(r.vertices.size(), 4u);
+  for (std::size_t v = 0; v < 4; ++v) {
+    EXPECT_NEAR(r.vertices[v].x, s.m.vertices[v].x, 1e-12);
+    EXPECT_NEAR(r.vertices[v].y, s.m.vertices[v].y, 1e-12);
+    EXPECT_EQ(r.z[v], s.m.z[v]);
+  }
+  EXPECT_EQ(r.triangles.size(), 2u);
+  ASSERT_EQ(r.edges.size(), 4u);
+  for (const auto& e : r.edges) EXPECT_EQ(e.marker, mk(mesh::EdgeKind::kLand));
+  // Without elevations there is no node data: z reads back 0.
+  s.m.z.clear();
+  io::write_mesh(s.m, p, Format::kMsh, s.options());
+  EXPECT_EQ(slurp(p).find("$NodeData"), std::string::npos);
+  EXPECT_EQ(io::read_mesh(p).z, std::vector<double>(4, 0.0));
 }
 
 TEST(SphereOut, PlaneOutputIsUnchangedWithoutThePoints) {

@@ -189,3 +189,17 @@ def test_coast_deviation_on_the_sphere(run):
     xyz = {u: sphere_point(*run["lonlat"][u]) for e in run["coast"] for u in e}
     longest = max(math.dist(xyz[u], xyz[v]) for u, v in run["coast"])
     assert min(math.dist(p, q) for q in xyz.values()) <= 0.51 * longest
+
+
+def test_project_reader_reads_the_sphere_msh_as_its_fort14(run):
+    # fdrmesh's own msh reader turns the sphere back into lon/lat: `fdrmesh quality` counts the same
+    # in the msh as in the fort.14 (the figures of triangles across the antimeridian, 360 degrees
+    # wide in lon/lat, move with the last bits of a longitude near +-180, so they are not compared).
+    def quality(name):
+        r = subprocess.run([FDRMESH, "quality", str(run["dir"] / name)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        rows = dict(line.split(":", 1) for line in r.stdout.splitlines() if ":" in line)
+        return {k.strip(): rows[k].strip() for k in rows if k.strip() in ("vertices / triangles", "degenerate / inverted")}
+    msh = quality("m.msh")
+    assert len(msh) == 2 and msh == quality("m.14")
+    assert msh["vertices / triangles"] == f"{len(run['lonlat'])} / {run['triangles']}"
