@@ -24,6 +24,10 @@ std::string kind_name(std::int32_t marker);
 // Inverse of kind_name for the five known names; returns false for anything else.
 bool kind_from_name(std::string_view name, std::int32_t& marker);
 
+// The $Comments line of an msh written on the sphere, followed by the radius in metres: what tells
+// the reader to turn x, y, z back into lon/lat and take the elevation from $NodeData "z".
+inline constexpr std::string_view kMshSphereComment = "fdrmesh sphere_radius_m";
+
 // An ordered chain of constrained edges sharing (marker, part).
 struct Chain {
   std::int32_t marker = 0;

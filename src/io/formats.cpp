@@ -44,9 +44,11 @@ const std::vector<FormatInfo>& format_infos() {
        "node z positive up; every edge, edge type open/closed boundary; EPSG CRS"},
       {Format::kUgrid, "UGRID", ".nc", "UGRID netCDF mesh",
        "z positive up; constrained edges with kind; CRS"},
-      {Format::kMsh, "MSH", ".msh", "Gmsh 4.1 mesh", "z positive up; boundary physical groups; no CRS"},
+      {Format::kMsh, "MSH", ".msh", "Gmsh 4.1 mesh",
+       "z positive up; boundary physical groups; no CRS; --global: x, y, z on the sphere, z as node data"},
       {Format::kNode, "NODE", ".node .ele", "Triangle node/ele", "z, f attributes; vertex markers; no CRS"},
-      {Format::kVtu, "VTU", ".vtu", "VTK unstructured grid", "z, f point data; no boundaries; no CRS"},
+      {Format::kVtu, "VTU", ".vtu", "VTK unstructured grid",
+       "z, f point data; no boundaries; no CRS; --global: x, y, z on the sphere"},
       {Format::kPostgis, "POSTGRESQL", "PG:", "PostGIS tables (nodes, triangles, boundaries, repairs, metadata)",
        "the GeoPackage's layers as tables <prefix>nodes ... in one transaction; CRS as SRID"},
   };

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <numbers>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -268,6 +270,48 @@ mesh::MeshView read_fort14(const std::string& path, const ReadOptions& o, bool s
 }
 
 // ------------------------------------------------------------------ Gmsh msh 4.1 ASCII
+// A $NodeData section after its header line: its name (the first string tag, unquoted) and one
+// scalar per vertex (through the node tags; 0 where the section gives none).
+void read_msh_node_data(Lines& in, const IdMap& ids, std::size_t nv, std::string& name, std::vector<double>& values) {
+  in.require_data("number of string tags");
+  const long long ns = in.integer(0);
+  for (long long i = 0; i < ns; ++i) {
+    in.require_data("a string tag");
+    if (i > 0) continue;
+    name = in.line();
+    std::erase_if(name, [](char c) { return c == '"' || c == ' ' || c == '\t'; });
+  }
+  in.require_data("number of real tags");
+  for (long long i = 0, nr = in.integer(0); i < nr; ++i) in.require_data("a real tag");
+  in.require_data("number of integer tags");
+  std::vector<long long> ints(static_cast<std::size_t>(std::max(0LL, in.integer(0))));
+  for (auto& v : ints) {
+    in.require_data("an integer tag");
+    v = in.integer(0);
+  }
+  if (ints.size() < 3) in.fail("$NodeData needs the time step, component and node counts");
+  if (ints[1] != 1) in.fail("$NodeData with " + std::to_string(ints[1]) + " components; fdrmesh reads scalars");
+  values.assign(nv, 0.0);
+  for (long long i = 0; i < ints[2]; ++i) {
+    in.require_data("a node value");
+    values[ids.at(in, in.integer(0))] = in.real(1);
+  }
+  in.require_data("$EndNodeData");
+  if (in.tok(0) != "$EndNodeData") in.fail("expected $EndNodeData");
+}
+
+// An msh written on the sphere: x, y, z (vertices and z) back to lon/lat degrees, and the
+// elevation from its $NodeData "z" (0 without it).
+void msh_sphere_to_lonlat(mesh::MeshView& m, std::vector<double> elevation) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const double x = m.vertices[v].x, y = m.vertices[v].y, z = m.z[v];
+    m.vertices[v] = {std::atan2(y, x) * kDeg, std::atan2(z, std::hypot(x, y)) * kDeg};
+  }
+  if (elevation.size() != m.vertices.size()) elevation.assign(m.vertices.size(), 0.0);
+  m.z = std::move(elevation);
+}
+
 mesh::MeshView read_msh(const std::string& path) {
   Lines in(path);
   mesh::MeshView m;
@@ -275,6 +319,8 @@ mesh::MeshView read_msh(const std::string& path) {
   std::map<int, int> curve_phys;                           // curve entity -> first physical tag
   IdMap ids;
   bool have_format = false;
+  bool on_sphere = false;               // written on the sphere (kMshSphereComment)
+  std::vector<double> elevation;        // its $NodeData "z"
   auto expect_end = [&](const char* section) {
     in.require_data(section);
     if (in.tok(0) != section) in.fail(std::string("expected ") + section);
@@ -361,18 +407,27 @@ mesh::MeshView read_msh(const std::string& path) {
         }
       }
       expect_end("$EndElements");
+    } else if (sec == "$NodeData" && on_sphere) {
+      std::string name;
+      std::vector<double> values;
+      read_msh_node_data(in, ids, m.vertices.size(), name, values);
+      if (name == "z") elevation = std::move(values);
     } else if (sec.size() > 1 && sec[0] == '$') {
-      // Unknown section ($Comments, $NodeData, ...): skip to its end.
-      std::string end = "$End" + std::string(sec.substr(1));
+      // Unknown section ($Comments, $NodeData, ...): skip to its end; a comment may say the nodes
+      // are on the sphere.
+      const std::string section(sec);  // sec views the current line, which next() replaces
+      const std::string end = "$End" + section.substr(1);
       for (;;) {
-        if (!in.next()) in.fail("unexpected end of file inside section " + std::string(sec));
+        if (!in.next()) in.fail("unexpected end of file inside section " + section);
         if (!in.line().empty() && in.line().rfind(end, 0) == 0) break;
+        if (section == "$Comments" && in.line().rfind(detail::kMshSphereComment, 0) == 0) on_sphere = true;
       }
     } else {
       in.fail("expected a $Section line");
     }
   }
   if (!have_format) in.fail("no $MeshFormat section; not a Gmsh msh file");
+  if (on_sphere) msh_sphere_to_lonlat(m, std::move(elevation));
   return m;
 }
 

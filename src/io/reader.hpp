@@ -14,6 +14,8 @@ struct ReadOptions {
 // Reads a mesh; the format is chosen by extension as in format_from_path (UGRID .nc, *_net.nc and
 // .vtu are write-only; .gr3/.ll depths are always positive down). The result has origin (0,0) and world coordinates as vertices, so coordinates read
 // back bit-exactly. Boundary chains become `edges` (marker = EdgeKind, part = chain/nodestring id).
+// An msh written on the sphere (a --global run's) is read back in lon/lat degrees with the
+// elevation of its $NodeData "z", as its fort.14 reads.
 // Missing/unopenable file -> Error(kInputUnreadable); malformed content ->
 // Error(kInputMalformed, "<file>:<line>: ...").
 mesh::MeshView read_mesh(const std::string& path, const ReadOptions& options = {});

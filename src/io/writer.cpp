@@ -1,10 +1,12 @@
-// Mesh writers: format selection, and the text formats (SMS 2dm, Gmsh msh 4.1, Triangle node/ele, VTU, ADCIRC fort.14).
+// Mesh writers: format selection, and the text formats (SMS 2dm, Gmsh msh 4.1, Triangle node/ele, VTU, ADCIRC fort.14);
+// msh and VTU also on the sphere (Earth-centred x, y, z) for global meshes.
 #include "io/writer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -72,6 +74,14 @@ void write_2dm(const mesh::MeshView& m, const std::string& path, const WriteOpti
 constexpr int kDomainTag = 10;
 int physical_tag(std::int32_t marker) { return marker > 0 ? marker : 1000 - marker; }
 
+// One scalar per node as a $NodeData section (time step 0): the elevation of a mesh whose third
+// coordinate is taken by the sphere.
+void write_msh_node_data(const std::vector<double>& values, const char* name, TextOut& out) {
+  out.str("$NodeData\n1\n\"").str(name).str("\"\n1\n0\n3\n0\n1\n").num(static_cast<std::uint64_t>(values.size())).nl();
+  for (std::size_t v = 0; v < values.size(); ++v) out.num(static_cast<std::uint64_t>(v + 1)).sp().num(values[v]).nl();
+  out.str("$EndNodeData\n");
+}
+
 void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   std::vector<Chain> chains = detail::build_chains(m);
   std::set<std::int32_t> markers;
@@ -84,17 +94,30 @@ void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOpti
       if (std::isfinite(z)) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
     if (zmin > zmax) zmin = zmax = 0;
   }
+  // A node's coordinates: plane x, y and the elevation, or Earth-centred x, y, z on the sphere.
+  const std::vector<Point3>* sphere = o.sphere_xyz;
+  auto node_xyz = [&](Index v) {
+    if (sphere) return (*sphere)[v];
+    const Point2 w = m.world(v);
+    return Point3{w.x, w.y, z_of(m, v)};
+  };
   auto box_of = [&](const std::vector<Index>& ids, TextOut& out) {
-    Box2 b;
-    for (Index v : ids) b.add(m.world(v));
-    if (b.empty()) b.add({0, 0});
-    out.num(b.lo.x).sp().num(b.lo.y).sp().num(zmin).sp().num(b.hi.x).sp().num(b.hi.y).sp().num(zmax);
+    Box3 b;
+    for (Index v : ids) b.add(node_xyz(v));
+    if (b.empty()) b.add({0, 0, 0});
+    if (!sphere) b.lo.z = zmin, b.hi.z = zmax;
+    out.num(b.lo.x).sp().num(b.lo.y).sp().num(b.lo.z).sp().num(b.hi.x).sp().num(b.hi.y).sp().num(b.hi.z);
   };
 
   TempFile tf(path);
   TextOut out(tf.stream(), path);
   out.str("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
-  if (!o.title.empty()) out.str("$Comments\n").str(one_line(o.title)).str("\n$EndComments\n");
+  if (!o.title.empty() || sphere) {
+    out.str("$Comments\n");
+    if (!o.title.empty()) out.str(one_line(o.title)).nl();
+    if (sphere) out.str(detail::kMshSphereComment).sp().num(o.sphere_radius).nl();
+    out.str("$EndComments\n");
+  }
   out.str("$PhysicalNames\n").num(static_cast<std::uint64_t>(markers.size() + 1)).nl();
   for (std::int32_t mk : markers)
     out.str("1 ").num(physical_tag(mk)).str(" \"").str(detail::kind_name(mk)).str("\"").nl();
@@ -126,8 +149,8 @@ void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOpti
     out.str("2 1 0 ").num(nv).nl();
     for (std::uint64_t v = 1; v <= nv; ++v) out.num(v).nl();
     for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      Point2 w = m.world(static_cast<Index>(v));
-      out.num(w.x).sp().num(w.y).sp().num(z_of(m, v)).nl();
+      const Point3 p = node_xyz(static_cast<Index>(v));
+      out.num(p.x).sp().num(p.y).sp().num(p.z).nl();
     }
   }
   out.str("$EndNodes\n");
@@ -158,6 +181,7 @@ void write_msh(const mesh::MeshView& m, const std::string& path, const WriteOpti
     }
   }
   out.str("$EndElements\n");
+  if (sphere && !m.z.empty()) write_msh_node_data(m.z, "z", out);
   out.flush();
   tf.commit();
 }
@@ -213,6 +237,21 @@ void write_node_ele(const mesh::MeshView& m, const std::string& path, const Writ
 }
 
 // ------------------------------------------------------------------ VTK XML unstructured grid
+// Longitude and latitude (degrees) of Earth-centred points, as point data: a globe's points are
+// x, y, z, and users colour or threshold by lon/lat.
+template <class ArrayFn>
+void write_vtu_lonlat(const std::vector<Point3>& xyz, ArrayFn& array) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  std::vector<double> lon(xyz.size()), lat(xyz.size());
+  for (std::size_t v = 0; v < xyz.size(); ++v) {
+    const Point3 p = xyz[v];
+    lon[v] = std::atan2(p.y, p.x) * kDeg;
+    lat[v] = std::atan2(p.z, std::hypot(p.x, p.y)) * kDeg;
+  }
+  array("lon", lon);
+  array("lat", lat);
+}
+
 void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   TempFile tf(path);
   TextOut out(tf.stream(), path);
@@ -224,7 +263,13 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
     out.str("<!-- ").str(t).str(" -->\n");
   }
   out.str("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-  out.str("<UnstructuredGrid>\n<Piece NumberOfPoints=\"").num(static_cast<std::uint64_t>(m.vertices.size()))
+  const std::vector<Point3>* sphere = o.sphere_xyz;
+  out.str("<UnstructuredGrid>\n");
+  if (sphere) {  // the radius the points lie on, for readers that want lon/lat back
+    out.str("<FieldData>\n<DataArray type=\"Float64\" Name=\"sphere_radius_m\" NumberOfTuples=\"1\" format=\"ascii\">\n")
+        .num(o.sphere_radius).str("\n</DataArray>\n</FieldData>\n");
+  }
+  out.str("<Piece NumberOfPoints=\"").num(static_cast<std::uint64_t>(m.vertices.size()))
       .str("\" NumberOfCells=\"").num(static_cast<std::uint64_t>(m.triangles.size())).str("\">\n");
   auto array = [&](const char* name, const std::vector<double>& v) {
     out.str("<DataArray type=\"Float64\" Name=\"").str(name).str("\" format=\"ascii\">\n");
@@ -234,6 +279,7 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
   out.str("<PointData>\n");
   if (!m.z.empty()) array("z", m.z);
   if (!m.f.empty()) array("f", m.f);
+  if (sphere) write_vtu_lonlat(*sphere, array);
   out.str("</PointData>\n<CellData>\n");
   {
     std::vector<double> ang(m.triangles.size());
@@ -253,6 +299,11 @@ void write_vtu(const mesh::MeshView& m, const std::string& path, const WriteOpti
   }
   out.str("</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
   for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    if (sphere) {
+      const Point3 p = (*sphere)[v];
+      out.num(p.x).sp().num(p.y).sp().num(p.z).nl();
+      continue;
+    }
     Point2 w = m.world(static_cast<Index>(v));
     out.num(w.x).sp().num(w.y).str(" 0").nl();
   }
@@ -275,6 +326,9 @@ void write_mesh(const mesh::MeshView& mesh, const std::string& path, Format form
   // A database, not a file; it names itself without its password in every message.
   if (format == Format::kPostgis) return detail::write_postgis(mesh, path, options);
   detail::validate_for_output(mesh, path);
+  if (options.sphere_xyz && options.sphere_xyz->size() != mesh.vertices.size())
+    detail::fail_output(path, "invalid mesh: " + std::to_string(options.sphere_xyz->size()) +
+                                  " points on the sphere for " + std::to_string(mesh.vertices.size()) + " vertices");
   // Writers throw kOutputError themselves; anything else (out of memory, a sizing field that
   // throws) is reported as an output error too, after the temp file has been removed.
   try {

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "base/point3.hpp"
 #include "io/postgis_options.hpp"
 #include "mesh/mesh_view.hpp"
 #include "sizing/sizing_field.hpp"
@@ -65,6 +66,11 @@ struct WriteOptions {
   // GeoPackage in lon/lat of a global mesh: triangles and boundary lines across the antimeridian
   // written with their longitudes continued past +-180 (io/antimeridian_ll.hpp).
   bool continue_across_antimeridian = false;
+  // A global mesh on the sphere: Earth-centred Cartesian coordinates in metres, one per vertex, on
+  // the sphere of radius `sphere_radius`. VTU and msh write them as node coordinates (what
+  // sphere-based models and 3D viewers take); the other formats keep the mesh's own coordinates.
+  const std::vector<Point3>* sphere_xyz = nullptr;
+  double sphere_radius = 0;
   // Per-triangle values precomputed in the metric frame (used instead of computing them from the
   // written coordinates, e.g. when nodes are reprojected to lon/lat by --output-crs).
   const std::vector<double>* triangle_r_over_f = nullptr;

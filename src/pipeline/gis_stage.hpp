@@ -42,7 +42,14 @@ struct PreparedInput {
   // what measures the finished mesh on the sphere (figures appended to coast_figures).
   std::shared_ptr<const gis::StereoSpacing> sphere_f;
   std::shared_ptr<const gis::LonLatRaster> lonlat_dem;
-  std::function<void(const mesh::MeshView&, std::vector<std::pair<std::string, double>>&)> sphere_figures;
+  // Its arguments: the mesh, input_boundary (the coast deviation on the sphere), the figures.
+  std::function<void(const mesh::MeshView&, const std::vector<std::pair<Point2, Point2>>&,
+                     std::vector<std::pair<std::string, double>>&)>
+      sphere_figures;
+  // --global: the vertices of a mesh in this frame on the sphere of radius sphere_radius (Earth-
+  // centred x, y, z in metres), what the VTU and msh outputs are written in.
+  std::function<std::vector<Point3>(const mesh::MeshView&)> sphere_xyz;
+  double sphere_radius = 0;
   // Model-readiness inputs for the report (GIS runs).
   double hmin = 0;                        // metres
   std::vector<std::pair<Point2, Point2>> input_boundary;  // input domain rings, local frame

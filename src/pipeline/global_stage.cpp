@@ -5,6 +5,7 @@
 #include <numbers>
 #include "base/error.hpp"
 #include "base/num_format.hpp"
+#include "gis/global_coast.hpp"
 #include "gis/global_measure.hpp"
 
 namespace fdr::pipeline {
@@ -27,6 +28,42 @@ std::vector<Point3> shore_points(const pslg::Pslg& raw, const gis::SphereStereo&
 }
 
 }  // namespace
+
+void add_sphere_coast_deviation(const mesh::MeshView& m, const std::vector<std::pair<Point2, Point2>>& input_boundary,
+                                const gis::SphereStereo& proj, double hmin, const LogFn& log,
+                                std::vector<std::pair<std::string, double>>& out) {
+  auto unit = [&](Point2 local) { return gis::unit_vector(proj.inverse(m.origin + local)); };
+  std::vector<gis::SphereArc> input, mesh;
+  input.reserve(input_boundary.size());
+  for (const auto& [a, b] : input_boundary) input.push_back({unit(a), unit(b)});
+  for (const auto& e : m.edges)
+    if (e.marker == static_cast<int>(EdgeKind::kLand) || e.marker == static_cast<int>(EdgeKind::kIsland))
+      mesh.push_back({unit(m.vertices[e.a]), unit(m.vertices[e.b])});
+  if (input.empty() || mesh.empty()) return;
+  const gis::SphereDeviation in_mesh = gis::sphere_deviation(input, mesh, 0.5 * hmin, proj.radius());
+  const gis::SphereDeviation mesh_in = gis::sphere_deviation(mesh, input, 0.5 * hmin, proj.radius());
+  out.push_back({"sphere_coast_input_to_mesh_max_m", in_mesh.max_m});
+  out.push_back({"sphere_coast_input_to_mesh_p99_m", in_mesh.p99_m});
+  out.push_back({"sphere_coast_input_to_mesh_max_lon", in_mesh.max_at.lon_deg});
+  out.push_back({"sphere_coast_input_to_mesh_max_lat", in_mesh.max_at.lat_deg});
+  out.push_back({"sphere_coast_mesh_to_input_max_m", mesh_in.max_m});
+  out.push_back({"sphere_coast_mesh_to_input_p99_m", mesh_in.p99_m});
+  out.push_back({"sphere_coast_mesh_to_input_max_lon", mesh_in.max_at.lon_deg});
+  out.push_back({"sphere_coast_mesh_to_input_max_lat", mesh_in.max_at.lat_deg});
+  if (log)
+    log(LogLevel::kInfo, "coast deviation on the sphere: input -> mesh p99 " + num6(in_mesh.p99_m) + " m, max " +
+                             num6(in_mesh.max_m) + " m at (" + num6(in_mesh.max_at.lon_deg) + ", " +
+                             num6(in_mesh.max_at.lat_deg) + "); mesh -> input p99 " + num6(mesh_in.p99_m) + " m, max " +
+                             num6(mesh_in.max_m) + " m (" + std::to_string(in_mesh.samples) + " and " +
+                             std::to_string(mesh_in.samples) + " samples)");
+}
+
+std::vector<Point3> sphere_points(const mesh::MeshView& m, const gis::SphereStereo& proj) {
+  std::vector<Point3> out(m.vertices.size());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = gis::sphere_xyz(proj.inverse(m.world(static_cast<Index>(i))), proj.radius());
+  return out;
+}
 
 GisSpacing global_spacing(const Options& opt, const gis::GisInput& g, StageClock& clock, const LogFn& log) {
   auto info = [&](const std::string& s) { if (log) log(LogLevel::kInfo, s); };
@@ -111,9 +148,13 @@ void attach_sphere(PreparedInput& out, const GisSpacing& sp, const Options& opt,
   out.sphere_f = sp.sphere_f;
   out.lonlat_dem = sp.lonlat_dem;
   out.metadata.push_back({"sphere_radius_m", std::to_string(gis::kEarthRadius)});
-  out.sphere_figures = [sp, bound = opt.bound, md = opt.min_depth_m, log](const mesh::MeshView& m, auto& figs) {
+  out.sphere_figures = [sp, bound = opt.bound, md = opt.min_depth_m, log](const mesh::MeshView& m, const auto& coast,
+                                                                           auto& figs) {
     add_sphere_figures(m, sp, bound, sp.hmin, md, log, figs);
+    add_sphere_coast_deviation(m, coast, sp.sphere_f->projection(), sp.hmin, log, figs);
   };
+  out.sphere_radius = sp.sphere_f->projection().radius();
+  out.sphere_xyz = [sp](const mesh::MeshView& m) { return sphere_points(m, sp.sphere_f->projection()); };
 }
 
 }  // namespace fdr::pipeline

@@ -94,7 +94,7 @@ Result run(const Options& opt, const ProgressFn& progress, const LogFn& log) {
   }
   clock.lap("depths");
   if (in.sphere_figures) {  // --global: the mesh measured on the sphere, in the report's figures
-    in.sphere_figures(m, in.coast_figures);
+    in.sphere_figures(m, in.input_boundary, in.coast_figures);
     clock.lap("sphere");
   }
 

@@ -104,6 +104,11 @@ bool stores_triangle_values(const std::vector<io::Format>& formats) {
   });
 }
 
+bool writes_on_sphere(const std::vector<io::Format>& formats) {
+  return std::any_of(formats.begin(), formats.end(),
+                     [](io::Format fm) { return fm == io::Format::kVtu || fm == io::Format::kMsh; });
+}
+
 bool stores_metadata(const std::vector<io::Format>& formats) {
   return std::any_of(formats.begin(), formats.end(), [](io::Format fm) {
     return fm == io::Format::kGpkg || fm == io::Format::kUgrid || fm == io::Format::kDflowfm ||
@@ -131,6 +136,13 @@ WrittenOutputs write_outputs(const WriteInput& w, const WriteParams& p, Clock::t
     wo.triangle_area = &metric.area;
     wo.triangle_quality = &metric.quality;
     to_write = &projected;
+  }
+  // A global mesh: VTU and msh on the sphere, from the plane mesh (whatever --output-crs says).
+  std::vector<Point3> sphere;
+  if (w.in.sphere_xyz && writes_on_sphere(p.formats)) {
+    sphere = w.in.sphere_xyz(w.mesh);
+    wo.sphere_xyz = &sphere;
+    wo.sphere_radius = w.in.sphere_radius;
   }
   if (w.triangle_values) {
     wo.f = nullptr;  // m.f holds f at the vertices; the triangles' values come from the report

@@ -52,6 +52,10 @@ WrittenOutputs write_outputs(const WriteInput& w, const WriteParams& p, std::chr
 // True if one of the formats stores per-triangle R/f(c), angle and area (GPKG, VTU, UGRID).
 bool stores_triangle_values(const std::vector<io::Format>& formats);
 
+// True if one of the formats is written on the sphere for a --global run (VTU, msh: Earth-centred
+// x, y, z).
+bool writes_on_sphere(const std::vector<io::Format>& formats);
+
 // True if one of the formats stores the run's metadata, the JSON report among it (GPKG, UGRID,
 // D-Flow FM net file).
 bool stores_metadata(const std::vector<io::Format>& formats);
