@@ -56,7 +56,7 @@ Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineO
   if (opt_.frontal) {
     if (!(opt_.frontal_radius > 0 && opt_.frontal_radius < 1))
       throw Error(ExitCode::kUsage, "the frontal radius must lie in (0, 1) (a fraction of B f)");
-    front_ = std::make_unique<Front>();
+    front_ = std::make_unique<Front>(zframe_);
   }
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
@@ -166,7 +166,7 @@ void Refiner::evaluate(TriangleId t) {
   bool exempt = false;
   const double k = badness(t, &exempt);
   if (front_) {
-    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh, on the front or here
+    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh
     return;
   }
   if (k > 1) push_bad(t, k);
@@ -212,6 +212,7 @@ void Refiner::reserve(double expected_triangles) {
   // Why: growing by doubling would briefly hold old and new arrays (3x peak memory).
   const auto nt = static_cast<std::size_t>(expected_triangles * 1.1) + 64;
   tri_.reserve(nt, nt / 2 + 64);
+  if (front_) front_->reserve(nt);
 }
 
 void Refiner::init() {
@@ -366,11 +367,16 @@ void Refiner::split_triangle(const BadEntry& e) {
     seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
   } else if (loc.kind == cdt::LocateKind::kOnVertex) {
     ++stats_.stuck;
+    give_up(e.t);
     return;
   } else if (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)) {
     seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
   } else {
-    if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
+    if (!ins_.build_cavity(cc, loc)) {
+      ++stats_.stuck;
+      give_up(e.t);
+      return;
+    }
     for (HalfEdge h : ins_.boundary())
       if (T.constrained(h) && diametral(T.point(T.org(h)), T.point(T.dst(h)), cc) > 0)
         seg_tmp_.push_back({T.org(h), T.dst(h)});
@@ -392,12 +398,14 @@ void Refiner::split_triangle(const BadEntry& e) {
       const Point2 m = split_point(p, q, &apex, &ex);
       if (std::min(dist(T.point(p), m), dist(m, T.point(q))) < opt_.angle_split_min_f * f_(m)) {
         ++stats_.exempt_small_angle;
+        give_up(e.t);
         return;
       }
     }
   }
   if (!may_split_for(e, seg_tmp_)) {
     ++stats_.exempt_small_angle;
+    give_up(e.t);
     return;
   }
   enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());

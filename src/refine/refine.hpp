@@ -119,6 +119,8 @@ class Refiner {
   static constexpr double kLongEdge = 0.95;
   void after_insert(Index v);
   void queue_fresh(const std::vector<TriangleId>& fresh, Index v);
+  bool borders_dropped(TriangleId t) const;
+  void give_up(TriangleId t);
   Point2 steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
   bool below_floor(Point2 a, Point2 b, Point2 c) const;
@@ -139,6 +141,7 @@ class Refiner {
   cdt::Inserter ins_;
   double b2_inv_ = 1, rho2_inv_ = 0, off_cot_ = 0;
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
+  std::vector<TriangleId> off_front_;  // queue_fresh's bad new triangles off the front
   SpatialBuckets queue_;  // the largest-R/f(c)-first queue
   bool conforming_done_ = false;
   MortonFrame zframe_;

@@ -155,11 +155,13 @@ TEST(Front, NoteNewQueuesOldBadNeighboursOfAcceptedTriangles) {
   Index v = kNoId;
   for (Index k = 0; k < 3; ++k)
     if (T.corner(live[1], static_cast<int>(k)) != T.corner(live[0], 2)) v = T.corner(live[1], static_cast<int>(k));
-  F.note_new(T, {live[1]}, v);
+  std::vector<TriangleId> off;
+  F.note_new(T, {live[1]}, v, &off);
   refine::Front::Entry e;
   ASSERT_TRUE(F.pop(&e));
   EXPECT_EQ(e.t, live[0]);
   EXPECT_TRUE(F.empty());
+  EXPECT_TRUE(off.empty());
 }
 
 namespace {
