@@ -480,6 +480,7 @@ bool Refiner::step() {
     split_triangle(e);
     return true;
   }
+  if (front_ && queue_missed()) return true;
   return !enc_.empty();
 }
 

@@ -121,6 +121,7 @@ class Refiner {
   void queue_fresh(const std::vector<TriangleId>& fresh, Index v);
   bool borders_dropped(TriangleId t) const;
   void give_up(TriangleId t);
+  bool queue_missed();
   Point2 steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
   bool below_floor(Point2 a, Point2 b, Point2 c) const;
@@ -142,6 +143,7 @@ class Refiner {
   double b2_inv_ = 1, rho2_inv_ = 0, off_cot_ = 0;
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
   std::vector<TriangleId> off_front_;  // queue_fresh's bad new triangles off the front
+  std::uint64_t swept_at_ = ~std::uint64_t{0};  // Steiner count at queue_missed's last sweep
   SpatialBuckets queue_;  // the largest-R/f(c)-first queue
   bool conforming_done_ = false;
   MortonFrame zframe_;

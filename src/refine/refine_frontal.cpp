@@ -47,6 +47,20 @@ void Refiner::give_up(TriangleId t) {
   }
 }
 
+// Why: refinement ends only when no bad triangle is left that it did not give up on, whether or
+// not the front and give_up reached every one; one sweep per new vertex count, so it cannot spin.
+bool Refiner::queue_missed() {
+  if (swept_at_ == stats_.steiner()) return false;
+  swept_at_ = stats_.steiner();
+  bool any = false;
+  for (TriangleId t = 0; t < tri_.num_slots(); ++t)
+    if (!tri_.dead(t) && front_->bad(t) && !front_->dropped(t)) {
+      push_bad(t, front_->key(t));
+      any = true;
+    }
+  return any;
+}
+
 // The front edge of t to build on: an edge on the front no longer than the triangle the front
 // asks for there (a longer one would give a point on or inside its diametral circle; such a
 // triangle waits for the circumcentre rule), the one nearest that size. *rho: the circumradius
