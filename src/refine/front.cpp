@@ -35,40 +35,34 @@ int Front::bucket_of(double key) {
   return std::clamp(i, 0, kSub * kDoublings - 1);
 }
 
-void Front::offer(const mesh::Triangulation& T, TriangleId t) {
-  if (!bad(t) || !has_front_edge(T, t)) return;
-  const int b = bucket_of(key_[t]);
-  buckets_[static_cast<std::size_t>(b)].push_back({t, T.corner(t, 2)});
-  ++size_;
-  top_ = std::max(top_, b);
+void Front::push(const mesh::Triangulation& T, TriangleId t) {
+  queue_.push(bucket_of(key(t)), {t, T.corner(t, 2), frame_.code(T.point(T.corner(t, 0)))});
 }
 
-void Front::note_new(const mesh::Triangulation& T, const std::vector<TriangleId>& fresh, Index v) {
+bool Front::offer(const mesh::Triangulation& T, TriangleId t) {
+  if (!bad(t) || !has_front_edge(T, t)) return false;
+  push(T, t);
+  return true;
+}
+
+void Front::note_new(const mesh::Triangulation& T, const std::vector<TriangleId>& fresh, Index v,
+                     std::vector<TriangleId>* off) {
   for (TriangleId t : fresh) {
     if (bad(t)) {
-      offer(T, t);
+      if (!offer(T, t)) off->push_back(t);
       continue;
     }
-    // An accepted new triangle makes its bad neighbours front triangles; bad new neighbours are
-    // offered in their own turn (each is in `fresh`), so only old ones are offered here (a
-    // triangle of a repair flip may be offered twice: the second entry is then stale or waits).
+    // An accepted new triangle makes its bad neighbours front triangles (the edge they share is a
+    // front edge); bad new neighbours are offered in their own turn (each is in `fresh`), so only
+    // old ones are queued here (a triangle of a repair flip may be queued twice: the second entry
+    // is then stale or waits).
     for (Index k = 0; k < 3; ++k) {
       const HalfEdge h = 3 * t + k;
       if (T.constrained(h) || T.twin(h) == kNoId) continue;
       const TriangleId n = mesh::tri_of(T.twin(h));
-      if (bad(n) && T.corner(n, 2) != v) offer(T, n);
+      if (bad(n) && T.corner(n, 2) != v) push(T, n);
     }
   }
-}
-
-bool Front::pop(Entry* e) {
-  if (size_ == 0) return false;
-  while (buckets_[static_cast<std::size_t>(top_)].empty()) --top_;
-  auto& b = buckets_[static_cast<std::size_t>(top_)];
-  *e = b.back();
-  b.pop_back();
-  --size_;
-  return true;
 }
 
 }  // namespace fdr::refine

@@ -4,11 +4,11 @@
 #include "refine/refine.hpp"
 #include "base/triangle_geometry.hpp"
 #include <algorithm>
-#include <type_traits>
 #include <utility>
 #include <cmath>
 #include <numbers>
 #include <cstdlib>
+#include <span>
 #include <sstream>
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
@@ -47,27 +47,16 @@ int bucket_of(double key2) {
 }  // namespace
 
 Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt)
-    : tri_(tri), f_(f), opt_(opt), ins_(tri), buckets_(kBuckets), sorted_(kBuckets, 0) {
+    : tri_(tri), f_(f), opt_(opt), ins_(tri), queue_(kBuckets) {
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
-  if (tri_.num_vertices() > 0) {
-    Point2 lo = tri_.point(0), hi = tri_.point(0);
-    for (const Point2& q : tri_.points()) {
-      lo.x = std::min(lo.x, q.x);
-      lo.y = std::min(lo.y, q.y);
-      hi.x = std::max(hi.x, q.x);
-      hi.y = std::max(hi.y, q.y);
-    }
-    zlo_ = lo;
-    const double w = std::max(hi.x - lo.x, hi.y - lo.y);
-    zscale_ = w > 0 ? 65535.0 / w : 0.0;
-  }
+  zframe_ = MortonFrame::of(std::span<const Point2>(tri_.points().data(), tri_.points().size()));
   mark_clusters();
   if (opt_.frontal) {
     if (!(opt_.frontal_radius > 0 && opt_.frontal_radius < 1))
       throw Error(ExitCode::kUsage, "the frontal radius must lie in (0, 1) (a fraction of B f)");
-    front_ = std::make_unique<Front>();
+    front_ = std::make_unique<Front>(zframe_);
   }
   if (opt_.min_angle_deg > 0) {
     if (opt_.min_angle_deg >= 60) throw Error(ExitCode::kUsage, "--min-angle must be below 60 degrees");
@@ -165,51 +154,11 @@ double Refiner::badness(TriangleId t, bool* exempt) const {
   return key > 1 ? key : 0;
 }
 
-namespace {
-std::uint32_t spread16(std::uint32_t x) {
-  x &= 0xffff;
-  x = (x | (x << 8)) & 0x00ff00ffu;
-  x = (x | (x << 4)) & 0x0f0f0f0fu;
-  x = (x | (x << 2)) & 0x33333333u;
-  x = (x | (x << 1)) & 0x55555555u;
-  return x;
-}
-}  // namespace
-
 Refiner::~Refiner() = default;
 
-void Refiner::push_entry(Bucket& b, const BadEntry& e) {
-  if (b.n == b.chunks.size() << kChunkShift) {
-    if (free_chunks_.empty()) {
-      chunk_store_.emplace_back(new BadEntry[kChunkEntries]);
-      free_chunks_.push_back(chunk_store_.back().get());
-    }
-    b.chunks.push_back(free_chunks_.back());
-    free_chunks_.pop_back();
-  }
-  b[b.n++] = e;
-}
-
-void Refiner::pop_entry(Bucket& b) {
-  --b.n;
-  // A chunk goes back once the bucket is a whole chunk below it (one chunk of slack: a bucket
-  // that grows and shrinks across a chunk boundary does not trade it every time).
-  if (b.chunks.size() >= 2 && b.n + 2 * kChunkEntries <= b.chunks.size() << kChunkShift) {
-    free_chunks_.push_back(b.chunks.back());
-    b.chunks.pop_back();
-  }
-}
-
 void Refiner::push_bad(TriangleId t, double key2) {
-  const int b = bucket_of(key2);
-  const Index a = tri_.corner(t, 0);
-  // Morton code of the first corner (the triangle is in cache now), for the spatial sort below.
-  const Point2 p = tri_.point(a);
-  const double gx = std::clamp((p.x - zlo_.x) * zscale_, 0.0, 65535.0);
-  const double gy = std::clamp((p.y - zlo_.y) * zscale_, 0.0, 65535.0);
-  const std::uint32_t z = spread16(static_cast<std::uint32_t>(gx)) | (spread16(static_cast<std::uint32_t>(gy)) << 1);
-  push_entry(buckets_[b], {t, tri_.corner(t, 2), z});
-  if (b > top_) top_ = b;
+  // Morton code of the first corner (the triangle is in cache now), for the queue's spatial order.
+  queue_.push(bucket_of(key2), {t, tri_.corner(t, 2), zframe_.code(tri_.point(tri_.corner(t, 0)))});
 }
 
 void Refiner::evaluate(TriangleId t) {
@@ -217,7 +166,7 @@ void Refiner::evaluate(TriangleId t) {
   bool exempt = false;
   const double k = badness(t, &exempt);
   if (front_) {
-    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh, on the front or here
+    front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh
     return;
   }
   if (k > 1) push_bad(t, k);
@@ -263,6 +212,7 @@ void Refiner::reserve(double expected_triangles) {
   // Why: growing by doubling would briefly hold old and new arrays (3x peak memory).
   const auto nt = static_cast<std::size_t>(expected_triangles * 1.1) + 64;
   tri_.reserve(nt, nt / 2 + 64);
+  if (front_) front_->reserve(nt);
 }
 
 void Refiner::init() {
@@ -417,11 +367,16 @@ void Refiner::split_triangle(const BadEntry& e) {
     seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
   } else if (loc.kind == cdt::LocateKind::kOnVertex) {
     ++stats_.stuck;
+    give_up(e.t);
     return;
   } else if (loc.kind == cdt::LocateKind::kOnEdge && T.constrained(loc.he)) {
     seg_tmp_.push_back({T.org(loc.he), T.dst(loc.he)});
   } else {
-    if (!ins_.build_cavity(cc, loc)) { ++stats_.stuck; return; }
+    if (!ins_.build_cavity(cc, loc)) {
+      ++stats_.stuck;
+      give_up(e.t);
+      return;
+    }
     for (HalfEdge h : ins_.boundary())
       if (T.constrained(h) && diametral(T.point(T.org(h)), T.point(T.dst(h)), cc) > 0)
         seg_tmp_.push_back({T.org(h), T.dst(h)});
@@ -443,12 +398,14 @@ void Refiner::split_triangle(const BadEntry& e) {
       const Point2 m = split_point(p, q, &apex, &ex);
       if (std::min(dist(T.point(p), m), dist(m, T.point(q))) < opt_.angle_split_min_f * f_(m)) {
         ++stats_.exempt_small_angle;
+        give_up(e.t);
         return;
       }
     }
   }
   if (!may_split_for(e, seg_tmp_)) {
     ++stats_.exempt_small_angle;
+    give_up(e.t);
     return;
   }
   enc_.insert(enc_.end(), seg_tmp_.begin(), seg_tmp_.end());
@@ -497,54 +454,6 @@ RefineLeftovers Refiner::leftovers(bool with_r_over_f) const {
   return r;
 }
 
-// Why: a bucket reached by descending holds entries pushed long ago all over the domain; taken in
-// push order they miss the cache at nearly every step. Taken in Morton order of their first corner,
-// consecutive entries are neighbours and share the cache lines they touch. Entries pushed later
-// into the same bucket are taken first (newest first), while they are still in cache. In place:
-// no second buffer at the memory peak.
-namespace {
-// In-place MSD radix sort by descending z of the bucket's entries [lo, hi) (American flag sort, 8
-// bits a level; ranges under 64 entries by std::sort). Deterministic: the same input always gives
-// the same order (the order the same sort over one array gave).
-template <class B>
-void radix_desc(B& b, std::size_t lo, std::size_t hi, int shift) {
-  using E = std::remove_reference_t<decltype(b[lo])>;
-  const std::size_t n = hi - lo;
-  if (n < 64) {  // (shift stays >= 0: the recursion ends with the last byte)
-    E tmp[64];
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = b[lo + i];
-    std::sort(tmp, tmp + n, [](const E& x, const E& y) { return x.z > y.z; });
-    for (std::size_t i = 0; i < n; ++i) b[lo + i] = tmp[i];
-    return;
-  }
-  std::size_t count[256] = {}, start[256], next[256];
-  auto digit = [shift](const E& e) { return 255u - ((e.z >> shift) & 255u); };
-  for (std::size_t p = lo; p != hi; ++p) ++count[digit(b[p])];
-  std::size_t sum = lo;
-  for (int d = 0; d < 256; ++d) {
-    start[d] = next[d] = sum;
-    sum += count[d];
-  }
-  for (int d = 0; d < 256; ++d) {
-    const std::size_t end = start[d] + count[d];
-    while (next[d] < end) {
-      E e = b[next[d]];
-      unsigned g = digit(e);
-      while (g != static_cast<unsigned>(d)) {  // each swap puts one entry in its final bin
-        std::swap(e, b[next[g]++]);
-        g = digit(e);
-      }
-      b[next[d]++] = e;
-    }
-  }
-  if (shift == 0) return;
-  for (int d = 0; d < 256; ++d)
-    if (count[d] > 1) radix_desc(b, start[d], start[d] + count[d], shift - 8);
-}
-}  // namespace
-
-void Refiner::sort_spatially(Bucket& bk) { radix_desc(bk, 0, bk.size(), 24); }
-
 bool Refiner::step() {
   if (stats_.steiner() >= opt_.max_steiner)
     throw Error(ExitCode::kWorkLimit, "Steiner point cap reached (--max-steiner " + std::to_string(opt_.max_steiner) +
@@ -558,36 +467,11 @@ bool Refiner::step() {
   }
   if (!conforming_done_) record_conforming();  // no encroached subsegment left: this is M_c
   if (front_ && step_front()) return true;
-  while (top_ >= 0) {
-    auto& bk = buckets_[top_];
-    if (bk.empty()) {
-      --top_;
-      sort_next_ = true;
-      continue;
-    }
-    if (sort_next_) {
-      // Why only when the unsorted tail is at least as long as the sorted part: the queue can
-      // climb to a higher bucket and come back many times (segment splits near a coast); sorting
-      // the whole bucket each time would be quadratic. This way each entry is sorted O(1) times.
-      std::size_t& ns = sorted_[static_cast<std::size_t>(top_)];
-      if (bk.size() - ns >= ns) {
-        sort_spatially(bk);
-        ns = bk.size();
-      }
-      sort_next_ = false;
-    }
-    const BadEntry e = bk[bk.size() - 1];
-    pop_entry(bk);
-    {
-      std::size_t& ns = sorted_[static_cast<std::size_t>(top_)];
-      if (ns > bk.size()) ns = bk.size();
-    }
+  BadEntry e;
+  while (queue_.pop(&e)) {
     // The entries a few places down the bucket are known now: fetch what they will touch first.
     constexpr std::size_t kAhead = 6;
-    if (bk.size() >= kAhead) {
-      const BadEntry& n = bk[bk.size() - kAhead];
-      tri_.prefetch(n.t, n.c);
-    }
+    if (const BadEntry* n = queue_.ahead(kAhead)) tri_.prefetch(n->t, n->c);
     const auto& T = tri_;
     // Stale entry: the triangle was destroyed (and its slot maybe reused). During refinement every
     // triangle is made by Inserter::commit with the new vertex as third corner, so slot and third
@@ -596,6 +480,7 @@ bool Refiner::step() {
     split_triangle(e);
     return true;
   }
+  if (front_ && queue_missed()) return true;
   return !enc_.empty();
 }
 

@@ -10,6 +10,7 @@
 #include "cdt/insert.hpp"
 #include "mesh/triangulation.hpp"
 #include "refine/front.hpp"
+#include "refine/spatial_buckets.hpp"
 #include "sizing/sizing_field.hpp"
 
 namespace fdr::refine {
@@ -102,24 +103,7 @@ class Refiner {
 
  private:
   // t: slot, c: its third corner when queued (identifies the triangle), z: Morton code of corner 0.
-  struct BadEntry { TriangleId t; Index c; std::uint32_t z; };
-  // A bucket of the queue: its entries in chunks of kChunkEntries taken from the refiner's pool
-  // and given back when the bucket shrinks. Why: grown by doubling, every bucket copied its entries
-  // into fresh pages and freed the old ones, a large share of the run's page faults; a chunk
-  // another bucket gave back has its pages.
-  static constexpr std::size_t kChunkShift = 10;  // 1 024 entries, 12 KiB
-  static constexpr std::size_t kChunkEntries = std::size_t{1} << kChunkShift;
-  struct Bucket {
-    std::vector<BadEntry*> chunks;
-    std::size_t n = 0;
-    BadEntry& operator[](std::size_t i) { return chunks[i >> kChunkShift][i & (kChunkEntries - 1)]; }
-    const BadEntry& operator[](std::size_t i) const { return chunks[i >> kChunkShift][i & (kChunkEntries - 1)]; }
-    std::size_t size() const { return n; }
-    bool empty() const { return n == 0; }
-  };
-  void push_entry(Bucket& b, const BadEntry& e);
-  void pop_entry(Bucket& b);
-  void sort_spatially(Bucket& bk);
+  using BadEntry = SpatialBuckets::Entry;
   void evaluate(TriangleId t);
   void push_bad(TriangleId t, double key2);
   void check_encroached_edges(TriangleId t);
@@ -135,6 +119,9 @@ class Refiner {
   static constexpr double kLongEdge = 0.95;
   void after_insert(Index v);
   void queue_fresh(const std::vector<TriangleId>& fresh, Index v);
+  bool borders_dropped(TriangleId t) const;
+  void give_up(TriangleId t);
+  bool queue_missed();
   Point2 steiner_point(Point2 a, Point2 b, Point2 c, bool angle_bad_only) const;
   bool angle_only(Point2 a, Point2 b, Point2 c) const;
   bool below_floor(Point2 a, Point2 b, Point2 c) const;
@@ -155,15 +142,11 @@ class Refiner {
   cdt::Inserter ins_;
   double b2_inv_ = 1, rho2_inv_ = 0, off_cot_ = 0;
   std::vector<std::pair<Index, Index>> enc_, seg_tmp_;
-  std::vector<Bucket> buckets_;
-  std::vector<std::unique_ptr<BadEntry[]>> chunk_store_;  // every chunk made (freed with the refiner)
-  std::vector<BadEntry*> free_chunks_;                    // chunks no bucket holds
-  int top_ = -1;
-  bool sort_next_ = false;
+  std::vector<TriangleId> off_front_;  // queue_fresh's bad new triangles off the front
+  std::uint64_t swept_at_ = ~std::uint64_t{0};  // Steiner count at queue_missed's last sweep
+  SpatialBuckets queue_;  // the largest-R/f(c)-first queue
   bool conforming_done_ = false;
-  std::vector<std::size_t> sorted_;  // per bucket: its first sorted_[b] entries are in Morton order
-  Point2 zlo_{0, 0};
-  double zscale_ = 0;
+  MortonFrame zframe_;
   // Per Steiner point on a segment (Triangulation::segment_vertex_index), the concentric shell
   // it was placed on: the input vertex at the centre and the radius's power of two (apex kNoId:
   // a midpoint).

@@ -13,13 +13,52 @@ namespace fdr::refine {
 using mesh::VertexKind;
 using predicates::diametral;
 
-// Frontal mode: bad triangles on the front go to the front's queue, the others to the
-// largest-first queue. Why not both: the front takes nearly every triangle, and its entries
-// would lie stale in the largest-first queue until the end (memory).
+// Frontal mode: bad triangles on the front go to the front's queue; the bad ones off it wait for
+// the front to reach them, except next to a triangle refinement gave up on (see give_up).
 void Refiner::queue_fresh(const std::vector<TriangleId>& fresh, Index v) {
-  front_->note_new(tri_, fresh, v);
-  for (TriangleId t : fresh)
-    if (front_->bad(t) && !front_->has_front_edge(tri_, t)) push_bad(t, front_->key(t));
+  off_front_.clear();
+  front_->note_new(tri_, fresh, v, &off_front_);
+  for (TriangleId t : off_front_)
+    if (borders_dropped(t)) push_bad(t, front_->key(t));
+}
+
+bool Refiner::borders_dropped(TriangleId t) const {
+  const auto& T = tri_;
+  for (Index k = 0; k < 3; ++k) {
+    const HalfEdge w = T.twin(3 * t + k);
+    if (w != kNoId && !T.constrained(3 * t + k) && front_->dropped(mesh::tri_of(w))) return true;
+  }
+  return false;
+}
+
+// Why: a bad triangle off the front waits until the front reaches it, which happens unless every
+// way there leads through triangles refinement leaves bad (an exempt angle, no usable split
+// point); those do not make front edges, so their bad neighbours off the front are queued for the
+// circumcentre rule here, and new ones beside them by queue_fresh.
+void Refiner::give_up(TriangleId t) {
+  if (!front_) return;
+  front_->drop(t);
+  const auto& T = tri_;
+  for (Index k = 0; k < 3; ++k) {
+    const HalfEdge w = T.twin(3 * t + k);
+    if (w == kNoId || T.constrained(3 * t + k)) continue;
+    const TriangleId n = mesh::tri_of(w);
+    if (front_->bad(n) && !front_->dropped(n) && !front_->has_front_edge(T, n)) push_bad(n, front_->key(n));
+  }
+}
+
+// Why: refinement ends only when no bad triangle is left that it did not give up on, whether or
+// not the front and give_up reached every one; one sweep per new vertex count, so it cannot spin.
+bool Refiner::queue_missed() {
+  if (swept_at_ == stats_.steiner()) return false;
+  swept_at_ = stats_.steiner();
+  bool any = false;
+  for (TriangleId t = 0; t < tri_.num_slots(); ++t)
+    if (!tri_.dead(t) && front_->bad(t) && !front_->dropped(t)) {
+      push_bad(t, front_->key(t));
+      any = true;
+    }
+  return any;
 }
 
 // The front edge of t to build on: an edge on the front no longer than the triangle the front
@@ -137,9 +176,11 @@ bool Refiner::split_long_front_segment(TriangleId t) {
 bool Refiner::step_front() {
   Front::Entry f;
   while (front_->pop(&f)) {
+    constexpr std::size_t kAhead = 6;  // as in step(): fetch what an entry a few pops on touches
+    if (const Front::Entry* n = front_->ahead(kAhead)) tri_.prefetch(n->t, n->c);
     const auto& T = tri_;
     if (T.dead(f.t) || T.corner(f.t, 2) != f.c || !front_->bad(f.t)) continue;
-    const BadEntry e{f.t, f.c, 0};
+    const BadEntry e = f;
     const Frontal r = split_frontal(e);
     if (r == Frontal::kWait) {
       push_bad(e.t, front_->key(e.t));  // for the circumcentre rule when the front is done

@@ -155,11 +155,13 @@ TEST(Front, NoteNewQueuesOldBadNeighboursOfAcceptedTriangles) {
   Index v = kNoId;
   for (Index k = 0; k < 3; ++k)
     if (T.corner(live[1], static_cast<int>(k)) != T.corner(live[0], 2)) v = T.corner(live[1], static_cast<int>(k));
-  F.note_new(T, {live[1]}, v);
+  std::vector<TriangleId> off;
+  F.note_new(T, {live[1]}, v, &off);
   refine::Front::Entry e;
   ASSERT_TRUE(F.pop(&e));
   EXPECT_EQ(e.t, live[0]);
   EXPECT_TRUE(F.empty());
+  EXPECT_TRUE(off.empty());
 }
 
 namespace {
@@ -213,6 +215,47 @@ TEST(FrontalRefine, RandomPslgsAndSmallAnglesHoldInvariants) {
     auto T = run(fdr::testing::wedge(deg), f, o);
     EXPECT_LE(max_r_over_f(T, f), 1 + 1e-12) << deg;
   }
+}
+
+// Triangles refinement gives up on (an exempt angle) make no front edges; the bad triangles behind
+// them must still be reached: every run ends with R/f(c) <= B.
+TEST(FrontalRefine, BadTrianglesBehindExemptOnesAreRefined) {
+  std::uint64_t exempt = 0;
+  for (unsigned seed = 0; seed < 30; ++seed) {
+    auto p = fdr::testing::random_pslg(seed, 10 + seed % 30, static_cast<int>(4 + seed % 9));
+    const double h = 0.25 + 0.1 * (seed % 5);
+    FnField f([h](Point2 q) { return h * (1 + 0.04 * q.y); });
+    refine::RefineOptions o;
+    o.frontal = true;
+    o.min_angle_deg = 30;
+    o.angle_split_min_f = 0.5;  // the GIS setting: angle-only splits near the boundary give up
+    refine::RefineStats st;
+    auto T = run(p, f, o, &st);
+    exempt += st.exempt_small_angle;
+    const auto r = mesh::check_all(T);
+    ASSERT_TRUE(r.ok()) << seed << ": " << (r.problems.empty() ? "" : r.problems[0]);
+    EXPECT_LE(max_r_over_f(T, f), 1 + 1e-12) << seed;
+  }
+  EXPECT_GT(exempt, 0u) << "no run gave up on a triangle: the test does not reach the case";
+}
+
+TEST(Front, DroppedTrianglesStayBad) {
+  auto T = two_triangles();
+  std::vector<TriangleId> live;
+  for (TriangleId t = 0; t < T.num_slots(); ++t)
+    if (!T.dead(t)) live.push_back(t);
+  refine::Front F;
+  F.set_key(live[0], 3.0);
+  F.set_key(live[1], 0.0);
+  EXPECT_FALSE(F.dropped(live[0]));
+  F.drop(live[0]);
+  EXPECT_TRUE(F.dropped(live[0]));
+  EXPECT_TRUE(F.bad(live[0]));
+  EXPECT_FLOAT_EQ(F.key(live[0]), 3.0f);
+  EXPECT_FALSE(F.front_edge(T, interior_edge(T, live[1])));  // a dropped neighbour makes no front
+  EXPECT_TRUE(F.offer(T, live[0]));  // offered again (it borders an accepted triangle): retried
+  F.set_key(live[0], 2.0);           // a new triangle in the slot
+  EXPECT_FALSE(F.dropped(live[0]));
 }
 
 TEST(FrontalRefine, StopsAtTheSteinerCap) {
