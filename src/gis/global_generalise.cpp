@@ -126,10 +126,51 @@ std::vector<Point2> densified(const std::vector<Point2>& r, double step) {
   return out;
 }
 
+// Land generalised in one plane: whole groups, or the land of large groups within a tile's
+// box and its halo, of which only the part in the core box (lon/lat) is kept.
 struct Batch {
-  std::vector<std::size_t> rings;
+  std::vector<std::vector<LonLat>> rings;
   std::size_t points = 0;
+  bool tile = false;
+  LonLatBox core;
 };
+
+// The parts of land rings (a plane's) inside the core box, widened by a hair so that the parts of
+// neighbouring tiles overlap and unite.
+std::vector<std::vector<Point2>> clip_to_core(std::vector<std::vector<Point2>> land, const LonLatBox& core,
+                                              const SphereStereo& local) {
+  constexpr double kHairDeg = 1e-5;
+  std::vector<LonLat> ll;
+  if (core.lon1 - core.lon0 >= 360) {  // a polar cap: its parallel
+    const double lat = core.lat0 > -90 ? core.lat0 - kHairDeg : core.lat1 + kHairDeg;
+    for (int k = 0; k < 3600; ++k) ll.push_back({-180 + 0.1 * k, lat});
+  } else {
+    ll = box_ring({core.lon0 - kHairDeg, std::max(-90.0, core.lat0 - kHairDeg), core.lon1 + kHairDeg,
+                   std::min(90.0, core.lat1 + kHairDeg)}, 0.1);
+  }
+  std::vector<Point2> box;
+  for (const LonLat& p : ll) {
+    const Point2 q = local.forward(p);
+    if (box.empty() || !(box.back() == q)) box.push_back(q);
+  }
+  const std::unique_ptr<OGRGeometry> core_poly = valid_copy(plane_polygon(box), "tile core");
+  std::vector<std::vector<Point2>> out;
+  for (const auto& r : land) {
+    const std::unique_ptr<OGRGeometry> v = valid_copy(plane_polygon(r), "generalised land");
+    std::unique_ptr<OGRGeometry> cut(v->Intersection(core_poly.get()));
+    if (!cut) throw Error(ExitCode::kInvalidGeometry, std::string("clipping generalised land to its tile failed: ") +
+                                                           CPLGetLastErrorMsg());
+    std::vector<const OGRPolygon*> ps;
+    collect_polygons(cut.get(), ps);
+    for (const OGRPolygon* p : ps) {
+      if (p->IsEmpty()) continue;
+      std::vector<Point2> q = curve_points(p->getExteriorRing());
+      if (q.size() >= 2 && q.front() == q.back()) q.pop_back();
+      if (q.size() >= 3) out.push_back(std::move(q));
+    }
+  }
+  return out;
+}
 
 struct BatchOut {
   std::vector<std::vector<LonLat>> rings;
@@ -142,21 +183,20 @@ struct BatchOut {
 // land) generalised with the widths times the plane's scale, the holes of that water back on the
 // sphere. The scale is the geometric mean of the plane's scale factors over the batch (1 at its
 // centre), so that ground widths are met within sqrt(largest factor) either way.
-BatchOut generalise_batch(const std::vector<std::vector<LonLat>>& rings, const Batch& b, LonLat pole,
-                          const coast::Options& ground, double reach, double step_m) {
+BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& ground, double reach, double step_m) {
   Point3 sum{0, 0, 0};
-  for (std::size_t i : b.rings)
-    for (const LonLat& p : rings[i]) sum = sum + unit_vector(p);
-  const Point3 c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[b.rings[0]][0]);
+  for (const auto& r : b.rings)
+    for (const LonLat& p : r) sum = sum + unit_vector(p);
+  const Point3 c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(b.rings[0][0]);
   const LonLat centre = to_lonlat(c);
   const SphereStereo local({centre.lon_deg > 0 ? centre.lon_deg - 180 : centre.lon_deg + 180, -centre.lat_deg});
   BatchOut out;
   double kmax = 1;
   std::vector<std::unique_ptr<OGRPolygon>> pieces;
-  for (std::size_t i : b.rings) {
+  for (std::size_t i = 0; i < b.rings.size(); ++i) {
     std::vector<Point2> pts;
-    pts.reserve(rings[i].size());
-    for (const LonLat& p : rings[i]) {
+    pts.reserve(b.rings[i].size());
+    for (const LonLat& p : b.rings[i]) {
       const Point2 q = local.forward(p);
       if (!std::isfinite(q.x) || !std::isfinite(q.y) || std::hypot(q.x, q.y) > 100 * local.radius())
         throw Error(ExitCode::kInvalidGeometry, "land near (" + std::to_string(p.lon_deg) + ", " +
@@ -167,7 +207,8 @@ BatchOut generalise_batch(const std::vector<std::vector<LonLat>>& rings, const B
     std::unique_ptr<OGRGeometry> v = valid_copy(plane_polygon(pts), "global land ring " + std::to_string(i));
     std::vector<const OGRPolygon*> ps;
     collect_polygons(v.get(), ps);
-    for (const OGRPolygon* p : ps) pieces.emplace_back(p->clone());
+    for (const OGRPolygon* p : ps)
+      if (!p->IsEmpty()) pieces.emplace_back(p->clone());
   }
   out.scale = std::sqrt(kmax);
   std::vector<std::vector<Point2>> land = filled_land(disjoint_land(std::move(pieces), "global land"));
@@ -189,11 +230,12 @@ BatchOut generalise_batch(const std::vector<std::vector<LonLat>>& rings, const B
     if (std::fabs(ring_area(out.res.polygons[k][0])) > std::fabs(ring_area(out.res.polygons[main][0]))) main = k;
   const Point2 pole_at = local.forward(pole);
   const bool pole_here = std::isfinite(pole_at.x) && std::isfinite(pole_at.y);
-  const auto& rs = out.res.polygons[main];
-  for (std::size_t k = 1; k < rs.size(); ++k) {
-    out.holds_pole.push_back(pole_here && inside(pole_at, rs[k]) ? 1 : 0);
+  std::vector<std::vector<Point2>> land_out(out.res.polygons[main].begin() + 1, out.res.polygons[main].end());
+  if (b.tile) land_out = clip_to_core(std::move(land_out), b.core, local);
+  for (const auto& r : land_out) {
+    out.holds_pole.push_back(pole_here && inside(pole_at, r) ? 1 : 0);
     std::vector<LonLat> ll;
-    for (const Point2& p : densified(rs[k], step_m)) ll.push_back(local.inverse(p));
+    for (const Point2& p : densified(r, step_m)) ll.push_back(local.inverse(p));
     out.rings.push_back(std::move(ll));
   }
   out.res.polygons.clear();
@@ -244,6 +286,47 @@ std::pair<int, int> batch_key(Point3 centre) {
   if (c.lat_deg >= 60) return {100, 0};
   if (c.lat_deg <= -60) return {-100, 0};
   return {static_cast<int>(std::floor((c.lat_deg + 60) / 20)), static_cast<int>(std::floor((c.lon_deg + 180) / 20))};
+}
+
+// A group reaching farther than this from its centre is cut into tiles: in a plane centred on
+// it the scale factor would exceed 1 / cos^2(17.5 deg) = 1.1 at its far end.
+constexpr double kGroupRadiusDeg = 35;
+// A tile's land is generalised with the land within this many reaches (group_reach) around it,
+// so that what is kept (its core) is generalised as with all land around it.
+constexpr double kHaloReaches = 3;
+constexpr double kTileDeg = 20;
+
+// The land of the large groups (`tiled`) cut into tiles of kTileDeg: every tile a batch of the
+// land within its box and halo (metres), of which its core box is kept.
+void add_tiles(const std::vector<std::vector<LonLat>>& rings, const std::vector<std::size_t>& tiled, double halo,
+               double step_deg, std::vector<Batch>& batches) {
+  if (tiled.empty()) return;
+  const double hd = halo / kEarthRadius * 180 / std::numbers::pi;
+  for (double lat0 = -90; lat0 < 90; lat0 += kTileDeg)
+    for (double lon0 = -180; lon0 < 180; lon0 += kTileDeg) {
+      // The bands next to the poles are one tile each (a cap of kTileDeg round the pole).
+      const bool cap = lat0 == -90 || lat0 + kTileDeg >= 90;
+      if (cap && lon0 > -180) continue;
+      Batch b;
+      b.tile = true;
+      b.core = {lon0, lat0, cap ? 180 : lon0 + kTileDeg, lat0 + kTileDeg};
+      LonLatBox h{lon0, std::max(-90.0, lat0 - hd), b.core.lon1, std::min(90.0, lat0 + kTileDeg + hd)};
+      const double far = std::max(std::fabs(h.lat0), std::fabs(h.lat1));
+      const double dlon = far < 89 ? hd / std::cos(far * std::numbers::pi / 180) : 360;
+      if (cap || dlon >= 180 - kTileDeg / 2) {
+        h.lon0 = -180;
+        h.lon1 = 180;
+      } else {
+        h.lon0 -= dlon;
+        h.lon1 += dlon;
+      }
+      for (std::size_t i : tiled)
+        for (auto& piece : clip_lonlat(rings[i], h, step_deg)) {
+          b.points += piece.size();
+          b.rings.push_back(std::move(piece));
+        }
+      if (!b.rings.empty()) batches.push_back(std::move(b));
+    }
 }
 
 }  // namespace
@@ -310,19 +393,31 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
   const std::vector<std::vector<std::size_t>> groups = land_groups(rings, reach);
   out.groups = groups.size();
   std::map<std::pair<int, int>, Batch> by_key;
+  std::vector<std::size_t> tiled;  // rings of large groups
   for (const auto& g : groups) {
     Point3 sum{0, 0, 0};
     std::size_t n = 0;
+    bool round_pole = false;
     for (std::size_t i : g) {
       for (const LonLat& p : rings[i]) sum = sum + unit_vector(p);
       n += rings[i].size();
+      round_pole = round_pole || winds_round_pole(rings[i]);
     }
-    Batch& b = by_key[batch_key(dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[g[0]][0]))];
-    b.rings.insert(b.rings.end(), g.begin(), g.end());
+    const Point3 c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[g[0]][0]);
+    double cos_far = 1;
+    for (std::size_t i : g)
+      for (const LonLat& p : rings[i]) cos_far = std::min(cos_far, dot(c, unit_vector(p)));
+    if (cos_far < std::cos(kGroupRadiusDeg * std::numbers::pi / 180) && !round_pole) {
+      tiled.insert(tiled.end(), g.begin(), g.end());
+      continue;
+    }
+    Batch& b = by_key[batch_key(c)];
+    for (std::size_t i : g) b.rings.push_back(rings[i]);
     b.points += n;
   }
   std::vector<Batch> batches;
   for (auto& [key, b] : by_key) batches.push_back(std::move(b));
+  add_tiles(rings, tiled, kHaloReaches * reach, step_deg, batches);
   out.batches = batches.size();
   // The largest batches first, so that two threads finish together; results by batch.
   std::vector<std::size_t> order(batches.size());
@@ -334,10 +429,11 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
   const bool laps = debug::on(debug::Aid::kFilter);
   parallel_chunks(order.size(), [&](std::size_t k, unsigned) {
     const auto t0 = std::chrono::steady_clock::now();
-    done[order[k]] = generalise_batch(rings, batches[order[k]], pole, ground, reach, step_m);
+    const Batch& b = batches[order[k]];
+    done[order[k]] = generalise_batch(b, pole, ground, reach, step_m);
     if (laps)  // developer aid: the batches' sizes and times
-      std::fprintf(stderr, "global batch %zu: %zu rings, %zu points, scale %.3f, %.3f s\n", order[k],
-                   batches[order[k]].rings.size(), batches[order[k]].points, done[order[k]].scale,
+      std::fprintf(stderr, "global batch %zu%s: %zu rings, %zu points, scale %.3f, %.3f s\n", order[k],
+                   b.tile ? " (tile)" : "", b.rings.size(), b.points, done[order[k]].scale,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   });
   out.result.close_width = ground.close_width;

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
+#include "gis/global_domain.hpp"
 #include "gis/global_generalise.hpp"
+#include "gis/global_land.hpp"
 #include "gis/global_sphere.hpp"
 
 using namespace fdr;
@@ -121,4 +124,42 @@ TEST(GlobalGeneralise, SameLandIsGeneralisedAlikeNearTheEquatorAndNearThePole) {
   EXPECT_NEAR(po[1], eq[1], 0.001 * eq[1]);
   EXPECT_LT(g.max_scale, 1.1);
   EXPECT_GE(g.result.islets_replaced, 2u);
+}
+
+TEST(GlobalGeneralise, DISABLED_SharedGshhgLow) {
+  const std::string path = std::string(FDR_SHARED_DATA_DIR) + "/global/gshhg_land_l.gpkg";
+  const coast::Options o = ground_options(10000);
+  const GlobalWater w = global_water({path, "", ""}, "", SphereStereo(), 0.1, &o);
+  std::size_t holes = 0;
+  for (const auto& p : w.polygons) holes += p.size() - 1;
+  std::map<int, int> hist;  // holes by decade of area on the sphere (m^2)
+  for (const auto& p : w.polygons)
+    for (std::size_t k = 1; k < p.size(); ++k) {
+      std::vector<LonLat> ll;
+      for (const Point2& q : p[k]) ll.push_back(SphereStereo().inverse(q));
+      ++hist[static_cast<int>(std::floor(std::log10(std::max(1.0, sphere_area(ll)))))];
+    }
+  for (auto [d, n] : hist) std::printf("1e%d m2: %d\n", d, n);
+  std::printf("%zu polygons, %zu holes, %zu groups, %zu batches, max scale %g\n", w.polygons.size(), holes, w.groups,
+              w.batches, w.max_batch_scale);
+}
+
+TEST(GlobalGeneralise, LonLatClipAndPoleWinding) {
+  EXPECT_TRUE(winds_round_pole(polar_land()));
+  const std::vector<LonLat> sq{{-10, 0}, {10, 0}, {10, 10}, {-10, 10}};
+  EXPECT_FALSE(winds_round_pole(sq));
+  // Half the square in the box; the cut along longitude 0 has points every step.
+  const auto half = clip_lonlat(sq, {0, -5, 30, 20}, 1.0);
+  ASSERT_EQ(half.size(), 1u);
+  double x0 = 1e9, x1 = -1e9;
+  for (const LonLat& p : half[0]) x0 = std::min(x0, p.lon_deg), x1 = std::max(x1, p.lon_deg);
+  EXPECT_EQ(x0, 0);
+  EXPECT_EQ(x1, 10);
+  EXPECT_GE(half[0].size(), 4u + 9u);
+  // A box past +180 wraps to the other side of the antimeridian.
+  const std::vector<LonLat> east{{-175, 2}, {-165, 2}, {-165, 4}, {-175, 4}};
+  const auto wrapped = clip_lonlat(east, {170, 0, 200, 10}, 1.0);
+  ASSERT_EQ(wrapped.size(), 1u);
+  EXPECT_EQ(wrapped[0].size(), 4u);
+  EXPECT_TRUE(clip_lonlat(east, {0, 0, 30, 10}, 1.0).empty());
 }
