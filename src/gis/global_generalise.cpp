@@ -294,26 +294,35 @@ constexpr double kGroupRadiusDeg = 35;
 // A tile's land is generalised with the land within this many reaches (group_reach) around it,
 // so that what is kept (its core) is generalised as with all land around it.
 constexpr double kHaloReaches = 3;
-constexpr double kTileDeg = 20;
 
-// The land of the large groups (`tiled`) cut into tiles of kTileDeg: every tile a batch of the
+// The tiles' size (degrees): the smallest of 20, 30, 45 and 60 that is at least 4 halos, so that
+// a tile's halo does not make it redo much of its neighbours' land; 0 (no tiles: every group
+// whole) when the halo exceeds 15 degrees (hmin of about 50 km and more).
+double tile_deg(double halo_m) {
+  const double hd = halo_m / kEarthRadius * 180 / std::numbers::pi;
+  for (double t : {20.0, 30.0, 45.0, 60.0})
+    if (t >= 4 * hd) return t;
+  return 0;
+}
+
+// The land of the large groups (`tiled`) cut into tiles of `tile` degrees: every tile a batch of the
 // land within its box and halo (metres), of which its core box is kept.
 void add_tiles(const std::vector<std::vector<LonLat>>& rings, const std::vector<std::size_t>& tiled, double halo,
-               double step_deg, std::vector<Batch>& batches) {
+               double tile, double step_deg, std::vector<Batch>& batches) {
   if (tiled.empty()) return;
   const double hd = halo / kEarthRadius * 180 / std::numbers::pi;
-  for (double lat0 = -90; lat0 < 90; lat0 += kTileDeg)
-    for (double lon0 = -180; lon0 < 180; lon0 += kTileDeg) {
-      // The bands next to the poles are one tile each (a cap of kTileDeg round the pole).
-      const bool cap = lat0 == -90 || lat0 + kTileDeg >= 90;
+  for (double lat0 = -90; lat0 < 90; lat0 += tile)
+    for (double lon0 = -180; lon0 < 180; lon0 += tile) {
+      // The bands next to the poles are one tile each (a cap of tile round the pole).
+      const bool cap = lat0 == -90 || lat0 + tile >= 90;
       if (cap && lon0 > -180) continue;
       Batch b;
       b.tile = true;
-      b.core = {lon0, lat0, cap ? 180 : lon0 + kTileDeg, lat0 + kTileDeg};
-      LonLatBox h{lon0, std::max(-90.0, lat0 - hd), b.core.lon1, std::min(90.0, lat0 + kTileDeg + hd)};
+      b.core = {lon0, lat0, cap ? 180 : lon0 + tile, lat0 + tile};
+      LonLatBox h{lon0, std::max(-90.0, lat0 - hd), b.core.lon1, std::min(90.0, lat0 + tile + hd)};
       const double far = std::max(std::fabs(h.lat0), std::fabs(h.lat1));
       const double dlon = far < 89 ? hd / std::cos(far * std::numbers::pi / 180) : 360;
-      if (cap || dlon >= 180 - kTileDeg / 2) {
+      if (cap || dlon >= 180 - tile / 2) {
         h.lon0 = -180;
         h.lon1 = 180;
       } else {
@@ -327,6 +336,35 @@ void add_tiles(const std::vector<std::vector<LonLat>>& rings, const std::vector<
         }
       if (!b.rings.empty()) batches.push_back(std::move(b));
     }
+}
+
+// A large group with a ring round a pole (Antarctica's coast, joined to other continents at a
+// coarse resolution): that ring cannot be cut in lon/lat, so it goes whole into a batch of its
+// own with the group's land within a halo (metres) of it; returns the rest of the group.
+std::vector<std::size_t> split_polar(const std::vector<std::vector<LonLat>>& rings, const std::vector<std::size_t>& g,
+                                     double halo, std::map<std::pair<int, int>, Batch>& by_key) {
+  std::vector<char> placed(g.size(), 0);
+  for (const Point3 pole : {Point3{0, 0, -1}, Point3{0, 0, 1}}) {
+    double cos_cap = 1;  // the farthest point of the rings round this pole
+    for (std::size_t i : g)
+      if (winds_round_pole(rings[i]) && (rings[i][0].lat_deg < 0) == (pole.z < 0))
+        for (const LonLat& p : rings[i]) cos_cap = std::min(cos_cap, dot(pole, unit_vector(p)));
+    if (cos_cap == 1) continue;
+    const double cos_halo = std::cos(std::acos(cos_cap) + halo / kEarthRadius);
+    Batch& b = by_key[{pole.z < 0 ? -200 : 200, 0}];
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      const auto& r = rings[g[k]];
+      if (placed[k] || !std::all_of(r.begin(), r.end(), [&](const LonLat& p) { return dot(pole, unit_vector(p)) >= cos_halo; }))
+        continue;
+      placed[k] = 1;
+      b.rings.push_back(r);
+      b.points += r.size();
+    }
+  }
+  std::vector<std::size_t> rest;
+  for (std::size_t k = 0; k < g.size(); ++k)
+    if (!placed[k]) rest.push_back(g[k]);
+  return rest;
 }
 
 }  // namespace
@@ -394,6 +432,7 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
   out.groups = groups.size();
   std::map<std::pair<int, int>, Batch> by_key;
   std::vector<std::size_t> tiled;  // rings of large groups
+  const double tile = tile_deg(kHaloReaches * reach);
   for (const auto& g : groups) {
     Point3 sum{0, 0, 0};
     std::size_t n = 0;
@@ -403,21 +442,35 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
       n += rings[i].size();
       round_pole = round_pole || winds_round_pole(rings[i]);
     }
-    const Point3 c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[g[0]][0]);
+    Point3 c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[g[0]][0]);
     double cos_far = 1;
     for (std::size_t i : g)
       for (const LonLat& p : rings[i]) cos_far = std::min(cos_far, dot(c, unit_vector(p)));
-    if (cos_far < std::cos(kGroupRadiusDeg * std::numbers::pi / 180) && !round_pole) {
-      tiled.insert(tiled.end(), g.begin(), g.end());
-      continue;
+    std::vector<std::size_t> rest = g;
+    if (cos_far < std::cos(kGroupRadiusDeg * std::numbers::pi / 180)) {
+      if (round_pole) rest = split_polar(rings, g, kHaloReaches * reach, by_key);
+      if (tile > 0) {
+        tiled.insert(tiled.end(), rest.begin(), rest.end());
+        continue;
+      }
     }
-    Batch& b = by_key[batch_key(c)];
-    for (std::size_t i : g) b.rings.push_back(rings[i]);
+    if (rest.empty()) continue;
+    if (rest.size() < g.size()) {  // the group less its polar batch: a batch of its own
+      sum = Point3{0, 0, 0};
+      n = 0;
+      for (std::size_t i : rest) {
+        for (const LonLat& p : rings[i]) sum = sum + unit_vector(p);
+        n += rings[i].size();
+      }
+      c = dot(sum, sum) > 0 ? normalised(sum) : unit_vector(rings[rest[0]][0]);
+    }
+    Batch& b = by_key[rest.size() < g.size() ? std::pair<int, int>{300, static_cast<int>(g[0])} : batch_key(c)];
+    for (std::size_t i : rest) b.rings.push_back(rings[i]);
     b.points += n;
   }
   std::vector<Batch> batches;
   for (auto& [key, b] : by_key) batches.push_back(std::move(b));
-  add_tiles(rings, tiled, kHaloReaches * reach, step_deg, batches);
+  add_tiles(rings, tiled, kHaloReaches * reach, tile, step_deg, batches);
   out.batches = batches.size();
   // The largest batches first, so that two threads finish together; results by batch.
   std::vector<std::size_t> order(batches.size());

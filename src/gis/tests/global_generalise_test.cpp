@@ -4,10 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
 #include <numbers>
 
-#include "gis/global_domain.hpp"
 #include "gis/global_generalise.hpp"
 #include "gis/global_land.hpp"
 #include "gis/global_sphere.hpp"
@@ -124,24 +122,6 @@ TEST(GlobalGeneralise, SameLandIsGeneralisedAlikeNearTheEquatorAndNearThePole) {
   EXPECT_NEAR(po[1], eq[1], 0.001 * eq[1]);
   EXPECT_LT(g.max_scale, 1.1);
   EXPECT_GE(g.result.islets_replaced, 2u);
-}
-
-TEST(GlobalGeneralise, DISABLED_SharedGshhgLow) {
-  const std::string path = std::string(FDR_SHARED_DATA_DIR) + "/global/gshhg_land_l.gpkg";
-  const coast::Options o = ground_options(10000);
-  const GlobalWater w = global_water({path, "", ""}, "", SphereStereo(), 0.1, &o);
-  std::size_t holes = 0;
-  for (const auto& p : w.polygons) holes += p.size() - 1;
-  std::map<int, int> hist;  // holes by decade of area on the sphere (m^2)
-  for (const auto& p : w.polygons)
-    for (std::size_t k = 1; k < p.size(); ++k) {
-      std::vector<LonLat> ll;
-      for (const Point2& q : p[k]) ll.push_back(SphereStereo().inverse(q));
-      ++hist[static_cast<int>(std::floor(std::log10(std::max(1.0, sphere_area(ll)))))];
-    }
-  for (auto [d, n] : hist) std::printf("1e%d m2: %d\n", d, n);
-  std::printf("%zu polygons, %zu holes, %zu groups, %zu batches, max scale %g\n", w.polygons.size(), holes, w.groups,
-              w.batches, w.max_batch_scale);
 }
 
 TEST(GlobalGeneralise, LonLatClipAndPoleWinding) {
