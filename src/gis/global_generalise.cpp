@@ -239,11 +239,18 @@ BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& gro
     out.rings.push_back(std::move(ll));
   }
   out.res.polygons.clear();
+  // Repairs in lon/lat; a tile lists those in its core only (its halo is other tiles' core).
+  std::vector<pslg::Repair> reps;
   for (auto& rep : out.res.repairs) {
     const LonLat at = local.inverse(rep.where);
+    if (b.tile && !(at.lon_deg >= b.core.lon0 && at.lon_deg < b.core.lon1 && at.lat_deg >= b.core.lat0 &&
+                    at.lat_deg < b.core.lat1))
+      continue;
     rep.where = {at.lon_deg, at.lat_deg};
     rep.part = -1;
+    reps.push_back(std::move(rep));
   }
+  out.res.repairs = std::move(reps);
   return out;
 }
 

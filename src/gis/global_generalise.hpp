@@ -28,8 +28,9 @@ std::vector<std::vector<std::size_t>> land_groups(const std::vector<std::vector<
 struct GeneralisedLand {
   std::vector<std::vector<LonLat>> rings;  // exterior rings of the generalised land, lon/lat
   std::vector<char> holds_pole;            // per ring: it holds the given pole
-  // The generalisation's figures summed over the batches, areas in ground square metres; repairs
-  // with `where` as (longitude, latitude).
+  // The generalisation's figures summed over the batches, areas in ground square metres (a
+  // tile's counts include its halo, which its neighbours count too); repairs with `where` as
+  // (longitude, latitude), a tile's those in its core only.
   coast::Result result;
   std::size_t groups = 0, batches = 0;
   double max_scale = 1;  // the largest scale factor over the batches' planes (1 at their centres)
