@@ -126,51 +126,11 @@ std::vector<Point2> densified(const std::vector<Point2>& r, double step) {
   return out;
 }
 
-// Land generalised in one plane: whole groups, or the land of large groups within a tile's
-// box and its halo, of which only the part in the core box (lon/lat) is kept.
+// Land generalised in one plane: whole groups.
 struct Batch {
   std::vector<std::vector<LonLat>> rings;
   std::size_t points = 0;
-  bool tile = false;
-  LonLatBox core;
 };
-
-// The parts of land rings (a plane's) inside the core box, widened by a hair so that the parts of
-// neighbouring tiles overlap and unite.
-std::vector<std::vector<Point2>> clip_to_core(std::vector<std::vector<Point2>> land, const LonLatBox& core,
-                                              const SphereStereo& local) {
-  constexpr double kHairDeg = 1e-5;
-  std::vector<LonLat> ll;
-  if (core.lon1 - core.lon0 >= 360) {  // a polar cap: its parallel
-    const double lat = core.lat0 > -90 ? core.lat0 - kHairDeg : core.lat1 + kHairDeg;
-    for (int k = 0; k < 3600; ++k) ll.push_back({-180 + 0.1 * k, lat});
-  } else {
-    ll = box_ring({core.lon0 - kHairDeg, std::max(-90.0, core.lat0 - kHairDeg), core.lon1 + kHairDeg,
-                   std::min(90.0, core.lat1 + kHairDeg)}, 0.1);
-  }
-  std::vector<Point2> box;
-  for (const LonLat& p : ll) {
-    const Point2 q = local.forward(p);
-    if (box.empty() || !(box.back() == q)) box.push_back(q);
-  }
-  const std::unique_ptr<OGRGeometry> core_poly = valid_copy(plane_polygon(box), "tile core");
-  std::vector<std::vector<Point2>> out;
-  for (const auto& r : land) {
-    const std::unique_ptr<OGRGeometry> v = valid_copy(plane_polygon(r), "generalised land");
-    std::unique_ptr<OGRGeometry> cut(v->Intersection(core_poly.get()));
-    if (!cut) throw Error(ExitCode::kInvalidGeometry, std::string("clipping generalised land to its tile failed: ") +
-                                                           CPLGetLastErrorMsg());
-    std::vector<const OGRPolygon*> ps;
-    collect_polygons(cut.get(), ps);
-    for (const OGRPolygon* p : ps) {
-      if (p->IsEmpty()) continue;
-      std::vector<Point2> q = curve_points(p->getExteriorRing());
-      if (q.size() >= 2 && q.front() == q.back()) q.pop_back();
-      if (q.size() >= 3) out.push_back(std::move(q));
-    }
-  }
-  return out;
-}
 
 struct BatchOut {
   std::vector<std::vector<LonLat>> rings;
@@ -231,7 +191,6 @@ BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& gro
   const Point2 pole_at = local.forward(pole);
   const bool pole_here = std::isfinite(pole_at.x) && std::isfinite(pole_at.y);
   std::vector<std::vector<Point2>> land_out(out.res.polygons[main].begin() + 1, out.res.polygons[main].end());
-  if (b.tile) land_out = clip_to_core(std::move(land_out), b.core, local);
   for (const auto& r : land_out) {
     out.holds_pole.push_back(pole_here && inside(pole_at, r) ? 1 : 0);
     std::vector<LonLat> ll;
@@ -239,13 +198,10 @@ BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& gro
     out.rings.push_back(std::move(ll));
   }
   out.res.polygons.clear();
-  // Repairs in lon/lat; a tile lists those in its core only (its halo is other tiles' core).
+  // Repairs in lon/lat.
   std::vector<pslg::Repair> reps;
   for (auto& rep : out.res.repairs) {
     const LonLat at = local.inverse(rep.where);
-    if (b.tile && !(at.lon_deg >= b.core.lon0 && at.lon_deg < b.core.lon1 && at.lat_deg >= b.core.lat0 &&
-                    at.lat_deg < b.core.lat1))
-      continue;
     rep.where = {at.lon_deg, at.lat_deg};
     rep.part = -1;
     reps.push_back(std::move(rep));
@@ -295,60 +251,12 @@ std::pair<int, int> batch_key(Point3 centre) {
   return {static_cast<int>(std::floor((c.lat_deg + 60) / 20)), static_cast<int>(std::floor((c.lon_deg + 180) / 20))};
 }
 
-// A group reaching farther than this from its centre is cut into tiles: in a plane centred on
-// it the scale factor would exceed 1 / cos^2(17.5 deg) = 1.1 at its far end.
+// A group reaching farther than this from its centre with a ring round a pole has that ring's
+// land split off into a polar batch (split_polar).
 constexpr double kGroupRadiusDeg = 35;
-// A tile's land is generalised with the land within this many reaches (group_reach) around it,
-// so that what is kept (its core) is generalised as with all land around it.
+// The polar batch takes the group's land within this many reaches (group_reach) of its ring, so
+// that its coast is generalised as with all land around it.
 constexpr double kHaloReaches = 3;
-
-constexpr bool kTiles = false;
-
-// The tiles' size (degrees): the smallest of 20, 30, 45 and 60 that is at least 4 halos, so that
-// a tile's halo does not make it redo much of its neighbours' land; 0 (no tiles: every group
-// whole) when the halo exceeds 15 degrees (hmin of about 50 km and more).
-double tile_deg(double halo_m) {
-  // Off: tiled runs at hmin 10 km lose ocean along whole parallels (65 N, 69 N), a defect not yet
-  // found; every group is generalised whole until it is.
-  if (!kTiles) return 0;
-  const double hd = halo_m / kEarthRadius * 180 / std::numbers::pi;
-  for (double t : {20.0, 30.0, 45.0, 60.0})
-    if (t >= 4 * hd) return t;
-  return 0;
-}
-
-// The land of the large groups (`tiled`) cut into tiles of `tile` degrees: every tile a batch of the
-// land within its box and halo (metres), of which its core box is kept.
-void add_tiles(const std::vector<std::vector<LonLat>>& rings, const std::vector<std::size_t>& tiled, double halo,
-               double tile, double step_deg, std::vector<Batch>& batches) {
-  if (tiled.empty()) return;
-  const double hd = halo / kEarthRadius * 180 / std::numbers::pi;
-  for (double lat0 = -90; lat0 < 90; lat0 += tile)
-    for (double lon0 = -180; lon0 < 180; lon0 += tile) {
-      // The bands next to the poles are one tile each (a cap of tile round the pole).
-      const bool cap = lat0 == -90 || lat0 + tile >= 90;
-      if (cap && lon0 > -180) continue;
-      Batch b;
-      b.tile = true;
-      b.core = {lon0, lat0, cap ? 180 : lon0 + tile, lat0 + tile};
-      LonLatBox h{lon0, std::max(-90.0, lat0 - hd), b.core.lon1, std::min(90.0, lat0 + tile + hd)};
-      const double far = std::max(std::fabs(h.lat0), std::fabs(h.lat1));
-      const double dlon = far < 89 ? hd / std::cos(far * std::numbers::pi / 180) : 360;
-      if (cap || dlon >= 180 - tile / 2) {
-        h.lon0 = -180;
-        h.lon1 = 180;
-      } else {
-        h.lon0 -= dlon;
-        h.lon1 += dlon;
-      }
-      for (std::size_t i : tiled)
-        for (auto& piece : clip_lonlat(rings[i], h, step_deg)) {
-          b.points += piece.size();
-          b.rings.push_back(std::move(piece));
-        }
-      if (!b.rings.empty()) batches.push_back(std::move(b));
-    }
-}
 
 // A large group with a ring round a pole (Antarctica's coast, joined to other continents at a
 // coarse resolution): that ring cannot be cut in lon/lat, so it goes whole into a batch of its
@@ -443,8 +351,6 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
   const std::vector<std::vector<std::size_t>> groups = land_groups(rings, reach);
   out.groups = groups.size();
   std::map<std::pair<int, int>, Batch> by_key;
-  std::vector<std::size_t> tiled;  // rings of large groups
-  const double tile = tile_deg(kHaloReaches * reach);
   for (const auto& g : groups) {
     Point3 sum{0, 0, 0};
     std::size_t n = 0;
@@ -461,10 +367,6 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
     std::vector<std::size_t> rest = g;
     if (cos_far < std::cos(kGroupRadiusDeg * std::numbers::pi / 180)) {
       if (round_pole) rest = split_polar(rings, g, kHaloReaches * reach, by_key);
-      if (tile > 0) {
-        tiled.insert(tiled.end(), rest.begin(), rest.end());
-        continue;
-      }
     }
     if (rest.empty()) continue;
     if (rest.size() < g.size()) {  // the group less its polar batch: a batch of its own
@@ -482,7 +384,6 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
   }
   std::vector<Batch> batches;
   for (auto& [key, b] : by_key) batches.push_back(std::move(b));
-  add_tiles(rings, tiled, kHaloReaches * reach, tile, step_deg, batches);
   out.batches = batches.size();
   // The largest batches first, so that two threads finish together; results by batch.
   std::vector<std::size_t> order(batches.size());
@@ -497,8 +398,8 @@ GeneralisedLand generalise_land(const std::vector<std::vector<LonLat>>& rings, L
     const Batch& b = batches[order[k]];
     done[order[k]] = generalise_batch(b, pole, ground, reach, step_m);
     if (laps)  // developer aid: the batches' sizes and times
-      std::fprintf(stderr, "global batch %zu%s: %zu rings, %zu points, scale %.3f, %.3f s\n", order[k],
-                   b.tile ? " (tile)" : "", b.rings.size(), b.points, done[order[k]].scale,
+      std::fprintf(stderr, "global batch %zu: %zu rings, %zu points, scale %.3f, %.3f s\n", order[k],
+                   b.rings.size(), b.points, done[order[k]].scale,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   });
   out.result.close_width = ground.close_width;

@@ -77,22 +77,6 @@ std::vector<std::unique_ptr<OGRPolygon>> disjoint_land(std::vector<std::unique_p
   return out;
 }
 
-
-std::vector<LonLat> box_ring(const LonLatBox& b, double step) {
-  std::vector<LonLat> r{{b.lon0, b.lat0}, {b.lon1, b.lat0}, {b.lon1, b.lat1}, {b.lon0, b.lat1}};
-  std::vector<LonLat> out;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const LonLat a = r[i], c = r[(i + 1) % 4];
-    const int n = std::max(1, static_cast<int>(std::ceil(std::max(std::fabs(c.lon_deg - a.lon_deg),
-                                                                  std::fabs(c.lat_deg - a.lat_deg)) / step)));
-    for (int k = 0; k < n; ++k) {
-      const double t = static_cast<double>(k) / n;
-      out.push_back({a.lon_deg + t * (c.lon_deg - a.lon_deg), a.lat_deg + t * (c.lat_deg - a.lat_deg)});
-    }
-  }
-  return out;
-}
-
 bool winds_round_pole(const std::vector<LonLat>& ring) {
   double turn = 0;
   for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
@@ -102,55 +86,6 @@ bool winds_round_pole(const std::vector<LonLat>& ring) {
     turn += d;
   }
   return std::fabs(turn) > 180;
-}
-
-std::vector<std::vector<LonLat>> clip_lonlat(const std::vector<LonLat>& ring, const LonLatBox& h, double step) {
-  // The box within [-180, 180]: one or two boxes.
-  std::vector<LonLatBox> boxes;
-  if (h.lon1 - h.lon0 >= 360) {
-    boxes.push_back({-180, h.lat0, 180, h.lat1});
-  } else {
-    boxes.push_back({std::max(h.lon0, -180.0), h.lat0, std::min(h.lon1, 180.0), h.lat1});
-    if (h.lon0 < -180) boxes.push_back({h.lon0 + 360, h.lat0, 180, h.lat1});
-    if (h.lon1 > 180) boxes.push_back({-180, h.lat0, h.lon1 - 360, h.lat1});
-  }
-  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
-  for (const LonLat& p : ring) {
-    x0 = std::min(x0, p.lon_deg), x1 = std::max(x1, p.lon_deg), y0 = std::min(y0, p.lat_deg), y1 = std::max(y1, p.lat_deg);
-  }
-  std::vector<std::vector<LonLat>> out;
-  std::unique_ptr<OGRGeometry> poly;
-  for (const LonLatBox& b : boxes) {
-    if (x1 < b.lon0 || x0 > b.lon1 || y1 < b.lat0 || y0 > b.lat1) continue;
-    if (x0 >= b.lon0 && x1 <= b.lon1 && y0 >= b.lat0 && y1 <= b.lat1) {
-      out.push_back(ring);
-      continue;
-    }
-    if (!poly) {
-      std::vector<Point2> pts;
-      for (const LonLat& p : ring) pts.push_back({p.lon_deg, p.lat_deg});
-      poly = valid_copy(plane_polygon(pts), "land ring in lon/lat");
-    }
-    // Box sides in 10-degree pieces: no cut along them spans more than 180 degrees, which the
-    // densification would take for the short way round across the antimeridian.
-    std::vector<Point2> bp;
-    for (const LonLat& p : box_ring(b, 10.0)) bp.push_back({p.lon_deg, p.lat_deg});
-    const OGRPolygon box = plane_polygon(bp);
-    std::unique_ptr<OGRGeometry> cut(poly->Intersection(&box));
-    if (!cut) throw Error(ExitCode::kInvalidGeometry, std::string("clipping land to a tile failed: ") + CPLGetLastErrorMsg());
-    std::vector<const OGRPolygon*> ps;
-    collect_polygons(cut.get(), ps);
-    for (const OGRPolygon* p : ps) {
-      if (p->IsEmpty()) continue;
-      std::vector<LonLat> r;
-      for (const Point2& q : curve_points(p->getExteriorRing())) r.push_back({q.x, q.y});
-      if (r.size() >= 2 && r.front().lon_deg == r.back().lon_deg && r.front().lat_deg == r.back().lat_deg) r.pop_back();
-      if (r.size() < 3) continue;
-      densify_lonlat(r, step);
-      out.push_back(std::move(r));
-    }
-  }
-  return out;
 }
 
 }  // namespace fdr::gis

@@ -37,20 +37,8 @@ std::unique_ptr<OGRGeometry> valid_copy(const OGRGeometry& g, const std::string&
 std::vector<std::unique_ptr<OGRPolygon>> disjoint_land(std::vector<std::unique_ptr<OGRPolygon>> pieces,
                                                        const std::string& label);
 
-// A box of longitudes and latitudes (degrees); longitudes may run past +-180 (it wraps).
-struct LonLatBox {
-  double lon0 = 0, lat0 = 0, lon1 = 0, lat1 = 0;
-};
-
-// The box's boundary as a lon/lat ring (counter-clockwise in lon/lat), points at most step_deg apart.
-std::vector<LonLat> box_ring(const LonLatBox& b, double step_deg);
-
 // True when the lon/lat ring turns round a pole (its longitudes add up to +-360 degrees): it is
 // no polygon of the lon/lat plane and cannot be clipped there.
 bool winds_round_pole(const std::vector<LonLat>& ring);
-
-// The parts of a lon/lat ring (a polygon of the lon/lat plane, not round a pole) inside the box,
-// as exterior rings with points along the cut at most step_deg apart.
-std::vector<std::vector<LonLat>> clip_lonlat(const std::vector<LonLat>& ring, const LonLatBox& box, double step_deg);
 
 }  // namespace fdr::gis

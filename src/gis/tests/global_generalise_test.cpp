@@ -124,22 +124,8 @@ TEST(GlobalGeneralise, SameLandIsGeneralisedAlikeNearTheEquatorAndNearThePole) {
   EXPECT_GE(g.result.islets_replaced, 2u);
 }
 
-TEST(GlobalGeneralise, LonLatClipAndPoleWinding) {
+TEST(GlobalGeneralise, PoleWinding) {
   EXPECT_TRUE(winds_round_pole(polar_land()));
   const std::vector<LonLat> sq{{-10, 0}, {10, 0}, {10, 10}, {-10, 10}};
   EXPECT_FALSE(winds_round_pole(sq));
-  // Half the square in the box; the cut along longitude 0 has points every step.
-  const auto half = clip_lonlat(sq, {0, -5, 30, 20}, 1.0);
-  ASSERT_EQ(half.size(), 1u);
-  double x0 = 1e9, x1 = -1e9;
-  for (const LonLat& p : half[0]) x0 = std::min(x0, p.lon_deg), x1 = std::max(x1, p.lon_deg);
-  EXPECT_EQ(x0, 0);
-  EXPECT_EQ(x1, 10);
-  EXPECT_GE(half[0].size(), 4u + 9u);
-  // A box past +180 wraps to the other side of the antimeridian.
-  const std::vector<LonLat> east{{-175, 2}, {-165, 2}, {-165, 4}, {-175, 4}};
-  const auto wrapped = clip_lonlat(east, {170, 0, 200, 10}, 1.0);
-  ASSERT_EQ(wrapped.size(), 1u);
-  EXPECT_EQ(wrapped[0].size(), 4u);
-  EXPECT_TRUE(clip_lonlat(east, {0, 0, 30, 10}, 1.0).empty());
 }
