@@ -15,6 +15,8 @@
 #include "base/error.hpp"
 #include "base/step_laps.hpp"
 #include "gis/gdal_util.hpp"
+#include "gis/global_generalise.hpp"
+#include "gis/global_land.hpp"
 #include "gis/vector_layers.hpp"
 
 namespace fdr::gis {
@@ -31,24 +33,6 @@ LonLat sphere_point(LonLat p) {
 }
 
 std::string at(LonLat p) { return "(" + num(p.lon_deg) + ", " + num(p.lat_deg) + ")"; }
-
-// A ring in the plane as a GEOS-ready polygon.
-OGRPolygon plane_polygon(const std::vector<Point2>& ring) {
-  OGRLinearRing r;
-  for (const Point2& p : ring) r.addPoint(p.x, p.y);
-  r.addPoint(ring[0].x, ring[0].y);
-  OGRPolygon poly;
-  poly.addRing(&r);
-  return poly;
-}
-
-// g's polygons, made valid first when GEOS finds g invalid (a projected ring touching itself).
-std::unique_ptr<OGRGeometry> valid_copy(const OGRGeometry& g, const std::string& what) {
-  if (g.IsValid()) return std::unique_ptr<OGRGeometry>(g.clone());
-  std::unique_ptr<OGRGeometry> v(g.MakeValid());
-  if (!v) throw Error(ExitCode::kInvalidGeometry, what + ": cannot make it valid: " + CPLGetLastErrorMsg());
-  return v;
-}
 
 // Signed area on the sphere of a ring of the plane (counter-clockwise positive): the sum of the
 // spherical triangles (projection centre, a, b), none of which comes near the centre's antipode.
@@ -108,15 +92,11 @@ std::vector<LandRing> land_rings(LayerData& L, LonLat pole, GlobalWater& out) {
   return rings;
 }
 
-// The ring in the plane (sphere_ring, densified, projected); empty when degenerate.
-std::vector<Point2> plane_ring(const LandRing& r, const SphereStereo& proj, double step, GlobalWater& out,
-                               const std::string& label) {
-  std::vector<LonLat> s = sphere_ring(r.ll);
-  if (s.size() < 3) return {};
-  out.densify_points += densify_lonlat(s, step);
+// The ring (cleaned, densified) in the plane.
+std::vector<Point2> plane_ring(const LandRing& r, const SphereStereo& proj, const std::string& label) {
   std::vector<Point2> pts;
-  pts.reserve(s.size());
-  for (const LonLat& p : s) {
+  pts.reserve(r.ll.size());
+  for (const LonLat& p : r.ll) {
     const Point2 q = proj.forward(p);
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || std::max(std::fabs(q.x), std::fabs(q.y)) > 1e3 * proj.radius())
       throw Error(ExitCode::kInvalidGeometry,
@@ -127,65 +107,6 @@ std::vector<Point2> plane_ring(const LandRing& r, const SphereStereo& proj, doub
     pts.push_back(q);
   }
   return pts;
-}
-
-struct PreparedDeleter {
-  void operator()(OGRPreparedGeometryH h) const { OGRDestroyPreparedGeometry(h); }
-};
-using PreparedPtr = std::unique_ptr<std::remove_pointer_t<OGRPreparedGeometryH>, PreparedDeleter>;
-
-// Union-find over land pieces.
-std::size_t find_root(std::vector<std::size_t>& up, std::size_t i) {
-  while (up[i] != i) i = up[i] = up[up[i]];
-  return i;
-}
-
-// The land pieces made disjoint: pieces that meet (envelopes overlapping, then GEOS Intersects)
-// are united group by group, the parts of a polygon cut at the antimeridian among them. Why not
-// one union of everything: nearly all pieces meet no other, and a union of thousands of
-// disjoint polygons costs seconds for nothing.
-std::vector<std::unique_ptr<OGRPolygon>> disjoint_land(std::vector<std::unique_ptr<OGRPolygon>> pieces,
-                                                       const std::string& label) {
-  const std::size_t n = pieces.size();
-  std::vector<OGREnvelope> env(n);
-  for (std::size_t i = 0; i < n; ++i) pieces[i]->getEnvelope(&env[i]);
-  std::vector<std::size_t> order(n), up(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = up[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return env[a].MinX < env[b].MinX || (env[a].MinX == env[b].MinX && a < b);
-  });
-  // GEOS copies both geometries on every plain Intersects call: a continent tested against the
-  // hundreds of islands in its envelope is prepared once instead.
-  std::vector<PreparedPtr> prepared(n);
-  auto meet = [&](std::size_t a, std::size_t b) {
-    if (pieces[a]->getExteriorRing()->getNumPoints() < pieces[b]->getExteriorRing()->getNumPoints()) std::swap(a, b);
-    if (!prepared[a]) prepared[a].reset(OGRCreatePreparedGeometry(OGRGeometry::ToHandle(pieces[a].get())));
-    return OGRPreparedGeometryIntersects(prepared[a].get(), OGRGeometry::ToHandle(pieces[b].get())) != 0;
-  };
-  std::vector<std::size_t> active;
-  for (std::size_t k : order) {
-    std::erase_if(active, [&](std::size_t a) { return env[a].MaxX < env[k].MinX; });
-    for (std::size_t a : active)
-      if (env[a].MaxY >= env[k].MinY && env[a].MinY <= env[k].MaxY && find_root(up, a) != find_root(up, k) && meet(a, k))
-        up[find_root(up, a)] = find_root(up, k);
-    active.push_back(k);
-  }
-  prepared.clear();
-  std::vector<std::vector<std::size_t>> groups(n);
-  for (std::size_t i = 0; i < n; ++i) groups[find_root(up, i)].push_back(i);
-  std::vector<std::unique_ptr<OGRPolygon>> out;
-  for (auto& g : groups) {
-    if (g.size() == 1) out.push_back(std::move(pieces[g[0]]));
-    if (g.size() < 2) continue;
-    OGRMultiPolygon mp;
-    for (std::size_t i : g) mp.addGeometry(pieces[i].get());
-    std::unique_ptr<OGRGeometry> u(mp.UnionCascaded());
-    if (!u) throw Error(ExitCode::kInvalidGeometry, label + ": union of the land polygons failed: " + CPLGetLastErrorMsg());
-    std::vector<const OGRPolygon*> ps;
-    collect_polygons(u.get(), ps);
-    for (const OGRPolygon* p : ps) out.emplace_back(p->clone());
-  }
-  return out;
 }
 
 // water minus the disjoint land: land inside it becomes holes directly, land crossing its
@@ -306,7 +227,94 @@ std::size_t densify_lonlat(std::vector<LonLat>& ring, double step) {
   return added;
 }
 
-GlobalWater global_water(const LayerRef& land, const std::string& s_srs, const SphereStereo& proj, double step) {
+namespace {
+
+// The land holding the pole: the largest (most vertices) of the rings that hold it.
+std::size_t pole_ring(const std::vector<LandRing>& rings) {
+  std::size_t pole = rings.size();
+  for (std::size_t i = 0; i < rings.size(); ++i)
+    if (rings[i].holds_pole && (pole == rings.size() || rings[i].ll.size() > rings[pole].ll.size())) pole = i;
+  return pole;
+}
+
+// The sphere minus the land `rings` (cleaned and densified, rings[pole] the outer coast) in the
+// plane, as polygons (outer counter-clockwise, holes clockwise); its area on the sphere.
+std::vector<std::vector<std::vector<Point2>>> water_polygons(const std::vector<LandRing>& rings, std::size_t pole,
+                                                             const SphereStereo& proj, const std::string& label,
+                                                             double& area, StepLaps& lap) {
+  std::vector<std::unique_ptr<OGRPolygon>> others;
+  std::vector<Point2> coast;
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    std::vector<Point2> pr = plane_ring(rings[i], proj, label);
+    if (i == pole) {
+      coast = std::move(pr);
+      continue;
+    }
+    const OGRPolygon poly = plane_polygon(pr);
+    std::unique_ptr<OGRGeometry> v = valid_copy(poly, label + ", feature FID " + std::to_string(rings[i].fid));
+    std::vector<const OGRPolygon*> ps;
+    collect_polygons(v.get(), ps);
+    for (const OGRPolygon* p : ps) others.emplace_back(p->clone());
+  }
+  lap("rings");
+  const std::int64_t fid = rings[pole].fid;
+  if (coast.size() < 3)
+    throw Error(ExitCode::kInvalidGeometry,
+                label + ", feature FID " + std::to_string(fid) + ": the land holding the pole has no coast left on the sphere");
+  const std::string what = label + ": the sphere minus land";
+  std::unique_ptr<OGRGeometry> water =
+      valid_copy(plane_polygon(coast), what + " (outer coast, FID " + std::to_string(fid) + ")");
+  std::vector<std::unique_ptr<OGRPolygon>> pieces = disjoint_land(std::move(others), label);
+  lap("union");
+  water = subtract_land(std::move(water), std::move(pieces), what);
+  lap("difference");
+  std::vector<const OGRPolygon*> ps;
+  collect_polygons(water.get(), ps);
+  if (ps.empty()) throw Error(ExitCode::kInvalidGeometry, label + ": the land covers the whole sphere");
+  std::vector<std::vector<std::vector<Point2>>> out;
+  area = 0;
+  for (const OGRPolygon* p : ps) {
+    out.emplace_back();
+    for (const OGRLinearRing* r : *p) {
+      std::vector<Point2> pts = curve_points(r);
+      if (pts.size() >= 2 && pts.front() == pts.back()) pts.pop_back();
+      if (pts.size() < 3) continue;
+      const bool hole = !out.back().empty();
+      const double a = std::fabs(sphere_ring_area(pts, proj));
+      area += hole ? -a : a;
+      if ((plane_ring_area(pts) > 0) == hole) std::reverse(pts.begin(), pts.end());  // outer CCW, holes CW
+      out.back().push_back(std::move(pts));
+    }
+    if (out.back().empty()) out.pop_back();
+  }
+  lap("rings out");
+  return out;
+}
+
+// The land generalised in ground metres (global_generalise.hpp) as rings of the pole's feature
+// (the ring holding the pole) or of no feature.
+std::vector<LandRing> generalised_rings(const std::vector<LandRing>& rings, std::size_t pole, const SphereStereo& proj,
+                                        const coast::Options& o, double step, GlobalWater& out) {
+  std::vector<std::vector<LonLat>> ll;
+  ll.reserve(rings.size());
+  for (const LandRing& r : rings) ll.push_back(r.ll);
+  GeneralisedLand g = generalise_land(ll, proj.pole(), o, step);
+  out.groups = g.groups;
+  out.batches = g.batches;
+  out.max_batch_scale = g.max_scale;
+  out.features = std::move(g.result);
+  std::vector<LandRing> res;
+  for (std::size_t k = 0; k < g.rings.size(); ++k) {
+    LandRing r{g.holds_pole[k] ? rings[pole].fid : -1, sphere_ring(std::move(g.rings[k])), g.holds_pole[k] != 0};
+    if (r.ll.size() >= 3) res.push_back(std::move(r));
+  }
+  return res;
+}
+
+}  // namespace
+
+GlobalWater global_water(const LayerRef& land, const std::string& s_srs, const SphereStereo& proj, double step,
+                         const coast::Options* generalise) {
   StepLaps lap(debug::Aid::kFilter, "global water");
   LayerData L = read_layer(land, s_srs, "--land");
   lap("read");
@@ -314,62 +322,40 @@ GlobalWater global_water(const LayerRef& land, const std::string& s_srs, const S
   out.file = L.file;
   out.layer = L.layer;
   std::vector<LandRing> rings = land_rings(L, proj.pole(), out);
-  // The land holding the pole: the largest (most vertices) of the rings that hold it.
-  std::size_t pole = rings.size();
-  for (std::size_t i = 0; i < rings.size(); ++i)
-    if (rings[i].holds_pole && (pole == rings.size() || rings[i].ll.size() > rings[pole].ll.size())) pole = i;
-  if (pole == rings.size())
+  if (pole_ring(rings) == rings.size())
     throw Error(ExitCode::kInvalidGeometry, L.label() + ": no land polygon holds the pole " + at(proj.pole()) +
                                                 " of the projection; give --pole LON,LAT inside the land that bounds "
                                                 "the ocean (Antarctica)");
-  out.pole_fid = rings[pole].fid;
-  GdalQuiet quiet;
-  std::vector<std::unique_ptr<OGRPolygon>> others;
-  std::vector<Point2> coast;
-  for (std::size_t i = 0; i < rings.size(); ++i) {
-    if (std::any_of(rings[i].ll.begin(), rings[i].ll.end(), [](LonLat p) { return std::fabs(p.lon_deg) == 180.0; }))
+  // Every ring as the sphere sees it, with points along its long lon/lat edges.
+  std::vector<LandRing> clean;
+  for (LandRing& r : rings) {
+    if (std::any_of(r.ll.begin(), r.ll.end(), [](LonLat p) { return std::fabs(p.lon_deg) == 180.0; }))
       ++out.antimeridian_rings;
-    std::vector<Point2> pr = plane_ring(rings[i], proj, step, out, L.label());
-    if (pr.empty()) continue;
-    if (i == pole) {
-      coast = std::move(pr);
-      continue;
-    }
-    const OGRPolygon poly = plane_polygon(pr);
-    std::unique_ptr<OGRGeometry> v = valid_copy(poly, L.label() + ", feature FID " + std::to_string(rings[i].fid));
-    std::vector<const OGRPolygon*> ps;
-    collect_polygons(v.get(), ps);
-    for (const OGRPolygon* p : ps) others.emplace_back(p->clone());
+    r.ll = sphere_ring(std::move(r.ll));
+    if (r.ll.size() < 3) continue;
+    out.densify_points += densify_lonlat(r.ll, step);
+    clean.push_back(std::move(r));
   }
-  lap("rings");
-  if (coast.size() < 3)
-    throw Error(ExitCode::kInvalidGeometry, L.label() + ", feature FID " + std::to_string(out.pole_fid) +
-                                                ": the land holding the pole has no coast left on the sphere");
-  const std::string what = L.label() + ": the sphere minus land";
-  std::unique_ptr<OGRGeometry> water = valid_copy(plane_polygon(coast), what + " (outer coast, FID " +
-                                                                            std::to_string(out.pole_fid) + ")");
-  std::vector<std::unique_ptr<OGRPolygon>> pieces = disjoint_land(std::move(others), L.label());
-  lap("union");
-  water = subtract_land(std::move(water), std::move(pieces), what);
-  lap("difference");
-  std::vector<const OGRPolygon*> ps;
-  collect_polygons(water.get(), ps);
-  if (ps.empty()) throw Error(ExitCode::kInvalidGeometry, L.label() + ": the land covers the whole sphere");
-  for (const OGRPolygon* p : ps) {
-    out.polygons.emplace_back();
-    for (const OGRLinearRing* r : *p) {
-      std::vector<Point2> pts = curve_points(r);
-      if (pts.size() >= 2 && pts.front() == pts.back()) pts.pop_back();
-      if (pts.size() < 3) continue;
-      const bool hole = !out.polygons.back().empty();
-      const double a = std::fabs(sphere_ring_area(pts, proj));
-      out.water_area_m2 += hole ? -a : a;
-      if ((plane_ring_area(pts) > 0) == hole) std::reverse(pts.begin(), pts.end());  // outer CCW, holes CW
-      out.polygons.back().push_back(std::move(pts));
-    }
-    if (out.polygons.back().empty()) out.polygons.pop_back();
-  }
-  lap("rings out");
+  const std::size_t pole = pole_ring(clean);
+  if (pole == clean.size())
+    throw Error(ExitCode::kInvalidGeometry, L.label() + ": the land holding the pole " + at(proj.pole()) +
+                                                " has no coast left on the sphere");
+  out.pole_fid = clean[pole].fid;
+  GdalQuiet quiet;
+  out.polygons = water_polygons(clean, pole, proj, L.label(), out.water_area_m2, lap);
+  if (!generalise) return out;
+  std::vector<LandRing> gen = generalised_rings(clean, pole, proj, *generalise, step, out);
+  lap("generalise");
+  const std::size_t gpole = pole_ring(gen);
+  if (gpole == gen.size())
+    throw Error(ExitCode::kInvalidGeometry, L.label() + ": the generalised land holding the pole " + at(proj.pole()) +
+                                                " has no coast left");
+  out.input_polygons = std::move(out.polygons);
+  out.input_area_m2 = out.water_area_m2;
+  out.polygons = water_polygons(gen, gpole, proj, L.label() + " (generalised)", out.water_area_m2, lap);
+  out.features.input_pieces = out.input_polygons.size();
+  out.features.output_pieces = out.polygons.size();
+  for (auto& rep : out.features.repairs) rep.where = proj.forward({rep.where.x, rep.where.y});
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 #include "base/types.hpp"
+#include "coast/generalise.hpp"
 #include "gis/global_sphere.hpp"
 #include "gis/vector_input.hpp"
 
@@ -21,6 +22,13 @@ struct GlobalWater {
   std::size_t antimeridian_rings = 0;  // rings with vertices on longitude +-180 (joined across it)
   std::size_t densify_points = 0;      // points added along long lon/lat edges
   double water_area_m2 = 0;            // on the sphere (spherical polygon areas of the rings)
+  // With the generalisation: the water as read (polygons as above), its area on the sphere, the
+  // generalisation's figures (repairs in the projection's world coordinates) and its batches.
+  std::vector<std::vector<std::vector<Point2>>> input_polygons;
+  double input_area_m2 = 0;
+  coast::Result features;
+  std::size_t groups = 0, batches = 0;
+  double max_batch_scale = 1;  // the largest scale factor of the batches' planes
 };
 
 // A lon/lat ring as the sphere sees it: longitude -180 written as 180 (one meridian), every
@@ -42,7 +50,10 @@ std::size_t densify_lonlat(std::vector<LonLat>& ring, double step_deg);
 // polygon holding proj.pole() (its coast becomes the outer ring; exit kInvalidGeometry when none
 // holds it or its coast still reaches the pole), fills the holes of every land polygon, densifies
 // the rings (step_deg), projects them and subtracts all other land (united: the parts of a
-// polygon cut at the antimeridian meet again) with GEOS.
-GlobalWater global_water(const LayerRef& land, const std::string& s_srs, const SphereStereo& proj, double step_deg);
+// polygon cut at the antimeridian meet again) with GEOS. With `generalise` (widths in ground
+// metres), the land is generalised first (global_generalise.hpp) and the water as read is kept
+// in input_polygons.
+GlobalWater global_water(const LayerRef& land, const std::string& s_srs, const SphereStereo& proj, double step_deg,
+                         const coast::Options* generalise = nullptr);
 
 }  // namespace fdr::gis

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
@@ -703,7 +704,23 @@ LayerData global_domain(const DomainOptions& o, GisInput& in, std::vector<Ring>&
   const SphereStereo proj(*o.global_pole);
   in.frame = Frame::from_crs(proj.proj_string(), {0, 0});
   // Land edges follow their lon/lat line before projection (0.1 degree unless --densify says).
-  GlobalWater gw = global_water(o.land, o.s_srs, proj, o.densify_deg > 0 ? o.densify_deg : 0.1);
+  // The generalisation runs on the sphere's land in ground metres (gis/global_generalise.hpp),
+  // not on the water in this plane, whose scale factor reaches 100 near the pole.
+  std::optional<coast::Options> fo;
+  if (o.features) {
+    Box2 sphere;  // for a default hmin only; a global run requires --hmin
+    sphere.add({-kEarthRadius * std::numbers::pi, -kEarthRadius * std::numbers::pi});
+    sphere.add({kEarthRadius * std::numbers::pi, kEarthRadius * std::numbers::pi});
+    fo = o.features(sphere);
+  }
+  GlobalWater gw = global_water(o.land, o.s_srs, proj, o.densify_deg > 0 ? o.densify_deg : 0.1, fo ? &*fo : nullptr);
+  if (fo) {
+    in.input_polygons = std::move(gw.input_polygons);
+    for (auto& rep : gw.features.repairs) in.feature_repairs.push_back(repair_record(in.frame, std::move(rep)));
+    gw.features.repairs.clear();
+    in.features = std::move(gw.features);
+    in.repairs = in.feature_repairs;
+  }
   in.counts.densify_points += gw.densify_points;
   in.domain_area_m2 = gw.water_area_m2;
   LayerData dom;
@@ -762,7 +779,7 @@ GisInput read_domain(const DomainOptions& o) {
   in.frame.set_domain_box(bb);
   OpenLines open;
   if (!on_box.empty()) add_box_sides(on_box, rings, seg_source, o, open);
-  if (o.features) generalise_domain(o, dom, bb, diam, in, rings);
+  if (o.features && !o.global_pole) generalise_domain(o, dom, bb, diam, in, rings);
   if (o.open_boundary.given()) read_open_boundary(o, dom, in, open);
   if (!open.segs.empty()) mark_open_segments(rings, open, diam);
   assemble_rings(in, rings, open);
