@@ -3,11 +3,19 @@
 #pragma once
 #include <netcdf.h>
 
+#include <mutex>
 #include <string>
 
 #include "io/detail.hpp"
 
 namespace fdr::io::detail {
+
+// libnetcdf keeps global state without locks (as Debian builds it), and the writers of one run may
+// go in parallel: each netCDF writer holds this for its whole file, from create to close or abort.
+inline std::mutex& nc_mutex() {
+  static std::mutex m;
+  return m;
+}
 
 // Owns an open netCDF id; aborts (discarding changes) unless closed explicitly.
 struct NcFile {

@@ -239,6 +239,7 @@ void write_dflowfm_net(const mesh::MeshView& m, const std::string& path, const W
   const NcCrs crs = nc_crs(m.crs_wkt, path);
   const NetEdges edges = net_edges(m, path, o);
 
+  const std::lock_guard<std::mutex> one_at_a_time(nc_mutex());
   TempFile tf(path);
   tf.release_for_library();
   NcFile f;

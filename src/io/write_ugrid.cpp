@@ -273,6 +273,7 @@ void write_data(const Ugrid& u, const mesh::MeshView& m, const WriteOptions& o, 
 void write_ugrid(const mesh::MeshView& m, const std::string& path, const WriteOptions& o) {
   const Nc nc{path};
   const NcCrs crs = nc_crs(m.crs_wkt, path);
+  const std::lock_guard<std::mutex> one_at_a_time(nc_mutex());
   TempFile tf(path);
   tf.release_for_library();
   NcFile f;
