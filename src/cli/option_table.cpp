@@ -188,9 +188,10 @@ const std::vector<OptSpec>& option_table() {
        true},
       {"mesh", "--depth-grade", "depth-grade", field<&MeshOptions::depth_grade>, "float", "G", "0.25", "Terrain",
        "Terrain volumes: the spacing grows by G metres per metre of depth below the DEM (h = h2D + G depth)"},
-      {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "--vertical-tol (0 without it)", "Terrain",
+      {"mesh", "--min-thickness", "min-thickness", field<&MeshOptions::min_thickness>, "float", "M", "0.15*hmin, at least --vertical-tol", "Terrain",
        "Terrain volumes: where a layer is thinner than M metres at a TIN vertex its horizon moves onto the surface above "
-       "(or the base): the layer collapses there instead of ending in a thin wedge (0: only where they cross)"},
+       "(or the base): the layer collapses there instead of ending in a thin wedge (0: keep every layer, collapsing "
+       "only where surfaces cross)"},
       {"mesh", "--wells", "wells", field<&MeshOptions::wells>, "vector_in", "FILE", "", "Terrain",
        "Terrain volumes: wells as vertical segments refined around (points with fields top/bottom elevations or "
        "depth_from/depth_to depths below the DEM, or LineString Z); docs/terrain3d.md"},

@@ -55,7 +55,7 @@ struct Options {
   std::string base;
   std::vector<std::string> horizons;
   std::optional<double> depth_grade;
-  std::optional<double> min_thickness;   // thinner layers collapse locally (default: a fraction of hmin)
+  std::optional<double> min_thickness;   // thinner layers collapse locally (default: terrain::default_min_thickness)
   // Wells (an OGR source of points with a depth range, or 3D lines): vertical segments in the
   // volume with the spacing at most well_spacing along them (default: hmin).
   std::string wells, wells_layer;

@@ -272,9 +272,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   if (r2.mesh.z.size() != r2.mesh.vertices.size()) throw Error(ExitCode::kInternal, "terrain TIN without elevations");
   const terrain::Tin tin = tin_of(r2.mesh);
   const gis::Frame frame = gis::Frame::from_crs(r2.mesh.crs_wkt, r2.mesh.origin);
-  // Layers thinner than the TIN's own vertical tolerance collapse by default: the TIN does not
-  // resolve elevations more finely than that.
-  const double min_thickness = opt.min_thickness.value_or(opt.vertical_tol.value_or(0.0));
+  // Layers thinner than the resolution collapse by default (terrain::default_min_thickness).
+  const double min_thickness = opt.min_thickness.value_or(
+      terrain::default_min_thickness(spacing_range(opt, *r2.f, tin.xy).first, opt.vertical_tol.value_or(0.0)));
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
   tp.plc.source = opt.input.empty() ? opt.dem : opt.input;

@@ -29,6 +29,11 @@ void check_shapes(const std::vector<Surface>& stack, const Tin& tin) {
 
 }  // namespace
 
+double default_min_thickness(double hmin, double vertical_tol) {
+  const double h = std::isfinite(hmin) && hmin > 0 ? kMinThicknessPerHmin * hmin : 0.0;
+  return std::max(h, std::isfinite(vertical_tol) && vertical_tol > 0 ? vertical_tol : 0.0);
+}
+
 ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 origin, double min_thickness) {
   check_shapes(stack, tin);
   const Surface& top = stack.front();

@@ -45,4 +45,15 @@ struct ClampCounts {
 // everywhere (its layer would be empty).
 ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 origin, double min_thickness = 0);
 
+// The minimum layer thickness when none is given: kMinThicknessPerHmin of the smallest spacing,
+// and no less than the TIN's vertical tolerance (0 when neither is known). Between the two facets
+// of a layer the local feature size is its thickness, and the spacing follows it
+// (layer_spacing.hpp), so a layer thinner than the resolution asks for elements finer than hmin
+// over all its extent, and a pinch-out for a wedge as thin as the layer's last thickness before
+// zero. The fraction is the one below which the 2D coast's repairs remove land (--close-width):
+// features under it are not resolved but removed, and the finest spacing a layer asks for stays
+// within that factor of hmin.
+inline constexpr double kMinThicknessPerHmin = 0.15;
+double default_min_thickness(double hmin, double vertical_tol);
+
 }  // namespace fdr::terrain

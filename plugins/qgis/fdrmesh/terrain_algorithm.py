@@ -27,7 +27,7 @@ _NUMBERS = [
     ("HMAX", "--hmax", "Maximum element size hmax (m)", False),
     ("VERTICAL_TOL", "--vertical-tol", "Vertical tolerance of the top TIN against the DEM (m)", False),
     ("DEPTH_GRADE", "--depth-grade", "Spacing growth per metre of depth below the DEM (default 0.25)", True),
-    ("MIN_THICKNESS", "--min-thickness", "Layers thinner than this collapse (m; default: the vertical tolerance)", True),
+    ("MIN_THICKNESS", "--min-thickness", "Layers thinner than this collapse (m; default: 0.15 x HMIN, at least the vertical tolerance; 0 keeps every layer)", True),
     ("WELL_SPACING", "--well-spacing", "Element size along the wells (m; default hmin)", False),
     ("GRADATION", "--gradation", "Gradation of the spacing (Lipschitz constant)", True),
     ("BOUND", "--bound", "Refinement bound B on R/f(c) (default: the 3D default)", True),

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <unistd.h>
 #include "base/error.hpp"
 #include "pipeline/run3d.hpp"
@@ -147,6 +148,28 @@ TEST(TerrainRun, PinchOutCollapsesThinLayers) {
   const Result3 r = run3d(o, {}, {});
   ASSERT_EQ(r.layers.size(), 2u);
   for (const LayerFigures& l : r.layers) EXPECT_NEAR(l.volume, l.expected, 1e-3 * l.expected) << l.name;
+  fs::remove_all(dir);
+}
+
+// Without --min-thickness the layers thinner than 0.15 hmin collapse (at --hmin 150: 22.5 m), so
+// the pinch-out ends in a wedge of at least that over a TIN edge and the run takes seconds.
+TEST(TerrainRun, DefaultMinThicknessCollapsesBelowTheResolution) {
+  const fs::path dir = fresh_dir("pinch_default");
+  Options o = synthetic(dir);
+  o.horizons = {kTerrain + "synthetic_pinch.tif"};
+  o.outputs = {(dir / "t.poly").string()};  // the PLC only: the clamping is what is tested here
+  std::string warnings;
+  const LogFn log = [&](LogLevel l, std::string_view m) {
+    if (l == LogLevel::kWarning) warnings += std::string(m) + "\n";
+  };
+  run3d(o, {}, log);
+  EXPECT_NE(warnings.find("thinner than 22.5 m"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find(" 0 moved onto the surface above or the base"), std::string::npos) << warnings;
+  o.min_thickness = 0;  // keeps every layer: nothing collapses
+  warnings.clear();
+  run3d(o, {}, log);
+  EXPECT_NE(warnings.find(" 0 moved onto the surface above or the base where a layer is thinner than 0 m"), std::string::npos)
+      << warnings;
   fs::remove_all(dir);
 }
 

@@ -1,5 +1,7 @@
 // clamp_surfaces: ordering a stack into non-crossing surfaces, and its errors.
 #include <gtest/gtest.h>
+#include <cmath>
+#include <limits>
 #include "base/error.hpp"
 #include "terrain/surfaces.hpp"
 #include "terrain_fixture.hpp"
@@ -83,6 +85,30 @@ TEST(ClampSurfaces, MissingElevationIsAnError) {
   s[0].z[4] = std::nan("");
   EXPECT_EQ(code_of(s, tin), ExitCode::kInvalidGeometry);
   EXPECT_EQ(code_of({plane(tin, "top", 10)}, tin), ExitCode::kInvalidGeometry);
+}
+
+TEST(DefaultMinThickness, AFractionOfHminNoLessThanTheVerticalTolerance) {
+  EXPECT_EQ(default_min_thickness(160, 0), kMinThicknessPerHmin * 160);
+  EXPECT_EQ(default_min_thickness(160, 200), 200.0);  // the TIN resolves no finer vertically
+  EXPECT_EQ(default_min_thickness(0, 0), 0.0);
+  EXPECT_EQ(default_min_thickness(std::numeric_limits<double>::infinity(), 5), 5.0);  // no spacing known
+  EXPECT_GT(kMinThicknessPerHmin, 0.0);
+  EXPECT_LE(kMinThicknessPerHmin, 0.25);
+}
+
+// With the default, a layer thinner than a fraction of hmin collapses at those vertices and the
+// thinnest positive thickness left is at least that fraction.
+TEST(DefaultMinThickness, CollapsesLayersBelowTheResolution) {
+  const Tin tin = lattice_tin();
+  // The layer above h1 is 30 + 30x thick: 30 at x = 0 (below the fraction of hmin 240), 60 and 90 beyond.
+  std::vector<Surface> s{plane(tin, "top", 100), plane(tin, "h1", 70, -30), plane(tin, "base", -100)};
+  const double m = default_min_thickness(240, 0);
+  const ClampCounts c = clamp_surfaces(s, tin, {}, m);
+  EXPECT_EQ(c.collapsed[1], 3u);
+  for (std::size_t v = 0; v < tin.xy.size(); ++v) {
+    const double t = s[0].z[v] - s[1].z[v];
+    EXPECT_TRUE(t == 0 || t >= m) << v << " " << t;
+  }
 }
 
 }  // namespace
