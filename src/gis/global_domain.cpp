@@ -12,6 +12,7 @@
 #include <ogr_geometry.h>
 #include <ogr_spatialref.h>
 
+#include "coast/convex.hpp"
 #include "base/error.hpp"
 #include "base/step_laps.hpp"
 #include "gis/gdal_util.hpp"
@@ -43,15 +44,6 @@ double sphere_ring_area(const std::vector<Point2>& ring, const SphereStereo& pro
     a += spherical_triangle_area(c, unit_vector(proj.inverse(ring[i])), unit_vector(proj.inverse(ring[(i + 1) % n])),
                                  proj.radius());
   return a;
-}
-
-double plane_ring_area(const std::vector<Point2>& r) {
-  double a = 0;
-  for (std::size_t i = 0, n = r.size(); i < n; ++i) {
-    const Point2 p = r[i] - r[0], q = r[(i + 1) % n] - r[0];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return 0.5 * a;
 }
 
 struct LandRing {
@@ -282,7 +274,7 @@ std::vector<std::vector<std::vector<Point2>>> water_polygons(const std::vector<L
       const bool hole = !out.back().empty();
       const double a = std::fabs(sphere_ring_area(pts, proj));
       area += hole ? -a : a;
-      if ((plane_ring_area(pts) > 0) == hole) std::reverse(pts.begin(), pts.end());  // outer CCW, holes CW
+      if ((coast::signed_area(pts) > 0) == hole) std::reverse(pts.begin(), pts.end());  // outer CCW, holes CW
       out.back().push_back(std::move(pts));
     }
     if (out.back().empty()) out.pop_back();

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <tuple>
 
+#include "coast/convex.hpp"
 #include "base/debug.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
@@ -67,15 +68,6 @@ coast::Options scaled(const coast::Options& g, double s) {
   o.defer_removed = false;
   o.early_listing_rss = 0;
   return o;
-}
-
-double ring_area(const std::vector<Point2>& r) {
-  double a = 0;
-  for (std::size_t i = 0, n = r.size(); i < n; ++i) {
-    const Point2 p = r[i] - r[0], q = r[(i + 1) % n] - r[0];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return 0.5 * a;
 }
 
 bool inside(Point2 p, const std::vector<Point2>& ring) {
@@ -180,14 +172,14 @@ BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& gro
   water.push_back({{box.lo.x - m, box.lo.y - m}, {box.hi.x + m, box.lo.y - m}, {box.hi.x + m, box.hi.y + m},
                    {box.lo.x - m, box.hi.y + m}});
   for (auto& r : land) {
-    if (ring_area(r) > 0) std::reverse(r.begin(), r.end());  // holes clockwise
+    if (coast::signed_area(r) > 0) std::reverse(r.begin(), r.end());  // holes clockwise
     water.push_back(std::move(r));
   }
   out.res = coast::generalise({std::move(water)}, scaled(ground, out.scale));
   // The water around the land: the piece with the largest outer ring (the box, its corners rounded).
   std::size_t main = 0;
   for (std::size_t k = 1; k < out.res.polygons.size(); ++k)
-    if (std::fabs(ring_area(out.res.polygons[k][0])) > std::fabs(ring_area(out.res.polygons[main][0]))) main = k;
+    if (std::fabs(coast::signed_area(out.res.polygons[k][0])) > std::fabs(coast::signed_area(out.res.polygons[main][0]))) main = k;
   const Point2 pole_at = local.forward(pole);
   const bool pole_here = std::isfinite(pole_at.x) && std::isfinite(pole_at.y);
   std::vector<std::vector<Point2>> land_out(out.res.polygons[main].begin() + 1, out.res.polygons[main].end());

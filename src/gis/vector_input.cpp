@@ -16,6 +16,7 @@
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
+#include "coast/convex.hpp"
 #include "base/error.hpp"
 #include "gis/gdal_util.hpp"
 #include "gis/global_domain.hpp"
@@ -116,15 +117,6 @@ struct Ring {
   int part = -1;
   bool hole = false;
 };
-
-double ring_area(const std::vector<Point2>& r) {
-  double a = 0;
-  for (std::size_t i = 0, n = r.size(); i < n; ++i) {
-    const Point2 p = r[i], q = r[(i + 1) % n];
-    a += (p.x - r[0].x) * (q.y - r[0].y) - (q.x - r[0].x) * (p.y - r[0].y);
-  }
-  return 0.5 * a;
-}
 
 
 // Uniform bucket grid over line segments for "is this point within tol of a line" queries.
@@ -767,7 +759,7 @@ GisInput read_domain(const DomainOptions& o) {
     add_polygon_rings(dom, in.frame, o.domain.given() ? "outer ring" : "extent box", rings, in.parts, in.counts,
                       in.domain_polygons, o.densify_deg, on_box.empty() ? nullptr : &seg_source);
     for (const auto& poly : in.domain_polygons)
-      for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(ring_area(poly[k]));
+      for (std::size_t k = 0; k < poly.size(); ++k) in.domain_area_m2 += (k == 0 ? 1 : -1) * std::abs(coast::signed_area(poly[k]));
   }
   if (rings.empty())
     throw Error(ExitCode::kInvalidGeometry, dom.label() + ": no polygon rings");
