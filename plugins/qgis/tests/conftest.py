@@ -36,7 +36,9 @@ def pytest_sessionstart(session):
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ.setdefault("GDAL_PAM_ENABLED", "NO")
 sys.path.insert(0, PLUGINS_DIR)
+sys.path.insert(0, os.path.join(REPO, "tools", "qgis"))
 sys.path.insert(0, "/usr/share/qgis/python/plugins")  # the Processing plugin (settings page)
+from pyqgis_app import pyqgis_app  # noqa: E402
 
 
 def qgis_env(profile, **extra):
@@ -101,14 +103,5 @@ def chesapeake_run(profile, tmp_path_factory):
 @pytest.fixture(scope="session")
 def qgs(tmp_path_factory):
     """An in-process QgsApplication (own profile); map layers must be deleted before it exits."""
-    prof = tmp_path_factory.mktemp("pyqgis_profile")
-    os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(prof)
-    os.environ.setdefault("XDG_RUNTIME_DIR", str(prof))
-    from qgis.core import QgsApplication
-    QgsApplication.setPrefixPath("/usr", True)
-    app = QgsApplication([], False)
-    app.initQgis()
-    yield app
-    import gc
-    gc.collect()
-    app.exitQgis()
+    with pyqgis_app(tmp_path_factory.mktemp("pyqgis_profile")) as app:
+        yield app

@@ -5,11 +5,14 @@ import json
 import math
 import os
 import subprocess
+import sys
 
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+sys.path.insert(0, os.path.join(REPO, "tools", "qgis"))
+from pyqgis_app import pyqgis_app  # noqa: E402
 CHES = os.path.join(REPO, "testdata", "chesapeake")
 FDRMESH = os.environ.get("FDRMESH")
 
@@ -19,17 +22,8 @@ os.environ.setdefault("GDAL_PAM_ENABLED", "NO")
 
 @pytest.fixture(scope="module")
 def qgs(tmp_path_factory):
-    prof = tmp_path_factory.mktemp("pyqgis_profile")
-    os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(prof)
-    os.environ.setdefault("XDG_RUNTIME_DIR", str(prof))
-    from qgis.core import QgsApplication
-    QgsApplication.setPrefixPath("/usr", True)
-    app = QgsApplication([], False)
-    app.initQgis()
-    yield app
-    import gc
-    gc.collect()
-    app.exitQgis()
+    with pyqgis_app(tmp_path_factory.mktemp("pyqgis_profile")) as app:
+        yield app
 
 
 @pytest.fixture(scope="module")

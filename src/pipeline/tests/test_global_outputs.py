@@ -9,11 +9,14 @@ import json
 import math
 import os
 import subprocess
+import sys
 
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+sys.path.insert(0, os.path.join(REPO, "tools", "qgis"))
+from pyqgis_app import pyqgis_app  # noqa: E402
 LAND = os.path.join(REPO, "..", "shared", "data", "global", "gshhg_land_l.gpkg")
 FDRMESH = os.environ.get("FDRMESH")
 R = 6371008.8  # the sphere of --global runs (gis/global_sphere.hpp kEarthRadius)
@@ -120,19 +123,11 @@ def test_msh_on_the_sphere_with_coast_groups(run):
 @pytest.fixture(scope="module")
 def qgs(tmp_path_factory):
     try:
-        from qgis.core import QgsApplication
+        import qgis.core  # noqa: F401
     except ImportError:
         pytest.skip("PyQGIS (python3-qgis) is not installed: the MDAL read-back is not tested")
-    prof = tmp_path_factory.mktemp("pyqgis_profile")
-    os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(prof)
-    os.environ.setdefault("XDG_RUNTIME_DIR", str(prof))
-    QgsApplication.setPrefixPath("/usr", True)
-    app = QgsApplication([], False)
-    app.initQgis()
-    yield app
-    import gc
-    gc.collect()
-    app.exitQgis()
+    with pyqgis_app(tmp_path_factory.mktemp("pyqgis_profile")) as app:
+        yield app
 
 
 def mdal_load(path):
