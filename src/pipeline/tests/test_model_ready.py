@@ -217,9 +217,7 @@ def test_keep_coast_keeps_every_vertex(tmp_path):
 
 
 # Every shared region is held to the targets (< 20 deg: 0.01 %, edges under hmin/2: 0.1 %,
-# shortest edge hmin/10, coast within hmin/2 at p99 both ways). Measured with the defaults (README,
-# Model-ready meshes): Gulf of Maine 0 %, 0.091 %, 0.148 hmin, input->mesh p99 0.495 hmin (0.537
-# before islets could be joined round a corner of the coast).
+# shortest edge hmin/10, coast within hmin/2 at p99 both ways), with the defaults.
 REGIONS = [("chesapeake_mouth", 150, 5000, 1e-4, 0.001, 0.1, 0.5), ("gulf_of_maine", 500, 20000, 1e-4, 0.001, 0.1, 0.5),
            ("west_norway", 100, 5000, 1e-4, 0.001, 0.1, 0.5), ("west_norway_h", 100, 5000, 1e-4, 0.001, 0.1, 0.5)]
 
