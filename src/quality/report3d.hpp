@@ -39,6 +39,9 @@ struct TheoremRow {
   double bound = 0, measured = 0;
   bool holds = false;
   bool applies = true;         // false: no guarantee (alpha unknown or alpha B >= 1)
+  // Measured on a mesh the theorem does not cover (after sliver removal, whose vertices are not
+  // FDR's): shown beside the theorem's row, never judged (applies is false).
+  bool beyond_paper = false;
 };
 
 struct Report3 {

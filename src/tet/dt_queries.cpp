@@ -1,7 +1,8 @@
 #include "tet/dt_queries.hpp"
 
-#include <limits>
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include "predicates/predicates3d.hpp"
 
 namespace fdr::tet {
@@ -126,6 +127,36 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
 void release_query_scratch() {
   std::vector<std::uint32_t>().swap(marks);
   stamp_now = 0;
+}
+
+VertexEdgeRatios vertex_edge_ratios(const Delaunay3& dt, const std::function<bool(TetId)>& keep,
+                                    const std::function<double(Point3)>& f) {
+  // Squared lengths: the square root is monotone and correctly rounded, so the root of the least
+  // square is the least length, as a report that measures lengths directly gets it.
+  const std::size_t n = dt.num_vertices();
+  std::vector<double> shortest(n, std::numeric_limits<double>::infinity()), longest(n, 0.0);
+  dt.for_each_finite_tet([&](TetId t) {
+    if (!keep(t)) return;
+    const auto& v = dt.vertices(t);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double l2 = norm2(dt.point(v[i]) - dt.point(v[j]));
+        for (VertexId u : {v[i], v[j]}) {
+          shortest[u] = std::min(shortest[u], l2);
+          longest[u] = std::max(longest[u], l2);
+        }
+      }
+  });
+  VertexEdgeRatios r;
+  r.nn_over_f_min = std::numeric_limits<double>::infinity();
+  for (std::size_t u = 0; u < n; ++u) {
+    if (longest[u] == 0) continue;  // a vertex of no kept tetrahedron
+    const double fu = f(dt.point(static_cast<VertexId>(u)));
+    r.nn_over_f_min = std::min(r.nn_over_f_min, std::sqrt(shortest[u]) / fu);
+    r.el_over_f_max = std::max(r.el_over_f_max, std::sqrt(longest[u]) / fu);
+  }
+  if (!std::isfinite(r.nn_over_f_min)) r.nn_over_f_min = 0;
+  return r;
 }
 
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {

@@ -2,6 +2,7 @@
 // functions over its public interface.
 #pragma once
 #include <array>
+#include <functional>
 #include <vector>
 #include "base/point3.hpp"
 #include "tet/delaunay3.hpp"
@@ -36,6 +37,16 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p);
 // Frees the calling thread's marks that the walks above keep between calls (4 bytes per
 // tetrahedron slot), e.g. once refinement is over and the mesh is copied out.
 void release_query_scratch();
+
+// Over the vertices of the finite tetrahedra that `keep` accepts: the shortest and the longest
+// edge of those tetrahedra at each vertex, over f at the vertex; the least shortest (nn/f, Theorem
+// 4.4) and the greatest longest (el/f, Theorem 4.5). Both 0 when no tetrahedron is kept.
+struct VertexEdgeRatios {
+  double nn_over_f_min = 0;
+  double el_over_f_max = 0;
+};
+VertexEdgeRatios vertex_edge_ratios(const Delaunay3& dt, const std::function<bool(TetId)>& keep,
+                                    const std::function<double(Point3)>& f);
 
 // Whether p lies strictly beyond ghost g's hull face.
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p);

@@ -155,6 +155,11 @@ void Refiner3::remove_slivers() {
   slivers_->cos_floor = std::cos(options_.sliver_angle_deg / 3 * kPi / 180.0);
   stats_.sliver_angle_deg = options_.sliver_angle_deg;
   stats_.dihedral_hist_before.assign(kHistogramBins, 0);
+  const VertexEdgeRatios fdr = vertex_edge_ratios(
+      dt_, [&](TetId t) { return region(t) != kOutsideRegion; }, [&](Point3 p) { return f_(p); });
+  stats_.fdr_vertex_figures = true;
+  stats_.fdr_nn_over_f_min = fdr.nn_over_f_min;
+  stats_.fdr_el_over_f_max = fdr.el_over_f_max;
   double worst = -1;
   dt_.for_each_finite_tet([&](TetId t) {
     if (region(t) == kOutsideRegion) return;

@@ -158,6 +158,53 @@ TEST(Report3, SliverRemovalBeforeAndAfter) {
     EXPECT_NE(j.find(key), std::string::npos) << key;
 }
 
+// Sliver removal's points sit nearer their neighbours than FDR's protection spheres allow: on a
+// small cube the final mesh's nn/f falls below Theorem 4.4's bound. The theorem is judged on the
+// mesh rule 3 left (the same mesh as a run without sliver removal, figure for figure) and the final
+// figure is shown beside it, not judged.
+TEST(Report3, TheoremsJudgedOnFdrVerticesBeforeSliverRemoval) {
+  const plc::Plc cube = cube_plc();
+  const Const3 f(0.1);
+  const tet::TetResult with = tet::tetrahedralize(cube, f);
+  tet::TetOptions no_slivers;
+  no_slivers.remove_slivers = false;
+  const tet::TetResult without = tet::tetrahedralize(cube, f, no_slivers);
+  ASSERT_GT(with.stats.sliver_splits, 0u);
+  ASSERT_TRUE(with.stats.fdr_vertex_figures);
+  EXPECT_FALSE(without.stats.fdr_vertex_figures);
+  const Report3 rule3 = measure_tets(without.mesh, f, without.stats);
+  EXPECT_EQ(with.stats.fdr_nn_over_f_min, rule3.nn_over_f_min);
+  EXPECT_EQ(with.stats.fdr_el_over_f_max, rule3.el_over_f_max);
+
+  const Report3 r = measure_tets(with.mesh, f, with.stats);
+  ASSERT_TRUE(r.guarantees.valid);
+  EXPECT_EQ(r.guarantees.nn_over_f_min, 0.5);  // alpha = 0, B = 1: beta = 1/4
+  EXPECT_LT(r.nn_over_f_min, with.stats.fdr_nn_over_f_min);  // the sliver points come nearer
+  std::map<std::string, TheoremRow> rows;
+  for (const auto& t : r.theorems) rows[t.key] = t;
+  const TheoremRow& nn = rows.at("theorem_4_4_nn_over_f_min");
+  EXPECT_EQ(nn.measured, with.stats.fdr_nn_over_f_min);
+  EXPECT_TRUE(nn.applies && nn.holds && !nn.beyond_paper);
+  EXPECT_EQ(rows.at("theorem_4_5_el_over_f_max").measured, with.stats.fdr_el_over_f_max);
+  const TheoremRow& after = rows.at("after_slivers_nn_over_f_min");
+  EXPECT_EQ(after.measured, r.nn_over_f_min);
+  EXPECT_TRUE(after.beyond_paper);
+  EXPECT_FALSE(after.applies);
+  EXPECT_EQ(rows.at("after_slivers_el_over_f_max").measured, r.el_over_f_max);
+  std::ostringstream text, json;
+  write_text3(r, text);
+  write_json3(r, json);
+  EXPECT_NE(text.str().find("nn/f min (Thm 4.4, before sliver removal): bound >= 0.5"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("nn/f min after sliver removal: measured"), std::string::npos) << text.str();
+  EXPECT_EQ(text.str().find("FAILS"), std::string::npos) << text.str();
+  EXPECT_NE(json.str().find("\"beyond_paper\": true"), std::string::npos);
+
+  // Without sliver removal the final mesh is rule 3's: the theorem's row measures it, nothing beside.
+  const Report3 plain = measure_tets(without.mesh, f, without.stats);
+  for (const auto& t : plain.theorems) EXPECT_FALSE(t.beyond_paper) << t.key;
+  EXPECT_EQ(plain.theorems.size() + 2, r.theorems.size());
+}
+
 TEST(Report3, GuaranteesNeedAlphaBBelowOne) {
   EXPECT_FALSE(compute_guarantees3(-1, 1).valid);
   EXPECT_FALSE(compute_guarantees3(0.5, 2).valid);

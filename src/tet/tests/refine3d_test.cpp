@@ -1,9 +1,11 @@
 // Tetrahedron geometry, the B-bad test and the queue of bad tetrahedra.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include "tet/delaunay3.hpp"
+#include "tet/dt_queries.hpp"
 #include "tet/refine3d.hpp"
 #include "tet/tet_geometry.hpp"
 
@@ -112,3 +114,48 @@ TEST(Refine3d, TiesAreOrderedByVertices) {
   EXPECT_EQ(first.size(), dt.num_finite_tets());
   EXPECT_EQ(first, second);
 }
+
+namespace fdr::tet {
+namespace {
+
+// vertex_edge_ratios against each vertex's edges listed one by one, over all the tetrahedra and
+// over half of them (the kept ones), on random points with f varying in space.
+TEST(VertexEdgeRatios, MatchesEdgesListedByHand) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(300);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  const auto f = [](Point3 p) { return 0.05 + 0.1 * p.x + 0.02 * p.z; };
+  for (int mod : {1, 2}) {
+    const auto keep = [&](TetId t) { return t % mod == 0; };
+    std::vector<double> lo(dt.num_vertices(), std::numeric_limits<double>::infinity()), hi(dt.num_vertices(), 0);
+    dt.for_each_finite_tet([&](TetId t) {
+      if (!keep(t)) return;
+      const auto& v = dt.vertices(t);
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (i != j) {
+            const double l = dist(dt.point(v[i]), dt.point(v[j]));
+            lo[v[i]] = std::min(lo[v[i]], l);
+            hi[v[i]] = std::max(hi[v[i]], l);
+          }
+    });
+    double nn = std::numeric_limits<double>::infinity(), el = 0;
+    for (VertexId w = 0; w < dt.num_vertices(); ++w)
+      if (hi[w] > 0) {
+        nn = std::min(nn, lo[w] / f(dt.point(w)));
+        el = std::max(el, hi[w] / f(dt.point(w)));
+      }
+    const VertexEdgeRatios r = vertex_edge_ratios(dt, keep, f);
+    EXPECT_EQ(r.nn_over_f_min, nn) << mod;
+    EXPECT_EQ(r.el_over_f_max, el) << mod;
+  }
+  const VertexEdgeRatios none = vertex_edge_ratios(dt, [](TetId) { return false; }, f);
+  EXPECT_EQ(none.nn_over_f_min, 0);
+  EXPECT_EQ(none.el_over_f_max, 0);
+}
+
+}  // namespace
+}  // namespace fdr::tet
