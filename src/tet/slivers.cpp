@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "base/memory.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -160,6 +161,7 @@ void Refiner3::remove_slivers() {
   stats_.fdr_vertex_figures = true;
   stats_.fdr_nn_over_f_min = fdr.nn_over_f_min;
   stats_.fdr_el_over_f_max = fdr.el_over_f_max;
+  release_free_memory();  // its per-vertex arrays would otherwise stay resident as the phase grows the mesh
   double worst = -1;
   dt_.for_each_finite_tet([&](TetId t) {
     if (region(t) == kOutsideRegion) return;
