@@ -115,6 +115,57 @@ TEST(Refine3d, TiesAreOrderedByVertices) {
   EXPECT_EQ(first, second);
 }
 
+// Entries pushed while their range is being emptied (into the sorted range, above it, below it)
+// come out in the order one heap would give: largest ratio first, ties by their sorted vertices.
+TEST(Refine3d, QueueOrderHoldsForEntriesPushedWhilePopping) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(300);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  std::vector<BadTet> all;
+  dt.for_each_finite_tet([&](TetId t) {
+    // Few distinct ratios, most of them inside one range of the queue, with ties.
+    const double ratio = 1.5 + 0.0005 * static_cast<double>(rng() % 12) + (rng() % 9 == 0 ? 0.3 : 0.0) -
+                         (rng() % 7 == 0 ? 0.2 : 0.0);
+    all.push_back({ratio, t, dt.vertices(t), {}});
+  });
+  ASSERT_GT(all.size(), 1000u);
+  auto key = [](const BadTet& b) {
+    auto v = b.v;
+    std::sort(v.begin(), v.end());
+    return std::make_pair(-b.ratio, v);  // smallest key comes out first
+  };
+  BadTetQueue q(1.0);
+  std::vector<BadTet> pending;  // the reference: what is queued
+  std::vector<std::array<VertexId, 4>> got, want;
+  auto pop_both = [&](std::size_t n) {
+    for (std::size_t i = 0; i < n && !pending.empty(); ++i) {
+      const auto it = std::min_element(pending.begin(), pending.end(),
+                                       [&](const BadTet& a, const BadTet& b) { return key(a) < key(b); });
+      want.push_back(it->v);
+      pending.erase(it);
+      BadTet b;
+      ASSERT_TRUE(q.pop(dt, &b));
+      got.push_back(b.v);
+    }
+  };
+  const std::size_t half = all.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) q.push(all[i]), pending.push_back(all[i]);
+  pop_both(50);
+  for (std::size_t i = half; i < all.size(); ++i) {
+    q.push(all[i]);
+    pending.push_back(all[i]);
+    if (i % 17 == 0) pop_both(3);
+  }
+  pop_both(all.size());
+  BadTet b;
+  EXPECT_FALSE(q.pop(dt, &b));
+  EXPECT_EQ(q.size(), 0u);
+  EXPECT_EQ(got, want);
+}
+
 namespace fdr::tet {
 namespace {
 
