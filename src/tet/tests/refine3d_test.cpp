@@ -174,7 +174,7 @@ namespace {
 TEST(VertexEdgeRatios, MatchesEdgesListedByHand) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Point3> pts(300);
+  std::vector<Point3> pts(6000);  // tetrahedron slots in several chunks
   for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
   Delaunay3 dt;
   dt.insert_all(pts);
@@ -199,9 +199,11 @@ TEST(VertexEdgeRatios, MatchesEdgesListedByHand) {
         nn = std::min(nn, lo[w] / f(dt.point(w)));
         el = std::max(el, hi[w] / f(dt.point(w)));
       }
-    const VertexEdgeRatios r = vertex_edge_ratios(dt, keep, f);
-    EXPECT_EQ(r.nn_over_f_min, nn) << mod;
-    EXPECT_EQ(r.el_over_f_max, el) << mod;
+    for (unsigned threads : {1u, 2u}) {
+      const VertexEdgeRatios r = vertex_edge_ratios(dt, keep, f, threads);
+      EXPECT_EQ(r.nn_over_f_min, nn) << mod << " " << threads;
+      EXPECT_EQ(r.el_over_f_max, el) << mod << " " << threads;
+    }
   }
   const VertexEdgeRatios none = vertex_edge_ratios(dt, [](TetId) { return false; }, f);
   EXPECT_EQ(none.nn_over_f_min, 0);
