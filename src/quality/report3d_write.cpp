@@ -71,6 +71,11 @@ void write_text3(const Report3& r, std::ostream& out) {
   out << "edge length / f: min " << fmt("%.4f", r.min_l_over_f) << ", max " << fmt("%.4f", r.max_l_over_f) << "\n";
   out << "theorems (" << r.guarantees.note << "):\n";
   for (const auto& t : r.theorems) {
+    if (t.beyond_paper) {  // beside the theorem's row, not judged: the theorem does not cover it
+      out << "  " << t.label << ": measured " << fmt("%.4g", t.measured) << " (beyond the paper; the theorem's "
+          << (t.upper ? "<= " : ">= ") << fmt("%.4g", t.bound) << " covers FDR's vertices only)\n";
+      continue;
+    }
     out << "  " << t.label << ": bound " << (t.upper ? "<= " : ">= ") << fmt("%.4g", t.bound) << ", measured "
         << fmt("%.4g", t.measured) << ", " << (!t.applies ? "n/a" : t.holds ? "holds" : "FAILS") << "\n";
   }
@@ -113,7 +118,8 @@ void write_json3(const Report3& r, std::ostream& out) {
   J th = J::array();
   for (const auto& t : r.theorems)
     th.push_back({{"key", t.key}, {"label", t.label}, {"kind", t.upper ? "max" : "min"}, {"bound", num(t.bound)},
-                  {"measured", num(t.measured)}, {"applies", t.applies}, {"holds", t.holds}});
+                  {"measured", num(t.measured)}, {"applies", t.applies}, {"holds", t.holds},
+                  {"beyond_paper", t.beyond_paper}});
   g["theorems"] = th;
   j["guarantees"] = g;
   const auto& s = r.stats;

@@ -1,7 +1,9 @@
 #include "tet/dt_queries.hpp"
 
-#include <limits>
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include "base/parallel.hpp"
 #include "predicates/predicates3d.hpp"
 
 namespace fdr::tet {
@@ -126,6 +128,57 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
 void release_query_scratch() {
   std::vector<std::uint32_t>().swap(marks);
   stamp_now = 0;
+}
+
+VertexEdgeRatios vertex_edge_ratios(const Delaunay3& dt, const std::function<bool(TetId)>& keep,
+                                    const std::function<double(Point3)>& f, unsigned threads) {
+  // Squared lengths: the square root is monotone and correctly rounded, so the root of the least
+  // square is the least length, as a report that measures lengths directly gets it. Each worker
+  // keeps its own per-vertex extremes over fixed chunks of slots; min and max are exact and
+  // order-free, so the figures are the same for any thread count.
+  constexpr std::size_t kSlotsPerChunk = 16384;
+  const std::size_t n = dt.num_vertices(), slots = dt.tet_slots();
+  const std::size_t nchunks = (slots + kSlotsPerChunk - 1) / kSlotsPerChunk;
+  threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, nchunks)));
+  struct Extremes {
+    std::vector<double> shortest, longest;
+  };
+  std::vector<Extremes> w(threads, {std::vector<double>(n, std::numeric_limits<double>::infinity()),
+                                    std::vector<double>(n, 0.0)});
+  parallel_chunks(
+      nchunks,
+      [&](std::size_t c, unsigned worker) {
+        Extremes& e = w[worker];
+        for (TetId t = static_cast<TetId>(c * kSlotsPerChunk), end = static_cast<TetId>(std::min(slots, (c + 1) * kSlotsPerChunk));
+             t < end; ++t) {
+          if (!dt.alive(t) || dt.is_ghost(t) || !keep(t)) continue;
+          const auto& v = dt.vertices(t);
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+              const double l2 = norm2(dt.point(v[i]) - dt.point(v[j]));
+              for (VertexId u : {v[i], v[j]}) {
+                e.shortest[u] = std::min(e.shortest[u], l2);
+                e.longest[u] = std::max(e.longest[u], l2);
+              }
+            }
+        }
+      },
+      threads);
+  VertexEdgeRatios r;
+  r.nn_over_f_min = std::numeric_limits<double>::infinity();
+  for (std::size_t u = 0; u < n; ++u) {
+    double s2 = std::numeric_limits<double>::infinity(), l2 = 0;
+    for (const Extremes& e : w) {
+      s2 = std::min(s2, e.shortest[u]);
+      l2 = std::max(l2, e.longest[u]);
+    }
+    if (l2 == 0) continue;  // a vertex of no kept tetrahedron
+    const double fu = f(dt.point(static_cast<VertexId>(u)));
+    r.nn_over_f_min = std::min(r.nn_over_f_min, std::sqrt(s2) / fu);
+    r.el_over_f_max = std::max(r.el_over_f_max, std::sqrt(l2) / fu);
+  }
+  if (!std::isfinite(r.nn_over_f_min)) r.nn_over_f_min = 0;
+  return r;
 }
 
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p) {

@@ -2,8 +2,10 @@
 // functions over its public interface.
 #pragma once
 #include <array>
+#include <functional>
 #include <vector>
 #include "base/point3.hpp"
+#include "base/threads.hpp"
 #include "tet/delaunay3.hpp"
 
 namespace fdr::tet {
@@ -36,6 +38,17 @@ bool in_conflict(const Delaunay3& dt, TetId t, Point3 p);
 // Frees the calling thread's marks that the walks above keep between calls (4 bytes per
 // tetrahedron slot), e.g. once refinement is over and the mesh is copied out.
 void release_query_scratch();
+
+// Over the vertices of the finite tetrahedra that `keep` accepts: the shortest and the longest
+// edge of those tetrahedra at each vertex, over f at the vertex; the least shortest (nn/f, Theorem
+// 4.4) and the greatest longest (el/f, Theorem 4.5). Both 0 when no tetrahedron is kept. `keep`
+// is called on up to `threads` threads at once; the result is the same for any count.
+struct VertexEdgeRatios {
+  double nn_over_f_min = 0;
+  double el_over_f_max = 0;
+};
+VertexEdgeRatios vertex_edge_ratios(const Delaunay3& dt, const std::function<bool(TetId)>& keep,
+                                    const std::function<double(Point3)>& f, unsigned threads = max_threads());
 
 // Whether p lies strictly beyond ghost g's hull face.
 bool beyond_hull_face(const Delaunay3& dt, TetId g, Point3 p);

@@ -30,9 +30,13 @@ int BadTetQueue::bucket(double ratio) {
 void BadTetQueue::push(const BadTet& b) {
   const int k = bucket(b.ratio);
   if (static_cast<std::size_t>(k) >= buckets_.size()) buckets_.resize(static_cast<std::size_t>(k) + 1);
-  std::vector<Entry>& heap = buckets_[static_cast<std::size_t>(k)];
-  heap.push_back({b.ratio, b.tet, b.v});
-  std::push_heap(heap.begin(), heap.end(), Below{});
+  Bucket& r = buckets_[static_cast<std::size_t>(k)];
+  if (r.sorted) {
+    r.late.push_back({b.ratio, b.tet, b.v});
+    std::push_heap(r.late.begin(), r.late.end(), Below{});
+  } else {
+    r.items.push_back({b.ratio, b.tet, b.v});
+  }
   top_ = std::max(top_, k);
   ++size_;
 }
@@ -55,21 +59,35 @@ bool BadTetQueue::offer(const Delaunay3& dt, TetId t, const Spacing3& f) {
 
 bool BadTetQueue::pop(const Delaunay3& dt, BadTet* out) {
   for (; top_ >= 0; --top_) {
-    std::vector<Entry>& heap = buckets_[static_cast<std::size_t>(top_)];
-    while (!heap.empty()) {
-      std::pop_heap(heap.begin(), heap.end(), Below{});
-      const Entry e = heap.back();
-      heap.pop_back();
+    Bucket& r = buckets_[static_cast<std::size_t>(top_)];
+    if (!r.sorted) {
+      std::sort(r.items.begin(), r.items.end(), Below{});
+      r.sorted = true;
+    }
+    while (!r.items.empty() || !r.late.empty()) {
+      Entry e;
+      if (r.late.empty() || (!r.items.empty() && Below{}(r.late.front(), r.items.back()))) {
+        e = r.items.back();
+        r.items.pop_back();
+      } else {
+        std::pop_heap(r.late.begin(), r.late.end(), Below{});
+        e = r.late.back();
+        r.late.pop_back();
+      }
       --size_;
       // The next entry's tetrahedron lies anywhere in the array: have it fetched now, so that
       // its staleness test does not wait for memory.
-      if (!heap.empty()) fdr::prefetch(&dt.vertices(heap.front().tet));
+      if (!r.items.empty()) fdr::prefetch(&dt.vertices(r.items.back().tet));
+      if (!r.late.empty()) fdr::prefetch(&dt.vertices(r.late.front().tet));
       if (!dt.alive(e.tet) || dt.vertices(e.tet) != e.v) continue;
       const auto& v = e.v;
       *out = {e.ratio, e.tet, v, circumsphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3])).centre};
       return true;
     }
-    std::vector<Entry>().swap(heap);  // an emptied range gives its memory back
+    // An emptied range gives its memory back and collects unsorted again.
+    std::vector<Entry>().swap(r.items);
+    std::vector<Entry>().swap(r.late);
+    r.sorted = false;
   }
   return false;
 }

@@ -38,9 +38,11 @@ struct BadTet {
 // that splits the newest of nearly equal ratios first can run away. Entries
 // whose tetrahedron was destroyed meanwhile are dropped when they come up.
 // Kept cheap without changing the order: the ratios are cut into ranges on a log scale
-// (kBucketsPerOctave per factor of two), each range a heap of its own; the top range's heap is
-// popped first. Equal ratios share a range, so the order is the one heap's; the heap at work stays
-// small and in cache while the stale entries of lower ranges wait untouched.
+// (kBucketsPerOctave per factor of two) and the top range is emptied first. A range below the top
+// only collects its entries (an append, no heap to sift through memory); when it becomes the top it
+// is sorted once and taken from its end, and entries that arrive while it is sorted wait in a small
+// heap beside it, the larger of the two heads coming out first. Equal ratios share a range, so the
+// order is the one a single heap would give.
 class BadTetQueue {
  public:
   explicit BadTetQueue(double bound) : bound_(bound) {}
@@ -69,9 +71,14 @@ class BadTetQueue {
   struct Below {
     bool operator()(const Entry& a, const Entry& b) const;
   };
+  struct Bucket {
+    std::vector<Entry> items;  // unsorted, or (sorted) ascending by Below, taken from the back
+    std::vector<Entry> late;   // a heap by Below: entries pushed while the range was sorted
+    bool sorted = false;
+  };
   double bound_;
-  std::vector<std::vector<Entry>> buckets_;  // each a heap by Below
-  int top_ = -1;                             // no range above it holds an entry
+  std::vector<Bucket> buckets_;
+  int top_ = -1;  // no range above it holds an entry
   std::size_t size_ = 0;
 };
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "base/memory.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -155,6 +156,12 @@ void Refiner3::remove_slivers() {
   slivers_->cos_floor = std::cos(options_.sliver_angle_deg / 3 * kPi / 180.0);
   stats_.sliver_angle_deg = options_.sliver_angle_deg;
   stats_.dihedral_hist_before.assign(kHistogramBins, 0);
+  const VertexEdgeRatios fdr = vertex_edge_ratios(
+      dt_, [&](TetId t) { return region(t) != kOutsideRegion; }, [&](Point3 p) { return f_(p); });
+  stats_.fdr_vertex_figures = true;
+  stats_.fdr_nn_over_f_min = fdr.nn_over_f_min;
+  stats_.fdr_el_over_f_max = fdr.el_over_f_max;
+  release_free_memory();  // its per-vertex arrays would otherwise stay resident as the phase grows the mesh
   double worst = -1;
   dt_.for_each_finite_tet([&](TetId t) {
     if (region(t) == kOutsideRegion) return;

@@ -54,6 +54,13 @@ struct TetStats {
   double min_dihedral_before_deg = 0;
   std::vector<std::size_t> dihedral_hist_before;
   std::vector<Shortfall> slivers_listed;
+  // Theorems 4.4 and 4.5's per-vertex figures (shortest and longest edge at a vertex over f there)
+  // on the mesh rule 3 leaves, before sliver removal adds vertices the theorems do not cover: the
+  // report judges the theorems on these and shows the final mesh's figures beside them. Set only
+  // when sliver removal ran; without it the final mesh is rule 3's.
+  bool fdr_vertex_figures = false;
+  double fdr_nn_over_f_min = 0;
+  double fdr_el_over_f_max = 0;
 };
 
 struct TetResult {

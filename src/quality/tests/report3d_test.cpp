@@ -158,6 +158,130 @@ TEST(Report3, SliverRemovalBeforeAndAfter) {
     EXPECT_NE(j.find(key), std::string::npos) << key;
 }
 
+// Sliver removal's points sit nearer their neighbours than FDR's protection spheres allow: on a
+// small cube the final mesh's nn/f falls below Theorem 4.4's bound. The theorem is judged on the
+// mesh rule 3 left (the same mesh as a run without sliver removal, figure for figure) and the final
+// figure is shown beside it, not judged.
+TEST(Report3, TheoremsJudgedOnFdrVerticesBeforeSliverRemoval) {
+  const plc::Plc cube = cube_plc();
+  const Const3 f(0.1);
+  const tet::TetResult with = tet::tetrahedralize(cube, f);
+  tet::TetOptions no_slivers;
+  no_slivers.remove_slivers = false;
+  const tet::TetResult without = tet::tetrahedralize(cube, f, no_slivers);
+  ASSERT_GT(with.stats.sliver_splits, 0u);
+  ASSERT_TRUE(with.stats.fdr_vertex_figures);
+  EXPECT_FALSE(without.stats.fdr_vertex_figures);
+  const Report3 rule3 = measure_tets(without.mesh, f, without.stats);
+  EXPECT_EQ(with.stats.fdr_nn_over_f_min, rule3.nn_over_f_min);
+  EXPECT_EQ(with.stats.fdr_el_over_f_max, rule3.el_over_f_max);
+
+  const Report3 r = measure_tets(with.mesh, f, with.stats);
+  ASSERT_TRUE(r.guarantees.valid);
+  EXPECT_EQ(r.guarantees.nn_over_f_min, 0.5);  // alpha = 0, B = 1: beta = 1/4
+  EXPECT_LT(r.nn_over_f_min, with.stats.fdr_nn_over_f_min);  // the sliver points come nearer
+  std::map<std::string, TheoremRow> rows;
+  for (const auto& t : r.theorems) rows[t.key] = t;
+  const TheoremRow& nn = rows.at("theorem_4_4_nn_over_f_min");
+  EXPECT_EQ(nn.measured, with.stats.fdr_nn_over_f_min);
+  EXPECT_TRUE(nn.applies && nn.holds && !nn.beyond_paper);
+  EXPECT_EQ(rows.at("theorem_4_5_el_over_f_max").measured, with.stats.fdr_el_over_f_max);
+  const TheoremRow& after = rows.at("after_slivers_nn_over_f_min");
+  EXPECT_EQ(after.measured, r.nn_over_f_min);
+  EXPECT_TRUE(after.beyond_paper);
+  EXPECT_FALSE(after.applies);
+  EXPECT_EQ(rows.at("after_slivers_el_over_f_max").measured, r.el_over_f_max);
+  std::ostringstream text, json;
+  write_text3(r, text);
+  write_json3(r, json);
+  EXPECT_NE(text.str().find("nn/f min (Thm 4.4, before sliver removal): bound >= 0.5"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("nn/f min after sliver removal: measured"), std::string::npos) << text.str();
+  EXPECT_EQ(text.str().find("FAILS"), std::string::npos) << text.str();
+  EXPECT_NE(json.str().find("\"beyond_paper\": true"), std::string::npos);
+
+  // Without sliver removal the final mesh is rule 3's: the theorem's row measures it, nothing beside.
+  const Report3 plain = measure_tets(without.mesh, f, without.stats);
+  for (const auto& t : plain.theorems) EXPECT_FALSE(t.beyond_paper) << t.key;
+  EXPECT_EQ(plain.theorems.size() + 2, r.theorems.size());
+}
+
+// f = 0.1 + 0.05 x: a spacing that varies, so every f evaluation counts.
+class Linear3 final : public sizing::SizingField3 {
+ public:
+  double operator()(Point3 p) const override { return 0.1 + 0.05 * p.x; }
+  double lipschitz() const override { return 0.05; }
+  std::string describe() const override { return "linear"; }
+};
+
+// An n x n x n block of Kuhn cubes (six tetrahedra each), its corners jittered so that no two
+// tetrahedra measure alike, and materials in runs of varying length.
+tet::TetMesh kuhn_block(int n) {
+  tet::TetMesh m;
+  const int k = n + 1;
+  auto id = [&](int i, int j, int l) { return static_cast<VertexId>((l * k + j) * k + i); };
+  for (int l = 0; l < k; ++l)
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) {
+        const double h = 0.013 * std::sin(1.7 * i + 2.3 * j + 3.1 * l);
+        m.points.push_back({i + h, j - h, l + 0.5 * h});
+      }
+  const tet::TetMesh unit = kuhn_cube();
+  for (int l = 0; l < n; ++l)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& t : unit.tets) {
+          std::array<VertexId, 4> q{};
+          for (int c = 0; c < 4; ++c) {
+            const Point3 u = unit.points[t[c]];
+            q[c] = id(i + static_cast<int>(u.x), j + static_cast<int>(u.y), l + static_cast<int>(u.z));
+          }
+          m.tets.push_back(q);
+          m.tet_material.push_back((i / 3 + l) % 4);
+        }
+  return m;
+}
+
+// The report on one thread and on two: the same figures bit for bit (their JSON and the
+// per-tetrahedron values byte for byte), over many chunks of tetrahedra.
+TEST(Report3, SameFiguresForOneAndTwoThreads) {
+  const tet::TetMesh m = kuhn_block(16);  // 24576 tetrahedra
+  tet::TetStats st;
+  st.bound = 1.0;
+  const Linear3 f;
+  TetValues v1, v2;
+  const Report3 r1 = measure_tets(m, f, st, &v1, 1);
+  const Report3 r2 = measure_tets(m, f, st, &v2, 2);
+  std::ostringstream j1, j2;
+  write_json3(r1, j1);
+  write_json3(r2, j2);
+  EXPECT_EQ(j1.str(), j2.str());
+  EXPECT_EQ(v1.r_over_f, v2.r_over_f);
+  EXPECT_EQ(v1.radius_edge, v2.radius_edge);
+  EXPECT_EQ(v1.min_dihedral_deg, v2.min_dihedral_deg);
+  EXPECT_EQ(r1.volume, r2.volume);
+  EXPECT_NEAR(r1.volume, 16.0 * 16 * 16, 1.0);  // the jittered surface moves a little
+  ASSERT_EQ(r1.materials.size(), 4u);
+  std::size_t tets = 0;
+  for (const auto& mf : r1.materials) tets += mf.tets;
+  EXPECT_EQ(tets, m.tets.size());
+  // The per-vertex and per-edge figures against a plain count over the tetrahedra.
+  double nn = 1e300, lf_min = 1e300, lf_max = 0;
+  std::vector<double> lo(m.points.size(), 1e300);
+  for (const auto& t : m.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        if (a != b) {
+          const Point3 p = m.points[t[a]], q = m.points[t[b]];
+          lo[t[a]] = std::min(lo[t[a]], dist(p, q));
+          lf_min = std::min(lf_min, dist(p, q) / f(0.5 * (p + q)));
+          lf_max = std::max(lf_max, dist(p, q) / f(0.5 * (p + q)));
+        }
+  for (std::size_t i = 0; i < lo.size(); ++i) nn = std::min(nn, lo[i] / f(m.points[i]));
+  EXPECT_EQ(r1.nn_over_f_min, nn);
+  EXPECT_EQ(r1.min_l_over_f, lf_min);
+  EXPECT_EQ(r1.max_l_over_f, lf_max);
+}
+
 TEST(Report3, GuaranteesNeedAlphaBBelowOne) {
   EXPECT_FALSE(compute_guarantees3(-1, 1).valid);
   EXPECT_FALSE(compute_guarantees3(0.5, 2).valid);

@@ -1,9 +1,11 @@
 // Tetrahedron geometry, the B-bad test and the queue of bad tetrahedra.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include "tet/delaunay3.hpp"
+#include "tet/dt_queries.hpp"
 #include "tet/refine3d.hpp"
 #include "tet/tet_geometry.hpp"
 
@@ -112,3 +114,101 @@ TEST(Refine3d, TiesAreOrderedByVertices) {
   EXPECT_EQ(first.size(), dt.num_finite_tets());
   EXPECT_EQ(first, second);
 }
+
+// Entries pushed while their range is being emptied (into the sorted range, above it, below it)
+// come out in the order one heap would give: largest ratio first, ties by their sorted vertices.
+TEST(Refine3d, QueueOrderHoldsForEntriesPushedWhilePopping) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(300);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  std::vector<BadTet> all;
+  dt.for_each_finite_tet([&](TetId t) {
+    // Few distinct ratios, most of them inside one range of the queue, with ties.
+    const double ratio = 1.5 + 0.0005 * static_cast<double>(rng() % 12) + (rng() % 9 == 0 ? 0.3 : 0.0) -
+                         (rng() % 7 == 0 ? 0.2 : 0.0);
+    all.push_back({ratio, t, dt.vertices(t), {}});
+  });
+  ASSERT_GT(all.size(), 1000u);
+  auto key = [](const BadTet& b) {
+    auto v = b.v;
+    std::sort(v.begin(), v.end());
+    return std::make_pair(-b.ratio, v);  // smallest key comes out first
+  };
+  BadTetQueue q(1.0);
+  std::vector<BadTet> pending;  // the reference: what is queued
+  std::vector<std::array<VertexId, 4>> got, want;
+  auto pop_both = [&](std::size_t n) {
+    for (std::size_t i = 0; i < n && !pending.empty(); ++i) {
+      const auto it = std::min_element(pending.begin(), pending.end(),
+                                       [&](const BadTet& a, const BadTet& b) { return key(a) < key(b); });
+      want.push_back(it->v);
+      pending.erase(it);
+      BadTet b;
+      ASSERT_TRUE(q.pop(dt, &b));
+      got.push_back(b.v);
+    }
+  };
+  const std::size_t half = all.size() / 2;
+  for (std::size_t i = 0; i < half; ++i) q.push(all[i]), pending.push_back(all[i]);
+  pop_both(50);
+  for (std::size_t i = half; i < all.size(); ++i) {
+    q.push(all[i]);
+    pending.push_back(all[i]);
+    if (i % 17 == 0) pop_both(3);
+  }
+  pop_both(all.size());
+  BadTet b;
+  EXPECT_FALSE(q.pop(dt, &b));
+  EXPECT_EQ(q.size(), 0u);
+  EXPECT_EQ(got, want);
+}
+
+namespace fdr::tet {
+namespace {
+
+// vertex_edge_ratios against each vertex's edges listed one by one, over all the tetrahedra and
+// over half of them (the kept ones), on random points with f varying in space.
+TEST(VertexEdgeRatios, MatchesEdgesListedByHand) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(6000);  // tetrahedron slots in several chunks
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  const auto f = [](Point3 p) { return 0.05 + 0.1 * p.x + 0.02 * p.z; };
+  for (int mod : {1, 2}) {
+    const auto keep = [&](TetId t) { return t % mod == 0; };
+    std::vector<double> lo(dt.num_vertices(), std::numeric_limits<double>::infinity()), hi(dt.num_vertices(), 0);
+    dt.for_each_finite_tet([&](TetId t) {
+      if (!keep(t)) return;
+      const auto& v = dt.vertices(t);
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (i != j) {
+            const double l = dist(dt.point(v[i]), dt.point(v[j]));
+            lo[v[i]] = std::min(lo[v[i]], l);
+            hi[v[i]] = std::max(hi[v[i]], l);
+          }
+    });
+    double nn = std::numeric_limits<double>::infinity(), el = 0;
+    for (VertexId w = 0; w < dt.num_vertices(); ++w)
+      if (hi[w] > 0) {
+        nn = std::min(nn, lo[w] / f(dt.point(w)));
+        el = std::max(el, hi[w] / f(dt.point(w)));
+      }
+    for (unsigned threads : {1u, 2u}) {
+      const VertexEdgeRatios r = vertex_edge_ratios(dt, keep, f, threads);
+      EXPECT_EQ(r.nn_over_f_min, nn) << mod << " " << threads;
+      EXPECT_EQ(r.el_over_f_max, el) << mod << " " << threads;
+    }
+  }
+  const VertexEdgeRatios none = vertex_edge_ratios(dt, [](TetId) { return false; }, f);
+  EXPECT_EQ(none.nn_over_f_min, 0);
+  EXPECT_EQ(none.el_over_f_max, 0);
+}
+
+}  // namespace
+}  // namespace fdr::tet
