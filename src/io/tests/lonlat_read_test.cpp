@@ -1,6 +1,7 @@
 // The readers' whole-mesh orientation on lon/lat meshes that cross the antimeridian (fort.14 and
-// SCHISM hgrid.ll, as a --global run writes them): the triangles' majority decides, a triangle
-// wider than 180 degrees counted across 180, so the few triangles there do not flip the mesh.
+// SCHISM hgrid.ll, as a --global run writes them): the majority of the triangles at most 180
+// degrees wide decides, so the few across 180 do not flip the mesh; a mesh wholly across 180 is
+// taken across it; a plane mesh in metres is not turned over by its wide triangles.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -125,6 +126,17 @@ TEST(LonLatRead, PlaneMeshIsNotUnwrapped) {
   std::ofstream(tmp / "p.14") << "plane\n1 3\n1 -100 0 1\n2 500 0 1\n3 -100 300 1\n1 3 1 3 2\n";
   const mesh::MeshView m = io::read_mesh(tmp / "p.14");
   EXPECT_EQ(m.triangles[0], (std::array<Index, 3>{0, 1, 2}));
+}
+
+// A mesh in metres within lon/lat bounds: its narrow triangles decide, the two 200 m wide ones
+// (clockwise if unwrapped) do not turn it over.
+TEST(LonLatRead, NarrowTrianglesOfAPlaneMeshDecide) {
+  TmpDir tmp;
+  std::ofstream(tmp / "n.14") << "plane\n3 5\n1 -100 -50 1\n2 100 -50 1\n3 100 50 1\n4 -100 50 1\n5 150 0 1\n"
+                                 "1 3 1 2 3\n2 3 1 3 4\n3 3 2 5 3\n";
+  const mesh::MeshView m = io::read_mesh(tmp / "n.14");
+  EXPECT_EQ(m.triangles[0], (std::array<Index, 3>{0, 1, 2}));
+  EXPECT_EQ(m.triangles[1], (std::array<Index, 3>{0, 2, 3}));
 }
 
 }  // namespace
