@@ -135,16 +135,16 @@ std::vector<Point3> sample_arcs(const std::vector<SphereArc>& arcs, double step_
   return out;
 }
 
-SphereDeviation sphere_deviation(const std::vector<SphereArc>& from, const std::vector<SphereArc>& to, double step_m,
-                                 double r) {
+namespace {
+
+SphereDeviation deviation_to(const std::vector<SphereArc>& from, const ArcIndex& index, double step_m, double r) {
   SphereDeviation d;
-  if (from.empty() || to.empty()) return d;
+  if (from.empty()) return d;
   double total = 0;
   for (const SphereArc& s : from) total += angle(s.a, s.b);
   double step = step_m > 0 ? step_m / r : 0.0;
   if (step > 0 && total / step > kMaxSamples) step = total / kMaxSamples;
   const std::vector<Point3> samples = sample_arcs(from, step);
-  const ArcIndex index(to);
   std::vector<double> dd(samples.size());
   std::size_t arg = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -160,6 +160,35 @@ SphereDeviation sphere_deviation(const std::vector<SphereArc>& from, const std::
   std::nth_element(dd.begin(), dd.begin() + static_cast<std::ptrdiff_t>(k), dd.end());
   d.p99_m = dd[k];
   return d;
+}
+
+}  // namespace
+
+SphereDeviation sphere_deviation(const std::vector<SphereArc>& from, const std::vector<SphereArc>& to, double step_m,
+                                 double r) {
+  if (from.empty() || to.empty()) return {};
+  const ArcIndex index(to);
+  return deviation_to(from, index, step_m, r);
+}
+
+SphereDeviation sphere_deviation_kept(const std::vector<SphereArc>& from, const std::vector<SphereArc>& to,
+                                      double step_m, double keep_m, std::size_t* lost_rings, double r) {
+  if (lost_rings) *lost_rings = 0;
+  if (from.empty() || to.empty()) return {};
+  const ArcIndex index(to);
+  std::vector<SphereArc> kept;
+  kept.reserve(from.size());
+  for (std::size_t first = 0; first < from.size();) {
+    std::size_t end = first;  // the ring: arcs first .. end, the last one back at its start
+    while (end + 1 < from.size() && !(from[end].b == from[first].a)) ++end;
+    bool near = false;
+    for (std::size_t i = first; i <= end && !near; ++i) near = index.nearest(from[i].a) * r <= keep_m;
+    if (near) kept.insert(kept.end(), from.begin() + static_cast<std::ptrdiff_t>(first),
+                          from.begin() + static_cast<std::ptrdiff_t>(end) + 1);
+    else if (lost_rings) ++*lost_rings;
+    first = end + 1;
+  }
+  return deviation_to(kept, index, step_m, r);
 }
 
 }  // namespace fdr::gis

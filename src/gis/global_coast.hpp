@@ -54,4 +54,12 @@ struct SphereDeviation {
 SphereDeviation sphere_deviation(const std::vector<SphereArc>& from, const std::vector<SphereArc>& to, double step_m,
                                  double r = kEarthRadius);
 
+// The same from the rings of `from` that have a counterpart in `to`, as the regional yardstick
+// (coast_quality.py) measures: `from` is rings of consecutive arcs, each closing on its first
+// point; a ring whose vertices all lie farther than keep_m from `to` (an island the
+// generalisation removed) is left out and counted in `lost_rings`. Water the generalisation
+// closed off along a kept ring still counts.
+SphereDeviation sphere_deviation_kept(const std::vector<SphereArc>& from, const std::vector<SphereArc>& to,
+                                      double step_m, double keep_m, std::size_t* lost_rings, double r = kEarthRadius);
+
 }  // namespace fdr::gis

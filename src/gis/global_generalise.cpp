@@ -24,32 +24,72 @@ namespace fdr::gis {
 
 namespace {
 
-// A point of a ring on the sphere (metres from the centre) in its cube of the hash grid.
+// A point of a ring on the sphere (metres from the centre) in its cube of the hash grid, on the
+// ring's edge `edge` (from vertex edge to edge + 1); a vertex lies on edge - 1 as well.
 struct CellPoint {
   std::array<std::int64_t, 3> cell;
   std::uint32_t ring;
+  std::uint32_t edge;
+  bool vertex;
   Point3 p;
 };
 
 Point3 normalised(Point3 v) { return (1.0 / std::sqrt(dot(v, v))) * v; }
 
+// Distance between the segments pq and rs of R^3 (closest points clamped to the segments).
+double segment_distance(Point3 p, Point3 q, Point3 r, Point3 s) {
+  const Point3 d1 = q - p, d2 = s - r, w = p - r;
+  const double a = dot(d1, d1), e = dot(d2, d2), b = dot(d1, d2), c = dot(d1, w), f = dot(d2, w);
+  auto clamp01 = [](double t) { return std::clamp(t, 0.0, 1.0); };
+  double t1 = 0, t2 = 0;
+  if (a <= 0 && e <= 0) return std::sqrt(dot(w, w));
+  if (a <= 0) {
+    t2 = clamp01(f / e);
+  } else if (e <= 0) {
+    t1 = clamp01(-c / a);
+  } else {
+    const double den = a * e - b * b;
+    t1 = den > 0 ? clamp01((b * f - c * e) / den) : 0.0;
+    t2 = (b * t1 + f) / e;
+    if (t2 < 0) {
+      t2 = 0;
+      t1 = clamp01(-c / a);
+    } else if (t2 > 1) {
+      t2 = 1;
+      t1 = clamp01((b - c) / a);
+    }
+  }
+  const Point3 g = (p + t1 * d1) - (r + t2 * d2);
+  return std::sqrt(dot(g, g));
+}
+
+// True when edge k of ring a may come within `reach` metres of edge l of ring b on the sphere:
+// their chords within reach plus how far each arc bulges beyond its chord (its sagitta), so that
+// arcs within reach always pass.
+bool edges_within(const std::vector<LonLat>& a, std::size_t k, const std::vector<LonLat>& b, std::size_t l, double reach) {
+  const Point3 p = kEarthRadius * unit_vector(a[k]), q = kEarthRadius * unit_vector(a[(k + 1) % a.size()]);
+  const Point3 r = kEarthRadius * unit_vector(b[l]), s = kEarthRadius * unit_vector(b[(l + 1) % b.size()]);
+  const double sag = (dot(q - p, q - p) + dot(s - r, s - r)) / (8 * kEarthRadius);
+  return segment_distance(p, q, r, s) <= reach + sag;
+}
+
 // Every vertex of every ring and points between them at most `gap` metres apart, in cubes of
 // side `cell` metres.
 std::vector<CellPoint> cell_points(const std::vector<std::vector<LonLat>>& rings, double gap, double cell) {
   std::vector<CellPoint> out;
-  auto add = [&](Point3 u, std::size_t ring) {
+  auto add = [&](Point3 u, std::size_t ring, std::size_t edge, bool vertex) {
     const Point3 p = kEarthRadius * u;
     out.push_back({{static_cast<std::int64_t>(std::floor(p.x / cell)), static_cast<std::int64_t>(std::floor(p.y / cell)),
                     static_cast<std::int64_t>(std::floor(p.z / cell))},
-                   static_cast<std::uint32_t>(ring), p});
+                   static_cast<std::uint32_t>(ring), static_cast<std::uint32_t>(edge), vertex, p});
   };
   for (std::size_t i = 0; i < rings.size(); ++i) {
     const auto& r = rings[i];
     for (std::size_t k = 0, n = r.size(); k < n; ++k) {
       const Point3 a = unit_vector(r[k]), b = unit_vector(r[(k + 1) % n]);
-      add(a, i);
+      add(a, i, k, true);
       const int m = static_cast<int>(std::min(1e5, std::ceil(std::sqrt(dot(b - a, b - a)) * kEarthRadius / gap)));
-      for (int j = 1; j < m; ++j) add(normalised(a + (static_cast<double>(j) / m) * (b - a)), i);
+      for (int j = 1; j < m; ++j) add(normalised(a + (static_cast<double>(j) / m) * (b - a)), i, k, false);
     }
   }
   std::sort(out.begin(), out.end(), [](const CellPoint& a, const CellPoint& b) {
@@ -288,8 +328,10 @@ double group_reach(const coast::Options& o) {
 }
 
 std::vector<std::vector<std::size_t>> land_groups(const std::vector<std::vector<LonLat>>& rings, double reach) {
-  // Two coasts within `reach` have points within reach + gap of each other (every point of an
-  // edge lies within gap/2 of a sampled point); chords are never longer than great circles.
+  // Two coasts within `reach` have samples within reach + gap of each other (every point of an
+  // edge lies within gap/2 of a sample on that edge or at one of its ends; chords are never longer
+  // than great circles); of such candidates, only edges within reach join their rings, so that
+  // land farther apart than the reach (two continents across a strait) stays in two groups.
   const double gap = 0.5 * reach, near = reach + gap;
   const std::vector<CellPoint> pts = cell_points(rings, gap, near);
   // Runs of points of one ring in one cube.
@@ -299,11 +341,21 @@ std::vector<std::vector<std::size_t>> land_groups(const std::vector<std::vector<
   run.push_back(pts.size());
   std::vector<std::size_t> up(rings.size());
   for (std::size_t i = 0; i < up.size(); ++i) up[i] = i;
+  // Samples nearer than `near` are candidates; their edges (both edges at a vertex) decide.
+  auto edges_meet = [&](const CellPoint& x, const CellPoint& y) {
+    const auto& ra = rings[x.ring];
+    const auto& rb = rings[y.ring];
+    for (std::size_t ba = 0; ba <= (x.vertex ? 1u : 0u); ++ba)  // ba = 1: the edge before
+      for (std::size_t bb = 0; bb <= (y.vertex ? 1u : 0u); ++bb)
+        if (edges_within(ra, (x.edge + ra.size() - ba) % ra.size(), rb, (y.edge + rb.size() - bb) % rb.size(), reach))
+          return true;
+    return false;
+  };
   auto meet = [&](std::size_t r, std::size_t s) {
     for (std::size_t i = run[r]; i < run[r + 1]; ++i)
       for (std::size_t j = run[s]; j < run[s + 1]; ++j) {
         const Point3 d = pts[i].p - pts[j].p;
-        if (dot(d, d) < near * near) return true;
+        if (dot(d, d) < near * near && edges_meet(pts[i], pts[j])) return true;
       }
     return false;
   };

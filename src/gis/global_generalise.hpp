@@ -21,8 +21,9 @@ namespace fdr::gis {
 double group_reach(const coast::Options& ground);
 
 // Groups of rings (lon/lat, cleaned as sphere_ring does) whose coasts come within `reach_m` of
-// each other on the sphere, possibly nearer groups too (the test is conservative); every ring in
-// exactly one group, rings ascending in a group, groups ordered by their first ring.
+// each other on the sphere (edges whose chords are within reach_m plus the arcs' sagittas: a few
+// metres for edges of a tenth of a degree); every ring in exactly one group, rings ascending in a
+// group, groups ordered by their first ring.
 std::vector<std::vector<std::size_t>> land_groups(const std::vector<std::vector<LonLat>>& rings, double reach_m);
 
 struct GeneralisedLand {

@@ -117,15 +117,39 @@ struct IdMap {
   }
 };
 
-// Whole-mesh orientation: a file written clockwise (negative total area) is flipped so that
-// triangles are counter-clockwise as MeshView requires; per-triangle order is otherwise kept.
+// Whole-mesh orientation: a file written clockwise is flipped so that triangles are
+// counter-clockwise as MeshView requires; per-triangle order is otherwise kept. The majority of
+// the triangles at most 180 units wide decides, not the total area: written in lon/lat, a
+// triangle from 179.9 to -179.9 degrees is clockwise in the file's coordinates and its area
+// outweighs that of all others. When every triangle is wider (a lon/lat mesh wholly across the
+// antimeridian), those of a mesh within lon/lat bounds vote with their western longitudes plus
+// 360. A tie falls back to the total area.
 void orient_ccw(mesh::MeshView& m) {
-  double twice_area = 0;
+  bool lonlat = true;
+  for (const Point2& p : m.vertices) lonlat = lonlat && std::fabs(p.x) <= 180 && std::fabs(p.y) <= 90;
+  auto twice_area = [](Point2 a, Point2 b, Point2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); };
+  double total = 0;
+  std::size_t ccw = 0, cw = 0, wide_ccw = 0, wide_cw = 0;
   for (const auto& t : m.triangles) {
     Point2 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-    twice_area += (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double d = twice_area(a, b, c);
+    total += d;
+    if (std::max({a.x, b.x, c.x}) - std::min({a.x, b.x, c.x}) <= 180) {
+      ccw += d > 0;
+      cw += d < 0;
+    } else if (lonlat) {
+      for (Point2* p : {&a, &b, &c})
+        if (p->x < 0) p->x += 360;
+      const double u = twice_area(a, b, c);
+      wide_ccw += u > 0;
+      wide_cw += u < 0;
+    }
   }
-  if (twice_area < 0)
+  if (ccw + cw == 0) {
+    ccw = wide_ccw;
+    cw = wide_cw;
+  }
+  if (cw > ccw || (cw == ccw && total < 0))
     for (auto& t : m.triangles) std::swap(t[1], t[2]);
 }
 

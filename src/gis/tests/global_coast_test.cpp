@@ -112,4 +112,35 @@ TEST(GlobalCoast, P99IgnoresOnePercentOfOutliers) {
   EXPECT_LT(d.p99_m, 1e-6);
 }
 
+// Input rings along 40 N (a counterpart half a degree away) and 10 N and 70 N (none within 2
+// degrees): the two far rings are left out and counted, the deviation is that of the ring at 40 N
+// alone; with everything kept, the far rings decide the maximum.
+TEST(GlobalCoast, KeptRingsLeaveOutRingsWithoutCounterpart) {
+  auto closed = [](std::vector<SphereArc> r) {  // the last arc ends exactly where the first starts
+    r.back().b = r.front().a;
+    return r;
+  };
+  const auto near = closed(parallel_ring(40, 500)), mesh = parallel_ring(40.5, 500, 0.07);
+  std::vector<SphereArc> input = closed(parallel_ring(10, 300));
+  input.insert(input.end(), near.begin(), near.end());
+  const auto polar = closed(parallel_ring(70, 200));
+  input.insert(input.end(), polar.begin(), polar.end());
+  const double half_deg = 0.5 * kDeg * kEarthRadius, keep = 2 * kDeg * kEarthRadius;
+  std::size_t lost = 99;
+  const SphereDeviation kept = sphere_deviation_kept(input, mesh, 5000, keep, &lost);
+  EXPECT_EQ(lost, 2u);
+  const SphereDeviation alone = sphere_deviation(near, mesh, 5000);
+  EXPECT_EQ(kept.samples, alone.samples);
+  EXPECT_EQ(kept.max_m, alone.max_m);
+  EXPECT_EQ(kept.p99_m, alone.p99_m);
+  EXPECT_NEAR(kept.max_m, half_deg, 100.0);
+  EXPECT_GT(sphere_deviation(input, mesh, 5000).max_m, 29 * kDeg * kEarthRadius);
+  // A far ring with one vertex within keep_m is kept whole.
+  input.push_back({unit(0, 40.6), unit(10, 70)});
+  input.push_back({unit(10, 70), unit(0, 70)});
+  input.push_back({unit(0, 70), unit(0, 40.6)});
+  EXPECT_GT(sphere_deviation_kept(input, mesh, 5000, keep, &lost).max_m, 20 * kDeg * kEarthRadius);
+  EXPECT_EQ(lost, 2u);
+}
+
 }  // namespace

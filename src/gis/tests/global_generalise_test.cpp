@@ -87,6 +87,27 @@ TEST(GlobalGeneralise, GroupsByReachOnTheSphere) {
   EXPECT_EQ(land_groups(rings, 40000).size(), 2u);
 }
 
+// Coasts whose samples come within reach + gap (1.5 reach) but whose edges stay farther apart than
+// the reach are two groups: two continents across a strait wider than the reach are generalised
+// apart. Edges within reach join, whether their nearest points are vertices or inside edges.
+TEST(GlobalGeneralise, GroupsByTheDistanceOfTheEdges) {
+  const LonLat at{-20, 40};
+  const double reach = 10000;
+  // 12 km apart, face to face: samples within 15 km, edges not within 10 km.
+  EXPECT_EQ(land_groups({ring_at(at, square(0, 0, 50000)), ring_at(at, square(62000, 0, 50000))}, reach).size(), 2u);
+  // 9.5 km apart, the nearest points inside both edges (the second square shifted along the first).
+  const auto g = land_groups({ring_at(at, square(0, 0, 50000)), ring_at(at, square(59500, 17000, 50000))}, reach);
+  EXPECT_EQ(g.size(), 1u);
+  // A corner 9.5 km from the middle of an edge, and 10.5 km.
+  const std::vector<Point2> diamond{{0, 0}, {20000, -20000}, {40000, 0}, {20000, 20000}};
+  auto shifted = [](std::vector<Point2> r, double dx, double dy) {
+    for (Point2& p : r) p = {p.x + dx, p.y + dy};
+    return r;
+  };
+  EXPECT_EQ(land_groups({ring_at(at, square(0, 0, 50000)), ring_at(at, shifted(diamond, 59500, 23000))}, reach).size(), 1u);
+  EXPECT_EQ(land_groups({ring_at(at, square(0, 0, 50000)), ring_at(at, shifted(diamond, 60500, 23000))}, reach).size(), 2u);
+}
+
 TEST(GlobalGeneralise, SameLandIsGeneralisedAlikeNearTheEquatorAndNearThePole) {
   const double h = 10000;
   const coast::Options o = ground_options(h);
@@ -122,6 +143,13 @@ TEST(GlobalGeneralise, SameLandIsGeneralisedAlikeNearTheEquatorAndNearThePole) {
   EXPECT_NEAR(po[1], eq[1], 0.001 * eq[1]);
   EXPECT_LT(g.max_scale, 1.1);
   EXPECT_GE(g.result.islets_replaced, 2u);
+  // Every repair in lon/lat, at one of the two places (within 100 km of it).
+  ASSERT_FALSE(g.result.repairs.empty());
+  for (const auto& rep : g.result.repairs) {
+    const Point3 u = unit_vector({rep.where.x, rep.where.y});
+    const double d = std::min(great_circle(u, unit_vector(near_equator)), great_circle(u, unit_vector(near_pole)));
+    EXPECT_LT(d, 100e3) << rep.kind << " at (" << rep.where.x << ", " << rep.where.y << ")";
+  }
 }
 
 TEST(GlobalGeneralise, PoleWinding) {

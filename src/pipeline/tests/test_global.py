@@ -88,6 +88,20 @@ def test_lonlat_nodes_and_hgrid_ll_agree(run):
     assert min(lats) < -60 and max(lats) > 80
 
 
+def test_project_reader_keeps_the_lonlat_orientation(run):
+    # `fdrmesh quality` reads the lon/lat fort.14 and hgrid.ll counter-clockwise as written: only
+    # the triangles across the antimeridian (nearly 360 degrees wide in lon/lat) and around the
+    # north pole come out inverted, not the whole mesh turned over by their area.
+    for name in ("m.14", "m.ll"):
+        r = subprocess.run([FDRMESH, "quality", str(run["dir"] / name)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        rows = {k.strip(): v.strip() for k, v in (line.split(":", 1) for line in r.stdout.splitlines() if ":" in line)}
+        ntri = int(rows["vertices / triangles"].split("/")[1])
+        inverted = int(rows["degenerate / inverted"].split("/")[1])
+        assert ntri == run["figures"]["sphere_triangles"]
+        assert inverted < 0.03 * ntri, (name, inverted, ntri)
+
+
 def test_report_lengths_are_great_circle_lengths(run):
     m = formats.parse_adcirc(run["dir"] / "m.14", schism=False)
     xy = m["nodes"]
