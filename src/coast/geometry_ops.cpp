@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
-#include <unordered_set>
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
@@ -521,13 +520,6 @@ std::vector<Point2> pinch_points(const OGRGeometry* g) {
 GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const char* what, bool overlay) {
   if (overlay) return checked(a->Difference(b), what);
   using Key = std::array<std::uint64_t, 4>;
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      std::uint64_t h = 0x9E3779B97F4A7C15ull;
-      for (std::uint64_t v : k) h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-      return static_cast<std::size_t>(h);
-    }
-  };
   // Directed, with the polygon's interior on the left: a segment both have with their interiors
   // on opposite sides (where b is not inside a) is not shared.
   auto key = [](double x0, double y0, double x1, double y1, bool left) {
@@ -559,23 +551,26 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
     return rs;
   };
   const auto ra = rings(pa), rb = rings(pb);
+  // Each side's segments as a sorted vector (searched by bisection): a hash set of hundreds of
+  // thousands of segments costs more in its nodes than the sort.
   auto keys_of = [&](const std::vector<Ring>& rs) {
     std::size_t n = 0;
     for (const Ring& q : rs) n += static_cast<std::size_t>(std::max(0, q.r->getNumPoints() - 1));
-    std::unordered_set<Key, KeyHash> s;
+    std::vector<Key> s;
     s.reserve(n);
     for (const Ring& q : rs)
       for (int i = 0; i + 1 < q.r->getNumPoints(); ++i)
-        s.insert(key(q.r->getX(i), q.r->getY(i), q.r->getX(i + 1), q.r->getY(i + 1), q.left));
+        s.push_back(key(q.r->getX(i), q.r->getY(i), q.r->getX(i + 1), q.r->getY(i + 1), q.left));
+    std::sort(s.begin(), s.end());
     return s;
   };
   FilterLaps dl("  by faces");
-  std::unordered_set<Key, KeyHash> ka, kb;
+  std::vector<Key> ka, kb;
   run_beside([&] { ka = keys_of(ra); }, [&] { kb = keys_of(rb); });
   dl("keys");
   // The non-shared segments, as maximal runs.
   OGRMultiLineString lines;
-  auto add_runs = [&](const std::vector<Ring>& rs, const std::unordered_set<Key, KeyHash>& other) {
+  auto add_runs = [&](const std::vector<Ring>& rs, const std::vector<Key>& other) {
     for (const Ring& q : rs) {
       const OGRLinearRing* r = q.r;
       const int n = r->getNumPoints();
@@ -583,7 +578,8 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
       std::vector<char> own(static_cast<std::size_t>(n - 1));
       bool any = false, all = true;
       for (int i = 0; i + 1 < n; ++i) {
-        own[static_cast<std::size_t>(i)] = other.count(key(r->getX(i), r->getY(i), r->getX(i + 1), r->getY(i + 1), q.left)) ? 0 : 1;
+        const Key k = key(r->getX(i), r->getY(i), r->getX(i + 1), r->getY(i + 1), q.left);
+        own[static_cast<std::size_t>(i)] = std::binary_search(other.begin(), other.end(), k) ? 0 : 1;
         any = any || own[static_cast<std::size_t>(i)];
         all = all && own[static_cast<std::size_t>(i)];
       }

@@ -16,8 +16,12 @@ namespace fdr::coast {
 // generalisation's peak memory; one thread also lets the second opening reuse the pages the first
 // freed (jemalloc gives another thread another arena). The buffers inside each opening still use
 // both cores where a polygon is big (offset).
+// Freed memory goes back to the system before each opening: the steps before them worked partly
+// on other threads, whose arenas would keep those pages resident beside this thread's new ones,
+// and the first opening's intermediates would sit beside the second's.
 TwoOpenings two_openings(const OGRGeometry& W, double r1, double r2, double hair, bool full_rounds) {
   FilterLaps lap("  openings:");
+  release_free_memory();
   const CoastRestorer restorer(&W, hair, full_rounds);
   lap("restorer");
   TwoOpenings out;
@@ -26,6 +30,7 @@ TwoOpenings two_openings(const OGRGeometry& W, double r1, double r2, double hair
   out.O1 = restorer.restore(std::move(o1));
   lap("O1 restored");
   if (r2 > 0) {
+    release_free_memory();
     GeomPtr o2 = opening(W, r2);
     lap("O2 opening");
     out.O2 = restorer.restore(std::move(o2));
@@ -116,7 +121,7 @@ GeomPtr open_water(const GeomPtr& W, const Options& o, Result& res) {
   // Pieces are tested against slightly grown copies: a piece and O1 share boundary points up
   // to GEOS rounding.
   const double grow = std::max(1e-6 * o.close_width, 1e-9);
-  Meets o1_parts(comps, grow);
+  Meets o1_parts(comps, grow, false, true);
   for (auto& piece : pieces) {
     if (!(piece->get_Area() > 0)) continue;
     const std::size_t touching = o1_parts.count(*piece);

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "base/debug.hpp"
 #include "base/parallel.hpp"
@@ -139,13 +138,6 @@ struct CoastRestorer::Impl {
 
   // A segment by its exact coordinates (bit patterns) and the run it belongs to.
   using SegKey = std::array<std::uint64_t, 5>;
-  struct SegKeyHash {
-    std::size_t operator()(const SegKey& k) const {
-      std::uint64_t h = 0x9E3779B97F4A7C15ull;
-      for (std::uint64_t v : k) h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-      return static_cast<std::size_t>(h);
-    }
-  };
   static SegKey seg_key(Point2 a, Point2 b, long tag) {
     SegKey k;
     std::memcpy(&k[0], &a.x, 8);
@@ -164,18 +156,18 @@ struct CoastRestorer::Impl {
   static bool boxes_meet(const Box2& p, const Box2& q) {
     return p.lo.x <= q.hi.x && q.lo.x <= p.hi.x && p.lo.y <= q.hi.y && q.lo.y <= p.hi.y;
   }
-  // sub = the segments not in `prev` or repeated (new) and every segment whose bounding box meets a new
-  // one's: any contact with a new segment or with an end of one is among them.
+  // sub = the segments not in `prev` (sorted) or repeated (new) and every segment whose bounding box
+  // meets a new one's: any contact with a new segment or with an end of one is among them.
   static void local_subset(const std::vector<Point2>& pts, const std::vector<pslg::Segment>& segs,
                            const std::vector<SegKey>& keys, const std::vector<char>& repeated,
-                           const std::unordered_set<SegKey, SegKeyHash>& prev, std::vector<std::size_t>& sub) {
+                           const std::vector<SegKey>& prev, std::vector<std::size_t>& sub) {
     sub.clear();
     std::vector<std::size_t> fresh;
     Box2 fb;
     double len = 0;
     auto P = [&](Index i) { return pts[static_cast<std::size_t>(i)]; };
     for (std::size_t si = 0; si < segs.size(); ++si)
-      if (repeated[si] || !prev.count(keys[si])) {
+      if (repeated[si] || !std::binary_search(prev.begin(), prev.end(), keys[si])) {
         fresh.push_back(si);
         fb.add(P(segs[si].a));
         fb.add(P(segs[si].b));
@@ -417,17 +409,20 @@ struct CoastRestorer::Impl {
         sub.resize(segs.size());
         for (std::size_t si = 0; si < segs.size(); ++si) sub[si] = si;
       } else {
-        const std::unordered_set<SegKey, SegKeyHash> prev(prev_keys.begin(), prev_keys.end());
+        // Sorted copies, not hash sets: a set of every segment of a ring with hundreds of
+        // thousands of vertices costs more in its nodes than the sort.
+        std::sort(prev_keys.begin(), prev_keys.end());
         // A key found twice in this round counts as new in every copy (the previous round
         // may have had one copy only).
-        std::unordered_set<SegKey, SegKeyHash> cur, dup;
-        cur.reserve(keys.size());
-        for (const SegKey& k : keys)
-          if (!cur.insert(k).second) dup.insert(k);
+        std::vector<SegKey> cur(keys), dup;
+        std::sort(cur.begin(), cur.end());
+        for (std::size_t i = 1; i < cur.size(); ++i)
+          if (cur[i] == cur[i - 1] && (dup.empty() || dup.back() != cur[i])) dup.push_back(cur[i]);
         std::vector<char> repeated(segs.size(), 0);
         if (!dup.empty())
-          for (std::size_t si = 0; si < segs.size(); ++si) repeated[si] = dup.count(keys[si]) ? 1 : 0;
-        local_subset(pts, segs, keys, repeated, prev, sub);
+          for (std::size_t si = 0; si < segs.size(); ++si)
+            repeated[si] = std::binary_search(dup.begin(), dup.end(), keys[si]) ? 1 : 0;
+        local_subset(pts, segs, keys, repeated, prev_keys, sub);
         alive.assign(pts.size(), 0);
         for (std::size_t si : sub) {
           alive[static_cast<std::size_t>(segs[si].a)] = 1;

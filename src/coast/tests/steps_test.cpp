@@ -12,6 +12,7 @@
 #include "coast/generalise.hpp"
 #include "coast/geometry_ops.hpp"
 #include "coast/islets.hpp"
+#include "coast/meets.hpp"
 #include "coast/openings.hpp"
 #include "coast/restore.hpp"
 #include "coast/tiny_edges.hpp"
@@ -222,6 +223,29 @@ Options islet_opts(bool join) {  // hmin 100
 // A 1 km sea with a cape 200 m wide reaching 300 m north from its south coast.
 Rings sea_with_cape() {
   return {{{0, 0}, {400, 0}, {400, 300}, {600, 300}, {600, 0}, {1000, 0}, {1000, 1000}, {0, 1000}}};
+}
+
+// The openings' pieces are counted against O1 with shared vertices found first (exact
+// coordinates) and GEOS asked only for the rest: the same counts as GEOS alone, for pieces that
+// meet two polygons at vertices, one at a vertex and one along an edge, one only, none.
+TEST(CoastSteps, MeetsBySharedVerticesCountsAsGeosAlone) {
+  std::vector<std::unique_ptr<OGRPolygon>> set;
+  for (const Rings& r : {rect(0, 0, 1, 1), rect(2, 0, 3, 1), rect(0, 3, 1, 4)})
+    set.push_back(std::make_unique<OGRPolygon>(to_ogr({r})));
+  Meets by_geos(set, 1e-6), by_vertices(set, 1e-6, false, true);
+  const std::vector<std::pair<Rings, std::size_t>> pieces = {
+      {rect(1, 0, 2, 1), 2},          // vertices of both squares beside it
+      {rect(1, 0.2, 2, 0.8), 2},      // along both squares' edges, no common vertex
+      {rect(1, 0, 1.5, 0.5), 1},      // a vertex of one
+      {rect(0.5, 1, 2.5, 3), 3},      // a vertex of none, along the edges of all three (count stops at 2)
+      {rect(5, 5, 6, 6), 0},          // far from all
+      {{{{1, 1}, {2, 1}, {1.5, 2}}}, 2},  // a corner of each of the two lower squares
+  };
+  for (const auto& [rings, expect] : pieces) {
+    const OGRPolygon piece = to_ogr(rings);
+    EXPECT_EQ(by_geos.count(piece), std::min<std::size_t>(expect, 2));
+    EXPECT_EQ(by_vertices.count(piece), by_geos.count(piece));
+  }
 }
 
 TEST(CoastSteps, IsletInOpenWaterBecomesATriangle) {
