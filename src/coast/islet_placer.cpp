@@ -149,7 +149,8 @@ std::vector<double> turns_by_fit(const OGRLinearRing& shape, Point2 c, double r)
 // lies at least min(cl, a sin 60 deg) from it. Why: the water between the hull and that coast
 // then opens at 60 degrees or more from e and is cl wide beyond cl / sin 60 deg, where a coast
 // that turned back along the hull (a bay's side) would leave a notch narrower than an element.
-// The segments passed are marked 2 in mark (1: the run's).
+// The segments passed are marked 2 in mark (1: the run's; the tests after it read both as
+// "checked").
 bool ends_clear(const LandIndex& L, std::size_t f0, std::size_t f1, std::size_t s, Point2 e, bool forward,
                 const std::vector<Point2>& h, double cl, std::vector<char>& mark) {
   constexpr double kSin60 = 0.8660254037844386;
@@ -408,11 +409,10 @@ std::vector<Point2> IsletPlacer::join_along(const LandIndex& L, int own, const s
   // With a clearance, the ring's own coast beyond the run keeps it too (ends_clear near the
   // ends, all of cl farther along).
   if (o.islet_clearance > 0) {
-    std::vector<char> mark = in_run;
-    if (!ends_clear(L, f0, f1, s0, e0, false, h, cl, mark) || !ends_clear(L, f0, f1, s1, e1, true, h, cl, mark))
+    if (!ends_clear(L, f0, f1, s0, e0, false, h, cl, in_run) || !ends_clear(L, f0, f1, s1, e1, true, h, cl, in_run))
       return std::vector<Point2>{};
     for (Index j : near)
-      if (L.ring[j] == ra && !mark[j - f0] && convex_distance(L.seg[j].first, L.seg[j].second, h) < cl)
+      if (L.ring[j] == ra && !in_run[j - f0] && convex_distance(L.seg[j].first, L.seg[j].second, h) < cl)
         return std::vector<Point2>{};
   }
   if (!hull_clear(L, h, inbox, cl, false)) return std::vector<Point2>{};
