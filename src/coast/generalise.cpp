@@ -25,7 +25,8 @@ namespace {
 
 // The result polygons as rings (outer counter-clockwise, holes clockwise), with tiny edges
 // dropped where the opening changed the coast; res gets them and output_area.
-void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Options& o, Result& res) {
+void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Options& o, const IsletPlacer& islets,
+                     Result& res) {
   // Input vertices (exact coordinates), for the tiny-edge clean-up.
   std::unordered_set<std::uint64_t> input_vertex;
   if (o.close_width > 0) {
@@ -48,7 +49,7 @@ void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Opt
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
   }
-  list_narrow_gaps(o, W0, res);
+  list_narrow_gaps(o, W0, res, &islets);
 }
 
 // Developer aid (kFilter): the input's size on stderr.
@@ -128,7 +129,7 @@ Result generalise(const Polygons& input, const Options& o) {
     report_removed_bodies(*W0, *R, o, res);
   }
   lap("removed (start)");
-  output_polygons(outp, *W0, o, res);
+  output_polygons(outp, *W0, o, islets, res);
   if (o.close_width > 0) list_removed(std::move(gone), early, o, res);
   lap("removed");
   res.output_pieces = res.polygons.size();

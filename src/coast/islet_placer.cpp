@@ -144,6 +144,37 @@ std::vector<double> turns_by_fit(const OGRLinearRing& shape, Point2 c, double r)
   return out;
 }
 
+// The ring's coast beyond a join's run end e (on segment s of the ring's segments f0 .. f1,
+// going forward or backward from e) keeps away from the hull h: a point at arc length a from e
+// lies at least min(cl, a sin 60 deg) from it. Why: the water between the hull and that coast
+// then opens at 60 degrees or more from e and is cl wide beyond cl / sin 60 deg, where a coast
+// that turned back along the hull (a bay's side) would leave a notch narrower than an element.
+// The segments passed are marked 2 in mark (1: the run's; the tests after it read both as
+// "checked").
+bool ends_clear(const LandIndex& L, std::size_t f0, std::size_t f1, std::size_t s, Point2 e, bool forward,
+                const std::vector<Point2>& h, double cl, std::vector<char>& mark) {
+  constexpr double kSin60 = 0.8660254037844386;
+  const double reach = cl / kSin60;
+  double acc = 0;
+  Point2 at = e;
+  std::size_t k = s;
+  for (std::size_t steps = 0; steps <= f1 - f0; ++steps) {
+    const Point2 v = forward ? L.seg[k].second : L.seg[k].first;
+    const double l = dist(at, v);
+    if (acc + l >= reach) {
+      const Point2 p = l > 0 ? at + ((reach - acc) / l) * (v - at) : at;
+      return convex_distance(p, v, h) >= cl;
+    }
+    acc += l;
+    if (convex_distance(v, v, h) < kSin60 * acc) return false;
+    at = v;
+    k = forward ? (k + 1 == f1 ? f0 : k + 1) : (k == f0 ? f1 - 1 : k - 1);
+    if (mark[k - f0] == 1) return true;  // round the ring to the run
+    mark[k - f0] = 2;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool IsletPlacer::place(const LandIndex& L, int own, const OGRLinearRing& shape, Point2 cen, double a,
@@ -228,7 +259,7 @@ std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLine
   if (ni < 3 || !L.grid) return std::vector<Point2>{};
   Box2 ib;
   for (Point2 q : isl) ib.add(q);
-  const double dmax = o.islet_side, cl = join_cl;
+  const double dmax = o.islet_side;
   Box2 qb{{ib.lo.x - dmax, ib.lo.y - dmax}, {ib.hi.x + dmax, ib.hi.y + dmax}};
   L.grid->segments_near(qb, &near);
   std::sort(near.begin(), near.end());  // the first of equals, whatever the grid's order
@@ -254,13 +285,29 @@ std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLine
         if (const double d = dist_to_segment(e, isl[i], isl[(i + 1) % ni]); d < best) { best = d; kb = k; pb = e; }
   }
   if (kb == kNoId || !(best > 0) || best > dmax) return std::vector<Point2>{};
-  const int ra = L.ring[kb];
-  const std::size_t f0 = L.first[static_cast<std::size_t>(ra)], f1 = L.first[static_cast<std::size_t>(ra) + 1];
-  const std::size_t nseg = f1 - f0;
   double len = 0;
   for (std::size_t i = 0; i < ni; ++i)
     for (std::size_t j = i + 1; j < ni; ++j) len = std::max(len, dist(isl[i], isl[j]));
+  // Where the ring's own coast beyond the run comes back near the hull (a bay's side, the far
+  // bank of a cove), a longer run takes that corner of water in as well.
   const double rho = 0.5 * len + best + 0.1 * o.islet_side;
+  const int tries = o.islet_clearance > 0 ? 3 : 1;
+  for (int k = 1; k <= tries; ++k) {
+    std::vector<Point2> h = join_along(L, own, isl, kb, pb, k * rho, inbox, taken);
+    if (!h.empty()) {
+      *gap = best;
+      return h;
+    }
+  }
+  return std::vector<Point2>{};
+}
+
+std::vector<Point2> IsletPlacer::join_along(const LandIndex& L, int own, const std::vector<Point2>& isl, Index kb,
+                                            Point2 pb, double rho, const Box2& inbox, double* taken) {
+  const double cl = join_cl;
+  const int ra = L.ring[kb];
+  const std::size_t f0 = L.first[static_cast<std::size_t>(ra)], f1 = L.first[static_cast<std::size_t>(ra) + 1];
+  const std::size_t nseg = f1 - f0;
   // The run of ring ra's coast within arc length rho of pb, both ways: its vertices in ring
   // order from the backward end e0 to the forward end e1 (on segments s0 and s1). A walk that
   // comes back to a segment already in the run (the whole ring is that near) finds no run.
@@ -359,9 +406,17 @@ std::vector<Point2> IsletPlacer::join(const LandIndex& L, int own, const OGRLine
       if (convex_distance(a, b, h) == 0) return std::vector<Point2>{};
     }
   }
+  // With a clearance, the ring's own coast beyond the run keeps it too (ends_clear near the
+  // ends, all of cl farther along).
+  if (o.islet_clearance > 0) {
+    if (!ends_clear(L, f0, f1, s0, e0, false, h, cl, in_run) || !ends_clear(L, f0, f1, s1, e1, true, h, cl, in_run))
+      return std::vector<Point2>{};
+    for (Index j : near)
+      if (L.ring[j] == ra && !in_run[j - f0] && convex_distance(L.seg[j].first, L.seg[j].second, h) < cl)
+        return std::vector<Point2>{};
+  }
   if (!hull_clear(L, h, inbox, cl, false)) return std::vector<Point2>{};
   *taken = std::max(0.0, taken_area);
-  *gap = best;
   return h;
 }
 

@@ -71,10 +71,17 @@ struct IsletPlacer {
   // water is cut off: the land grows by a convex piece whose intersection with it is connected;
   // it may touch the run between its ends, round a convex corner), keep join_cl from every
   // other ring, placed triangle and earlier join, stay inside the input's box (open boundaries do
-  // not move) and hold at most 3 islet_side^2. Returns the hull (empty: not joined), the water it
-  // takes (*taken) and the gap (*gap).
+  // not move) and hold at most 3 islet_side^2. With islet_clearance, the ring's own coast beyond
+  // the run keeps join_cl from the hull too, except near the run's ends, where it must leave the
+  // hull at 60 degrees or more; where it does not, runs of 2 rho and 3 rho are tried (the corner
+  // of water between the islet and the coast turning back becomes land). Returns the hull
+  // (empty: not joined), the water it takes (*taken) and the gap (*gap).
   std::vector<Point2> join(const LandIndex& L, int own, const OGRLinearRing& shape, const Box2& inbox, double* taken,
                            double* gap);
+  // join's hull for the run of ring L.ring[kb]'s coast within arc length rho of pb (on segment
+  // kb, the nearest point to the islet isl), with the tests join describes; empty: none.
+  std::vector<Point2> join_along(const LandIndex& L, int own, const std::vector<Point2>& isl, Index kb, Point2 pb,
+                                 double rho, const Box2& inbox, double* taken);
   // A convex polygon (a triangle, a hull of islets) kept as land; placed_ring: the ring it
   // replaces (-1: several).
   std::size_t add_placed(std::vector<Point2> poly, int ring);

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "base/parallel.hpp"
+#include "coast/convex.hpp"
 #include "coast/geometry_ops.hpp"
 #include "coast/report.hpp"
 #include "pslg/segment_grid.hpp"
@@ -188,14 +189,31 @@ std::vector<NarrowGap> narrow_gaps(const Polygons& polygons, double width, const
         }
     if (!in_segs.empty()) {
       const pslg::SegmentGrid in_grid = grid_of(in_segs, in_box, in_total, width);
-      for (NarrowGap& g : out)
-        g.in_input = near_segment(in_grid, in_segs, g.ends[0], tol) < tol && near_segment(in_grid, in_segs, g.ends[1], tol) < tol;
+      for (NarrowGap& g : out) {
+        for (int e = 0; e < 2; ++e) g.on_input[e] = near_segment(in_grid, in_segs, g.ends[e], tol) < tol;
+        g.in_input = g.on_input[0] && g.on_input[1];
+      }
     }
   }
   return out;
 }
 
-void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res) {
+const char* gap_end_cause(Point2 end, const IsletPlacer* islets, double tol) {
+  if (islets) {
+    std::vector<std::uint32_t> cand;
+    const Box2 qb{{end.x - tol, end.y - tol}, {end.x + tol, end.y + tol}};
+    islets->placed_grid.near(qb, &cand);
+    for (const std::uint32_t k : cand)
+      if (!islets->placed_poly[k].empty() && convex_distance(end, end, islets->placed_poly[k]) < tol)
+        return "an islet's triangle";
+    islets->joined_grid.near(qb, &cand);
+    for (const std::uint32_t k : cand)
+      if (convex_distance(end, end, islets->joined[k]) < tol) return "an islet joined to land";
+  }
+  return "a widened bank or a cut";
+}
+
+void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res, const IsletPlacer* islets) {
   if (!(o.narrow_gap > 0)) return;
   FilterLaps lap("  narrow gaps");
   OwnedPolygons ps;
@@ -207,15 +225,23 @@ void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res) {
     for (int k = 0; k < p->getNumInteriorRings(); ++k) rings.push_back(ring_points(p->getInteriorRing(k), false));
     in.push_back(std::move(rings));
   }
+  const double tol = 0.05 * o.narrow_gap;
   for (const NarrowGap& g : narrow_gaps(res.polygons, o.narrow_gap, &in)) {
     ++res.narrow_gaps;
-    if (!g.in_input) ++res.narrow_gaps_made;
+    std::string why = "the input has it so";
+    if (!g.in_input) {
+      ++res.narrow_gaps_made;
+      // Each moved coast by the step that moved it; the other coast may be the input's.
+      std::string a = g.on_input[0] ? "" : gap_end_cause(g.ends[0], islets, tol);
+      std::string b = g.on_input[1] ? "" : gap_end_cause(g.ends[1], islets, tol);
+      if (a.empty()) std::swap(a, b);
+      if (a == b) b.clear();
+      why = "made where a step moved the coast: " + a + (b.empty() ? "" : " and " + b) +
+            (g.on_input[0] || g.on_input[1] ? " facing the input's coast" : "");
+    }
     res.repairs.push_back({"narrow_gap_kept", g.where, g.width,
-                           "water " + num(g.width) + " m wide is kept narrower than " + num(o.narrow_gap) + " m (" +
-                               (g.in_input ? std::string("the input has it so")
-                                           : std::string("made where a step moved the coast: an islet's triangle, a join "
-                                                         "or a widened bank"))
-                               + "); the mesh needs elements about that small here",
+                           "water " + num(g.width) + " m wide is kept narrower than " + num(o.narrow_gap) + " m (" + why +
+                               "); the mesh needs elements about that small here",
                            -1});
   }
   lap("listed");

@@ -11,6 +11,7 @@
 
 #include "coast/generalise.hpp"
 #include "coast/geometry_ops.hpp"
+#include "coast/islet_placer.hpp"
 
 namespace fdr::coast {
 
@@ -19,6 +20,7 @@ struct NarrowGap {
   double width = 0;       // the water's width there (m)
   bool in_input = false;  // both coasts lie on the input's coast (within 5 % of the limit)
   Point2 ends[2];         // the nearest points of the two coasts
+  bool on_input[2] = {false, false};  // each end on the input's coast
 };
 
 // The places where the water of `polygons` (outer rings counter-clockwise, holes clockwise) is
@@ -30,8 +32,14 @@ struct NarrowGap {
 // input). In order of width, then position; the same for any thread count.
 std::vector<NarrowGap> narrow_gaps(const Polygons& polygons, double width, const Polygons* input);
 
+// What made the coast at an end of a gap that is not on the input's coast: "an islet's
+// triangle" or "an islet joined to land" when the end lies within tol of one that `islets`
+// placed or joined (null: none), else "a widened bank or a cut".
+const char* gap_end_cause(Point2 end, const IsletPlacer* islets, double tol);
+
 // narrow_gaps(res.polygons, o.narrow_gap, input) as narrow_gap_kept repairs, counted in
-// res.narrow_gaps and res.narrow_gaps_made; nothing when o.narrow_gap is 0.
-void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res);
+// res.narrow_gaps and res.narrow_gaps_made, a gap made by a step naming the step that moved each
+// coast (gap_end_cause); nothing when o.narrow_gap is 0.
+void list_narrow_gaps(const Options& o, const OGRGeometry& input, Result& res, const IsletPlacer* islets = nullptr);
 
 }  // namespace fdr::coast

@@ -195,5 +195,66 @@ TEST(CoastIsletClusters, PlacementsKeepTheirClearanceFromEachOther) {
   EXPECT_EQ(r.islands_removed, 0u) << "the field is one cluster";
 }
 
+// The joins of replace_islets and the nearest distance from each to the coast of `land` (a
+// counter-clockwise ring) outside the box `run` (the part of the coast the join may take).
+double join_gap_outside(const IsletPlacer& placer, const std::vector<Point2>& land, const Box2& run) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& h : placer.joined)
+    for (std::size_t i = 0; i < land.size(); ++i) {
+      const Point2 a = land[i], b = land[(i + 1) % land.size()];
+      // The coast's points outside `run`, sampled every metre.
+      const double len = dist(a, b);
+      for (double t = 0; t <= len; t += 1) {
+        const Point2 q = a + (t / len) * (b - a);
+        if (q.x >= run.lo.x && q.x <= run.hi.x && q.y >= run.lo.y && q.y <= run.hi.y) continue;
+        d = std::min(d, convex_distance(q, q, h));
+      }
+    }
+  return d;
+}
+
+TEST(CoastIsletJoins, IsletInTheCornerOfABayFillsTheCorner) {
+  // Land (a hole of the sea) with a wall rising at x = 10400 from its north coast at y = 10000:
+  // the water's corner there is square. An islet 100 m square lies 100 m off the north coast
+  // and 400 m from the wall. A hull with the north coast alone would leave a notch under 400 m
+  // wide against the wall; the join takes the corner of water in instead, or keeps hmin/2 from
+  // the wall.
+  const std::vector<Point2> land{{2000, 2000}, {18000, 2000}, {18000, 14000}, {10400, 14000}, {10400, 10000}, {2000, 10000}};
+  Rings sea{box(0, 0, 20000, 20000), reversed(land)};
+  sea.push_back(reversed(square(9900, 10100, 100)));
+  const Options o = defaults();
+  Result res;
+  IsletPlacer placer(o, res);
+  replace_islets(GeomPtr(new OGRPolygon(to_ogr(sea))), placer, o, res);
+  ASSERT_EQ(res.islets_joined, 1u);
+  EXPECT_EQ(res.islands_removed, 0u);
+  // Away from the corner's run (the coast within 1.5 km of the islet), the hull keeps hmin/2.
+  EXPECT_GE(join_gap_outside(placer, land, Box2{{9000, 9990}, {10410, 11500}}), 500.0 - 1e-6);
+  // The hull takes the corner: it reaches the wall.
+  const Box2 hb = box_of(placer.joined.front());
+  EXPECT_GE(hb.hi.x, 10400.0 - 1e-6);
+  const Result r = generalise({sea}, o);
+  EXPECT_EQ(r.islets_joined, 1u);
+  EXPECT_EQ(r.narrow_gaps, 0u);
+}
+
+TEST(CoastIsletJoins, IsletOffAStraightCoastJoinsWithTheShortRun) {
+  // An islet 100 m square, 80 m off a straight coast 16 km long: joined along the coast near it
+  // (the run of rho, about 0.32 km each side), the coast beyond leaving the hull at its ends.
+  const std::vector<Point2> land = box(2000, 2000, 18000, 10000);
+  Rings sea{box(0, 0, 20000, 20000), reversed(land)};
+  sea.push_back(reversed(square(9950, 10080, 100)));
+  const Options o = defaults();
+  Result res;
+  IsletPlacer placer(o, res);
+  replace_islets(GeomPtr(new OGRPolygon(to_ogr(sea))), placer, o, res);
+  ASSERT_EQ(res.islets_joined, 1u);
+  ASSERT_EQ(placer.joined.size(), 1u);
+  const Box2 hb = box_of(placer.joined.front());
+  EXPECT_LT(hb.width(), 700.0) << "the first run, not a longer one";
+  EXPECT_NEAR(hb.lo.y, 10000.0, 1e-6);
+  EXPECT_NEAR(hb.hi.y, 10180.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace fdr::coast

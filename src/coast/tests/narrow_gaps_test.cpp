@@ -95,5 +95,36 @@ TEST(CoastNarrowGaps, ListedAsRepairs) {
   EXPECT_TRUE(none.repairs.empty());
 }
 
+TEST(CoastNarrowGaps, MadeGapsNameTheStepThatMovedEachCoast) {
+  // The input: two islets 200 m apart. The result: the left one replaced by a placed triangle
+  // reaching to 30 m of the right one (on the input's coast), and a joined hull 20 m to the
+  // right one's right.
+  const Polygons input{sea_with({{{300, 400}, {320, 420}}, {{510, 400}, {590, 480}}})};
+  Options o;
+  o.narrow_gap = 50;
+  o.islet_side = 100;
+  Result res;
+  IsletPlacer placer(o, res);
+  placer.add_placed({{380, 400}, {480, 440}, {380, 480}}, 0);
+  placer.add_joined({{610, 400}, {700, 400}, {700, 480}, {610, 480}});
+  Rings result = sea_with({{{510, 400}, {590, 480}}, {{610, 400}, {700, 480}}});
+  result.push_back({{380, 400}, {380, 480}, {480, 440}});  // the triangle, a clockwise hole
+  res.polygons = {result};
+  EXPECT_STREQ(gap_end_cause({480, 440}, &placer, 2.5), "an islet's triangle");
+  EXPECT_STREQ(gap_end_cause({610, 440}, &placer, 2.5), "an islet joined to land");
+  EXPECT_STREQ(gap_end_cause({100, 100}, &placer, 2.5), "a widened bank or a cut");
+  EXPECT_STREQ(gap_end_cause({480, 440}, nullptr, 2.5), "a widened bank or a cut");
+  list_narrow_gaps(o, *water(input), res, &placer);
+  ASSERT_EQ(res.narrow_gaps, 2u);
+  EXPECT_EQ(res.narrow_gaps_made, 2u);
+  std::size_t tri = 0, join = 0;
+  for (const auto& r : res.repairs) {
+    tri += r.reason.find("an islet's triangle facing the input's coast") != std::string::npos;
+    join += r.reason.find("an islet joined to land facing the input's coast") != std::string::npos;
+  }
+  EXPECT_EQ(tri, 1u);
+  EXPECT_EQ(join, 1u);
+}
+
 }  // namespace
 }  // namespace fdr::coast
