@@ -268,6 +268,7 @@ void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
   enqueue_changed(v, created);
   enqueue_at(v);  // the new pieces at v, when it was split into the boundary
   if (regions_live_) {
+    episode_tets_.insert(episode_tets_.end(), created.begin(), created.end());
     assign_regions(created);
     for (TetId t : created) offer(t);
   }
@@ -291,6 +292,7 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
   bd_->split_segment(a, b, ins.vertex);
   if (bd_->capped_cavities() > capped) note_shortfall(p, "facet cavity capped at a subsegment split (facet left non-Delaunay there)");
   ++stats_.segment_splits;
+  episode_split_ = true;
   after_insert(ins.vertex, created);
 }
 
@@ -389,6 +391,7 @@ void Refiner3::split_subfacet(std::uint32_t t) {
   bd_->insert_in_facet(loc.tri, ins.vertex);
   if (bd_->capped_cavities() > capped) note_shortfall(c, "facet cavity capped at a subfacet split (facet left non-Delaunay there)");
   ++stats_.facet_splits;
+  episode_split_ = true;
   after_insert(ins.vertex, created);
 }
 
@@ -415,9 +418,20 @@ void Refiner3::conform() {
     note_shortfall(last, what);
     gave_up_ = true;
   }
+  if (regions_live_) {
+    if (episode_split_) relabel_episode();
+    episode_tets_.clear();
+    episode_split_ = false;
+  }
   if (check_boundary_ && conforming()) {
     const std::string m = missing_boundary();
     if (!m.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), m.c_str());
+    // A flood per episode would be quadratic: one every 1024 vertices.
+    if (regions_live_ && dt_.num_vertices() >= regions_checked_at_ + 1024) {
+      regions_checked_at_ = dt_.num_vertices();
+      const std::string r = stale_regions();
+      if (!r.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), r.c_str());
+    }
   }
 }
 
