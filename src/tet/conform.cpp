@@ -419,7 +419,7 @@ void Refiner3::conform() {
     gave_up_ = true;
   }
   if (regions_live_) {
-    if (episode_split_) relabel_episode();
+    if (episode_split_) relabel_regions(episode_tets_);
     episode_tets_.clear();
     episode_split_ = false;
   }

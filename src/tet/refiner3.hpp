@@ -59,6 +59,17 @@ class Refiner3 {
   // tetrahedralization, named with its corners; empty when the whole boundary is there.
   std::string missing_boundary() const;
 
+  // The regions of `tets` (live or not, repeats allowed) flooded again from their neighbours'
+  // across faces that are not subfacets, as at the end of a conform() episode that split the
+  // boundary; tetrahedra that enter the domain are offered to rule 3.
+  void relabel_regions(const std::vector<TetId>& tets);
+  // How many region labels a fresh flood would change, or empty (the FDR_DEBUG_TET aid's check).
+  std::string stale_regions();
+  // The first subfacet that the segment from bad tetrahedron b to its circumcentre crosses, when
+  // the circumcentre encroaches it or would destroy it; UINT32_MAX when there is none (or the
+  // walk cannot tell, e.g. at a degenerate crossing).
+  std::uint32_t subfacet_toward(const BadTet& b) const;
+
   bool segment_encroached(VertexId a, VertexId b);
   bool subfacet_encroached(std::uint32_t t);
   // Whether tetrahedron t (finite, in the domain) is bad: R / f(c) > B, radius-edge above 2, or
@@ -96,10 +107,6 @@ class Refiner3 {
   void split_segment(VertexId a, VertexId b);
   void split_subfacet(std::uint32_t t);
   void try_split_tet(const BadTet& b);
-  // The first subfacet that the segment from bad tetrahedron b to its circumcentre crosses, when
-  // the circumcentre encroaches it or would destroy it; UINT32_MAX when there is none (or the
-  // walk cannot tell, e.g. at a degenerate crossing).
-  std::uint32_t subfacet_toward(const BadTet& b) const;
   // A rule-3 split given up for the boundary pieces queued from these positions on: they are
   // split (and b offered again) unless only b's shape is bad next to an acute angle.
   void reject_for_boundary(const BadTet& b, std::size_t segs_before, std::size_t facets_before);
@@ -114,11 +121,6 @@ class Refiner3 {
   void enqueue_all();
   void enqueue_at(VertexId u);
   void assign_regions(const std::vector<TetId>& created);
-  // At the end of a conform() episode that split the boundary: the regions of the tetrahedra made
-  // since the last one, flooded again from the older ones (see rule3.cpp).
-  void relabel_episode();
-  // The FDR_DEBUG_TET aid: how many live region labels a fresh flood would change, or empty.
-  std::string stale_regions();
   void flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp);
   void offer(TetId t);
   // Whether the queue entries from these positions on touch a facet of an acute pair.
@@ -156,7 +158,7 @@ class Refiner3 {
   std::unique_ptr<BadTetQueue> bad_;
   std::unique_ptr<SliverState> slivers_;  // during the sliver phase only: offer() queues slivers too
   std::vector<TetId> created_;  // the tetrahedra the last rule-3 split made
-  std::vector<TetId> episode_tets_;  // made since the last relabel_episode (slots may repeat)
+  std::vector<TetId> episode_tets_;  // made since the last relabel_regions (slots may repeat)
   bool episode_split_ = false;       // a boundary piece was split since then
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;

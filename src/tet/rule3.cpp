@@ -113,19 +113,20 @@ void Refiner3::assign_regions(const std::vector<TetId>& created) {
     if (region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
 }
 
-void Refiner3::relabel_episode() {
+void Refiner3::relabel_regions(const std::vector<TetId>& tets) {
   // A boundary split's cavity may destroy other subfacets for a while (a thin layer's, the
   // hull's), and the tetrahedra made meanwhile took their regions across faces that were no
   // subfacets then: a region may have leaked into its neighbour. With every subfacet back, the
   // tetrahedra made since the last relabelling are flooded again from the older ones, whose
   // labels were right, so that labels never go stale between the passes' full floods.
-  if (plc_.facets.empty()) return;  // a point set: nothing separates regions
-  std::vector<std::int32_t> old(episode_tets_.size());
-  for (std::size_t k = 0; k < episode_tets_.size(); ++k) old[k] = region_[episode_tets_[k]];
-  for (TetId t : episode_tets_)
+  // A point set has nothing that separates regions; before flood_regions there are none.
+  if (plc_.facets.empty() || region_.size() < dt_.tet_slots()) return;
+  std::vector<std::int32_t> old(tets.size());
+  for (std::size_t k = 0; k < tets.size(); ++k) old[k] = region_[tets[k]];
+  for (TetId t : tets)
     if (dt_.alive(t)) region_[t] = dt_.is_ghost(t) ? kOutsideRegion : kUnknownRegion;
   std::vector<TetId> stack;
-  for (TetId t : episode_tets_) {
+  for (TetId t : tets) {
     if (!dt_.alive(t) || region_[t] != kUnknownRegion) continue;
     for (int i = 0; i < 4 && stack.empty(); ++i) {
       const std::int32_t r = region_[dt_.neighbour(t, i)];
@@ -147,8 +148,8 @@ void Refiner3::relabel_episode() {
   // Tetrahedra that left the outside were never offered; those that entered it leave the queue
   // when popped (try_split_tet).
   std::vector<TetId> now_inside;
-  for (std::size_t k = 0; k < episode_tets_.size(); ++k) {
-    const TetId t = episode_tets_[k];
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    const TetId t = tets[k];
     if (!dt_.alive(t)) continue;
     if (region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
     if (old[k] == kOutsideRegion && region_[t] != kOutsideRegion) now_inside.push_back(t);
