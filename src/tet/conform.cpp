@@ -373,20 +373,22 @@ void Refiner3::split_subfacet(std::uint32_t t) {
     return;
   }
   const TetId h = dt_.locate(c, dt_.vertex_tet(s.v[0]));
-  std::vector<TetId> cavity;
-  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, c, h, cavity);
-  if (find_encroached(c, cavity, false)) {
+  // The conflict region is dug once, for the encroachment test and the insertion (a point on a
+  // facet next to the outside digs the outside's large tetrahedra too).
+  if (h == kNoId || dt_.dig(c, h).duplicate) {
+    ++stalls_;
+    note_shortfall(c, "subfacet circumcentre repeats a vertex");
+    return;
+  }
+  static const std::vector<TetId> kNone;
+  if (find_encroached(c, dt_.is_ghost(h) ? kNone : dt_.cavity(), false)) {
+    dt_.abandon();
     ++stats_.rejected;
     facet_queue_.push_back({t, s.v, true});
     return;
   }
   std::vector<TetId> created;
-  const Insertion ins = dt_.insert(c, h, &created);
-  if (ins.duplicate) {
-    ++stalls_;
-    note_shortfall(c, "subfacet circumcentre repeats a vertex");
-    return;
-  }
+  const Insertion ins = dt_.insert_dug(&created);
   const std::size_t capped = bd_->capped_cavities();
   bd_->insert_in_facet(loc.tri, ins.vertex);
   if (bd_->capped_cavities() > capped) note_shortfall(c, "facet cavity capped at a subfacet split (facet left non-Delaunay there)");
