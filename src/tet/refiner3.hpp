@@ -65,10 +65,10 @@ class Refiner3 {
   void relabel_regions(const std::vector<TetId>& tets);
   // How many region labels a fresh flood would change, or empty (the FDR_DEBUG_TET aid's check).
   std::string stale_regions();
-  // The first subfacet that the segment from bad tetrahedron b to its circumcentre crosses, when
-  // the circumcentre encroaches it or would destroy it; UINT32_MAX when there is none (or the
-  // walk cannot tell, e.g. at a degenerate crossing).
-  std::uint32_t subfacet_toward(const BadTet& b) const;
+  // The first subfacet that the segment from tetrahedron t (finite) to `centre` (strictly inside
+  // t's circumsphere: its circumcentre, say) crosses, when `centre` encroaches it or would destroy
+  // it; UINT32_MAX when there is none (or the walk cannot tell, e.g. at a degenerate crossing).
+  std::uint32_t subfacet_toward(TetId t, Point3 centre) const;
 
   bool segment_encroached(VertexId a, VertexId b);
   bool subfacet_encroached(std::uint32_t t);

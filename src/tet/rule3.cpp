@@ -189,17 +189,17 @@ void Refiner3::offer(TetId t) {
   else if (slivers_) offer_sliver(t);
 }
 
-std::uint32_t Refiner3::subfacet_toward(const BadTet& b) const {
-  // A straight walk from the tetrahedron's centroid toward the circumcentre, each step through the
-  // face the segment leaves by (exact orientations; a tie takes the first face that qualifies).
-  // Every tetrahedron whose interior the segment meets is in the conflict region (it is
-  // star-shaped from the circumcentre and holds the bad tetrahedron), so the first subfacet
+std::uint32_t Refiner3::subfacet_toward(TetId tet, Point3 centre) const {
+  // A straight walk from the tetrahedron's centroid toward the centre, each step through the face
+  // the segment leaves by (exact orientations; a tie takes the first face that qualifies). Every
+  // tetrahedron whose interior the segment meets is in the centre's conflict region (it is
+  // star-shaped from the centre and holds the tetrahedron), so the first subfacet
   // crossed is destroyed by the insertion unless the crossing is degenerate, and which it is
   // is decided exactly.
-  const Point3 c = b.centre;
-  const auto& bv = b.v;
+  const Point3 c = centre;
+  const auto& bv = dt_.vertices(tet);
   const Point3 q = 0.25 * (dt_.point(bv[0]) + dt_.point(bv[1]) + dt_.point(bv[2]) + dt_.point(bv[3]));
-  TetId t = b.tet;
+  TetId t = tet;
   // The walk only spares a dig; one as long as a conflict region is large gives up to it.
   constexpr std::size_t kMaxSteps = 4096;
   for (std::size_t step = 0; step < kMaxSteps; ++step) {
@@ -240,7 +240,9 @@ void Refiner3::try_split_tet(const BadTet& b) {
   // A circumcentre beyond a subfacet (often far outside, with a conflict region of thousands of
   // tetrahedra) is rejected for the first subfacet it lies beyond, found by a walk, when the
   // circumcentre encroaches it or the insertion would destroy it, as the dig below would decide.
-  const std::uint32_t crossed = subfacet_toward(b);
+  // Without acute facet pairs no subfacet stays encroached after conform(), and then no
+  // circumcentre lies beyond one (its tetrahedron's vertex would encroach it): the walk is spared.
+  const std::uint32_t crossed = acute_.empty() ? UINT32_MAX : subfacet_toward(b.tet, b.centre);
   if (crossed != UINT32_MAX) {
     facet_queue_.push_back({crossed, bd_->tri(crossed).v, true});
     reject_for_boundary(b, segs_before, facets_before);

@@ -84,7 +84,7 @@ TEST(TetRule3, WalkFindsTheSubfacetTheCircumcentreDestroys) {
     BadTet b;
     r.tet_bad(t, &b);
     if (!std::isfinite(b.centre.x)) return;
-    const std::uint32_t s = r.subfacet_toward(b);
+    const std::uint32_t s = r.subfacet_toward(t, b.centre);
     if (s == UINT32_MAX) return;
     ++found;
     ASSERT_TRUE(r.boundary().tri(s).alive);
@@ -97,7 +97,7 @@ TEST(TetRule3, WalkFindsTheSubfacetTheCircumcentreDestroys) {
     BadTet b;
     r.tet_bad(t, &b);
     if (!std::isfinite(b.centre.x) || r.dt().locate(b.centre, t) != t) return;
-    EXPECT_EQ(r.subfacet_toward(b), UINT32_MAX) << t;
+    EXPECT_EQ(r.subfacet_toward(t, b.centre), UINT32_MAX) << t;
   });
   EXPECT_GT(found, 0u);  // flat tetrahedra in the wedge reach across its bottom
 }
