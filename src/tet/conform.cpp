@@ -268,6 +268,7 @@ void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
   enqueue_changed(v, created);
   enqueue_at(v);  // the new pieces at v, when it was split into the boundary
   if (regions_live_) {
+    episode_tets_.insert(episode_tets_.end(), created.begin(), created.end());
     assign_regions(created);
     for (TetId t : created) offer(t);
   }
@@ -291,6 +292,7 @@ void Refiner3::split_segment(VertexId a, VertexId b) {
   bd_->split_segment(a, b, ins.vertex);
   if (bd_->capped_cavities() > capped) note_shortfall(p, "facet cavity capped at a subsegment split (facet left non-Delaunay there)");
   ++stats_.segment_splits;
+  episode_split_ = true;
   after_insert(ins.vertex, created);
 }
 
@@ -371,24 +373,27 @@ void Refiner3::split_subfacet(std::uint32_t t) {
     return;
   }
   const TetId h = dt_.locate(c, dt_.vertex_tet(s.v[0]));
-  std::vector<TetId> cavity;
-  if (h != kNoId && !dt_.is_ghost(h)) conflict_region(dt_, c, h, cavity);
-  if (find_encroached(c, cavity, false)) {
+  // The conflict region is dug once, for the encroachment test and the insertion (a point on a
+  // facet next to the outside digs the outside's large tetrahedra too).
+  if (h == kNoId || dt_.dig(c, h).duplicate) {
+    ++stalls_;
+    note_shortfall(c, "subfacet circumcentre repeats a vertex");
+    return;
+  }
+  static const std::vector<TetId> kNone;
+  if (find_encroached(c, dt_.is_ghost(h) ? kNone : dt_.cavity(), false)) {
+    dt_.abandon();
     ++stats_.rejected;
     facet_queue_.push_back({t, s.v, true});
     return;
   }
   std::vector<TetId> created;
-  const Insertion ins = dt_.insert(c, h, &created);
-  if (ins.duplicate) {
-    ++stalls_;
-    note_shortfall(c, "subfacet circumcentre repeats a vertex");
-    return;
-  }
+  const Insertion ins = dt_.insert_dug(&created);
   const std::size_t capped = bd_->capped_cavities();
   bd_->insert_in_facet(loc.tri, ins.vertex);
   if (bd_->capped_cavities() > capped) note_shortfall(c, "facet cavity capped at a subfacet split (facet left non-Delaunay there)");
   ++stats_.facet_splits;
+  episode_split_ = true;
   after_insert(ins.vertex, created);
 }
 
@@ -415,9 +420,20 @@ void Refiner3::conform() {
     note_shortfall(last, what);
     gave_up_ = true;
   }
+  if (regions_live_) {
+    if (episode_split_) relabel_regions(episode_tets_);
+    episode_tets_.clear();
+    episode_split_ = false;
+  }
   if (check_boundary_ && conforming()) {
     const std::string m = missing_boundary();
     if (!m.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), m.c_str());
+    // A flood per episode would be quadratic: one every 1024 vertices.
+    if (regions_live_ && dt_.num_vertices() >= regions_checked_at_ + 1024) {
+      regions_checked_at_ = dt_.num_vertices();
+      const std::string r = stale_regions();
+      if (!r.empty()) std::fprintf(stderr, "tet: %zu vertices: %s\n", dt_.num_vertices(), r.c_str());
+    }
   }
 }
 

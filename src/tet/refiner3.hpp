@@ -59,6 +59,17 @@ class Refiner3 {
   // tetrahedralization, named with its corners; empty when the whole boundary is there.
   std::string missing_boundary() const;
 
+  // The regions of `tets` (live or not, repeats allowed) flooded again from their neighbours'
+  // across faces that are not subfacets, as at the end of a conform() episode that split the
+  // boundary; tetrahedra that enter the domain are offered to rule 3.
+  void relabel_regions(const std::vector<TetId>& tets);
+  // How many region labels a fresh flood would change, or empty (the FDR_DEBUG_TET aid's check).
+  std::string stale_regions();
+  // The first subfacet that the segment from tetrahedron t (finite) to `centre` (strictly inside
+  // t's circumsphere: its circumcentre, say) crosses, when `centre` encroaches it or would destroy
+  // it; UINT32_MAX when there is none (or the walk cannot tell, e.g. at a degenerate crossing).
+  std::uint32_t subfacet_toward(TetId t, Point3 centre) const;
+
   bool segment_encroached(VertexId a, VertexId b);
   bool subfacet_encroached(std::uint32_t t);
   // Whether tetrahedron t (finite, in the domain) is bad: R / f(c) > B, radius-edge above 2, or
@@ -96,6 +107,9 @@ class Refiner3 {
   void split_segment(VertexId a, VertexId b);
   void split_subfacet(std::uint32_t t);
   void try_split_tet(const BadTet& b);
+  // A rule-3 split given up for the boundary pieces queued from these positions on: they are
+  // split (and b offered again) unless only b's shape is bad next to an acute angle.
+  void reject_for_boundary(const BadTet& b, std::size_t segs_before, std::size_t facets_before);
   // Encroached (or, for subfacets, destroyed) subsegments and subfacets if p were inserted with
   // conflict region `cavity`; returns whether any.
   bool find_encroached(Point3 p, const std::vector<TetId>& cavity, bool facets);
@@ -144,6 +158,8 @@ class Refiner3 {
   std::unique_ptr<BadTetQueue> bad_;
   std::unique_ptr<SliverState> slivers_;  // during the sliver phase only: offer() queues slivers too
   std::vector<TetId> created_;  // the tetrahedra the last rule-3 split made
+  std::vector<TetId> episode_tets_;  // made since the last relabel_regions (slots may repeat)
+  bool episode_split_ = false;       // a boundary piece was split since then
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
   std::vector<VertexId> around_;  // the vertices of the tetrahedra an insertion made
@@ -152,6 +168,7 @@ class Refiner3 {
   std::size_t stalls_ = 0;     // splits of the current conform() episode that made no vertex
   bool gave_up_ = false;       // an episode ended at its stall or progress cap
   bool check_boundary_ = false;  // the FDR_DEBUG_TET aid: missing_boundary() after every episode
+  std::size_t regions_checked_at_ = 0;  // the aid's vertex count at its last stale_regions()
   TetStats stats_;
 };
 

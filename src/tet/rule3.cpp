@@ -67,6 +67,25 @@ void Refiner3::flood_regions() {
     if (dt_.alive(t) && region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
 }
 
+std::string Refiner3::stale_regions() {
+  // The live labels against a fresh flood, which replaces them only for the count.
+  const LargeArray<std::int32_t> live(region_);
+  flood_regions();
+  std::size_t in_out = 0, out_in = 0, other = 0;
+  for (TetId t = 0; t < region_.size() && t < live.size(); ++t) {
+    if (!dt_.alive(t) || live[t] == region_[t]) continue;
+    if (region_[t] == kOutsideRegion) ++in_out;
+    else if (live[t] == kOutsideRegion) ++out_in;
+    else ++other;
+  }
+  region_ = live;
+  if (in_out + out_in + other == 0) return {};
+  char s[160];
+  std::snprintf(s, sizeof s, "regions: %zu tetrahedra outside labelled inside, %zu inside labelled outside, %zu in another region",
+                in_out, out_in, other);
+  return s;
+}
+
 void Refiner3::assign_regions(const std::vector<TetId>& created) {
   if (region_.size() < dt_.tet_slots()) {
     if (region_.capacity() < dt_.tet_slots()) region_.reserve(std::max(dt_.tet_capacity(), 2 * region_.capacity()));
@@ -92,6 +111,52 @@ void Refiner3::assign_regions(const std::vector<TetId>& created) {
   }
   for (TetId t : created)
     if (region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
+}
+
+void Refiner3::relabel_regions(const std::vector<TetId>& tets) {
+  // A boundary split's cavity may destroy other subfacets for a while (a thin layer's, the
+  // hull's), and the tetrahedra made meanwhile took their regions across faces that were no
+  // subfacets then: a region may have leaked into its neighbour. With every subfacet back, the
+  // tetrahedra made since the last relabelling are flooded again from the older ones, whose
+  // labels were right, so that labels never go stale between the passes' full floods.
+  // A point set has nothing that separates regions; before flood_regions there are none.
+  if (plc_.facets.empty() || region_.size() < dt_.tet_slots()) return;
+  std::vector<std::int32_t> old(tets.size());
+  for (std::size_t k = 0; k < tets.size(); ++k) old[k] = region_[tets[k]];
+  for (TetId t : tets)
+    if (dt_.alive(t)) region_[t] = dt_.is_ghost(t) ? kOutsideRegion : kUnknownRegion;
+  std::vector<TetId> stack;
+  for (TetId t : tets) {
+    if (!dt_.alive(t) || region_[t] != kUnknownRegion) continue;
+    for (int i = 0; i < 4 && stack.empty(); ++i) {
+      const std::int32_t r = region_[dt_.neighbour(t, i)];
+      if (r == kUnknownRegion || face_is_subfacet(t, i)) continue;
+      region_[t] = r;
+      stack.push_back(t);
+    }
+    while (!stack.empty()) {
+      const TetId u = stack.back();
+      stack.pop_back();
+      for (int i = 0; i < 4; ++i) {
+        const TetId n = dt_.neighbour(u, i);
+        if (region_[n] != kUnknownRegion || face_is_subfacet(u, i)) continue;
+        region_[n] = region_[u];
+        stack.push_back(n);
+      }
+    }
+  }
+  // Tetrahedra that left the outside were never offered; those that entered it leave the queue
+  // when popped (try_split_tet).
+  std::vector<TetId> now_inside;
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    const TetId t = tets[k];
+    if (!dt_.alive(t)) continue;
+    if (region_[t] == kUnknownRegion) region_[t] = kDefaultRegion;
+    if (old[k] == kOutsideRegion && region_[t] != kOutsideRegion) now_inside.push_back(t);
+  }
+  std::sort(now_inside.begin(), now_inside.end());
+  now_inside.erase(std::unique(now_inside.begin(), now_inside.end()), now_inside.end());
+  for (TetId t : now_inside) offer(t);
 }
 
 bool Refiner3::tet_bad(TetId t, BadTet* out) const {
@@ -124,8 +189,65 @@ void Refiner3::offer(TetId t) {
   else if (slivers_) offer_sliver(t);
 }
 
+std::uint32_t Refiner3::subfacet_toward(TetId tet, Point3 centre) const {
+  // A straight walk from the tetrahedron's centroid toward the centre, each step through the face
+  // the segment leaves by (exact orientations; a tie takes the first face that qualifies). Every
+  // tetrahedron whose interior the segment meets is in the centre's conflict region (it is
+  // star-shaped from the centre and holds the tetrahedron), so the first subfacet
+  // crossed is destroyed by the insertion unless the crossing is degenerate, and which it is
+  // is decided exactly.
+  const Point3 c = centre;
+  const auto& bv = dt_.vertices(tet);
+  const Point3 q = 0.25 * (dt_.point(bv[0]) + dt_.point(bv[1]) + dt_.point(bv[2]) + dt_.point(bv[3]));
+  TetId t = tet;
+  // The walk only spares a dig; one as long as a conflict region is large gives up to it.
+  constexpr std::size_t kMaxSteps = 4096;
+  for (std::size_t step = 0; step < kMaxSteps; ++step) {
+    const auto& v = dt_.vertices(t);
+    std::array<Point3, 4> p;
+    for (int k = 0; k < 4; ++k) p[k] = dt_.point(v[k]);
+    int exit = -1, first = -1;
+    for (int i = 0; i < 4 && exit < 0; ++i) {
+      std::array<Point3, 4> r = p;
+      r[i] = c;
+      if (predicates::orient3d(r[0], r[1], r[2], r[3]) >= 0) continue;  // c not beyond face i
+      if (first < 0) first = i;
+      const Point3 a = p[(i + 1) & 3], bb = p[(i + 2) & 3], d = p[(i + 3) & 3];
+      const int s1 = predicates::orient3d(q, c, a, bb), s2 = predicates::orient3d(q, c, bb, d),
+                s3 = predicates::orient3d(q, c, d, a);
+      if ((s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0)) exit = i;
+    }
+    if (first < 0) return UINT32_MAX;  // c is in t's closure: no subfacet in between
+    if (exit < 0) exit = first;
+    const TetId n = dt_.neighbour(t, exit);
+    if (face_is_subfacet(t, exit)) {
+      const VertexId a = v[(exit + 1) & 3], bb = v[(exit + 2) & 3], d = v[(exit + 3) & 3];
+      const std::uint32_t sf = bd_->subfacet(a, bb, d);
+      const bool encroached = predicates::equatorial_side(dt_.point(a), dt_.point(bb), dt_.point(d), c) >= 0;
+      const bool destroyed = in_conflict(dt_, t, c) && in_conflict(dt_, n, c);
+      return encroached || destroyed ? sf : UINT32_MAX;
+    }
+    if (dt_.is_ghost(n)) return UINT32_MAX;
+    t = n;
+  }
+  return UINT32_MAX;
+}
+
 void Refiner3::try_split_tet(const BadTet& b) {
+  if (region(b.tet) == kOutsideRegion) return;  // relabelled since it was queued
   if (!std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z)) return;
+  const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
+  // A circumcentre beyond a subfacet (often far outside, with a conflict region of thousands of
+  // tetrahedra) is rejected for the first subfacet it lies beyond, found by a walk, when the
+  // circumcentre encroaches it or the insertion would destroy it, as the dig below would decide.
+  // Without acute facet pairs no subfacet stays encroached after conform(), and then no
+  // circumcentre lies beyond one (its tetrahedron's vertex would encroach it): the walk is spared.
+  const std::uint32_t crossed = acute_.empty() ? UINT32_MAX : subfacet_toward(b.tet, b.centre);
+  if (crossed != UINT32_MAX) {
+    facet_queue_.push_back({crossed, bd_->tri(crossed).v, true});
+    reject_for_boundary(b, segs_before, facets_before);
+    return;
+  }
   // The conflict region is dug once: what the circumcentre would encroach is read from it, and
   // the insertion, when it goes ahead, is made from it.
   const TetId h = dt_.locate(b.centre, b.tet);
@@ -134,22 +256,9 @@ void Refiner3::try_split_tet(const BadTet& b) {
     return;
   }
   const std::vector<TetId>& cavity = dt_.cavity();
-  const std::size_t segs_before = seg_queue_.size(), facets_before = facet_queue_.size();
   if (find_encroached(b.centre, cavity, true)) {
     dt_.abandon();
-    ++stats_.rejected;
-    if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
-      // Only its shape is bad and the boundary it encroaches meets another facet at an acute
-      // angle: splitting there cascades toward the angle without end, so the tetrahedron stays
-      // (and is listed as a shortfall).
-      seg_queue_.resize(segs_before);
-      facet_queue_.resize(facets_before);
-      return;
-    }
-    const std::size_t before = dt_.num_vertices();
-    conform();
-    // Still bad if the splits left it; without a new vertex it would only come back unchanged.
-    if (dt_.num_vertices() > before) offer(b.tet);
+    reject_for_boundary(b, segs_before, facets_before);
     return;
   }
   // No subfacet lies inside the cavity, so the circumcentre is in the bad tetrahedron's region;
@@ -164,6 +273,22 @@ void Refiner3::try_split_tet(const BadTet& b) {
   ++stats_.tet_splits;
   after_insert(ins.vertex, created_);
   conform();
+}
+
+void Refiner3::reject_for_boundary(const BadTet& b, std::size_t segs_before, std::size_t facets_before) {
+  ++stats_.rejected;
+  if (b.ratio <= bound_ && near_small_angle(segs_before, facets_before)) {
+    // Only its shape is bad and the boundary it encroaches meets another facet at an acute
+    // angle: splitting there cascades toward the angle without end, so the tetrahedron stays
+    // (and is listed as a shortfall).
+    seg_queue_.resize(segs_before);
+    facet_queue_.resize(facets_before);
+    return;
+  }
+  const std::size_t before = dt_.num_vertices();
+  conform();
+  // Still bad if the splits left it; without a new vertex it would only come back unchanged.
+  if (dt_.num_vertices() > before) offer(b.tet);
 }
 
 bool Refiner3::near_small_angle(std::size_t segs_from, std::size_t facets_from) const {

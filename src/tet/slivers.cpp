@@ -236,10 +236,15 @@ void Refiner3::yield_for_sliver(const SliverTet& s, Point3 centre) {
   // split instead, unless they meet another facet at an acute angle, where splits feed each other;
   // there only the flattest slivers (under a third of the threshold) split it, few enough that the
   // phase's budget bounds them.
-  std::vector<TetId>& cavity = slivers_->cavity;
-  conflict_region(dt_, centre, s.tet, cavity);
   const std::size_t segs = seg_queue_.size(), facets = facet_queue_.size();
-  if (!find_encroached(centre, cavity, true)) return;  // left; listed at the end if still a sliver
+  // A centre beyond a subfacet yields to the first one it lies beyond (rule3.cpp), undug.
+  if (const std::uint32_t crossed = subfacet_toward(s.tet, centre); crossed != UINT32_MAX) {
+    facet_queue_.push_back({crossed, bd_->tri(crossed).v, true});
+  } else {
+    std::vector<TetId>& cavity = slivers_->cavity;
+    conflict_region(dt_, centre, s.tet, cavity);
+    if (!find_encroached(centre, cavity, true)) return;  // left; listed at the end if still a sliver
+  }
   if (s.cos <= slivers_->cos_floor && near_small_angle(segs, facets)) {
     seg_queue_.resize(segs);
     facet_queue_.resize(facets);
