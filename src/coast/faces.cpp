@@ -101,6 +101,50 @@ bool cluster_faces(const OGRMultiLineString& lines, const std::vector<int>& memb
 
 }  // namespace
 
+bool face_point(const OGRPolygon& f, Point2& p) {
+  p = inside_point(&f);
+  const Prepared pf(&f);
+  auto inside = [&](double x, double y) {
+    const OGRPoint pt(x, y);
+    return pf.contains(&pt);
+  };
+  if (inside(p.x, p.y)) return true;
+  std::vector<double> ys;
+  for (int k = -1; k < f.getNumInteriorRings(); ++k) {
+    const OGRLinearRing* r = k < 0 ? f.getExteriorRing() : f.getInteriorRing(k);
+    for (int i = 0; i < r->getNumPoints(); ++i) ys.push_back(r->getY(i));
+  }
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  std::vector<std::size_t> gaps;  // between consecutive vertex heights, the widest first
+  for (std::size_t i = 0; i + 1 < ys.size(); ++i) gaps.push_back(i);
+  std::stable_sort(gaps.begin(), gaps.end(), [&](std::size_t i, std::size_t j) { return ys[i + 1] - ys[i] > ys[j + 1] - ys[j]; });
+  std::vector<double> xs;
+  std::vector<std::pair<double, double>> spans;  // (width, middle)
+  for (const std::size_t i : gaps) {
+    const double y = 0.5 * (ys[i] + ys[i + 1]);
+    xs.clear();
+    for (int k = -1; k < f.getNumInteriorRings(); ++k) {
+      const OGRLinearRing* r = k < 0 ? f.getExteriorRing() : f.getInteriorRing(k);
+      for (int j = 0; j + 1 < r->getNumPoints(); ++j) {
+        const double x0 = r->getX(j), y0 = r->getY(j), x1 = r->getX(j + 1), y1 = r->getY(j + 1);
+        if ((y0 < y) != (y1 < y)) xs.push_back(x0 + (y - y0) * (x1 - x0) / (y1 - y0));
+      }
+    }
+    std::sort(xs.begin(), xs.end());
+    spans.clear();
+    for (std::size_t j = 0; j + 1 < xs.size(); j += 2) spans.emplace_back(xs[j + 1] - xs[j], 0.5 * (xs[j] + xs[j + 1]));
+    std::stable_sort(spans.begin(), spans.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [w, x] : spans)
+      if (w > 0 && inside(x, y)) {
+        p = {x, y};
+        return true;
+      }
+  }
+  p = {0, 0};
+  return false;
+}
+
 std::vector<std::vector<int>> line_clusters(const OGRMultiLineString& lines) {
   const int n = lines.getNumGeometries();
   Box2 box;

@@ -27,4 +27,11 @@ std::unique_ptr<OGRMultiLineString> noded_as_given(const OGRMultiLineString& lin
 // of the whole would give it). False when GEOS fails on some cluster.
 bool arrangement_faces(const OGRMultiLineString& lines, OwnedPolygons& faces);
 
+// A point strictly inside face f (inside_point when it is; else the middle of the widest span of
+// a horizontal line through f between two vertex heights that is). Why: GEOS's point on surface
+// falls back to a vertex, on the boundary, when its scan line crosses f only where f is thinner
+// than rounding, and a boundary point says nothing of the side a face lies on. {0, 0} (and
+// false) when no span is strictly inside.
+bool face_point(const OGRPolygon& f, Point2& p);
+
 }  // namespace fdr::coast

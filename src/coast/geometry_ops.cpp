@@ -614,7 +614,8 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
   dl("noded and polygonized");
   const Prepared in_a(a), in_b(b);
   for (auto& f : fs) {
-    const Point2 p = inside_point(f.get());
+    Point2 p;
+    if (!face_point(*f, p)) continue;  // no interior: no area
     const OGRPoint pt(p.x, p.y);
     if (in_a.contains(&pt) && !in_b.contains(&pt)) out.push_back(std::move(f));
   }

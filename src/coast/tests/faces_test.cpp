@@ -90,6 +90,73 @@ TEST(CoastFaces, DifferenceByFacesWithNestedClustersIsTheOverlays) {
   EXPECT_NEAR(area_of(sym.get()), 0, 1e-9);
 }
 
+// A face of a coast's arrangement: a bay with a spike along two nearly collinear segments, so
+// thin that GEOS's scan line through the middle of its box meets it in no span, and its point
+// on surface falls back to the first vertex.
+OGRPolygon spiked_face() {
+  OGRPolygon f;
+  OGRLinearRing r = closed_ring({
+      {423288.2322880651, 55610.28779539912},
+      {422810.59785908746, 55563.62257593457},
+      {422939.33355941, 55200.1775631316},
+      {422387.58488023694, 55571.74337637212},
+      {422368.2550620238, 55744.37672426345},
+      {423683.6654340916, 56954.080355301136},
+      {422444.9027394827, 55814.86497317913},
+      {422428.0213509335, 55792.040742217},
+      {422420.83255466295, 55764.57716621998},
+      {422424.36633174896, 55736.40911307693},
+      {422438.11637718644, 55711.57238525643},
+      {422460.11264118046, 55693.62548667566},
+      {422466.94713755825, 55691.48471386433},
+      {422487.2035897547, 55685.13977493706},
+      {422534.02049380756, 55679.82006024124},
+      {422540.885179817, 55677.55907672326},
+      {422546.2793739892, 55672.748813767175},
+      {422579.12904779724, 55628.399776058446},
+      {422603.0746327392, 55607.42271671216},
+      {422633.5641986437, 55598.26769470339},
+      {422665.10459323815, 55602.584124461726},
+      {422692.0133417114, 55619.59433647192},
+      {422709.6304580134, 55636.93797488097},
+      {422881.7164949629, 55742.64566184459},
+      {422897.4907917775, 55747.94531774526},
+      {422996.2304266451, 55757.59224948092},
+      {423010.08154610306, 55756.33066778579},
+      {423173.16880696896, 55709.60130015179},
+      {423179.1522688794, 55706.58238138104},
+      {423183.6069475508, 55701.575233998185},
+      {423216.56710657454, 55646.44602032797},
+      {423235.22286476236, 55625.47657726},
+      {423260.28101749637, 55612.83364098309}
+});
+  f.addRing(&r);
+  return f;
+}
+
+TEST(CoastFacePoint, IsStrictlyInsideWhereThePointOnSurfaceIsOnTheBoundary) {
+  const OGRPolygon f = spiked_face();
+  const Prepared pf(&f);
+  const Point2 q = inside_point(&f);
+  const OGRPoint on(q.x, q.y);
+  ASSERT_FALSE(pf.contains(&on));  // the premise: GEOS's point is on the boundary
+  Point2 p;
+  ASSERT_TRUE(face_point(f, p));
+  const OGRPoint in(p.x, p.y);
+  EXPECT_TRUE(pf.contains(&in));
+}
+
+// a - b with b far away is a: its one face is kept only when the point that classifies it lies
+// inside it.
+TEST(CoastFaces, DifferenceByFacesKeepsAFaceWhosePointOnSurfaceIsOnItsBoundary) {
+  const OGRPolygon a = spiked_face();
+  OGRPolygon b;
+  OGRLinearRing br = square_ring(0, 0, 10, 10);
+  b.addRing(&br);
+  const GeomPtr by_faces = difference_by_faces(&a, &b, "test");
+  EXPECT_NEAR(area_of(by_faces.get()), a.get_Area(), 1e-6);
+}
+
 }  // namespace
 }  // namespace fdr::coast
 
