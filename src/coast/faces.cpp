@@ -13,6 +13,8 @@
 namespace fdr::coast {
 namespace {
 
+constexpr std::size_t kFaceScanLines = 16;  // face_point: the scan lines tried
+
 Box2 segment_box(const OGRLineString* l, int i) {
   Box2 b;
   b.add({l->getX(i), l->getY(i)});
@@ -102,13 +104,6 @@ bool cluster_faces(const OGRMultiLineString& lines, const std::vector<int>& memb
 }  // namespace
 
 bool face_point(const OGRPolygon& f, Point2& p) {
-  p = inside_point(&f);
-  const Prepared pf(&f);
-  auto inside = [&](double x, double y) {
-    const OGRPoint pt(x, y);
-    return pf.contains(&pt);
-  };
-  if (inside(p.x, p.y)) return true;
   std::vector<double> ys;
   for (int k = -1; k < f.getNumInteriorRings(); ++k) {
     const OGRLinearRing* r = k < 0 ? f.getExteriorRing() : f.getInteriorRing(k);
@@ -119,8 +114,13 @@ bool face_point(const OGRPolygon& f, Point2& p) {
   std::vector<std::size_t> gaps;  // between consecutive vertex heights, the widest first
   for (std::size_t i = 0; i + 1 < ys.size(); ++i) gaps.push_back(i);
   std::stable_sort(gaps.begin(), gaps.end(), [&](std::size_t i, std::size_t j) { return ys[i + 1] - ys[i] > ys[j + 1] - ys[j]; });
+  if (gaps.size() > kFaceScanLines) gaps.resize(kFaceScanLines);
   std::vector<double> xs;
-  std::vector<std::pair<double, double>> spans;  // (width, middle)
+  struct Span {
+    double width;
+    Point2 mid;
+  };
+  std::vector<Span> spans;
   for (const std::size_t i : gaps) {
     const double y = 0.5 * (ys[i] + ys[i + 1]);
     xs.clear();
@@ -132,14 +132,17 @@ bool face_point(const OGRPolygon& f, Point2& p) {
       }
     }
     std::sort(xs.begin(), xs.end());
-    spans.clear();
-    for (std::size_t j = 0; j + 1 < xs.size(); j += 2) spans.emplace_back(xs[j + 1] - xs[j], 0.5 * (xs[j] + xs[j + 1]));
-    std::stable_sort(spans.begin(), spans.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (const auto& [w, x] : spans)
-      if (w > 0 && inside(x, y)) {
-        p = {x, y};
-        return true;
-      }
+    for (std::size_t j = 0; j + 1 < xs.size(); j += 2)
+      if (xs[j + 1] > xs[j]) spans.push_back({xs[j + 1] - xs[j], {0.5 * (xs[j] + xs[j + 1]), y}});
+  }
+  std::stable_sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.width > b.width; });
+  const Prepared pf(&f);
+  for (const Span& s : spans) {
+    const OGRPoint pt(s.mid.x, s.mid.y);
+    if (pf.contains(&pt)) {
+      p = s.mid;
+      return true;
+    }
   }
   p = {0, 0};
   return false;

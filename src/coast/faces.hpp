@@ -27,11 +27,13 @@ std::unique_ptr<OGRMultiLineString> noded_as_given(const OGRMultiLineString& lin
 // of the whole would give it). False when GEOS fails on some cluster.
 bool arrangement_faces(const OGRMultiLineString& lines, OwnedPolygons& faces);
 
-// A point strictly inside face f (inside_point when it is; else the middle of the widest span of
-// a horizontal line through f between two vertex heights that is). Why: GEOS's point on surface
-// falls back to a vertex, on the boundary, when its scan line crosses f only where f is thinner
-// than rounding, and a boundary point says nothing of the side a face lies on. {0, 0} (and
-// false) when no span is strictly inside.
+// A point strictly inside face f, away from its slivers: the middle of the widest span of the
+// horizontal lines midway between the most distant consecutive vertex heights (16 of them) that
+// is strictly inside. Why not GEOS's point on surface: its one scan line may meet the face only
+// in a sliver along two nearly collinear segments, whose points lie within rounding of the
+// segments the face was noded from (or, thinner than rounding, it falls back to a vertex on the
+// boundary), and such a point says nothing of the side the face lies on. {0, 0} (and false)
+// when no span is strictly inside.
 bool face_point(const OGRPolygon& f, Point2& p);
 
 }  // namespace fdr::coast

@@ -146,6 +146,30 @@ TEST(CoastFacePoint, IsStrictlyInsideWhereThePointOnSurfaceIsOnTheBoundary) {
   EXPECT_TRUE(pf.contains(&in));
 }
 
+// A face of GEOS's noding of a coast's arrangement: a cut corner, and a sliver along two nearly
+// collinear segments to their computed crossing, where GEOS's point on surface lies (within
+// rounding of the segments, so on either side of the input's).
+TEST(CoastFacePoint, LiesInTheWidestPartNotInASliver) {
+  OGRPolygon f;
+  OGRLinearRing r = closed_ring({
+      {199856.69428446327, -135278.90279929907},
+      {198793.63574211334, -136469.3515836767},
+      {198793.63574211337, -136469.35158367665},
+      {199810.96036755925, -135330.11718083525},
+      {199825.25651476398, -135306.46117373958},
+      {199830.0129783078, -135279.23320005136},
+      {199824.58373616057, -135252.13135829996},
+      {199809.7061870223, -135228.83661579766}});
+  f.addRing(&r);
+  const Point2 q = inside_point(&f);
+  ASSERT_LT(q.x, 199800);  // the premise: GEOS's point is in the sliver
+  Point2 p;
+  ASSERT_TRUE(face_point(f, p));
+  EXPECT_GT(p.x, 199810);
+  EXPECT_GT(p.y, -135331);
+  EXPECT_LT(p.y, -135228);
+}
+
 // a - b with b far away is a: its one face is kept only when the point that classifies it lies
 // inside it.
 TEST(CoastFaces, DifferenceByFacesKeepsAFaceWhosePointOnSurfaceIsOnItsBoundary) {
