@@ -80,6 +80,30 @@ void dump_wkt(const OwnedPolygons& outp) {
 
 }  // namespace
 
+Options resolution_options(double hmin) {
+  Options o;
+  o.close_width = 0.15 * hmin;
+  o.min_feature = 0.1 * hmin;
+  o.widen_width = 0.65 * hmin;
+  o.min_island_area = 0.3 * hmin * hmin;
+  o.list_area = 0.5 * hmin * hmin;
+  // A water body of more than a few hmin^2 behind a connection the openings close keeps that
+  // connection, about one element across (reconnect.hpp).
+  o.connect_area = 4 * hmin * hmin;
+  o.connect_width = 0.9 * hmin;
+  o.narrow_gap = 0.5 * hmin;  // narrow_gaps.hpp
+  // Tips of land thinner than the close width stay unless other land is within hmin/2 of their
+  // end (tips.hpp).
+  o.tip_clearance = 0.5 * hmin;
+  o.islet_side = 0.7 * hmin;  // islet_placer.hpp
+  o.islet_shift = 0.4 * hmin;
+  o.join_islets = true;
+  // Every islet placement and join keeps hmin/2 from all other land, so that no element needs
+  // to be narrower than that beside it; islets nearer than that to each other go as clusters.
+  o.islet_clearance = 0.5 * hmin;
+  return o;
+}
+
 Result generalise(const Polygons& input, const Options& o) {
   GdalQuiet quiet;
   // The steps' times under the filter's developer aid and as sub-stages of the read under the

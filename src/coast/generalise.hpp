@@ -112,6 +112,10 @@ struct Result {
   std::shared_ptr<PendingRemoved> removed_pending;
 };
 
+// The generalisation at resolution hmin as fdrmesh runs it by default (every width a fraction of
+// hmin, every area of hmin^2), so that the CLI, the global path and the tests share one set.
+Options resolution_options(double hmin);
+
 // Throws Error(kInvalidGeometry) when GEOS fails or nothing is left.
 Result generalise(const Polygons& input, const Options& options);
 

@@ -87,27 +87,17 @@ gis::GisInput read_gis_input(const Options& opt, StageClock& clock, const Progre
     if (!(hmin > 0) || (opt.hmax && !(*opt.hmax >= hmin)))
       throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num(hmin) + ", hmax " +
                                                  (opt.hmax ? num(*opt.hmax) : std::string("auto")) + ")");
-    coast::Options fo;
-    fo.close_width = opt.close_width.value_or(opt.keep_coast ? 0.0 : 0.15 * hmin);
-    fo.min_feature = opt.min_feature.value_or(0.1 * hmin);
-    fo.widen_width = opt.widen_width.value_or(opt.keep_coast ? 0.0 : 0.65 * hmin);
-    fo.min_island_area = opt.min_island_factor.value_or(opt.keep_coast ? 0.0 : 0.3) * hmin * hmin;
+    coast::Options fo = coast::resolution_options(hmin);
+    const bool keep = opt.keep_coast;
+    fo.close_width = opt.close_width.value_or(keep ? 0.0 : fo.close_width);
+    fo.min_feature = opt.min_feature.value_or(fo.min_feature);
+    fo.widen_width = opt.widen_width.value_or(keep ? 0.0 : fo.widen_width);
+    fo.min_island_area = opt.min_island_factor.value_or(keep ? 0.0 : 0.3) * hmin * hmin;
     fo.grow_island_area = 0;  // growing small islands blocked narrow estuaries: off
-    fo.list_area = 0.5 * hmin * hmin;
-    // A water body of more than a few hmin^2 behind a connection the openings close keeps that
-    // connection, about one element across (coast/reconnect.hpp).
-    fo.connect_area = opt.keep_coast ? 0.0 : 4 * hmin * hmin;
-    fo.connect_width = 0.9 * hmin;
-    fo.narrow_gap = opt.keep_coast ? 0.0 : 0.5 * hmin;  // coast/narrow_gaps.hpp
-    // Tips of land thinner than --close-width stay unless other land is within hmin/2 of their
-    // end (coast/tips.hpp).
-    fo.tip_clearance = 0.5 * hmin;
-    fo.islet_side = opt.keep_coast ? 0.0 : 0.7 * hmin;  // coast/islet_placer.hpp
-    fo.islet_shift = opt.keep_coast ? 0.0 : 0.4 * hmin;
-    fo.join_islets = !opt.keep_coast;
-    // Every islet placement and join keeps hmin/2 from all other land, so that no element needs
-    // to be narrower than that beside it; islets nearer than that to each other go as clusters.
-    fo.islet_clearance = opt.keep_coast ? 0.0 : 0.5 * hmin;
+    if (keep) {
+      fo.connect_area = fo.narrow_gap = fo.islet_side = fo.islet_shift = fo.islet_clearance = 0;
+      fo.join_islets = false;
+    }
     fo.defer_removed = true;  // listed beside the stages that follow (start_features, finish_features)
     // At once when the filter holds 512 MiB or more: a large input, whose listing the rest of its
     // read hides; a smaller one's starts after the spacing stage, whose peak it would raise.

@@ -29,25 +29,8 @@ std::vector<Point2> reversed(std::vector<Point2> r) {  // a hole: clockwise
   return r;
 }
 
-// The CLI's defaults at hmin 1 km (pipeline/gis_stage.cpp).
-Options defaults() {
-  const double h = 1000;
-  Options o;
-  o.close_width = 0.15 * h;
-  o.min_feature = 0.1 * h;
-  o.widen_width = 0.65 * h;
-  o.min_island_area = 0.3 * h * h;
-  o.list_area = 0.5 * h * h;
-  o.connect_area = 4 * h * h;
-  o.connect_width = 0.9 * h;
-  o.narrow_gap = 0.5 * h;
-  o.tip_clearance = 0.5 * h;
-  o.islet_side = 0.7 * h;
-  o.islet_shift = 0.4 * h;
-  o.join_islets = true;
-  o.islet_clearance = 0.5 * h;
-  return o;
-}
+// The CLI's defaults at hmin 1 km.
+Options defaults() { return resolution_options(1000); }
 
 // A sea 20 km square with the given islands.
 Polygons sea_with(const std::vector<std::vector<Point2>>& islands) {

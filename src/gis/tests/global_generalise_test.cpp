@@ -35,24 +35,8 @@ double sphere_area(const std::vector<LonLat>& ring) {
   return std::fabs(a);
 }
 
-// Options as a global run with hmin 10 km sets them (pipeline/gis_stage.cpp), in ground metres.
-coast::Options ground_options(double h) {
-  coast::Options o;
-  o.close_width = 0.15 * h;
-  o.min_feature = 0.1 * h;
-  o.widen_width = 0.65 * h;
-  o.min_island_area = 0.3 * h * h;
-  o.list_area = 0.5 * h * h;
-  o.connect_area = 4 * h * h;
-  o.connect_width = 0.9 * h;
-  o.narrow_gap = 0.5 * h;
-  o.tip_clearance = 0.5 * h;
-  o.islet_side = 0.7 * h;
-  o.islet_shift = 0.4 * h;
-  o.join_islets = true;
-  o.islet_clearance = 0.5 * h;
-  return o;
-}
+// Options as a global run sets them, in ground metres.
+coast::Options ground_options(double h) { return coast::resolution_options(h); }
 
 // Antarctica as a circle of latitude -75 (the ring holding the south pole).
 std::vector<LonLat> polar_land() {
