@@ -14,24 +14,14 @@
 #include <vector>
 
 #include "io/reader.hpp"
+#include "io/tests/tmp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace fdr;
+using fdr::io_testing::TmpDir;
 
 namespace {
 
-struct TmpDir {
-  fs::path dir;
-  TmpDir() {
-    std::string t = (fs::temp_directory_path() / "fdr_lonlat_read_XXXXXX").string();
-    dir = ::mkdtemp(t.data());
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
-};
 
 // A strip of the equator from 172 E to 172 W in lon/lat, two rows of nodes, two triangles per
 // column, counter-clockwise on the sphere; the column between 179.5 E and 179.5 W crosses the

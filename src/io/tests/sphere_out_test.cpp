@@ -16,9 +16,12 @@
 #include "gis/global_sphere.hpp"
 #include "io/reader.hpp"
 #include "io/writer.hpp"
+#include "io/tests/tmp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace fdr;
+using fdr::io_testing::TmpDir;
+using fdr::io_testing::slurp;
 using fdr::io::Format;
 
 namespace {
@@ -47,25 +50,7 @@ struct SphereMesh {
   }
 };
 
-struct TmpDir {
-  fs::path dir;
-  TmpDir() {
-    std::string t = (fs::temp_directory_path() / "fdr_sphere_out_XXXXXX").string();
-    dir = ::mkdtemp(t.data());
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
-};
 
-std::string slurp(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // The numbers on the lines after the first line containing `key` in `text`, up to a line starting
 // with '<' or '$'.
