@@ -20,6 +20,7 @@ constexpr std::array<AidInfo, static_cast<unsigned>(Aid::kCount)> kAids{{
     {Aid::kTet, "FDR_DEBUG_TET",
      "the 3D refinement checks after every boundary episode that each subsegment is a mesh edge and each subfacet "
      "a mesh face, and names the first that is not on stderr"},
+    {Aid::kGisModule, "FDRMESH_GIS_MODULE", "PATH: the GIS module (fdrmesh_gis.so) to load instead of the installed one"},
 }};
 
 }  // namespace

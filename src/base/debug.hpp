@@ -1,6 +1,6 @@
 // Developer aids: the one registry of the environment variables fdrmesh reads. None of them
 // changes a mesh, a report or a written file; each only prints timings or dumps intermediate
-// data, or caps the thread count (results never depend on it). docs/debug.md lists them.
+// data, caps the thread count (results never depend on it), or points at the GIS module to load. docs/debug.md lists them.
 #pragma once
 #include <span>
 
@@ -18,6 +18,7 @@ enum class Aid : unsigned {
   kFilterWkt,  // FDR_DEBUG_FILTER_WKT=PATH: the coast generalisation's result as WKT, one polygon a line
   kThreads,  // FDR_THREADS=N: at most N threads (1..64)
   kTet,      // FDR_DEBUG_TET: the 3D refinement's boundary invariant checked after every episode
+  kGisModule,  // FDRMESH_GIS_MODULE=PATH: the GIS module to load instead of the installed one
   kCount
 };
 

@@ -219,7 +219,6 @@ LonLatGrid sphere_spacing(const SphereRules& r, double lat_min, const std::vecto
   if (!(r.hmin > 0) || !(r.hmax >= r.hmin))
     throw Error(ExitCode::kInvalidSpacing, "need 0 < --hmin <= --hmax (got hmin " + num6(r.hmin) + ", hmax " +
                                                num6(r.hmax) + ")");
-  const double metres_per_deg = kEarthRadius * kDeg;
   const double cell = r.cell_deg > 0 ? r.cell_deg : default_cell_deg(r.hmin);
   const bool any = r.dist_grade || r.slope || r.wavelength;
   const double grade = r.dist_grade.value_or(any ? -1.0 : 0.1);

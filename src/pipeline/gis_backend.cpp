@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include "base/debug.hpp"
 #include "base/error.hpp"
 
 // Weak: null unless the program links the GIS library (or fdr_pipeline itself).
@@ -34,7 +35,7 @@ std::string exe_dir() {
 // configured install prefix.
 std::vector<std::string> candidates() {
   std::vector<std::string> c;
-  if (const char* e = std::getenv("FDRMESH_GIS_MODULE"); e && *e) {
+  if (const char* e = debug::value(debug::Aid::kGisModule); e && *e) {
     c.emplace_back(e);
     return c;
   }
