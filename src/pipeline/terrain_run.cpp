@@ -127,9 +127,13 @@ terrain::Layering end_pinch_outs(const terrain::Tin& tin, const std::vector<terr
     std::ostringstream s;
     s.precision(10);
     s << "pinch-outs end at vertical walls: layers removed from the TIN triangles where they thin to zero (";
+    const char* sep = "";
     for (std::size_t k = 0; k < r.triangles.size(); ++k)
-      s << (k ? "; " : "") << stack[k].name << "-" << stack[k + 1].name << " " << r.triangles[k] << " triangles, "
-        << r.volume[k] << " m3";
+      if (r.triangles[k]) {
+        s << sep << stack[k].name << "-" << stack[k + 1].name << " " << r.triangles[k] << " triangles, " << r.volume[k]
+          << " m3 moved to the layer beside";
+        sep = "; ";
+      }
     const Point2 at = tin.xy[r.largest_at];
     s << "), a surface moved by up to " << r.largest_move << " m (at " << at.x + origin.x << ", " << at.y + origin.y
       << ")";
