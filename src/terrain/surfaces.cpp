@@ -104,9 +104,15 @@ void end_pinch_outs_on(const Tin& tin, const std::vector<Surface>& stack, std::s
     if (zero == 0 || positive == 0) continue;
     ++r.triangles[s];
     r.volume[s] += area_of(tin, tri) * sum / 3.0;
-    if (q[s + 1] == base) {  // the base stays: the surfaces on this layer's top go down onto it
+    if (q[s + 1] == base) {
+      // The base stays: the surfaces on this layer's top over the triangle (those following the
+      // same surface, or meeting it at all three corners) go down onto it. The top is never among
+      // them: the column between the top and the base is positive everywhere.
       const std::uint16_t up = q[s];
-      for (std::size_t k = s + 1; k-- > 0 && q[k] == up;) q[k] = base;
+      auto on_top = [&](std::uint16_t a) {
+        return a == up || std::all_of(tri.begin(), tri.end(), [&](VertexId v) { return stack[a].z[v] == stack[up].z[v]; });
+      };
+      for (std::size_t k = s + 1; k-- > 1 && on_top(q[k]);) q[k] = base;
     } else {
       q[s + 1] = q[s];
     }

@@ -174,6 +174,19 @@ TEST(EndPinchOuts, LayerAboveTheBaseLeavesByItsTop) {
   }
 }
 
+// h2 meets h1 over the triangles where the layer above the base thins to zero (a layer of zero
+// thickness between them there): both go down onto the base, or the layer above them would be
+// left as a wedge.
+TEST(EndPinchOuts, CoincidentHorizonsGoDownTogether) {
+  const Tin tin = lattice_tin(5, 3);
+  std::vector<Surface> s{plane(tin, "top", 10), plane(tin, "h1", 0.5, -0.25), plane(tin, "h2", 0), plane(tin, "base", 0)};
+  for (std::size_t v = 0; v < tin.xy.size(); ++v) s[2].z[v] = tin.xy[v].x == 0 ? 0.3 : s[1].z[v];
+  clamp_surfaces(s, tin, {});
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  expect_no_wedges(tin, s, r.layering);
+  EXPECT_GT(r.triangles[2], 0u);
+}
+
 // Two horizons pinching out across each other and onto the base at places: every layer ends
 // without a wedge whatever the order of the removals.
 TEST(EndPinchOuts, CrossingPinchOutsOfTwoHorizons) {

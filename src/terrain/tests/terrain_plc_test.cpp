@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
+#include <string>
 #include <vector>
+#include "base/error.hpp"
 #include "plc/check.hpp"
 #include "terrain/terrain_plc.hpp"
 #include "terrain_fixture.hpp"
@@ -184,6 +187,50 @@ TEST(TerrainPlc, CrossingPinchOutsGiveAValidPlc) {
   double column = 0;
   for (double v : layer_volumes(tin, {s.front(), s.back()})) column += v;
   EXPECT_NEAR(total, column, 1e-9 * column);  // the layers still fill the column
+}
+
+
+// Random stacks of planes and bumps (fixed seed): after clamping and ending the pinch-outs, every
+// layer over every triangle is empty or positive at all corners, the PLC passes plc::check, and
+// the layers still fill the column.
+TEST(TerrainPlc, RandomStacksGiveValidPlcsWithoutWedges) {
+  const Tin tin = lattice_tin(6, 5);
+  std::mt19937 rng(49);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int checked = 0, repaired = 0;
+  for (int round = 0; round < 200; ++round) {
+    const std::size_t horizons = 1 + round % 3;
+    std::vector<Surface> s{plane(tin, "top", 10, 0.3 * u(rng), 0.3 * u(rng))};
+    for (std::size_t h = 0; h < horizons; ++h) {
+      Surface z = plane(tin, "h" + std::to_string(h + 1), 5 + 4 * u(rng), 2 * u(rng), 2 * u(rng));
+      for (double& e : z.z) e += u(rng);
+      s.push_back(std::move(z));
+    }
+    s.push_back(plane(tin, "base", 0, 0.2 * u(rng), 0));
+    try {
+      clamp_surfaces(s, tin, {}, round % 2 ? 0.5 : 0.0);
+    } catch (const Error&) {
+      continue;  // a horizon outside the column everywhere
+    }
+    const PinchOutRepair r = end_pinch_outs(tin, s);
+    repaired += !r.layering.identity();
+    for (std::size_t t = 0; t < tin.triangles.size(); ++t)
+      for (std::size_t k = 0; k + 1 < s.size(); ++k) {
+        int positive = 0;
+        for (int c = 0; c < 3; ++c)
+          positive += corner_z(s, r.layering, tin, t, k, c) > corner_z(s, r.layering, tin, t, k + 1, c);
+        ASSERT_TRUE(positive == 0 || positive == 3) << "round " << round << " triangle " << t << " layer " << k;
+      }
+    const TerrainPlc p = build_terrain_plc(tin, s, r.layering);
+    ASSERT_NO_THROW(plc::check(p.plc)) << "round " << round;
+    double total = 0, column = 0;
+    for (double v : layer_volumes(tin, s, r.layering)) total += v;
+    for (double v : layer_volumes(tin, {s.front(), s.back()})) column += v;
+    EXPECT_NEAR(total, column, 1e-9 * column) << "round " << round;
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_GT(repaired, checked / 2);
 }
 
 }  // namespace
