@@ -120,8 +120,8 @@ std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::Mesh
 
 // Every pinch-out ended at a vertical wall (terrain::end_pinch_outs, a documented repair, logged
 // with the triangles and volume moved per layer and the largest vertical move of a surface).
-terrain::Layering end_pinch_outs(const terrain::Tin& tin, const std::vector<terrain::Surface>& stack, Point2 origin,
-                                 const LogFn& log) {
+terrain::PinchOutRepair end_pinch_outs(const terrain::Tin& tin, const std::vector<terrain::Surface>& stack,
+                                       Point2 origin, const LogFn& log) {
   terrain::PinchOutRepair r = terrain::end_pinch_outs(tin, stack);
   if (log && !r.layering.identity()) {
     std::ostringstream s;
@@ -139,7 +139,7 @@ terrain::Layering end_pinch_outs(const terrain::Tin& tin, const std::vector<terr
       << ")";
     log(LogLevel::kWarning, s.str());
   }
-  return std::move(r.layering);
+  return r;
 }
 
 // The top's elevation per column of g: the TIN's vertices binned into the columns (mean), columns
@@ -270,7 +270,8 @@ std::string report_json3(const Result3& r) {
   for (const LayerFigures& l : r.layers)
     layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
                       {"expected_volume", l.expected},
-                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
+                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0},
+                      {"pinch_out_triangles", l.pinch_out_triangles}, {"pinch_out_volume_moved", l.pinch_out_volume}});
   j["layers"] = layers;
   return j.dump(2);
 }
@@ -301,7 +302,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   const double min_thickness = opt.min_thickness.value_or(
       terrain::default_min_thickness(spacing_range(opt, *r2.f, tin.xy).first, opt.vertical_tol.value_or(0.0)));
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
-  const terrain::Layering layering = end_pinch_outs(tin, stack, r2.mesh.origin, log);
+  const terrain::PinchOutRepair pinch = end_pinch_outs(tin, stack, r2.mesh.origin, log);
+  const terrain::Layering& layering = pinch.layering;
   terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack, layering);
   tp.plc.source = opt.input.empty() ? opt.dem : opt.input;
   const double well_h = opt.well_spacing.value_or(spacing_range(opt, *r2.f, tin.xy).first);
@@ -347,6 +349,8 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   r.mesh.cell_fields.emplace_back("min_dihedral_deg", std::move(values.min_dihedral_deg));
   r.report.input_file = tp.plc.source;
   r.layers = layer_figures(r.report, tp.plc, terrain::layer_volumes(tin, stack, layering));
+  for (std::size_t k = 0; k < r.layers.size(); ++k)
+    r.layers[k].pinch_out_triangles = pinch.triangles[k], r.layers[k].pinch_out_volume = pinch.volume[k];
   clock.lap("report");
   if (opt.check) {
     quality::check_tets(r.mesh, tp.plc, *f, tr.stats.bound);  // Error(kCheckFailed) before anything is written

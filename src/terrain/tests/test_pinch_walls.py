@@ -30,6 +30,7 @@ def mesh(tmp_path, args):
     assert figures["valid"]
     for layer in report["layers"]:
         assert abs(layer["relative_difference"]) < 1e-3, layer
+    assert report["layers"][0]["pinch_out_triangles"] > 0 and report["layers"][0]["pinch_out_volume_moved"] > 0
     yard = None
     if os.path.exists(YARDSTICK):
         j = tmp_path / "v.json"
