@@ -21,6 +21,10 @@ struct LayerFigures {
   std::string name;
   std::size_t tets = 0;
   double volume = 0, expected = 0;
+  // Where the layer's pinch-outs were ended at walls (terrain::end_pinch_outs): the TIN triangles
+  // it left and the volume it held there (now the neighbouring layer's).
+  std::size_t pinch_out_triangles = 0;
+  double pinch_out_volume = 0;
 };
 
 struct Result3 {

@@ -118,6 +118,30 @@ std::vector<terrain::Surface> surface_stack(const Options& opt, const mesh::Mesh
   return stack;
 }
 
+// Every pinch-out ended at a vertical wall (terrain::end_pinch_outs, a documented repair, logged
+// with the triangles and volume moved per layer and the largest vertical move of a surface).
+terrain::PinchOutRepair end_pinch_outs(const terrain::Tin& tin, const std::vector<terrain::Surface>& stack,
+                                       Point2 origin, const LogFn& log) {
+  terrain::PinchOutRepair r = terrain::end_pinch_outs(tin, stack);
+  if (log && !r.layering.identity()) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "pinch-outs end at vertical walls: layers removed from the TIN triangles where they thin to zero (";
+    const char* sep = "";
+    for (std::size_t k = 0; k < r.triangles.size(); ++k)
+      if (r.triangles[k]) {
+        s << sep << stack[k].name << "-" << stack[k + 1].name << " " << r.triangles[k] << " triangles, " << r.volume[k]
+          << " m3 moved to the layer beside";
+        sep = "; ";
+      }
+    const Point2 at = tin.xy[r.largest_at];
+    s << "), a surface moved by up to " << r.largest_move << " m (at " << at.x + origin.x << ", " << at.y + origin.y
+      << ")";
+    log(LogLevel::kWarning, s.str());
+  }
+  return r;
+}
+
 // The top's elevation per column of g: the TIN's vertices binned into the columns (mean), columns
 // without a vertex from their neighbours (gis::sample_depths fills from the nearest valid cell).
 std::vector<double> top_per_column(const sizing::Grid3& g, const std::vector<Point2>& xy, const std::vector<double>& top) {
@@ -157,7 +181,8 @@ std::pair<double, double> spacing_range(const Options& opt, const sizing::Sizing
 // the grade over the box's height). Made from the local-frame PLC and TIN; the grid returned is
 // in world coordinates (+ origin).
 sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const sizing::SizingField& f2,
-                                   const terrain::Tin& tin, const std::vector<terrain::Surface>& stack, Point2 origin,
+                                   const terrain::Tin& tin, const std::vector<terrain::Surface>& stack,
+                                   const terrain::Layering& layering, Point2 origin,
                                    const std::vector<std::array<Point3, 2>>& wells, double well_h, const LogFn& log) {
   const std::vector<Point2>& xy = tin.xy;
   const std::vector<double>& top = stack.front().z;
@@ -179,7 +204,7 @@ sizing::SizingPtr3 terrain_spacing(const Options& opt, const plc::Plc& p, const 
   terrain::fill_depth_spacing(g, h2, top_per_column(g, xy, top), ds);
   terrain::LayerSpacing ls;
   ls.hmin = ds.hmin;
-  const terrain::LayerSpacingResult lr = terrain::bound_by_layer_thickness(g, tin, stack, ls);
+  const terrain::LayerSpacingResult lr = terrain::bound_by_layer_thickness(g, tin, stack, ls, layering);
   if (log && !lr.places.empty()) {
     std::ostringstream w;
     w.precision(10);
@@ -245,7 +270,8 @@ std::string report_json3(const Result3& r) {
   for (const LayerFigures& l : r.layers)
     layers.push_back({{"material", l.material}, {"name", l.name}, {"tets", l.tets}, {"volume", l.volume},
                       {"expected_volume", l.expected},
-                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0}});
+                      {"relative_difference", l.expected > 0 ? (l.volume - l.expected) / l.expected : 0.0},
+                      {"pinch_out_triangles", l.pinch_out_triangles}, {"pinch_out_volume_moved", l.pinch_out_volume}});
   j["layers"] = layers;
   return j.dump(2);
 }
@@ -276,7 +302,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   const double min_thickness = opt.min_thickness.value_or(
       terrain::default_min_thickness(spacing_range(opt, *r2.f, tin.xy).first, opt.vertical_tol.value_or(0.0)));
   const std::vector<terrain::Surface> stack = surface_stack(opt, r2.mesh, tin, frame, min_thickness, log);
-  terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack);
+  const terrain::PinchOutRepair pinch = end_pinch_outs(tin, stack, r2.mesh.origin, log);
+  const terrain::Layering& layering = pinch.layering;
+  terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack, layering);
   tp.plc.source = opt.input.empty() ? opt.dem : opt.input;
   const double well_h = opt.well_spacing.value_or(spacing_range(opt, *r2.f, tin.xy).first);
   TerrainWells wells;
@@ -286,7 +314,7 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
     wells = add_terrain_wells(opt, frame, tin, stack, tp, well_h, match, log);
   }
   const sizing::SizingPtr3 f =
-      terrain_spacing(opt, tp.plc, *r2.f, tin, stack, r2.mesh.origin, wells.lines, well_h, log);
+      terrain_spacing(opt, tp.plc, *r2.f, tin, stack, layering, r2.mesh.origin, wells.lines, well_h, log);
   plc_to_world(tp.plc, r2.mesh.origin);
   clock.lap("surfaces");
   if (log) log(LogLevel::kInfo, "terrain PLC: " + std::to_string(tp.plc.points.size()) + " vertices, " +
@@ -320,7 +348,9 @@ Result3 run_terrain(const Options& opt, const ProgressFn& progress, const LogFn&
   r.mesh.cell_fields.emplace_back("radius_edge", std::move(values.radius_edge));
   r.mesh.cell_fields.emplace_back("min_dihedral_deg", std::move(values.min_dihedral_deg));
   r.report.input_file = tp.plc.source;
-  r.layers = layer_figures(r.report, tp.plc, terrain::layer_volumes(tin, stack));
+  r.layers = layer_figures(r.report, tp.plc, terrain::layer_volumes(tin, stack, layering));
+  for (std::size_t k = 0; k < r.layers.size(); ++k)
+    r.layers[k].pinch_out_triangles = pinch.triangles[k], r.layers[k].pinch_out_volume = pinch.volume[k];
   clock.lap("report");
   if (opt.check) {
     quality::check_tets(r.mesh, tp.plc, *f, tr.stats.bound);  // Error(kCheckFailed) before anything is written

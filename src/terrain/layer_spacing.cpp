@@ -19,7 +19,7 @@ std::pair<std::size_t, std::size_t> cell_range(double lo, double hi, double orig
 }  // namespace
 
 LayerSpacingResult bound_by_layer_thickness(sizing::Grid3& g, const Tin& tin, const std::vector<Surface>& stack,
-                                           const LayerSpacing& opt) {
+                                           const LayerSpacing& opt, const Layering& layering) {
   if (!(opt.factor > 0) || !std::isfinite(opt.factor) || !(opt.grade > 0) || !std::isfinite(opt.grade))
     throw Error(ExitCode::kUsage, "terrain spacing: the layer thickness factor and grade must be > 0");
   if (g.v.size() != g.nx * g.ny * g.nz) throw Error(ExitCode::kInternal, "terrain spacing: the grid is not filled");
@@ -29,7 +29,8 @@ LayerSpacingResult bound_by_layer_thickness(sizing::Grid3& g, const Tin& tin, co
   const std::size_t layers = stack.empty() ? 0 : stack.size() - 1;
   std::vector<ThinPlace> thinnest(layers);
   for (std::size_t s = 0; s < layers; ++s) thinnest[s] = {s, {}, kInf};
-  for (const auto& t : tin.triangles) {
+  for (std::size_t ti = 0; ti < tin.triangles.size(); ++ti) {
+    const auto& t = tin.triangles[ti];
     double xlo = kInf, xhi = -kInf, ylo = kInf, yhi = -kInf;
     for (VertexId v : t) {
       xlo = std::min(xlo, tin.xy[v].x), xhi = std::max(xhi, tin.xy[v].x);
@@ -39,8 +40,8 @@ LayerSpacingResult bound_by_layer_thickness(sizing::Grid3& g, const Tin& tin, co
     const auto [j0, j1] = cell_range(ylo, yhi, g.y0, g.dy, g.ny);
     for (std::size_t s = 0; s < layers; ++s) {
       double thin = kInf, zlo = kInf, zhi = -kInf, zmid = 0;
-      for (VertexId v : t) {
-        const double up = stack[s].z[v], lo = stack[s + 1].z[v];
+      for (int k = 0; k < 3; ++k) {
+        const double up = corner_z(stack, layering, tin, ti, s, k), lo = corner_z(stack, layering, tin, ti, s + 1, k);
         if (up - lo > 0) thin = std::min(thin, up - lo);
         zlo = std::min(zlo, lo), zhi = std::max(zhi, up), zmid += (up + lo) / 6;
       }

@@ -41,8 +41,9 @@ struct LayerSpacingResult {
 // in every cell within one cell of a TIN triangle's prism of a layer (its thinnest positive
 // corner thickness there), then graded away from the layers at `grade` (limit_gradient3), so
 // the result is max(alpha of g, grade)-Lipschitz. Layers of zero thickness on a whole triangle
-// (pinched out) bound nothing there. Throws Error(kUsage) on a factor or grade that is not > 0.
+// (pinched out) bound nothing there. The layers are those of the layering (end_pinch_outs; empty:
+// every surface on its own elevations). Throws Error(kUsage) on a factor or grade that is not > 0.
 LayerSpacingResult bound_by_layer_thickness(sizing::Grid3& g, const Tin& tin, const std::vector<Surface>& stack,
-                                           const LayerSpacing& opt);
+                                           const LayerSpacing& opt, const Layering& layering = {});
 
 }  // namespace fdr::terrain

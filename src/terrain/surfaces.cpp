@@ -2,6 +2,8 @@
 #include "terrain/surfaces.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <sstream>
 #include "base/error.hpp"
 
@@ -75,6 +77,77 @@ ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 o
                       (c.collapsed[k] ? " by the minimum layer thickness (--min-thickness)" : "") + ": its layer would be empty");
   }
   return c;
+}
+
+namespace {
+
+double area_of(const Tin& tin, const std::array<VertexId, 3>& t) {
+  const Point2 a = tin.xy[t[0]], b = tin.xy[t[1]], c = tin.xy[t[2]];
+  return 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+}
+
+// The layering of one triangle (q: its n entries) from the top down, each removal counted in r.
+void end_pinch_outs_on(const Tin& tin, const std::vector<Surface>& stack, std::size_t t, std::uint16_t* q,
+                       PinchOutRepair& r) {
+  const std::size_t n = stack.size();
+  const auto base = static_cast<std::uint16_t>(n - 1);
+  const auto& tri = tin.triangles[t];
+  for (std::size_t s = 0; s + 1 < n; ++s) {
+    if (q[s] == q[s + 1]) continue;
+    int zero = 0, positive = 0;
+    double sum = 0;
+    for (VertexId v : tri) {
+      const double th = stack[q[s]].z[v] - stack[q[s + 1]].z[v];
+      (th > 0 ? positive : zero) += 1;
+      sum += th;
+    }
+    if (zero == 0 || positive == 0) continue;
+    ++r.triangles[s];
+    r.volume[s] += area_of(tin, tri) * sum / 3.0;
+    if (q[s + 1] == base) {
+      // The base stays: the surfaces on this layer's top over the triangle (those following the
+      // same surface, or meeting it at all three corners) go down onto it. The top is never among
+      // them: the column between the top and the base is positive everywhere.
+      const std::uint16_t up = q[s];
+      auto on_top = [&](std::uint16_t a) {
+        return a == up || std::all_of(tri.begin(), tri.end(), [&](VertexId v) { return stack[a].z[v] == stack[up].z[v]; });
+      };
+      for (std::size_t k = s + 1; k-- > 1 && on_top(q[k]);) q[k] = base;
+    } else {
+      q[s + 1] = q[s];
+    }
+  }
+}
+
+}  // namespace
+
+PinchOutRepair end_pinch_outs(const Tin& tin, const std::vector<Surface>& stack) {
+  const std::size_t n = stack.size();
+  if (n < 2) throw Error(ExitCode::kInvalidGeometry, "a terrain volume needs a top and a base");
+  if (n > std::numeric_limits<std::uint16_t>::max())
+    throw Error(ExitCode::kUsage, "a terrain volume takes at most " +
+                                      std::to_string(std::numeric_limits<std::uint16_t>::max()) + " surfaces");
+  PinchOutRepair r;
+  r.triangles.assign(n - 1, 0);
+  r.volume.assign(n - 1, 0.0);
+  std::vector<std::uint16_t> on(tin.triangles.size() * n);
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
+    std::uint16_t* q = on.data() + t * n;
+    std::iota(q, q + n, std::uint16_t{0});
+    end_pinch_outs_on(tin, stack, t, q, r);
+    for (std::size_t s = 1; s + 1 < n; ++s)
+      if (q[s] != s)
+        for (VertexId v : tin.triangles[t]) {
+          const double d = std::abs(stack[q[s]].z[v] - stack[s].z[v]);
+          if (d > r.largest_move) r.largest_move = d, r.largest_at = v;
+        }
+  }
+  const bool changed = std::any_of(r.triangles.begin(), r.triangles.end(), [](std::size_t c) { return c > 0; });
+  if (changed) {
+    r.layering.surfaces = n;
+    r.layering.on = std::move(on);
+  }
+  return r;
 }
 
 }  // namespace fdr::terrain

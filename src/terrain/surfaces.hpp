@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 #include "base/types.hpp"
@@ -55,5 +56,45 @@ ClampCounts clamp_surfaces(std::vector<Surface>& stack, const Tin& tin, Point2 o
 // within that factor of hmin.
 inline constexpr double kMinThicknessPerHmin = 0.15;
 double default_min_thickness(double hmin, double vertical_tol);
+
+// Which surface of the stack each surface follows over each TIN triangle: surface s lies on
+// stack[at(t, s)] over triangle t. Empty (surfaces == 0) is the identity, every surface on its own
+// elevations everywhere. at(t, .) never decreases with s, starts at the top and ends at the base,
+// so layer s over t lies between stack[at(t, s)] and stack[at(t, s + 1)] (nothing when equal).
+struct Layering {
+  std::size_t surfaces = 0;
+  std::vector<std::uint16_t> on;  // on[t * surfaces + s]
+  std::size_t at(std::size_t t, std::size_t s) const { return surfaces ? on[t * surfaces + s] : s; }
+  bool identity() const { return surfaces == 0; }
+};
+
+// The elevation of surface s at corner k of triangle t under a layering.
+inline double corner_z(const std::vector<Surface>& stack, const Layering& l, const Tin& tin, std::size_t t,
+                       std::size_t s, int k) {
+  return stack[l.at(t, s)].z[tin.triangles[t][k]];
+}
+
+// What end_pinch_outs changed: per layer (0: below the top), the TIN triangles it was removed from
+// and the volume they held (moved to the layer above or below), and the largest vertical move of
+// a surface with the TIN vertex where it happened.
+struct PinchOutRepair {
+  Layering layering;
+  std::vector<std::size_t> triangles;
+  std::vector<double> volume;
+  double largest_move = 0;
+  VertexId largest_at = 0;
+};
+
+// Ends every pinch-out at a vertical wall instead of a wedge. Where a layer is zero at some
+// corners of a TIN triangle and positive at others (it thins to nothing inside the triangle), its
+// two facets would meet there at the angle of its last thickness over the triangle's width, and
+// no tetrahedra conforming to both have good angles in such a wedge. So the layer is removed from
+// that triangle: its lower surface follows its upper one there (for the layer above the base, its
+// upper surface follows the base), processed from the top down so that a removal may extend the
+// layer below or above, which then has positive thickness at every corner. Afterwards every layer
+// over every triangle is either empty or positive at all three corners, and where it ends the PLC
+// closes it by vertical walls over TIN edges (build_terrain_plc) as high as its thickness there
+// (at least the minimum thickness of clamp_surfaces), meeting the surfaces at about right angles.
+PinchOutRepair end_pinch_outs(const Tin& tin, const std::vector<Surface>& stack);
 
 }  // namespace fdr::terrain

@@ -2,6 +2,7 @@
 #include "terrain/terrain_plc.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <utility>
@@ -19,7 +20,8 @@ double tri_area(const Tin& tin, const std::array<VertexId, 3>& t) {
   return 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
 }
 
-// The vertex ids of every surface: a new vertex unless the surface meets the one above at v.
+// The candidate vertex ids of every stack surface: a new one unless the surface meets the one above
+// at v (end_pinch_outs may leave some unused; compact_vertices drops them).
 std::vector<std::vector<VertexId>> lift_vertices(const Tin& tin, const std::vector<Surface>& stack, plc::Plc& out) {
   std::vector<std::vector<VertexId>> ids(stack.size(), std::vector<VertexId>(tin.xy.size()));
   for (std::size_t s = 0; s < stack.size(); ++s)
@@ -34,6 +36,27 @@ std::vector<std::vector<VertexId>> lift_vertices(const Tin& tin, const std::vect
   return ids;
 }
 
+// Keeps the points some facet uses (in their order) and renumbers the facets and ids.
+void compact_vertices(std::vector<std::vector<VertexId>>& ids, plc::Plc& out) {
+  std::vector<VertexId> to(out.points.size(), kNoVertex);
+  for (const plc::Facet& f : out.facets)
+    for (const auto& poly : f.polygons)
+      for (VertexId v : poly) to[v] = 0;
+  std::vector<Point3> kept;
+  for (std::size_t v = 0; v < to.size(); ++v)
+    if (to[v] != kNoVertex) {
+      to[v] = static_cast<VertexId>(kept.size());
+      kept.push_back(out.points[v]);
+    }
+  if (kept.size() == out.points.size()) return;
+  out.points = std::move(kept);
+  for (plc::Facet& f : out.facets)
+    for (auto& poly : f.polygons)
+      for (VertexId& v : poly) v = to[v];
+  for (auto& row : ids)
+    for (VertexId& v : row) v = to[v];
+}
+
 std::int32_t surface_marker(std::size_t s, std::size_t n) {
   if (s == 0) return kTopMarker;
   if (s + 1 == n) return kBaseMarker;
@@ -43,13 +66,17 @@ std::int32_t surface_marker(std::size_t s, std::size_t n) {
 // One facet per TIN triangle and surface, except where a surface meets the one above at all three
 // corners: that facet is shared, and it is a base facet when the base is among the surfaces
 // meeting there (the boundary groups stay whole).
-void add_surface_facets(const Tin& tin, const std::vector<std::vector<VertexId>>& ids, plc::Plc& out) {
+void add_surface_facets(const Tin& tin, const Layering& layering, const std::vector<std::vector<VertexId>>& ids,
+                        plc::Plc& out) {
   const std::size_t n = ids.size();
-  for (const auto& t : tin.triangles) {
+  for (std::size_t ti = 0; ti < tin.triangles.size(); ++ti) {
+    const auto& t = tin.triangles[ti];
     std::size_t last = 0;
+    std::vector<VertexId> above;
     for (std::size_t s = 0; s < n; ++s) {
-      const std::vector<VertexId> poly{ids[s][t[0]], ids[s][t[1]], ids[s][t[2]]};
-      if (s > 0 && poly[0] == ids[s - 1][t[0]] && poly[1] == ids[s - 1][t[1]] && poly[2] == ids[s - 1][t[2]]) {
+      const auto& row = ids[layering.at(ti, s)];
+      std::vector<VertexId> poly{row[t[0]], row[t[1]], row[t[2]]};
+      if (s > 0 && poly == above) {
         if (s + 1 == n) out.facets[last].marker = kBaseMarker;
         continue;
       }
@@ -58,22 +85,89 @@ void add_surface_facets(const Tin& tin, const std::vector<std::vector<VertexId>>
       f.marker = surface_marker(s, n);
       last = out.facets.size();
       out.facets.push_back(std::move(f));
+      above = std::move(poly);
     }
   }
 }
 
-void add_side_walls(const Tin& tin, const std::vector<std::vector<VertexId>>& ids, plc::Plc& out) {
-  for (const auto& [a, b] : boundary_edges(tin))
-    for (std::size_t s = 0; s + 1 < ids.size(); ++s) {
-      std::vector<VertexId> poly{ids[s][a], ids[s][b]};
-      if (ids[s + 1][b] != ids[s][b]) poly.push_back(ids[s + 1][b]);
-      if (ids[s + 1][a] != ids[s][a]) poly.push_back(ids[s + 1][a]);
-      if (poly.size() < 3) continue;  // the layer is pinched at both ends of the edge
+constexpr std::size_t kOutside = std::numeric_limits<std::size_t>::max();
+
+// A TIN edge (a, b as in its first triangle t1) and the triangle on its other side (kOutside on the
+// TIN's boundary), in the order of first use.
+struct EdgeSides {
+  VertexId a, b;
+  std::size_t t1, t2;
+};
+
+std::vector<EdgeSides> edge_sides(const Tin& tin) {
+  std::map<Edge, std::size_t> index;
+  std::vector<EdgeSides> out;
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const VertexId a = tin.triangles[t][k], b = tin.triangles[t][(k + 1) % 3];
+      const auto [it, fresh] = index.emplace(key(a, b), out.size());
+      if (fresh) out.push_back({a, b, t, kOutside});
+      else out[it->second].t2 = t;
+    }
+  return out;
+}
+
+// The layer holding the stack's strip r (between stack surfaces r and r + 1) over triangle t, or
+// -1 outside the TIN.
+long layer_of_strip(const Layering& layering, std::size_t n, std::size_t t, std::size_t r) {
+  if (t == kOutside) return -1;
+  std::size_t s = 0;
+  while (s + 2 < n && layering.at(t, s + 1) <= r) ++s;
+  return static_cast<long>(s);
+}
+
+// The vertical walls over edge e: each maximal run of the stack's strips (positive at an end of
+// the edge) with the same layers on its two sides, where they differ, is one polygon up the
+// column at b, down the one at a, with every vertex on the columns between.
+void add_walls(const EdgeSides& e, const Layering& layering, const std::vector<std::vector<VertexId>>& ids,
+               plc::Plc& out) {
+  const std::size_t n = ids.size();
+  const VertexId a = e.a, b = e.b;
+  auto flat = [&](std::size_t r) { return ids[r][a] == ids[r + 1][a] && ids[r][b] == ids[r + 1][b]; };
+  for (std::size_t r = 0; r + 1 < n;) {
+    const long m1 = layer_of_strip(layering, n, e.t1, r), m2 = layer_of_strip(layering, n, e.t2, r);
+    if (flat(r) || m1 == m2) {
+      ++r;
+      continue;
+    }
+    std::size_t hi = r + 1;
+    while (hi + 1 < n && (flat(hi) || (layer_of_strip(layering, n, e.t1, hi) == m1 &&
+                                       layer_of_strip(layering, n, e.t2, hi) == m2)))
+      ++hi;
+    std::vector<VertexId> poly{ids[r][a], ids[r][b]};
+    for (std::size_t k = r + 1; k <= hi; ++k)
+      if (ids[k][b] != poly.back()) poly.push_back(ids[k][b]);
+    for (std::size_t k = hi; k > r; --k)
+      if (ids[k][a] != poly.back() && ids[k][a] != poly.front()) poly.push_back(ids[k][a]);
+    if (poly.size() >= 3) {
       plc::Facet f;
       f.polygons.push_back(std::move(poly));
-      f.marker = kSideMarker;
+      f.marker = e.t2 == kOutside ? kSideMarker : kHorizonMarker0 + static_cast<std::int32_t>(std::min(m1, m2));
       out.facets.push_back(std::move(f));
     }
+    r = hi;
+  }
+}
+
+// The side walls along the TIN's boundary, then the walls where layers end inside it (edges whose
+// two triangles have different layerings).
+void add_all_walls(const Tin& tin, const Layering& layering, const std::vector<std::vector<VertexId>>& ids,
+                   plc::Plc& out) {
+  const std::vector<EdgeSides> edges = edge_sides(tin);
+  for (const EdgeSides& e : edges)
+    if (e.t2 == kOutside) add_walls(e, layering, ids, out);
+  if (layering.identity()) return;
+  for (const EdgeSides& e : edges) {
+    if (e.t2 == kOutside) continue;
+    bool same = true;
+    for (std::size_t s = 0; s < ids.size() && same; ++s) same = layering.at(e.t1, s) == layering.at(e.t2, s);
+    if (!same) add_walls(e, layering, ids, out);
+  }
 }
 
 // Union-find root with path halving.
@@ -82,14 +176,15 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
   return i;
 }
 
-// One region point per connected part of layer s (between surfaces s and s + 1): triangles of
-// positive thickness at some corner, joined across edges of positive thickness at some end (an
-// edge pinched at both ends closes the layer there). The point is above the centroid of the part's
-// thickest triangle, half-way between the two surfaces.
-void add_layer_regions(const Tin& tin, const std::vector<Surface>& stack, std::size_t s, plc::Plc& out) {
-  const std::vector<double>& up = stack[s].z;
-  const std::vector<double>& lo = stack[s + 1].z;
-  auto thick = [&](VertexId v) { return up[v] > lo[v]; };
+// One region point per connected part of layer s: triangles where it has positive thickness at
+// some corner, joined across edges where the stack's strips the layer spans on both sides are
+// positive at some end (there is no wall between them). The point is above the centroid of the
+// part's thickest triangle, half-way between the layer's two surfaces there.
+void add_layer_regions(const Tin& tin, const std::vector<Surface>& stack, const Layering& layering, std::size_t s,
+                       plc::Plc& out) {
+  auto open = [&](VertexId a, VertexId b, std::size_t lo, std::size_t hi) {
+    return lo < hi && (stack[lo].z[a] > stack[hi].z[a] || stack[lo].z[b] > stack[hi].z[b]);
+  };
   const std::size_t nt = tin.triangles.size();
   std::vector<std::size_t> parent(nt);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
@@ -97,22 +192,32 @@ void add_layer_regions(const Tin& tin, const std::vector<Surface>& stack, std::s
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const VertexId a = tin.triangles[t][k], b = tin.triangles[t][(k + 1) % 3];
-      if (!thick(a) && !thick(b)) continue;
+      const std::size_t lo = layering.at(t, s), hi = layering.at(t, s + 1);
+      if (!open(a, b, lo, hi)) continue;
       const auto [it, fresh] = first.emplace(key(a, b), t);
-      if (!fresh) parent[root(parent, t)] = root(parent, it->second);
+      if (fresh) continue;
+      const std::size_t u = it->second;
+      if (open(a, b, std::max(lo, layering.at(u, s)), std::min(hi, layering.at(u, s + 1))))
+        parent[root(parent, t)] = root(parent, u);
     }
   std::map<std::size_t, std::pair<double, std::size_t>> best;  // part root -> (thickness, triangle)
   for (std::size_t t = 0; t < nt; ++t) {
-    const auto& tr = tin.triangles[t];
-    const double th = (up[tr[0]] - lo[tr[0]] + up[tr[1]] - lo[tr[1]] + up[tr[2]] - lo[tr[2]]) / 3.0;
+    double th = 0;
+    for (int k = 0; k < 3; ++k)
+      th += corner_z(stack, layering, tin, t, s, k) - corner_z(stack, layering, tin, t, s + 1, k);
+    th /= 3.0;
     if (!(th > 0)) continue;
     auto [it, fresh] = best.emplace(root(parent, t), std::make_pair(th, t));
     if (!fresh && th > it->second.first) it->second = {th, t};
   }
   for (const auto& [r, tt] : best) {
-    const auto& tr = tin.triangles[tt.second];
+    const std::size_t t = tt.second;
     Point3 p{0, 0, 0};
-    for (VertexId v : tr) p = p + Point3{tin.xy[v].x / 3.0, tin.xy[v].y / 3.0, (up[v] + lo[v]) / 6.0};
+    for (int k = 0; k < 3; ++k) {
+      const Point2 q = tin.xy[tin.triangles[t][k]];
+      const double up = corner_z(stack, layering, tin, t, s, k), lo = corner_z(stack, layering, tin, t, s + 1, k);
+      p = p + Point3{q.x / 3.0, q.y / 3.0, (up + lo) / 6.0};
+    }
     out.regions.push_back({p, static_cast<double>(s + 1), -1});
   }
 }
@@ -132,14 +237,17 @@ std::vector<std::array<VertexId, 2>> boundary_edges(const Tin& tin) {
   return out;
 }
 
-TerrainPlc build_terrain_plc(const Tin& tin, const std::vector<Surface>& stack) {
+TerrainPlc build_terrain_plc(const Tin& tin, const std::vector<Surface>& stack, const Layering& layering) {
   if (stack.size() < 2) throw Error(ExitCode::kInvalidGeometry, "a terrain volume needs a top and a base");
+  if (!layering.identity() && (layering.surfaces != stack.size() || layering.on.size() != tin.triangles.size() * stack.size()))
+    throw Error(ExitCode::kInternal, "terrain PLC: the layering does not fit the stack and TIN");
   TerrainPlc r;
   plc::Plc& p = r.plc;
   r.ids = lift_vertices(tin, stack, p);
-  add_surface_facets(tin, r.ids, p);
-  add_side_walls(tin, r.ids, p);
-  for (std::size_t s = 0; s + 1 < stack.size(); ++s) add_layer_regions(tin, stack, s, p);
+  add_surface_facets(tin, layering, r.ids, p);
+  add_all_walls(tin, layering, r.ids, p);
+  compact_vertices(r.ids, p);
+  for (std::size_t s = 0; s + 1 < stack.size(); ++s) add_layer_regions(tin, stack, layering, s, p);
   const std::size_t horizons = stack.size() - 2;
   p.marker_names.assign(static_cast<std::size_t>(kHorizonMarker0) + horizons, "");
   p.marker_names[kTopMarker] = "top";
@@ -152,13 +260,14 @@ TerrainPlc build_terrain_plc(const Tin& tin, const std::vector<Surface>& stack) 
   return r;
 }
 
-std::vector<double> layer_volumes(const Tin& tin, const std::vector<Surface>& stack) {
+std::vector<double> layer_volumes(const Tin& tin, const std::vector<Surface>& stack, const Layering& layering) {
   std::vector<double> vol(stack.empty() ? 0 : stack.size() - 1, 0.0);
   for (std::size_t s = 0; s < vol.size(); ++s) {
     double sum = 0, comp = 0;  // Kahan: many small prisms
-    for (const auto& t : tin.triangles) {
+    for (std::size_t ti = 0; ti < tin.triangles.size(); ++ti) {
+      const auto& t = tin.triangles[ti];
       double th = 0;
-      for (VertexId v : t) th += stack[s].z[v] - stack[s + 1].z[v];
+      for (int k = 0; k < 3; ++k) th += corner_z(stack, layering, tin, ti, s, k) - corner_z(stack, layering, tin, ti, s + 1, k);
       const double y = tri_area(tin, t) * th / 3.0 - comp;
       const double u = sum + y;
       comp = (u - sum) - y;

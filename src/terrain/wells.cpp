@@ -26,6 +26,22 @@ double dist2_to_segment(const Point3& p, const Point3& a, const Point3& b) {
   return dot(d, d);
 }
 
+// A new vertex id on the vertical line of a TIN vertex: where it lies inside a vertical edge of a
+// facet (a wall where a layer ends, over an edge of that TIN vertex), the facet takes it as a
+// corner, so facets and segments meet at vertices only.
+void split_vertical_edges(plc::Plc& p, VertexId id) {
+  const Point3 q = p.points[id];
+  for (plc::Facet& f : p.facets)
+    for (auto& poly : f.polygons)
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Point3 a = p.points[poly[k]], b = p.points[poly[(k + 1) % poly.size()]];
+        if (a.x == q.x && a.y == q.y && b.x == q.x && b.y == q.y && std::min(a.z, b.z) < q.z && q.z < std::max(a.z, b.z)) {
+          poly.insert(poly.begin() + static_cast<std::ptrdiff_t>(k + 1), id);
+          break;
+        }
+      }
+}
+
 }  // namespace
 
 std::vector<double> column_at(const std::vector<Surface>& stack, VertexId v) {
@@ -87,13 +103,15 @@ std::vector<std::vector<VertexId>> add_well_segments(TerrainPlc& tp, const Tin& 
     // The end at z: the surface vertex there when one lies exactly at z, else a new vertex.
     auto end_vertex = [&](double z) {
       for (std::size_t s = 0; s < stack.size(); ++s)
-        if (stack[s].z[v] == z) return tp.ids[s][v];
+        if (stack[s].z[v] == z && tp.ids[s][v] != kNoVertex) return tp.ids[s][v];
       p.points.push_back({tin.xy[v].x, tin.xy[v].y, z});
-      return static_cast<VertexId>(p.points.size() - 1);
+      const auto id = static_cast<VertexId>(p.points.size() - 1);
+      split_vertical_edges(p, id);
+      return id;
     };
     push(end_vertex(w.hi));
     for (std::size_t s = 0; s < stack.size(); ++s)
-      if (stack[s].z[v] < w.hi && stack[s].z[v] > w.lo) push(tp.ids[s][v]);
+      if (stack[s].z[v] < w.hi && stack[s].z[v] > w.lo && tp.ids[s][v] != kNoVertex) push(tp.ids[s][v]);
     push(end_vertex(w.lo));
     for (std::size_t k = 0; k + 1 < chain.size(); ++k) p.segments.push_back({chain[k], chain[k + 1]});
     chains.push_back(std::move(chain));

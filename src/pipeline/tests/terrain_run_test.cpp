@@ -8,10 +8,15 @@
 #include <sstream>
 #include <string_view>
 #include <unistd.h>
+#include "api/tetrahedralize.hpp"
 #include "base/error.hpp"
 #include "pipeline/run3d.hpp"
 #include "pipeline/terrain_gpkg.hpp"
 #include "pipeline/terrain_run.hpp"
+#include "quality/report3d.hpp"
+#include "sizing/spacing3d_make.hpp"
+#include "terrain/surfaces.hpp"
+#include "terrain/terrain_plc.hpp"
 
 namespace fdr::pipeline {
 namespace {
@@ -171,6 +176,40 @@ TEST(TerrainRun, DefaultMinThicknessCollapsesBelowTheResolution) {
   EXPECT_NE(warnings.find(" 0 moved onto the surface above or the base where a layer is thinner than 0 m"), std::string::npos)
       << warnings;
   fs::remove_all(dir);
+}
+
+// A synthetic pinch-out PLC (a 7 x 3 lattice TIN of 50 m, a layer thinning from 30 m to zero between
+// x = 200 and 250 against a sloping top), its pinch-out ended at a wall (terrain::end_pinch_outs):
+// meshed at a 15 m spacing, every tetrahedron has its dihedral angles at 5 degrees or more and
+// radius-edge at most 2.
+TEST(TerrainRun, PinchOutPlcEndedAtAWallMeshesWithoutSlivers) {
+  terrain::Tin tin;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 7; ++i) tin.xy.push_back({50.0 * i, 50.0 * j});
+  for (VertexId j = 0; j < 2; ++j)
+    for (VertexId i = 0; i < 6; ++i) {
+      const VertexId a = j * 7 + i, b = a + 1, c = a + 8, d = a + 7;
+      tin.triangles.push_back({a, b, c});
+      tin.triangles.push_back({a, c, d});
+    }
+  std::vector<terrain::Surface> stack{{"top", {}}, {"h1", {}}, {"base", {}}};
+  for (const Point2 q : tin.xy) {
+    const double top = 100 + 0.05 * q.x + 0.02 * q.y;
+    stack[0].z.push_back(top);
+    stack[1].z.push_back(top - std::max(0.0, 30 - 0.12 * q.x) + 0.01 * q.y);  // 6 m at x = 200, zero from 250
+    stack[2].z.push_back(0);
+  }
+  terrain::clamp_surfaces(stack, tin, {});
+  const terrain::PinchOutRepair r = terrain::end_pinch_outs(tin, stack);
+  EXPECT_GT(r.triangles[0], 0u);
+  const terrain::TerrainPlc tp = terrain::build_terrain_plc(tin, stack, r.layering);
+  const TetResult t = fdr::tetrahedralize(tp.plc, "15");
+  const auto f = sizing::make_spacing3("15");
+  quality::TetValues v;
+  quality::measure_tets(t.mesh, *f, t.stats, &v);
+  ASSERT_FALSE(v.min_dihedral_deg.empty());
+  EXPECT_GE(*std::min_element(v.min_dihedral_deg.begin(), v.min_dihedral_deg.end()), 5.0);
+  EXPECT_LE(*std::max_element(v.radius_edge.begin(), v.radius_edge.end()), 2.0);
 }
 
 TEST(TerrainRun, PlcOnly) {

@@ -1,9 +1,12 @@
 """The whole of Luxembourg (testdata/luxembourg, every canton) with a base at -500 m and two synthetic
 horizons (testdata/terrain), the terrain issue's target case: the run finishes and what it writes holds
-R/f <= B and the layer volumes. Long (about a minute)."""
+R/f <= B, the layer volumes and, with the pinch-outs ended at walls, no dihedral angle under 5
+degrees. Long (about a minute)."""
 import json
 import os
 import subprocess
+
+import sys
 
 import numpy as np
 import pytest
@@ -11,6 +14,8 @@ import pytest
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 DATA = os.path.join(ROOT, "testdata")
 FDRMESH = os.environ.get("FDRMESH", os.path.join(ROOT, "build", "bin", "fdrmesh"))
+sys.path.insert(0, os.path.join(ROOT, "tools", "verify"))
+import tets as verify  # noqa: E402
 
 
 def test_whole_country_with_two_horizons(tmp_path):
@@ -38,3 +43,4 @@ def test_whole_country_with_two_horizons(tmp_path):
     assert [l["name"] for l in layers] == ["top-lux_h1", "lux_h1-lux_h2", "lux_h2-base"]
     for l in layers:
         assert vol[mat == l["material"]].sum() == pytest.approx(l["expected_volume"], rel=1e-3), l["name"]
+    assert verify.dihedral_angles(pts, tets).min() >= 5.0

@@ -1,5 +1,6 @@
 // clamp_surfaces: ordering a stack into non-crossing surfaces, and its errors.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include "base/error.hpp"
@@ -109,6 +110,93 @@ TEST(DefaultMinThickness, CollapsesLayersBelowTheResolution) {
     const double t = s[0].z[v] - s[1].z[v];
     EXPECT_TRUE(t == 0 || t >= m) << v << " " << t;
   }
+}
+
+
+// Every layer over every triangle is empty or positive at all three corners, and the layering
+// runs from the top to the base without decreasing.
+void expect_no_wedges(const Tin& tin, const std::vector<Surface>& s, const Layering& l) {
+  const std::size_t n = s.size();
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
+    EXPECT_EQ(l.at(t, 0), 0u);
+    EXPECT_EQ(l.at(t, n - 1), n - 1);
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      EXPECT_LE(l.at(t, k), l.at(t, k + 1));
+      int positive = 0;
+      for (int c = 0; c < 3; ++c) positive += corner_z(s, l, tin, t, k, c) > corner_z(s, l, tin, t, k + 1, c);
+      EXPECT_TRUE(positive == 0 || positive == 3) << "triangle " << t << " layer " << k;
+    }
+  }
+}
+
+TEST(EndPinchOuts, NothingToDoWithoutPinchOuts) {
+  const Tin tin = lattice_tin();
+  const std::vector<Surface> s{plane(tin, "top", 10, 1), plane(tin, "h1", 5, 0, 1), plane(tin, "base", 0)};
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  EXPECT_TRUE(r.layering.identity());
+  EXPECT_EQ(r.triangles, (std::vector<std::size_t>{0, 0}));
+  EXPECT_EQ(r.largest_move, 0.0);
+}
+
+// h1 meets the top for x >= 2 (after clamping) on [0, 4] x [0, 2]: the column of triangles between
+// x = 1 and x = 2 holds the wedge; the layer leaves it and ends over x = 1 at its thickness there.
+TEST(EndPinchOuts, LayerLeavesTheTrianglesWhereItThinsToZero) {
+  const Tin tin = lattice_tin(5, 3);
+  std::vector<Surface> s{plane(tin, "top", 10), plane(tin, "h1", 9.5, 0.25), plane(tin, "base", 0)};
+  clamp_surfaces(s, tin, {});
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  ASSERT_FALSE(r.layering.identity());
+  EXPECT_EQ(r.triangles, (std::vector<std::size_t>{4, 0}));
+  EXPECT_EQ(r.largest_move, 0.25);  // h1 at x = 1 moves onto the top over the wedge
+  EXPECT_EQ(tin.xy[r.largest_at].x, 1.0);
+  EXPECT_DOUBLE_EQ(r.volume[0], 2 * 0.5 * (0.25 + 0.5) / 3);  // per square: corners 0.25, 0, 0 and 0.25, 0, 0.25
+  expect_no_wedges(tin, s, r.layering);
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
+    double xlo = 4, xhi = 0;
+    for (VertexId v : tin.triangles[t]) xlo = std::min(xlo, tin.xy[v].x), xhi = std::max(xhi, tin.xy[v].x);
+    EXPECT_EQ(r.layering.at(t, 1), xlo == 1 && xhi == 2 ? 0u : 1u) << t;  // on the top over the wedge only
+  }
+}
+
+// A horizon that comes down onto the base: the layer above the base leaves the wedge's triangles
+// by its upper surface going down (the base stays where it is).
+TEST(EndPinchOuts, LayerAboveTheBaseLeavesByItsTop) {
+  const Tin tin = lattice_tin(5, 3);
+  std::vector<Surface> s{plane(tin, "top", 10), plane(tin, "h1", 0.5, -0.25), plane(tin, "base", 0)};
+  clamp_surfaces(s, tin, {});
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  EXPECT_EQ(r.triangles, (std::vector<std::size_t>{0, 4}));
+  expect_no_wedges(tin, s, r.layering);
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
+    double xlo = 4, xhi = 0;
+    for (VertexId v : tin.triangles[t]) xlo = std::min(xlo, tin.xy[v].x), xhi = std::max(xhi, tin.xy[v].x);
+    EXPECT_EQ(r.layering.at(t, 1), xlo == 1 && xhi == 2 ? 2u : 1u) << t;  // on the base over the wedge only
+  }
+}
+
+// h2 meets h1 over the triangles where the layer above the base thins to zero (a layer of zero
+// thickness between them there): both go down onto the base, or the layer above them would be
+// left as a wedge.
+TEST(EndPinchOuts, CoincidentHorizonsGoDownTogether) {
+  const Tin tin = lattice_tin(5, 3);
+  std::vector<Surface> s{plane(tin, "top", 10), plane(tin, "h1", 0.5, -0.25), plane(tin, "h2", 0), plane(tin, "base", 0)};
+  for (std::size_t v = 0; v < tin.xy.size(); ++v) s[2].z[v] = tin.xy[v].x == 0 ? 0.3 : s[1].z[v];
+  clamp_surfaces(s, tin, {});
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  expect_no_wedges(tin, s, r.layering);
+  EXPECT_GT(r.triangles[2], 0u);
+}
+
+// Two horizons pinching out across each other and onto the base at places: every layer ends
+// without a wedge whatever the order of the removals.
+TEST(EndPinchOuts, CrossingPinchOutsOfTwoHorizons) {
+  const Tin tin = lattice_tin(7, 5);
+  std::vector<Surface> s{plane(tin, "top", 10, 0.1), plane(tin, "h1", 11, -1.5, 0.5), plane(tin, "h2", 3, 1, -1.5),
+                         plane(tin, "base", 0)};
+  clamp_surfaces(s, tin, {}, 0.5);
+  const PinchOutRepair r = end_pinch_outs(tin, s);
+  EXPECT_GT(r.triangles[0] + r.triangles[1] + r.triangles[2], 0u);
+  expect_no_wedges(tin, s, r.layering);
 }
 
 }  // namespace

@@ -120,6 +120,25 @@ TEST(WellSegments, PinchedSurfacesGiveNoZeroLengthSegment) {
   EXPECT_EQ(tp.plc.segments.size(), 1u);
 }
 
+// A well whose end lies inside the vertical wall where a layer ends (end_pinch_outs): both walls
+// over the well's vertex take the new end vertex as a corner, so facets and segments meet at vertices.
+TEST(WellSegments, AnEndInsideAWallSplitsItsVerticalEdge) {
+  const Tin tin = lattice_tin(5, 3);
+  std::vector<Surface> stack{plane(tin, "top", 10), plane(tin, "h1", 9.5, 0.25), plane(tin, "base", 0)};
+  clamp_surfaces(stack, tin, {});
+  const PinchOutRepair r = end_pinch_outs(tin, stack);
+  TerrainPlc tp = build_terrain_plc(tin, stack, r.layering);
+  const std::size_t n0 = tp.plc.points.size();
+  // Vertex 6 at (1, 1): the walls over x = 1 stand between h1 (9.75) and the top (10) there.
+  const auto chains = add_well_segments(tp, tin, stack, {{"w", 6, 10, 9.8}});
+  EXPECT_EQ(chains[0], (std::vector<VertexId>{tp.ids[0][6], static_cast<VertexId>(n0)}));
+  std::size_t walls = 0;
+  for (const plc::Facet& f : tp.plc.facets)
+    for (VertexId v : f.polygons[0]) walls += v == n0;
+  EXPECT_EQ(walls, 2u);
+  EXPECT_NO_THROW(plc::check(tp.plc));
+}
+
 TEST(CapNearSegments, AtMostHOnTheSegmentAndUntouchedFarAway) {
   sizing::Grid3 g;
   g.nx = g.ny = g.nz = 20;
