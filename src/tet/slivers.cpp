@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include "base/memory.hpp"
-#include "base/parallel.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -15,7 +14,7 @@ namespace fdr::tet {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kHistogramBins = kDihedralHistogramBins;  // as the report's
+constexpr std::size_t kHistogramBins = 18;  // 10-degree bins over [0, 180], as the report's
 
 double cos_to_deg(double c) { return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / kPi; }
 
@@ -119,42 +118,6 @@ InsertionAngles insertion_angles(const Delaunay3& dt, Point3 p, const std::vecto
   return out;
 }
 
-SliverScan scan_slivers(const Delaunay3& dt, const std::function<bool(TetId)>& keep, double cos_threshold,
-                        bool histogram, unsigned threads) {
-  // Each chunk's figures go to its own place; the maximum and the counts do not depend on the
-  // order they are combined in, and the slivers are concatenated chunk by chunk.
-  constexpr std::size_t kSlotsPerChunk = 16384;
-  const std::size_t slots = dt.tet_slots();
-  const std::size_t nchunks = (slots + kSlotsPerChunk - 1) / kSlotsPerChunk;
-  const std::size_t bins = histogram ? kHistogramBins : 0;
-  std::vector<SliverScan> part(nchunks, SliverScan{-1, std::vector<std::size_t>(bins, 0), {}});
-  parallel_chunks(
-      nchunks,
-      [&](std::size_t c, unsigned) {
-        SliverScan& out = part[c];
-        const TetId end = static_cast<TetId>(std::min(slots, (c + 1) * kSlotsPerChunk));
-        for (TetId t = static_cast<TetId>(c * kSlotsPerChunk); t < end; ++t) {
-          if (!dt.alive(t) || dt.is_ghost(t) || !keep(t)) continue;
-          const auto& v = dt.vertices(t);
-          const double cs = smallest_dihedral_cos(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]));
-          out.worst_cos = std::max(out.worst_cos, cs);
-          if (histogram) ++out.histogram[histogram_bin(cos_to_deg(cs))];
-          if (cs > cos_threshold) out.slivers.push_back({cs, t, v});
-        }
-      },
-      threads);
-  SliverScan all{-1, std::vector<std::size_t>(bins, 0), {}};
-  std::size_t n = 0;
-  for (const SliverScan& p : part) n += p.slivers.size();
-  all.slivers.reserve(n);
-  for (const SliverScan& p : part) {
-    all.worst_cos = std::max(all.worst_cos, p.worst_cos);
-    for (std::size_t b = 0; b < bins; ++b) all.histogram[b] += p.histogram[b];
-    all.slivers.insert(all.slivers.end(), p.slivers.begin(), p.slivers.end());
-  }
-  return all;
-}
-
 bool SliverQueue::Better::operator()(const SliverTet& a, const SliverTet& b) const {
   // priority_queue puts the largest first: "a below b" when a's smallest angle is larger.
   if (a.cos != b.cos) return a.cos < b.cos;
@@ -192,18 +155,25 @@ void Refiner3::remove_slivers() {
   slivers_->cos_threshold = std::cos(options_.sliver_angle_deg * kPi / 180.0);
   slivers_->cos_floor = std::cos(options_.sliver_angle_deg / 3 * kPi / 180.0);
   stats_.sliver_angle_deg = options_.sliver_angle_deg;
+  stats_.dihedral_hist_before.assign(kHistogramBins, 0);
   const VertexEdgeRatios fdr = vertex_edge_ratios(
       dt_, [&](TetId t) { return region(t) != kOutsideRegion; }, [&](Point3 p) { return f_(p); });
   stats_.fdr_vertex_figures = true;
   stats_.fdr_nn_over_f_min = fdr.nn_over_f_min;
   stats_.fdr_el_over_f_max = fdr.el_over_f_max;
   release_free_memory();  // its per-vertex arrays would otherwise stay resident as the phase grows the mesh
-  const SliverScan scan = scan_slivers(
-      dt_, [&](TetId t) { return region(t) != kOutsideRegion; }, slivers_->cos_threshold, true);
-  stats_.dihedral_hist_before = scan.histogram;
-  for (const SliverTet& s : scan.slivers) slivers_->queue.push(s);
-  stats_.slivers_before += scan.slivers.size();
-  stats_.min_dihedral_before_deg = scan.worst_cos < -0.5 ? 0 : cos_to_deg(scan.worst_cos);
+  double worst = -1;
+  dt_.for_each_finite_tet([&](TetId t) {
+    if (region(t) == kOutsideRegion) return;
+    const double c = tet_dihedral_cos(t);
+    worst = std::max(worst, c);
+    ++stats_.dihedral_hist_before[histogram_bin(cos_to_deg(c))];
+    if (c > slivers_->cos_threshold) {
+      slivers_->queue.push({c, t, dt_.vertices(t)});
+      ++stats_.slivers_before;
+    }
+  });
+  stats_.min_dihedral_before_deg = worst < -0.5 ? 0 : cos_to_deg(worst);
   // Every insertion here removes a sliver or splits the boundary for one; a budget proportional to
   // the mesh stops a cascade that the local improvement test alone would not.
   const std::size_t start = dt_.num_vertices();
@@ -290,18 +260,20 @@ void Refiner3::list_slivers() {
   // A handful locate what is left; thousands would only repeat it.
   constexpr std::size_t kMaxListed = 32;
   const double threshold = std::cos(options_.sliver_angle_deg * kPi / 180.0);
-  const SliverScan scan =
-      scan_slivers(dt_, [&](TetId t) { return region(t) != kOutsideRegion; }, threshold, false);
-  stats_.slivers_left = scan.slivers.size();
+  stats_.slivers_left = 0;
   stats_.slivers_listed.clear();
-  for (std::size_t k = 0; k < std::min(kMaxListed, scan.slivers.size()); ++k) {
-    const SliverTet& s = scan.slivers[k];
-    const Point3 centroid =
-        0.25 * (dt_.point(s.v[0]) + dt_.point(s.v[1]) + dt_.point(s.v[2]) + dt_.point(s.v[3]));
+  dt_.for_each_finite_tet([&](TetId t) {
+    if (region(t) == kOutsideRegion) return;
+    const double c = tet_dihedral_cos(t);
+    if (!(c > threshold)) return;
+    ++stats_.slivers_left;
+    if (stats_.slivers_listed.size() >= kMaxListed) return;
+    const auto& v = dt_.vertices(t);
+    const Point3 centroid = 0.25 * (dt_.point(v[0]) + dt_.point(v[1]) + dt_.point(v[2]) + dt_.point(v[3]));
     char what[96];
-    std::snprintf(what, sizeof what, "sliver left with smallest dihedral angle %.3g deg (centroid given)", cos_to_deg(s.cos));
+    std::snprintf(what, sizeof what, "sliver left with smallest dihedral angle %.3g deg (centroid given)", cos_to_deg(c));
     stats_.slivers_listed.push_back({centroid, what});
-  }
+  });
 }
 
 }  // namespace fdr::tet

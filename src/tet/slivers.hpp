@@ -7,11 +7,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <queue>
 #include <vector>
 #include "base/point3.hpp"
-#include "base/threads.hpp"
 #include "tet/delaunay3.hpp"
 #include "tet/tet_geometry.hpp"
 
@@ -69,20 +67,6 @@ class SliverQueue {
   };
   std::priority_queue<SliverTet, std::vector<SliverTet>, Better> heap_;
 };
-
-// One pass over the finite tetrahedra that `keep` accepts: the largest smallest-dihedral cosine
-// (-1 when none is kept), when asked a histogram of each one's smallest angle in 10-degree bins
-// over [0, 180] (else empty), and the slivers, those with a cosine above `cos_threshold`, in slot
-// order. Fixed chunks of slots on up to `threads` threads (`keep` is called on them at once),
-// merged in chunk order: the same result for any count.
-inline constexpr std::size_t kDihedralHistogramBins = 18;
-struct SliverScan {
-  double worst_cos = -1;
-  std::vector<std::size_t> histogram;
-  std::vector<SliverTet> slivers;
-};
-SliverScan scan_slivers(const Delaunay3& dt, const std::function<bool(TetId)>& keep, double cos_threshold,
-                        bool histogram, unsigned threads = max_threads());
 
 // The ball's radius as a fraction of the circumradius: every candidate is at least (1 - delta) R
 // from every vertex, since the sliver's circumsphere is empty, so the new edges stay comparable to

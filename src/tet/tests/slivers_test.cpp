@@ -210,52 +210,6 @@ TEST(Slivers, InsertionAnglesStopOnlyOnceTheCandidateIsUseless) {
   EXPECT_GT(stopped, 0);  // some measurements did stop early
 }
 
-TEST(Slivers, ScanIsTheSerialLoopForAnyThreadCount) {
-  // Random points give slivers and enough slots for several chunks (16384 slots each); `keep`
-  // leaves out a slab, as the domain leaves out what lies outside.
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Point3> pts;
-  for (int i = 0; i < 12000; ++i) pts.push_back({u(rng), u(rng), u(rng)});
-  Delaunay3 dt;
-  dt.insert_all(pts);
-  ASSERT_GT(dt.tet_slots(), 3u * 16384u);
-  auto keep = [&](TetId t) { return dt.point(dt.vertices(t)[0]).x < 0.8; };
-  const double threshold = std::cos(15 * kPi / 180);
-  double worst = -1;
-  std::size_t kept = 0;
-  std::vector<std::size_t> hist(kDihedralHistogramBins, 0);
-  std::vector<TetId> slivers;
-  dt.for_each_finite_tet([&](TetId t) {
-    if (!keep(t)) return;
-    const auto& v = dt.vertices(t);
-    const double c = smallest_dihedral_cos(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]));
-    worst = std::max(worst, c);
-    ++kept;
-    ++hist[std::min<std::size_t>(17, static_cast<std::size_t>(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / kPi / 10))];
-    if (c > threshold) slivers.push_back(t);
-  });
-  ASSERT_GT(slivers.size(), 100u);
-  for (const unsigned threads : {1u, 2u, 3u}) {
-    const SliverScan s = scan_slivers(dt, keep, threshold, true, threads);
-    EXPECT_EQ(s.worst_cos, worst) << threads;
-    EXPECT_EQ(s.histogram, hist) << threads;
-    ASSERT_EQ(s.slivers.size(), slivers.size()) << threads;
-    for (std::size_t k = 0; k < slivers.size(); ++k) {
-      ASSERT_EQ(s.slivers[k].tet, slivers[k]) << threads << " " << k;
-      EXPECT_EQ(s.slivers[k].v, dt.vertices(slivers[k]));
-      EXPECT_GT(s.slivers[k].cos, threshold);
-    }
-    const SliverScan bare = scan_slivers(dt, keep, threshold, false, threads);
-    EXPECT_TRUE(bare.histogram.empty());
-    EXPECT_EQ(bare.slivers.size(), slivers.size());
-  }
-  const SliverScan none = scan_slivers(dt, [](TetId) { return false; }, threshold, true, 2);
-  EXPECT_EQ(none.worst_cos, -1);
-  EXPECT_TRUE(none.slivers.empty());
-  EXPECT_EQ(none.histogram, std::vector<std::size_t>(kDihedralHistogramBins, 0));
-}
-
 TEST(Slivers, CappedConflictRegionIsTheConflictRegionOrGivesUp) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0, 1);
