@@ -45,21 +45,4 @@ bool collinear3d(Point3 a, Point3 b, Point3 c) {
   return CGAL::collinear(cgal(a), cgal(b), cgal(c));
 }
 
-void StaticFilter3::cover(Point3 p) {
-  box_.add(p);
-  // Upper bounds on |difference| per axis: the extent, rounded, then raised past its rounding.
-  // Every computed difference of two coordinates in the box is at most this double (rounding is
-  // monotone), so each bound below holds for every call on points of the box.
-  const double up = 1 + 4 * detail::kEps;
-  const double mx = (box_.hi.x - box_.lo.x) * up, my = (box_.hi.y - box_.lo.y) * up, mz = (box_.hi.z - box_.lo.z) * up;
-  // orient3d's permanent is three terms (|x y| + |x y|) |z|: at most 6 mx my mz, times (1 + eps)
-  // for each of its five roundings and one more for the bound's product. insphere's is four terms
-  // of three (|x y| + |x y|) |z| times a lift x^2 + y^2 + z^2: at most 24 mx my mz (mx^2 + my^2 +
-  // mz^2), times (1 + eps)^13. The factor 1 + 64 eps covers those and this computation's own
-  // roundings, so the doubles here are at least the dynamic filter's bounds.
-  const double slack = 1 + 64 * detail::kEps;
-  o3d_ = detail::kO3dBound * 6 * mx * my * mz * slack;
-  isp_ = detail::kIspBound * 24 * mx * my * mz * (mx * mx + my * my + mz * mz) * slack;
-}
-
 }  // namespace fdr::predicates

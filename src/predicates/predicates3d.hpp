@@ -3,8 +3,7 @@
 // bound (Shewchuk 1997, stage A), and CGAL's exact Epick predicate when the bound cannot certify
 // the sign. Each call counts as filtered or exact in the same per-thread counters as the 2D ones.
 // Like the 2D bounds, these assume that no intermediate product underflows; an overflow or a NaN
-// makes the comparisons fail and so goes to the exact fallback. StaticFilter3 puts a semi-static
-// stage in front of both for points known to lie in a box.
+// makes the comparisons fail and so goes to the exact fallback.
 #pragma once
 #include <cmath>
 #include "base/point3.hpp"
@@ -103,69 +102,5 @@ inline int insphere(Point3 a, Point3 b, Point3 c, Point3 d, Point3 e) {
   ++counters().exact;
   return insphere_exact(a, b, c, d, e);
 }
-
-// A semi-static filter for orient3d and insphere over the points of a box: one error bound per
-// predicate from the box's extents, computed when the box grows, so a call computes the
-// determinant and compares it, without the per-call permanent of the dynamic filter; a call it
-// cannot certify goes on to orient3d / insphere above (dynamic filter, then exact), so the signs
-// are theirs. Sound because the bound is at least the dynamic filter's bound for any points in
-// the box: every coordinate difference is at most the box's extent on its axis, whatever the
-// offset of the box (GIS coordinates), and each rounding on the way is paid for in the bound.
-// Only points the box covers may be passed; covering() gives a filter that covers one more.
-class StaticFilter3 {
- public:
-  // An empty box: nothing is certified here until cover() is called.
-  StaticFilter3() = default;
-  // Grows the box to hold p (finite) and recomputes the bounds.
-  void cover(Point3 p);
-  bool covers(Point3 p) const { return box_.contains(p); }
-  // This filter when it covers p, else a copy grown to cover it.
-  StaticFilter3 covering(Point3 p) const {
-    if (covers(p)) return *this;
-    StaticFilter3 f = *this;
-    f.cover(p);
-    return f;
-  }
-  const Box3& box() const { return box_; }
-  double orient_bound() const { return o3d_; }
-  double insphere_bound() const { return isp_; }
-
-  // The same signs as predicates::orient3d and predicates::insphere; every point in box().
-  int orient3d(Point3 a, Point3 b, Point3 c, Point3 d) const {
-    const double bx = b.x - a.x, by = b.y - a.y, bz = b.z - a.z;
-    const double cx = c.x - a.x, cy = c.y - a.y, cz = c.z - a.z;
-    const double dx = d.x - a.x, dy = d.y - a.y, dz = d.z - a.z;
-    const double det = bz * (cx * dy - dx * cy) + cz * (dx * by - bx * dy) + dz * (bx * cy - cx * by);
-    if (det > o3d_) { ++counters().filtered; return 1; }
-    if (-det > o3d_) { ++counters().filtered; return -1; }
-    return predicates::orient3d(a, b, c, d);
-  }
-  int insphere(Point3 a, Point3 b, Point3 c, Point3 d, Point3 e) const {
-    const double aex = a.x - e.x, aey = a.y - e.y, aez = a.z - e.z;
-    const double bex = b.x - e.x, bey = b.y - e.y, bez = b.z - e.z;
-    const double cex = c.x - e.x, cey = c.y - e.y, cez = c.z - e.z;
-    const double dex = d.x - e.x, dey = d.y - e.y, dez = d.z - e.z;
-    const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey, cd = cex * dey - dex * cey;
-    const double da = dex * aey - aex * dey, ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
-    const double abc = aez * bc - bez * ac + cez * ab;
-    const double bcd = bez * cd - cez * bd + dez * bc;
-    const double cda = cez * da + dez * ac + aez * cd;
-    const double dab = dez * ab + aez * bd + bez * da;
-    const double alift = aex * aex + aey * aey + aez * aez;
-    const double blift = bex * bex + bey * bey + bez * bez;
-    const double clift = cex * cex + cey * cey + cez * cez;
-    const double dlift = dex * dex + dey * dey + dez * dez;
-    const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-    if (det > isp_) { ++counters().filtered; return -1; }
-    if (-det > isp_) { ++counters().filtered; return 1; }
-    return predicates::insphere(a, b, c, d, e);
-  }
-
- private:
-  Box3 box_;
-  // Infinite while the box is empty: no determinant exceeds them.
-  double o3d_ = HUGE_VAL;
-  double isp_ = HUGE_VAL;
-};
 
 }  // namespace fdr::predicates

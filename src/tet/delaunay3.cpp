@@ -41,7 +41,6 @@ void Delaunay3::require_finite(Point3 p) const {
 }
 
 VertexId Delaunay3::add_vertex(Point3 p) {
-  if (!filter_.covers(p)) filter_.cover(p);
   pts_.push_back(p);
   vtet_.push_back(kNoId);
   vlocal_.push_back(kNoId);
@@ -173,7 +172,6 @@ TetId Delaunay3::walk(Point3 p, TetId t) const {
   // A visibility walk: cross any face that p lies strictly beyond. In a Delaunay
   // tetrahedralization it cannot cycle whatever face is tried first; the rotating first face
   // only keeps the walk from favouring one direction.
-  const predicates::StaticFilter3 f = filter_.covering(p);
   int from = -1;
   std::uint32_t turn = 0;
   for (std::size_t steps = 0;; ++steps) {
@@ -187,7 +185,7 @@ TetId Delaunay3::walk(Point3 p, TetId t) const {
       if (i == from) continue;
       Point3 r[4] = {q[0], q[1], q[2], q[3]};
       r[i] = p;
-      if (f.orient3d(r[0], r[1], r[2], r[3]) < 0) {
+      if (orient3d(r[0], r[1], r[2], r[3]) < 0) {
         next = i;
         break;
       }
@@ -220,16 +218,16 @@ TetId Delaunay3::scan(Point3 p) const {
   return last_;
 }
 
-bool Delaunay3::conflict(const predicates::StaticFilter3& f, TetId t, Point3 p) const {
+bool Delaunay3::conflict(TetId t, Point3 p) const {
   const Cell& c = cells_[t];
   if (c.v[3] != kInfinite)
-    return f.insphere(pts_[c.v[0]], pts_[c.v[1]], pts_[c.v[2]], pts_[c.v[3]], p) > 0;
+    return insphere(pts_[c.v[0]], pts_[c.v[1]], pts_[c.v[2]], pts_[c.v[3]], p) > 0;
   // A ghost conflicts when p lies strictly beyond its hull face, or on the face's plane inside
   // the face's circumcircle, which is where the plane cuts the finite neighbour's circumsphere.
-  const int o = f.orient3d(pts_[c.v[0]], pts_[c.v[1]], pts_[c.v[2]], p);
+  const int o = orient3d(pts_[c.v[0]], pts_[c.v[1]], pts_[c.v[2]], p);
   if (o != 0) return o > 0;
-  const Cell& fin = cells_[c.n[3] >> 2];
-  return f.insphere(pts_[fin.v[0]], pts_[fin.v[1]], pts_[fin.v[2]], pts_[fin.v[3]], p) > 0;
+  const Cell& f = cells_[c.n[3] >> 2];
+  return insphere(pts_[f.v[0]], pts_[f.v[1]], pts_[f.v[2]], pts_[f.v[3]], p) > 0;
 }
 
 void Delaunay3::insert_vertex(VertexId v, TetId start, std::vector<TetId>* created) {
@@ -277,7 +275,6 @@ void Delaunay3::dig_cavity(TetId start, Point3 p, VertexId v) {
   // one that holds p (they form a connected, star-shaped set). Each face to a tetrahedron
   // outside it becomes a new tetrahedron with p. Marks: 1 in the cavity, 2 tested and outside
   // (a tetrahedron next to several cavity ones is tested once).
-  const predicates::StaticFilter3 f = filter_.covering(p);
   cavity_.clear();
   ball_.clear();
   in_cavity_[start] = 1;
@@ -294,7 +291,7 @@ void Delaunay3::dig_cavity(TetId start, Point3 p, VertexId v) {
       std::uint8_t& mark = in_cavity_[nb];
       if (mark == 1) continue;
       if (mark == 0) {
-        if (conflict(f, nb, p)) {
+        if (conflict(nb, p)) {
           mark = 1;
           cavity_.push_back(nb);
           // Its neighbours are tested when its turn comes: start fetching them now, since they

@@ -19,7 +19,6 @@
 #include "base/large_array.hpp"
 #include "base/point3.hpp"
 #include "base/types.hpp"
-#include "predicates/predicates3d.hpp"
 #include "tet/tet_mesh.hpp"
 
 namespace fdr::tet {
@@ -106,9 +105,6 @@ class Delaunay3 {
   TetMesh to_mesh() const;
   // Bytes held by the structure's arrays (capacity, not size).
   std::size_t bytes() const;
-  // The semi-static filter over the box of the vertices (a query point outside it needs
-  // covering()).
-  const predicates::StaticFilter3& filter() const { return filter_; }
 
  private:
   struct Cell {
@@ -127,7 +123,7 @@ class Delaunay3 {
   TetId walk(Point3 p, TetId t) const;
   TetId scan(Point3 p) const;
   void require_finite(Point3 p) const;
-  bool conflict(const predicates::StaticFilter3& f, TetId t, Point3 p) const;
+  bool conflict(TetId t, Point3 p) const;
   void dig_cavity(TetId start, Point3 p, VertexId v);
   void clear_cavity_marks();
   void fill_cavity(VertexId v, std::vector<TetId>* created);
@@ -137,7 +133,6 @@ class Delaunay3 {
   VertexId add_vertex(Point3 p);
 
   LargeArray<Point3> pts_;
-  predicates::StaticFilter3 filter_;  // covers every vertex
   LargeArray<TetId> vtet_;
   LargeArray<Index> vlocal_;  // kNoId, or the vertex's local number during an insertion
   LargeArray<Cell> cells_;

@@ -27,9 +27,6 @@ std::array<VertexId, 3> sorted_face(const std::array<VertexId, 4>& v, int i) {
 }  // namespace
 
 bool Delaunay3::is_delaunay(std::string* why) const {
-  // An empty filter certifies nothing: the check decides with the dynamic filter and the exact
-  // fallback alone, independently of the semi-static stage the insertions use.
-  const predicates::StaticFilter3 dynamic_only;
   for (TetId t = 0; t < cells_.size(); ++t) {
     if (!alive(t)) continue;
     for (int i = 0; i < 4; ++i) {
@@ -37,7 +34,7 @@ bool Delaunay3::is_delaunay(std::string* why) const {
       const VertexId q = cells_[n].v[mirror_index(t, i)];
       // The infinite vertex across a hull face: nothing to compare (its ghost checks the face).
       if (q == kInfinite) continue;
-      if (conflict(dynamic_only, t, pts_[q])) {
+      if (conflict(t, pts_[q])) {
         std::ostringstream os;
         os << "vertex " << q << " (" << pts_[q].x << ", " << pts_[q].y << ", " << pts_[q].z << ") lies inside the "
            << (is_ghost(t) ? "hull side of " : "circumsphere of ") << tet_name(t, cells_[t].v);

@@ -56,18 +56,6 @@ TetId walk_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out, Stop s
   return kNoId;
 }
 
-// in_conflict with a filter that covers p and the vertices.
-bool conflicts(const predicates::StaticFilter3& f, const Delaunay3& dt, TetId t, Point3 p) {
-  auto in_sphere = [&](TetId c) {
-    const auto& v = dt.vertices(c);
-    return f.insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
-  };
-  if (!dt.is_ghost(t)) return in_sphere(t);
-  const auto& v = dt.vertices(t);
-  const int o = f.orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
-  return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
-}
-
 }  // namespace
 
 void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out) {
@@ -111,7 +99,6 @@ bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
   const std::uint32_t stamp = mark_stamp();
   // The start is destroyed whether or not p is strictly inside its sphere (p on a face or an
   // edge lies on the spheres of the tetrahedra around it).
-  const predicates::StaticFilter3 f = dt.filter().covering(p);
   out.push_back(start);
   mark[start] = stamp;
   for (std::size_t k = 0; k < out.size(); ++k) {
@@ -119,7 +106,7 @@ bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
       const TetId n = dt.neighbour(out[k], i);
       if (mark[n] == stamp) continue;
       mark[n] = stamp;
-      if (!conflicts(f, dt, n, p)) continue;
+      if (!in_conflict(dt, n, p)) continue;
       if (out.size() >= max_size) return false;
       out.push_back(n);
     }
@@ -128,7 +115,14 @@ bool conflict_region(const Delaunay3& dt, Point3 p, TetId start, std::vector<Tet
 }
 
 bool in_conflict(const Delaunay3& dt, TetId t, Point3 p) {
-  return conflicts(dt.filter().covering(p), dt, t, p);
+  auto in_sphere = [&](TetId c) {
+    const auto& v = dt.vertices(c);
+    return predicates::insphere(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), dt.point(v[3]), p) > 0;
+  };
+  if (!dt.is_ghost(t)) return in_sphere(t);
+  const auto& v = dt.vertices(t);
+  const int o = predicates::orient3d(dt.point(v[0]), dt.point(v[1]), dt.point(v[2]), p);
+  return o != 0 ? o > 0 : in_sphere(dt.neighbour(t, 3));
 }
 
 void release_query_scratch() {
