@@ -153,3 +153,19 @@ def test_no_sliver_removal_keeps_what_rule_3_leaves(tmp_path):
     rep = json.loads((tmp_path / "r.json").read_text())
     assert not rep["slivers"]["enabled"] and rep["slivers"]["points_inserted"] == 0
     assert rep["dihedral_deg"]["min"] < 10
+
+
+def test_same_vtu_bytes_for_one_and_two_threads(tmp_path):
+    # The sliver phase's scans and the report split their passes between threads (several chunks
+    # of tetrahedra here); the written mesh must not depend on how many there are.
+    written = {}
+    for n in ("1", "2"):
+        env = dict(os.environ, FDR_THREADS=n)
+        p = subprocess.run([FDRMESH, "mesh", str(DATA / "box_cavity.poly"), "--spacing", "0.15", "-o", f"t{n}.vtu",
+                            "--report", f"t{n}.json", "-q"], cwd=tmp_path, env=env, capture_output=True, text=True,
+                           timeout=120)
+        assert p.returncode == 0, p.stderr
+        written[n] = (tmp_path / f"t{n}.vtu").read_bytes()
+        rep = json.loads((tmp_path / f"t{n}.json").read_text())
+        assert rep["counts"]["tetrahedra"] > 20000 and rep["slivers"]["before"] > 0
+    assert written["1"] == written["2"]
