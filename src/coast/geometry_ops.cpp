@@ -170,42 +170,6 @@ GeomPtr grown_for_contact(const OGRPolygon& p, double hair) {
   return GeomPtr(out.release());
 }
 
-// One group of union_pieces (several pieces that meet, indices g) united into out: the pieces
-// other than the largest are united first (unless they are of one family), then overlaid with
-// the largest, whose holes far from them are detached (detach_far_holes) and put back.
-void unite_group(OwnedPolygons& ps, const std::vector<std::size_t>& g, const std::vector<int>& npts,
-                 const std::vector<OGREnvelope>& env, double hair, const std::vector<int>* family, const char* what,
-                 OwnedPolygons& out) {
-  std::size_t big = g.front();
-  for (std::size_t k : g)
-    if (npts[k] > npts[big]) big = k;
-  std::vector<std::unique_ptr<OGRPolygon>> rest;
-  bool one_family = family != nullptr;
-  int label = -1;
-  for (std::size_t k : g)
-    if (k != big) {
-      if (one_family) {
-        if (label < 0) label = (*family)[k];
-        one_family = (*family)[k] == label;
-      }
-      rest.push_back(std::move(ps[k]));
-    }
-  std::vector<OGREnvelope> touch;
-  for (const auto& r : rest) {
-    touch.emplace_back();
-    r->getEnvelope(&touch.back());
-  }
-  std::sort(touch.begin(), touch.end(), [](const OGREnvelope& a, const OGREnvelope& b) { return a.MinX < b.MinX; });
-  auto far = detach_far_holes(*ps[big], touch, hair + 1e-9 * (1 + std::fabs(env[big].MaxX) + std::fabs(env[big].MaxY)));
-  auto rm = multi(rest);
-  GeomPtr ru = rm->getNumGeometries() > 1 && !one_family ? checked(rm->UnionCascaded(), what) : GeomPtr(rm.release());
-  GeomPtr u = checked(ps[big]->Union(ru.get()), what);
-  std::vector<std::unique_ptr<OGRPolygon>> ups;
-  polygons_of(u.get(), ups);
-  GeomPtr uh = with_holes(ups, far, what);
-  polygons_of(uh.get(), out);
-}
-
 }  // namespace
 
 // The union of polygon pieces, overlaid only where they meet. Why: GEOS's cascaded union of a
@@ -263,34 +227,44 @@ GeomPtr union_pieces(std::vector<std::unique_ptr<OGRPolygon>>& ps, double hair, 
   }
   std::vector<std::vector<std::size_t>> groups(n);
   for (std::size_t i = 0; i < n; ++i) groups[find(i)].push_back(i);
-  // The groups in the order of their first piece; each group of several pieces is united on its
-  // own (on every core, the largest first) into its own place, so the result does not depend on
-  // the thread count.
-  std::vector<const std::vector<std::size_t>*> gs;
-  for (std::size_t i = 0; i < n; ++i)
-    if (groups[find(i)].front() == i) gs.push_back(&groups[find(i)]);
-  std::vector<OwnedPolygons> united(gs.size());
-  std::vector<std::size_t> several, points(gs.size(), 0);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < gs.size(); ++q) {
-    if (gs[q]->size() == 1) {
-      united[q].push_back(std::move(ps[gs[q]->front()]));
+  std::vector<std::unique_ptr<OGRPolygon>> out;
+  for (std::size_t i = 0; i < n; ++i) {  // in the order of each group's first piece
+    if (find(i) != i && groups[find(i)].front() != i) continue;
+    auto& g = groups[find(i)];
+    if (g.front() != i) continue;
+    if (g.size() == 1) {
+      out.push_back(std::move(ps[i]));
       continue;
     }
-    for (const std::size_t k : *gs[q]) points[q] += static_cast<std::size_t>(npts[k]);
-    total += points[q];
-    several.push_back(q);
+    std::size_t big = g.front();
+    for (std::size_t k : g)
+      if (npts[k] > npts[big]) big = k;
+    std::vector<std::unique_ptr<OGRPolygon>> rest;
+    bool one_family = family != nullptr;
+    int label = -1;
+    for (std::size_t k : g)
+      if (k != big) {
+        if (one_family) {
+          if (label < 0) label = (*family)[k];
+          one_family = (*family)[k] == label;
+        }
+        rest.push_back(std::move(ps[k]));
+      }
+    std::vector<OGREnvelope> touch;
+    for (const auto& r : rest) {
+      touch.emplace_back();
+      r->getEnvelope(&touch.back());
+    }
+    std::sort(touch.begin(), touch.end(), [](const OGREnvelope& a, const OGREnvelope& b) { return a.MinX < b.MinX; });
+    auto far = detach_far_holes(*ps[big], touch, hair + 1e-9 * (1 + std::fabs(env[big].MaxX) + std::fabs(env[big].MaxY)));
+    auto rm = multi(rest);
+    GeomPtr ru = rm->getNumGeometries() > 1 && !one_family ? checked(rm->UnionCascaded(), what) : GeomPtr(rm.release());
+    GeomPtr u = checked(ps[big]->Union(ru.get()), what);
+    std::vector<std::unique_ptr<OGRPolygon>> ups;
+    polygons_of(u.get(), ups);
+    GeomPtr uh = with_holes(ups, far, what);
+    polygons_of(uh.get(), out);
   }
-  std::stable_sort(several.begin(), several.end(), [&](std::size_t a, std::size_t b) { return points[a] > points[b]; });
-  const unsigned threads = several.size() >= 2 && total >= 20000 ? max_threads() : 1;
-  parallel_chunks(several.size(), [&](std::size_t c, unsigned) {
-    GdalQuiet quiet;
-    const std::size_t q = several[c];
-    unite_group(ps, *gs[q], npts, env, hair, family, what, united[q]);
-  }, threads);
-  std::vector<std::unique_ptr<OGRPolygon>> out;
-  for (auto& u : united)
-    for (auto& q : u) out.push_back(std::move(q));
   ps.clear();
   return GeomPtr(multi(out).release());
 }
@@ -669,18 +643,12 @@ GeomPtr difference_by_faces(const OGRGeometry* a, const OGRGeometry* b, const ch
   std::vector<std::unique_ptr<OGRPolygon>> fs, out;
   if (!arrangement_faces(lines, fs)) return fallback();
   dl("noded and polygonized");
-  // Each face's inner point on every core (each face alone), then the faces tested in order.
-  std::vector<Point2> inner(fs.size());
-  std::vector<char> has_inner(fs.size(), 0);
-  parallel_bands(fs.size(), [&](std::size_t begin, std::size_t end) {
-    GdalQuiet quiet;
-    for (std::size_t i = begin; i < end; ++i) has_inner[i] = face_point(*fs[i], inner[i]);
-  }, 512);
   const Prepared in_a(a), in_b(b);
-  for (std::size_t i = 0; i < fs.size(); ++i) {
-    if (!has_inner[i]) continue;  // no interior: no area
-    const OGRPoint pt(inner[i].x, inner[i].y);
-    if (in_a.contains(&pt) && !in_b.contains(&pt)) out.push_back(std::move(fs[i]));
+  for (auto& f : fs) {
+    Point2 p;
+    if (!face_point(*f, p)) continue;  // no interior: no area
+    const OGRPoint pt(p.x, p.y);
+    if (in_a.contains(&pt) && !in_b.contains(&pt)) out.push_back(std::move(f));
   }
   dl("faces");
   if (debug::value(debug::Aid::kFilter))

@@ -247,34 +247,6 @@ TEST(CoastSteps, OffsetOfManyRingsIsEachPolygonsOffsetInOrder) {
   }
 }
 
-// The union of pieces in several groups (united on every core, the largest first) is, bit for
-// bit, the groups' unions one after the other in the order of their first pieces.
-TEST(CoastSteps, UnionOfManyGroupsIsEachGroupsUnionInOrder) {
-  const double pi = std::acos(-1.0);
-  auto cluster = [&](int q) {  // a round basin of 6000 vertices with squares across its coast
-    OwnedPolygons ps;
-    const double cx = 10000.0 * q, rad = 2000 + 100 * q;
-    std::vector<Point2> ring;
-    for (int k = 0; k < 6000; ++k) ring.push_back({cx + rad * std::cos(2 * pi * k / 6000), rad * std::sin(2 * pi * k / 6000)});
-    ps.push_back(std::make_unique<OGRPolygon>(to_ogr({ring})));
-    for (int k = 0; k < 5 + q; ++k) {
-      const double a = 2 * pi * k / (5 + q), x = cx + rad * std::cos(a), y = rad * std::sin(a);
-      ps.push_back(std::make_unique<OGRPolygon>(to_ogr({rect(x - 150, y - 150, x + 150, y + 150)[0]})));
-    }
-    return ps;
-  };
-  OwnedPolygons all, each;
-  for (int q = 0; q < 4; ++q) {
-    OwnedPolygons c = cluster(q);
-    for (auto& p : c) all.emplace_back(p->clone());
-    const GeomPtr u = union_pieces(c, 1e-6, "test");
-    polygons_of(u.get(), each);
-  }
-  const GeomPtr u = union_pieces(all, 1e-6, "test");
-  EXPECT_EQ(pieces(*u), 4u);
-  EXPECT_EQ(wkt(*u), wkt(*multi(each)));
-}
-
 Options islet_opts(bool join) {  // hmin 100
   Options o;
   o.min_island_area = 3000;
