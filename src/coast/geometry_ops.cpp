@@ -434,88 +434,57 @@ void drop_near_repeats(OGRLinearRing* r, double eps) {
 // outer ring O and holes H_i, (O - U H_i) (+) r = (O (+) r) - U (H_i (-) r), and the same with
 // the signs swapped for shrinking. Why: GEOS buffers a simple ring far faster than a polygon with
 // a thousand holes, and the holes are independent.
-// The rings of all polygons are buffered on every core (largest first), then each polygon's
-// holes are taken from its outer ring's buffer on every core, then the grown pieces are united:
-// each buffer and each polygon's assembly is the same GEOS call on the same input as one after
-// the other, and the results are combined in polygon and ring order, so the result does not
-// depend on the thread count.
 // g grown by r (shrunk for r < 0); near_repeats: g is an earlier buffer's output, its clusters
 // of vertices within 1e-6 r are merged first (drop_near_repeats).
 GeomPtr offset(const OGRGeometry& g, double r, int quad_segs, bool near_repeats) {
   std::vector<std::unique_ptr<OGRPolygon>> polys;
   polygons_of(&g, polys);
-  struct RingJob {
-    std::size_t poly;
-    int ring;  // -1: the outer ring, else the hole's index
-    std::size_t points;
-    GeomPtr buffered;  // the ring's buffer (outer ring) or its opposite (hole)
-  };
-  std::vector<RingJob> jobs;
-  std::vector<std::size_t> first_job(polys.size());  // each polygon's outer ring's job; holes follow
-  std::size_t total_points = 0;
-  for (std::size_t i = 0; i < polys.size(); ++i) {
-    first_job[i] = jobs.size();
-    for (int k = -1; k < polys[i]->getNumInteriorRings(); ++k) {
-      const OGRLinearRing* lr = k < 0 ? polys[i]->getExteriorRing() : polys[i]->getInteriorRing(k);
-      const auto n = static_cast<std::size_t>(lr->getNumPoints());
-      jobs.push_back({i, k, n, {}});
-      total_points += n;
-    }
-  }
-  // Small inputs (an islet's opening, a ring's closing inside another step's threads) on this
-  // thread: starting threads would cost more than they save.
-  const unsigned threads = total_points >= 20000 && jobs.size() >= 2 ? max_threads() : 1;
-  std::vector<std::size_t> order(jobs.size());
-  for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return jobs[a].points > jobs[b].points; });
-  parallel_chunks(order.size(), [&](std::size_t c, unsigned) {
-    GdalQuiet quiet;
-    RingJob& j = jobs[order[c]];
-    OGRPolygon* p = polys[j.poly].get();
-    OGRLinearRing* lr = j.ring < 0 ? p->getExteriorRing() : p->getInteriorRing(j.ring);
-    if (near_repeats) drop_near_repeats(lr, 1e-6 * std::fabs(r));
-    OGRPolygon rp;
-    rp.addRing(lr);
-    j.buffered = j.ring < 0 ? checked(rp.Buffer(r, quad_segs), "buffer of an outer ring")
-                            : checked(rp.Buffer(-r, quad_segs), "buffer of a hole");
-  }, threads);
-  // Each polygon: its outer ring's buffer minus the union of its holes' buffers.
-  std::vector<OwnedPolygons> parts(polys.size());
-  std::vector<std::size_t> porder(polys.size());
-  for (std::size_t i = 0; i < porder.size(); ++i) porder[i] = i;
-  auto poly_points = [&](std::size_t i) {
-    const std::size_t end = i + 1 < polys.size() ? first_job[i + 1] : jobs.size();
-    std::size_t n = 0;
-    for (std::size_t j = first_job[i]; j < end; ++j) n += jobs[j].points;
-    return n;
-  };
-  std::vector<std::size_t> ppoints(polys.size());
-  for (std::size_t i = 0; i < polys.size(); ++i) ppoints[i] = poly_points(i);
-  std::stable_sort(porder.begin(), porder.end(), [&](std::size_t a, std::size_t b) { return ppoints[a] > ppoints[b]; });
-  parallel_chunks(porder.size(), [&](std::size_t c, unsigned) {
-    GdalQuiet quiet;
-    const std::size_t i = porder[c];
-    GeomPtr b = std::move(jobs[first_job[i]].buffered);
-    const std::size_t end = i + 1 < polys.size() ? first_job[i + 1] : jobs.size();
-    if (b->IsEmpty()) {
-      for (std::size_t j = first_job[i] + 1; j < end; ++j) jobs[j].buffered.reset();
-      return;
-    }
-    OwnedPolygons hv;
-    for (std::size_t j = first_job[i] + 1; j < end; ++j) {
-      polygons_of(jobs[j].buffered.get(), hv);
-      jobs[j].buffered.reset();
-    }
-    if (!hv.empty()) {
-      GeomPtr hu = union_pieces(hv, 1e-6 * std::fabs(r), "union of holes");
-      b = minus_disjoint(std::move(b), *hu, "outer ring minus holes");
-    }
-    polygons_of(b.get(), parts[i]);
-  }, threads);
-  jobs.clear();
   std::vector<std::unique_ptr<OGRPolygon>> out;
-  for (auto& ps : parts)
-    for (auto& q : ps) out.push_back(std::move(q));
+  for (const auto& p : polys) {
+    if (near_repeats) {
+      const double eps = 1e-6 * std::fabs(r);
+      drop_near_repeats(p->getExteriorRing(), eps);
+      for (int k = 0; k < p->getNumInteriorRings(); ++k) drop_near_repeats(p->getInteriorRing(k), eps);
+    }
+    OGRPolygon outer;
+    outer.addRing(const_cast<OGRLinearRing*>(p->getExteriorRing()));
+    GeomPtr b;
+    auto holes = std::make_unique<OGRMultiPolygon>();
+    auto buffer_outer = [&] { b = checked(outer.Buffer(r, quad_segs), "buffer of an outer ring"); };
+    auto buffer_holes = [&] {
+      for (int k = 0; k < p->getNumInteriorRings(); ++k) {
+        OGRPolygon hp;
+        hp.addRing(const_cast<OGRLinearRing*>(p->getInteriorRing(k)));
+        GeomPtr hb = checked(hp.Buffer(-r, quad_segs), "buffer of a hole");
+        std::vector<std::unique_ptr<OGRPolygon>> hps;
+        polygons_of(hb.get(), hps);
+        for (auto& h : hps) holes->addGeometryDirectly(h.release());
+      }
+    };
+    // The outer ring's buffer and the holes' on two cores when both are big; the same geometries
+    // in the same order either way.
+    std::size_t hole_points = 0;
+    for (int k = 0; k < p->getNumInteriorRings(); ++k) hole_points += static_cast<std::size_t>(p->getInteriorRing(k)->getNumPoints());
+    if (max_threads() >= 2 && hole_points > 2000 && p->getExteriorRing()->getNumPoints() > 2000) {
+      run_beside([&] {
+        GdalQuiet quiet;
+        buffer_holes();
+      }, buffer_outer);
+    } else {
+      buffer_outer();
+      if (!b->IsEmpty()) buffer_holes();
+    }
+    if (b->IsEmpty()) continue;
+    if (p->getNumInteriorRings() > 0) {
+      if (!holes->IsEmpty()) {
+        std::vector<std::unique_ptr<OGRPolygon>> hv;
+        polygons_of(holes.get(), hv);
+        GeomPtr hu = union_pieces(hv, 1e-6 * std::fabs(r), "union of holes");
+        b = minus_disjoint(std::move(b), *hu, "outer ring minus holes");
+      }
+    }
+    polygons_of(b.get(), out);
+  }
   if (r > 0 && out.size() > 1) return union_pieces(out, 1e-6 * r, "union of grown pieces");
   return GeomPtr(multi(out).release());
 }

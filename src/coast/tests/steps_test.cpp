@@ -210,43 +210,6 @@ TEST(CoastSteps, TwoOpeningsAreEachOpeningAlone) {
   EXPECT_EQ(wkt(*two_openings(*W, r1, 0, hair).O2), wkt(*W));
 }
 
-// The offset of many rings (buffered on every core, largest first) is, polygon for polygon and
-// bit for bit, what each polygon's offset alone gives (small enough to run on one thread): the
-// rings' buffers go back to their own polygons, in order, whatever the thread count.
-TEST(CoastSteps, OffsetOfManyRingsIsEachPolygonsOffsetInOrder) {
-  const double pi = std::acos(-1.0);
-  Polygons ps;
-  for (int q = 0; q < 4; ++q) {
-    const double x0 = 20000.0 * q;
-    Rings rings = rect(x0, 0, x0 + 10000, 10000);
-    // 10 x 10 round islands 1 km apart, 400 m across: grown by 350 m they merge in rows.
-    for (int i = 0; i < 10; ++i)
-      for (int j = 0; j < 10; ++j) {
-        std::vector<Point2> hole;
-        for (int k = 0; k < 64; ++k) {
-          const double a = -2 * pi * k / 64;  // clockwise
-          hole.push_back({x0 + 500 + 1000 * i + 200 * std::cos(a), 500 + 1000 * j + (200 + 20 * q) * std::sin(a)});
-        }
-        rings.push_back(hole);
-      }
-    ps.push_back(rings);
-  }
-  const GeomPtr W = water(ps);
-  ASSERT_TRUE(W->IsValid());
-  for (const double r : {-350.0, -120.0, 150.0}) {
-    SCOPED_TRACE(r);
-    OwnedPolygons each;
-    for (const auto& rings : ps) {
-      const OGRPolygon p = to_ogr(rings);
-      const GeomPtr o = offset(p, r);
-      polygons_of(o.get(), each);
-    }
-    const GeomPtr all = offset(*W, r);
-    EXPECT_EQ(pieces(*all), each.size());
-    EXPECT_EQ(wkt(*all), wkt(*multi(each)));
-  }
-}
-
 Options islet_opts(bool join) {  // hmin 100
   Options o;
   o.min_island_area = 3000;
