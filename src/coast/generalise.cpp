@@ -120,8 +120,6 @@ Result generalise(const Polygons& input, const Options& o) {
   GeomPtr W = unite(input, res);
   lap("union");
   const GeomPtr W0(W->clone());  // the input water bodies (ownership of the result's pieces)
-  std::unique_ptr<Snapper> snapper;
-  if (o.close_width > 0) snapper = std::make_unique<Snapper>(W0.get(), 0.05 * o.close_width);
   IsletPlacer islets(o, res);
   W = replace_islets(std::move(W), islets, o, res);
   lap("islands");
@@ -148,7 +146,8 @@ Result generalise(const Polygons& input, const Options& o) {
   std::shared_ptr<GoneWater> gone;  // W0 - result, for the listing of removed water
   bool early = false;               // the listing starts at once (early_listing_rss)
   if (o.close_width > 0) {
-    snap_to_input(outp, *snapper);
+    // Built here, not with W0: its index of W0's vertices would add to the openings' peak.
+    snap_to_input(outp, Snapper(W0.get(), 0.05 * o.close_width));
     gone = start_gone(*W0, outp, o, &early);
     report_removed_bodies(*W0, *R, o, res);
   }

@@ -19,14 +19,16 @@ namespace fdr::coast {
 // Freed memory goes back to the system before each opening: the steps before them worked partly
 // on other threads, whose arenas would keep those pages resident beside this thread's new ones,
 // and the first opening's intermediates would sit beside the second's.
+// The restorer's index of W is built after the first opening, whose intermediates set the
+// generalisation's peak memory.
 TwoOpenings two_openings(const OGRGeometry& W, double r1, double r2, double hair, bool full_rounds) {
   FilterLaps lap("  openings:");
   release_free_memory();
-  const CoastRestorer restorer(&W, hair, full_rounds);
-  lap("restorer");
   TwoOpenings out;
   GeomPtr o1 = opening(W, r1);
   lap("O1 opening");
+  const CoastRestorer restorer(&W, hair, full_rounds);
+  lap("restorer");
   out.O1 = restorer.restore(std::move(o1));
   lap("O1 restored");
   if (r2 > 0) {
