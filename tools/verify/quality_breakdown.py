@@ -4,6 +4,8 @@ layers of an fdrmesh GeoPackage and splits the quality deficit (the sum of 1 - q
 triangles, q the mean-ratio quality, so the shares add up to 100 % of 1 - mean q) by:
   * the triangle's distance to the mesh boundary in rings (0: a vertex on the boundary),
   * whether it has an edge on the boundary, and that edge's length over f,
+  * at its boundary vertices, how far the mean angle of their fans is from 60 degrees, and how far
+    their number of triangles is from the one that would bring it nearest 60,
   * the grading of f over its three vertices (max f / min f),
   * its R/f(c) (near B the refinement bound limits the shape; far below it the triangle was
     shaped by the input's vertices, not by refinement),
@@ -84,7 +86,28 @@ def classes(xy, f, tv, max_ring=8):
             if count[(min(u, w), max(u, w))] == 1:
                 r = np.sqrt(((xy[u] - xy[w]) ** 2).sum()) / (0.5 * (f[u] + f[w]))
                 blen[i] = r if np.isnan(blen[i]) else min(blen[i], r)
-    return {"ring": dist[tv].min(1), "boundary_edge_over_f": blen,
+    # At each boundary vertex, its angle in the mesh shared by its triangles: how far the mean
+    # from 60 degrees (NaN: not on the boundary). Far from 60, no smoothing of the interior can
+    # make its fan's triangles equilateral.
+    a, b, c = xy[tv[:, 0]], xy[tv[:, 1]], xy[tv[:, 2]]
+    ang_sum = np.zeros(nv)
+    fan = np.zeros(nv, int)
+    for k, (p, q, r) in enumerate(((a, b, c), (b, c, a), (c, a, b))):
+        u, w = q - p, r - p
+        ang = np.degrees(np.arccos(np.clip((u * w).sum(1) / np.sqrt((u * u).sum(1) * (w * w).sum(1)), -1, 1)))
+        np.add.at(ang_sum, tv[:, k], ang)
+        np.add.at(fan, tv[:, k], 1)
+    off = np.where(on_bnd, np.abs(ang_sum / np.maximum(fan, 1) - 60.0), np.nan)
+    # The number of triangles that would bring the fan's mean angle nearest 60 degrees; a fan with
+    # another number has a topology (vertex count near the coast) smoothing cannot change.
+    best = np.maximum(1, np.round(ang_sum / 60.0)).astype(int)
+    fan_extra = np.where(on_bnd, np.abs(fan - best), -1)
+    fan_count = fan_extra[tv].max(1).astype(float)
+    fan_count[fan_count < 0] = np.nan
+    fan_off = np.nanmax(np.where(on_bnd[tv], off[tv], -1.0), axis=1)
+    fan_off[fan_off < 0] = np.nan
+    return {"ring": dist[tv].min(1), "boundary_edge_over_f": blen, "fan_angle_off_60": fan_off,
+            "fan_count_off_best": fan_count,
             "f_grading": f[tv].max(1) / np.maximum(f[tv].min(1), 1e-300),
             "worst_degree_off": np.abs(deg[tv] - 6).max(1)}
 
@@ -115,6 +138,9 @@ def breakdown(xy, f, tv, rf):
     bl = c["boundary_edge_over_f"]
     table("boundary edge", ["shorter than f/2", "other", "none"], [bl < 0.5, bl >= 0.5, np.isnan(bl)])
     binned("boundary edge / f", bl, [0, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, np.inf])
+    binned("boundary fan |mean angle - 60|", c["fan_angle_off_60"], [0, 5, 10, 15, 20, 30, np.inf])
+    fc = c["fan_count_off_best"]
+    table("boundary fan triangles vs best", ["best", "1 off", "2+ off"], [fc == 0, fc == 1, fc >= 2])
     binned("f grading max/min", c["f_grading"], [1.0, 1.05, 1.1, 1.2, 1.4, 2.0, np.inf])
     binned("R/f(c)", rf, [0, 0.5, 0.7, 0.8, 0.9, 0.95, 1.0, np.inf])
     wd = c["worst_degree_off"]

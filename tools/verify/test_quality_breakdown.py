@@ -30,6 +30,8 @@ def test_rings_boundary_edges_and_degrees():
     assert np.allclose(c["boundary_edge_over_f"], 0.5)  # rim edges of length 1, f = 2
     assert np.allclose(c["f_grading"], 1.0)
     assert (c["worst_degree_off"] == 3).all()  # rim vertices have degree 3
+    assert np.allclose(c["fan_angle_off_60"], 0.0)  # each rim vertex: 120 degrees in two triangles
+    assert (c["fan_count_off_best"] == 0).all()
 
 
 def test_shares_add_up_to_the_whole_deficit():
