@@ -1,5 +1,6 @@
 // Quality smoothing of free Steiner vertices with exact acceptance tests (see smooth.hpp).
 #include "refine/smooth.hpp"
+#include "refine/smooth_fan.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -773,8 +774,11 @@ class Sweeps {
 
 }  // namespace
 
-SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
-  SmoothStats st;
+namespace {
+
+// The sweeps of smooth() (up to `passes`), added to st.
+void sweep_passes(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options, int passes,
+                  SmoothStats& st) {
   StepLaps lap(debug::Aid::kSmooth, "smooth");  // developer aid (base/step_laps.hpp)
   tri.rebuild_vertex_map();
   lap("vertex map");
@@ -791,12 +795,26 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   // converged mesh is clean, and each try costs up to six attempts with flips and f evaluations.
   sh.dirty.assign(tri.num_vertices(), 1);
   Sweeps sweeps(sh, bl, st);
-  for (int pass = 0; pass < options.passes; ++pass) {
+  for (int pass = 0; pass < passes; ++pass) {
     const std::size_t moved = sweeps.sweep(lap);
     st.moves += moved;
     ++st.passes;
     if (lap.on()) std::fprintf(stderr, "smooth pass %d: %zu moves\n", pass, moved);
     if (moved * 200 < st.candidates) break;  // converged: under 0.5 % still moving
+  }
+}
+
+}  // namespace
+
+SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
+  SmoothStats st;
+  sweep_passes(tri, f, options, options.passes, st);
+  if (options.fan_insertions && options.passes > 0) {
+    FanOptions fo;
+    fo.bound = options.bound;
+    fo.min_angle_deg = options.min_angle_deg;
+    st.fan_vertices = insert_fan_vertices(tri, f, fo);
+    if (st.fan_vertices > 0) sweep_passes(tri, f, options, 2, st);
   }
   return st;
 }
