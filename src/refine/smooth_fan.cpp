@@ -92,6 +92,7 @@ Fan fan_of(const mesh::Triangulation& tri, Index y) {
     if (ang > widest) {
       widest = ang;
       fan.widest = h;
+      fan.widest_deg = ang;
     }
     const HalfEdge back = tri.twin(prev_he(h));
     if (back == kNoId || back == h0) return fan;
@@ -110,7 +111,7 @@ std::size_t insert_fan_vertices(mesh::Triangulation& tri, const sizing::SizingFi
     const mesh::VertexKind kind = tri.kind(y);
     if (kind != mesh::VertexKind::kInput && kind != mesh::VertexKind::kSegment) continue;
     const Fan fan = fan_of(tri, y);
-    if (fan.triangles == 0 || fan.triangles >= std::lround(fan.angle_deg / 60.0)) continue;
+    if (fan.triangles == 0 || !(fan.widest_deg > kFanWideDeg)) continue;
     const HalfEdge h = fan.widest;
     const Point2 py = tri.point(y), pa = tri.point(tri.dst(h)), pb = tri.point(tri.apex(h));
     const double la = std::sqrt(norm2(pa - py)), lb = std::sqrt(norm2(pb - py));
