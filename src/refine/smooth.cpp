@@ -1,5 +1,6 @@
 // Quality smoothing of free Steiner vertices with exact acceptance tests (see smooth.hpp).
 #include "refine/smooth.hpp"
+#include "refine/smooth_fan.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -773,8 +774,12 @@ class Sweeps {
 
 }  // namespace
 
-SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
-  SmoothStats st;
+namespace {
+
+// The sweeps of smooth() (up to `passes`), added to st: over every vertex, or with first_new > 0
+// only over the vertices from first_new on and their neighbours (what the fan insertions changed).
+void sweep_passes(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options, int passes,
+                  SmoothStats& st, Index first_new = 0) {
   StepLaps lap(debug::Aid::kSmooth, "smooth");  // developer aid (base/step_laps.hpp)
   tri.rebuild_vertex_map();
   lap("vertex map");
@@ -789,14 +794,38 @@ SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const
   // A vertex whose star nothing has touched since it last failed would fail again: it is
   // retried only after a move changed a triangle around it. Why: after the first sweep most of a
   // converged mesh is clean, and each try costs up to six attempts with flips and f evaluations.
-  sh.dirty.assign(tri.num_vertices(), 1);
+  sh.dirty.assign(tri.num_vertices(), first_new > 0 ? 0 : 1);
+  if (first_new > 0) {
+    std::vector<Index> nbr;
+    for (Index v = first_new; v < tri.num_vertices(); ++v) {
+      if (!live(tri, v)) continue;
+      sh.dirty[v] = 1;
+      star_vertices(tri, v, nbr);
+      for (Index u : nbr) sh.dirty[u] = 1;
+    }
+  }
   Sweeps sweeps(sh, bl, st);
-  for (int pass = 0; pass < options.passes; ++pass) {
+  for (int pass = 0; pass < passes; ++pass) {
     const std::size_t moved = sweeps.sweep(lap);
     st.moves += moved;
     ++st.passes;
     if (lap.on()) std::fprintf(stderr, "smooth pass %d: %zu moves\n", pass, moved);
     if (moved * 200 < st.candidates) break;  // converged: under 0.5 % still moving
+  }
+}
+
+}  // namespace
+
+SmoothStats smooth(mesh::Triangulation& tri, const sizing::SizingField& f, const SmoothOptions& options) {
+  SmoothStats st;
+  sweep_passes(tri, f, options, options.passes, st);
+  if (options.fan_insertions && options.passes > 0) {
+    FanOptions fo;
+    fo.bound = options.bound;
+    fo.min_angle_deg = options.min_angle_deg;
+    const auto first_new = static_cast<Index>(tri.num_vertices());
+    st.fan_vertices = insert_fan_vertices(tri, f, fo);
+    if (st.fan_vertices > 0) sweep_passes(tri, f, options, 2, st, first_new);
   }
   return st;
 }

@@ -11,7 +11,9 @@
 // Morton-consecutive vertices; each sweep moves the blocks independently (concurrently when
 // f.thread_safe()), each only where a move's triangles lie inside the block, then the deferred
 // vertices in the blocks of a second, shifted blocking (concurrently too), then those deferred
-// again on one thread: the result is deterministic and the same for every thread count.
+// again on one thread: the result is deterministic and the same for every thread count. After the
+// sweeps, free vertices are added in the wide angles of fixed vertices' fans (smooth_fan.hpp) and
+// two more sweeps relax them.
 #pragma once
 #include <cstddef>
 #include "mesh/triangulation.hpp"
@@ -23,6 +25,7 @@ struct SmoothOptions {
   int passes = 4;               // sweeps over the free vertices
   double bound = 1.0;           // B: every moved triangle keeps R/f(c) <= B
   double min_angle_deg = 0.0;   // a move may not make a star's min angle drop below this
+  bool fan_insertions = true;   // then free vertices added in wide fan angles (smooth_fan.hpp), two sweeps more
   std::size_t block_vertices = 8192;  // vertices per block of the concurrent sweeps (tests use small ones)
 };
 
@@ -32,6 +35,7 @@ struct SmoothStats {
   std::size_t segment_moves = 0;  // of which slides of segment vertices along their segment
   std::size_t shifted = 0;      // tries in the second blocking (vertices the first deferred)
   std::size_t deferred = 0;     // tries left to the serial phase of a sweep (star or flips across blocks of both blockings)
+  std::size_t fan_vertices = 0;  // free vertices added in wide fan angles
   int passes = 0;
 };
 
