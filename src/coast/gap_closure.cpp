@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "coast/convex.hpp"
@@ -207,6 +208,12 @@ void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>
         if (!h.empty()) by_poly[k].push_back({g, std::move(h)});
         break;
       }
+    if (lap.on()) {  // developer aid: what each round finds
+      std::size_t bridged = 0;
+      for (const auto& [k, bs] : by_poly) bridged += bs.size();
+      std::fprintf(stderr, "narrow gaps closed: round %d, %zu gaps below %g, %zu bridged\n", round, gaps.size(),
+                   o.min_feature, bridged);
+    }
     if (by_poly.empty()) break;
     std::vector<OGRPolygon> ogr(res.polygons.size());
     std::vector<char> made(res.polygons.size(), 0);
