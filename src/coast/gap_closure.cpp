@@ -10,7 +10,6 @@
 #include "coast/narrow_gaps.hpp"
 #include "coast/reconnect.hpp"
 #include "coast/report.hpp"
-#include "coast/tiny_edges.hpp"
 
 namespace fdr::coast {
 namespace {
@@ -107,7 +106,7 @@ std::vector<Rings> close_in_polygon(const Rings& rings, std::vector<Bridge>& bri
         cut->addGeometry(&hp);
       }
     GeomPtr u = cut->IsEmpty() ? nullptr : checked(cut->UnionCascaded(), "narrow gaps' bridges");
-    GeomPtr d = u ? checked(water->Difference(u.get()), "narrow gaps closed") : GeomPtr(water->clone());
+    GeomPtr d = u ? minus_touching(GeomPtr(water->clone()), *u, "narrow gaps closed") : GeomPtr(water->clone());
     pieces.clear();
     polygons_of(d.get(), pieces);
     largest = 0;
@@ -165,7 +164,7 @@ std::vector<Rings> close_in_polygon(const Rings& rings, std::vector<Bridge>& bri
 
 }  // namespace
 
-std::vector<Point2> gap_bridge(const Rings& rings, Point2 c, double r) {
+std::vector<Point2> gap_bridge(const Rings& rings, Point2 c, double r, double snap) {
   std::vector<Point2> pts;
   const double r2 = r * r;
   for (const auto& ring : rings)
@@ -179,20 +178,25 @@ std::vector<Point2> gap_bridge(const Rings& rings, Point2 c, double r) {
       const double disc = B * B - 4 * A * C;
       if (!(A > 0) || disc < 0) continue;
       const double s = std::sqrt(disc);
-      for (const double t : {(-B - s) / (2 * A), (-B + s) / (2 * A)})
-        if (t > 0 && t < 1) pts.push_back(a + t * d);
+      const double len = std::sqrt(A);
+      for (const double t : {(-B - s) / (2 * A), (-B + s) / (2 * A)}) {
+        if (!(t > 0 && t < 1)) continue;
+        if (t * len < snap) pts.push_back(a);
+        else if ((1 - t) * len < snap) pts.push_back(b);
+        else pts.push_back(a + t * d);
+      }
     }
   std::vector<Point2> h = convex_hull(std::move(pts));
   if (h.size() < 3 || !(std::fabs(signed_area(h)) > 0)) h.clear();
   return h;
 }
 
-void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>& input_vertex,
-                       const OGREnvelope& inbox, Result& res) {
+void close_narrow_gaps(const Options& o, const OGREnvelope& inbox, Result& res) {
   if (!(o.close_width > 0) || !(o.min_feature > 0) || !(o.gap_body_area > 0)) return;
   FilterLaps lap("  narrow gaps closed");
   for (int round = 0; round < 3; ++round) {
     const std::vector<NarrowGap> gaps = narrow_gaps(res.polygons, o.min_feature, nullptr);
+    lap("found");
     if (gaps.empty()) break;
     // Each gap to the polygon whose water holds its middle.
     std::vector<Box2> boxes;
@@ -204,7 +208,7 @@ void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>
         if (g.where.x < b.lo.x || g.where.x > b.hi.x || g.where.y < b.lo.y || g.where.y > b.hi.y ||
             !holds(res.polygons[k], g.where))
           continue;
-        std::vector<Point2> h = gap_bridge(res.polygons[k], g.where, o.min_feature);
+        std::vector<Point2> h = gap_bridge(res.polygons[k], g.where, o.min_feature, o.close_width / 4);
         if (!h.empty()) by_poly[k].push_back({g, std::move(h)});
         break;
       }
@@ -227,6 +231,7 @@ void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>
         others.push_back(&ogr[j]);
       }
       replaced[k] = close_in_polygon(res.polygons[k], bridges, o, inbox, others, res);
+      lap("bridged");
       for (const Bridge& b : bridges) any_closed = any_closed || !b.widen;
     }
     Polygons next;
@@ -238,7 +243,6 @@ void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>
       }
       for (const auto& r : res.polygons[k]) res.output_area -= signed_area(r);
       for (Rings& piece : it->second) {
-        piece = drop_tiny_edges(std::move(piece), input_vertex, o.close_width / 4);
         for (const auto& r : piece) res.output_area += signed_area(r);
         next.push_back(std::move(piece));
       }

@@ -10,8 +10,6 @@
 // place). A water body that closing would cut off and that is large keeps its connection,
 // widened to `connect_width` like the openings' reconnections (`narrow_gap_widened`).
 #pragma once
-#include <cstdint>
-#include <unordered_set>
 #include <vector>
 
 #include "coast/generalise.hpp"
@@ -20,21 +18,22 @@
 namespace fdr::coast {
 
 // The water bridge over a gap: the convex hull of the coast of `rings` within r of c (the
-// vertices inside the disk and the points where the segments cross its circle). Empty when the
-// coast there does not span an area.
-std::vector<Point2> gap_bridge(const Rings& rings, Point2 c, double r);
+// vertices inside the disk and the points where the segments cross its circle, a crossing within
+// `snap` of its segment's end replaced by that end, so that the new coast has no edge shorter
+// than snap there). Empty when the coast there does not span an area. The hull lies in the disk
+// (but for the snaps), so its sides meet the coast only at its corners.
+std::vector<Point2> gap_bridge(const Rings& rings, Point2 c, double r, double snap);
 
 // Closes every place where the water of res.polygons is narrower than o.min_feature
 // (narrow_gaps): the bridge of radius o.min_feature over the gap is taken out of the water, and
 // the water the bridge cuts off from its polygon's largest piece is removed with it; where that
 // removes a piece of at least o.gap_body_area, the gap is instead widened to o.connect_width
 // (reconnect.hpp's widened_connection, inside `inbox`; kept as it is when that would meet
-// another polygon). Up to three rounds (a long channel closes bridge by bridge). Changed rings
-// lose their tiny edges (drop_tiny_edges with `input_vertex`, below close_width / 4).
+// another polygon). Up to three rounds (a long channel closes bridge by bridge). Crossings are
+// snapped within close_width / 4 (gap_bridge).
 // Repairs `narrow_gap_closed` (size: the water removed, m^2) and `narrow_gap_widened` (size: the
 // land that became water), counted in res.closed / closed_area and res.reconnected /
 // reconnected_area; res.output_area follows. Nothing when o.min_feature or o.gap_body_area is 0.
-void close_narrow_gaps(const Options& o, const std::unordered_set<std::uint64_t>& input_vertex,
-                       const OGREnvelope& inbox, Result& res);
+void close_narrow_gaps(const Options& o, const OGREnvelope& inbox, Result& res);
 
 }  // namespace fdr::coast

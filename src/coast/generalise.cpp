@@ -52,7 +52,7 @@ void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Opt
   }
   OGREnvelope inbox;
   W0.getEnvelope(&inbox);
-  close_narrow_gaps(o, input_vertex, inbox, res);
+  close_narrow_gaps(o, inbox, res);
   list_narrow_gaps(o, W0, res, &islets);
 }
 

@@ -2,6 +2,7 @@
 // channels, islets and tips.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -44,7 +45,7 @@ Result run(Polygons ps, const Options& o = gap_options()) {
   OGREnvelope box;
   box.MinX = box.MinY = -1e9;
   box.MaxX = box.MaxY = 1e9;
-  close_narrow_gaps(o, {}, box, res);
+  close_narrow_gaps(o, box, res);
   return res;
 }
 
@@ -52,14 +53,17 @@ TEST(CoastGapClosure, BridgeIsTheHullOfTheCoastNearTheGap) {
   // Two squares 20 m apart; the bridge of radius 50 around the gap's middle spans both.
   const Rings rings{{{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}}, island({{400, 400}, {490, 500}}),
                     island({{510, 400}, {600, 500}})};
-  const std::vector<Point2> h = gap_bridge(rings, {500, 450}, 50);
+  const std::vector<Point2> h = gap_bridge(rings, {500, 450}, 50, 0);
   ASSERT_GE(h.size(), 4u);
   for (const Point2& p : h) EXPECT_LE(std::hypot(p.x - 500, p.y - 450), 50 + 1e-9);
   EXPECT_TRUE(inside_convex({500, 450}, h));
   EXPECT_TRUE(inside_convex({491, 450}, h));
   EXPECT_TRUE(inside_convex({509, 450}, h));
+  // The crossing 6 m from the corner (490, 500) snaps to it.
+  const std::vector<Point2> snapped = gap_bridge(rings, {500, 445}, 50, 10);
+  EXPECT_TRUE(std::find(snapped.begin(), snapped.end(), Point2{490, 500}) != snapped.end());
   // Nothing near: no bridge.
-  EXPECT_TRUE(gap_bridge(rings, {200, 200}, 50).empty());
+  EXPECT_TRUE(gap_bridge(rings, {200, 200}, 50, 0).empty());
 }
 
 TEST(CoastGapClosure, TwoIsletsTwentyMetresApartAreJoined) {
