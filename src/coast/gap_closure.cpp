@@ -79,7 +79,8 @@ Rings rings_of(const OGRPolygon& p) {
 
 // One polygon with its bridges: the widened ones added to the water, the others taken out; a
 // bridge whose closing cuts off a piece of at least gap_body_area is widened instead. Returns
-// the polygon's new pieces (the largest first); repairs and figures into res.
+// the polygon's new pieces (the largest first), none when nothing changed; repairs and figures
+// into res.
 std::vector<Rings> close_in_polygon(const Rings& rings, std::vector<Bridge>& bridges, const Options& o,
                                     const OGREnvelope& inbox, const std::vector<const OGRPolygon*>& others,
                                     Result& res) {
@@ -125,6 +126,8 @@ std::vector<Rings> close_in_polygon(const Rings& rings, std::vector<Bridge>& bri
     }
     if (!changed) break;
   }
+  // Nothing closed or widened: the polygon stays as given (GEOS would renumber its rings).
+  if (std::all_of(bridges.begin(), bridges.end(), [](const Bridge& b) { return b.widen && !b.widened; })) return {};
   for (const Bridge& b : bridges) {
     const double w = b.gap.width;
     if (b.widen) {
@@ -230,7 +233,8 @@ void close_narrow_gaps(const Options& o, const OGREnvelope& inbox, Result& res) 
         if (!made[j]) ogr[j] = to_ogr(res.polygons[j]), made[j] = 1;
         others.push_back(&ogr[j]);
       }
-      replaced[k] = close_in_polygon(res.polygons[k], bridges, o, inbox, others, res);
+      std::vector<Rings> pieces = close_in_polygon(res.polygons[k], bridges, o, inbox, others, res);
+      if (!pieces.empty()) replaced[k] = std::move(pieces);
       lap("bridged");
       for (const Bridge& b : bridges) any_closed = any_closed || !b.widen;
     }
