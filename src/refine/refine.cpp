@@ -7,11 +7,9 @@
 #include <utility>
 #include <cmath>
 #include <numbers>
-#include <cstdio>
 #include <cstdlib>
 #include <span>
 #include <sstream>
-#include "base/debug.hpp"
 #include "base/error.hpp"
 #include "base/kd_tree.hpp"
 #include "base/parallel.hpp"
@@ -49,7 +47,7 @@ int bucket_of(double key2) {
 }  // namespace
 
 Refiner::Refiner(Triangulation& tri, const sizing::SizingField& f, const RefineOptions& opt)
-    : tri_(tri), f_(f), opt_(opt), ins_(tri), queue_(kBuckets), coarse_(kBuckets) {
+    : tri_(tri), f_(f), opt_(opt), ins_(tri), queue_(kBuckets) {
   if (!(opt_.bound > 0) || !std::isfinite(opt_.bound))
     throw Error(ExitCode::kUsage, "bound B must be a positive number");
   b2_inv_ = 1.0 / (opt_.bound * opt_.bound);
@@ -169,7 +167,6 @@ void Refiner::evaluate(TriangleId t) {
   const double k = badness(t, &exempt);
   if (front_) {
     front_->set_key(t, k > 1 ? k : 0);  // queued by queue_fresh
-    if (k > kCoarse) coarse_.push(bucket_of(k), {t, tri_.corner(t, 2), zframe_.code(tri_.point(tri_.corner(t, 0)))});
     return;
   }
   if (k > 1) push_bad(t, k);
@@ -469,7 +466,7 @@ bool Refiner::step() {
     if (stats_.segment_splits != before) return true;
   }
   if (!conforming_done_) record_conforming();  // no encroached subsegment left: this is M_c
-  if (front_ && (step_coarse() || step_front())) return true;
+  if (front_ && step_front()) return true;
   BadEntry e;
   while (queue_.pop(&e)) {
     // The entries a few places down the bucket are known now: fetch what they will touch first.
@@ -485,19 +482,6 @@ bool Refiner::step() {
   }
   if (front_ && queue_missed()) return true;
   return !enc_.empty();
-}
-
-// Frontal mode: the next triangle far coarser than f, split at its circumcentre (see kCoarse).
-bool Refiner::step_coarse() {
-  BadEntry e;
-  while (coarse_.pop(&e)) {
-    constexpr std::size_t kAhead = 6;  // as in step()
-    if (const BadEntry* n = coarse_.ahead(kAhead)) tri_.prefetch(n->t, n->c);
-    if (tri_.dead(e.t) || tri_.org(3 * e.t + 2) != e.c) continue;
-    split_triangle(e);
-    return true;
-  }
-  return false;
 }
 
 // D of the conforming mesh (see RefineStats): the exact nearest other vertex of every vertex
@@ -547,13 +531,6 @@ void Refiner::run() {
       if (!opt_.progress(frac, "refine")) throw Error(ExitCode::kCancelled, "cancelled during refinement");
     }
   }
-  if (debug::on(debug::Aid::kStages))
-    std::fprintf(stderr, "refine: %llu segment splits, %llu interior points (%llu frontal, %llu fallbacks), %llu rejected, "
-                 "%llu triangles tested\n", static_cast<unsigned long long>(stats_.segment_splits),
-                 static_cast<unsigned long long>(stats_.circumcenters), static_cast<unsigned long long>(stats_.frontal_points),
-                 static_cast<unsigned long long>(stats_.frontal_fallbacks),
-                 static_cast<unsigned long long>(stats_.rejected_circumcenters),
-                 static_cast<unsigned long long>(stats_.triangles_tested));
 }
 
 double estimate_triangles(const Triangulation& T, const sizing::SizingField& f, double bound) {

@@ -111,12 +111,6 @@ class Refiner {
   void split_triangle(const BadEntry& e);
   enum class Frontal { kDone, kWait, kFallback };
   bool step_front();
-  bool step_coarse();
-  // Frontal mode splits a triangle with R/f(c) above 16 at its circumcentre, largest first, before
-  // the front moves. Why: a front advancing into triangles far coarser than itself leaves long
-  // triangles fanning out ahead of it, and every later insertion's cavity runs through them; the
-  // front still places the vertices that remain (R/f(c) near 1), so the mesh keeps its rows.
-  static constexpr double kCoarse = 256;  // (R/f(c))^2
   Frontal split_frontal(const BadEntry& e);
   HalfEdge choose_front_edge(TriangleId t, double* rho) const;
   bool split_long_front_segment(TriangleId t);
@@ -151,7 +145,6 @@ class Refiner {
   std::vector<TriangleId> off_front_;  // queue_fresh's bad new triangles off the front
   std::uint64_t swept_at_ = ~std::uint64_t{0};  // Steiner count at queue_missed's last sweep
   SpatialBuckets queue_;  // the largest-R/f(c)-first queue
-  SpatialBuckets coarse_;  // frontal mode: triangles with (R/f(c))^2 > kCoarse
   bool conforming_done_ = false;
   MortonFrame zframe_;
   // Per Steiner point on a segment (Triangulation::segment_vertex_index), the concentric shell
