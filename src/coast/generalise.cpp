@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "coast/convex.hpp"
 #include "coast/cut_off.hpp"
+#include "coast/gap_closure.hpp"
 #include "coast/geometry_ops.hpp"
 #include "coast/islets.hpp"
 #include "coast/narrow_gaps.hpp"
@@ -49,6 +50,9 @@ void output_polygons(const OwnedPolygons& outp, const OGRGeometry& W0, const Opt
     for (std::size_t k = 1; k < rings.size(); ++k) res.output_area -= std::fabs(signed_area(rings[k]));
     res.polygons.push_back(std::move(rings));
   }
+  OGREnvelope inbox;
+  W0.getEnvelope(&inbox);
+  close_narrow_gaps(o, inbox, res);
   list_narrow_gaps(o, W0, res, &islets);
 }
 
@@ -91,6 +95,9 @@ Options resolution_options(double hmin) {
   // connection, about one element across (reconnect.hpp).
   o.connect_area = 4 * hmin * hmin;
   o.connect_width = 0.9 * hmin;
+  // Water left narrower than hmin/10 is closed unless a water body of more than 100 hmin^2 lies
+  // behind it (gap_closure.hpp).
+  o.gap_body_area = 100 * hmin * hmin;
   o.narrow_gap = 0.5 * hmin;  // narrow_gaps.hpp
   // Tips of land thinner than the close width stay unless other land is within hmin/2 of their
   // end (tips.hpp).

@@ -15,7 +15,8 @@
 // a dead end (closed). Result R = O1 + kept pieces; W - R is listed as repairs.
 //
 // The steps, in order (one file each): union.hpp, islets.hpp, widen.hpp, tips.hpp (closing),
-// openings.hpp, cut_off.hpp, islets.hpp (remnants), restore.hpp, removed.hpp, tiny_edges.hpp.
+// openings.hpp, cut_off.hpp, islets.hpp (remnants), restore.hpp, removed.hpp, tiny_edges.hpp,
+// gap_closure.hpp, narrow_gaps.hpp.
 #pragma once
 #include <cstddef>
 #include <memory>
@@ -52,6 +53,9 @@ struct Options {
                                // connection gets that connection widened instead of being
                                // removed (cut_off.hpp); 0: every cut-off body is removed
   double connect_width = 0;    // ... to at least this width (m)
+  double gap_body_area = 0;    // water left narrower than min_feature is closed, unless that cuts
+                               // off a water body at least this large (m^2), whose connection is
+                               // widened to connect_width (gap_closure.hpp); 0: neither
   double narrow_gap = 0;       // water left narrower than this is listed, place by place
                                // (narrow_gaps.hpp, narrow_gap_kept); 0: not listed
   double tip_clearance = 0;    // tips of land thinner than close_width stay land unless other

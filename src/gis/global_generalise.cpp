@@ -104,7 +104,7 @@ coast::Options scaled(const coast::Options& g, double s) {
   for (double* len : {&o.close_width, &o.min_feature, &o.grow_island, &o.widen_width, &o.islet_side, &o.islet_shift,
                       &o.islet_clearance, &o.connect_width, &o.narrow_gap, &o.tip_clearance})
     *len *= s;
-  for (double* area : {&o.min_island_area, &o.grow_island_area, &o.list_area, &o.connect_area}) *area *= s * s;
+  for (double* area : {&o.min_island_area, &o.grow_island_area, &o.list_area, &o.connect_area, &o.gap_body_area}) *area *= s * s;
   o.defer_removed = false;
   o.early_listing_rss = 0;
   return o;
