@@ -78,7 +78,7 @@ TetId edge_tet(const Delaunay3& dt, VertexId a, VertexId b) {
 
 void edge_ring(const Delaunay3& dt, TetId t, VertexId a, VertexId b, std::vector<VertexId>& out) {
   // Around the edge from t: across the face (a, b, next) into the tetrahedron whose vertex
-  // opposite that face is the one after next, until t comes back.
+  // opposite that face is the one after next, until that one is t's first again.
   out.clear();
   const auto& tv = dt.vertices(t);
   int k[2], m = 0;
@@ -93,8 +93,8 @@ void edge_ring(const Delaunay3& dt, TetId t, VertexId a, VertexId b, std::vector
     int i = 0;
     while (cv[i] != prev) ++i;
     const TetId n = dt.neighbour(cur, i);
-    if (n == t) return;
     const VertexId next = dt.vertices(n)[dt.mirror_index(cur, i)];
+    if (next == out.front()) return;
     prev = out.back();
     out.push_back(next);
     cur = n;
