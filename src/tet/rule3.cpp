@@ -320,11 +320,10 @@ void Refiner3::refine() {
   constexpr int kPasses = 4;
   for (int pass = 0; pass < kPasses && !stats_.capped; ++pass) {
     const std::size_t before = dt_.num_vertices();
-    // Every insertion queues the pieces whose neighbourhood it changed (enqueue_changed), and the
-    // queues drop only the entries a rejected point added: after episodes that emptied the
-    // queues without giving up, a sweep of every piece would find nothing. The closing sweep
-    // below stays, as the check before the mesh goes out.
-    if (!conforming() || gave_up_) enqueue_all();
+    // Before the first pass only conform() has run since the constructor queued every piece, and
+    // an episode that emptied the queues without giving up has checked again every piece whose
+    // neighbourhood an insertion changed (enqueue_changed): that sweep would find nothing.
+    if (pass > 0 || !conforming() || gave_up_) enqueue_all();
     conform();
     std::snprintf(what, sizeof what, "pass %d sweep (%zu vertices)", pass, dt_.num_vertices() - before);
     lap(what);
