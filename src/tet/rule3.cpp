@@ -320,10 +320,7 @@ void Refiner3::refine() {
   constexpr int kPasses = 4;
   for (int pass = 0; pass < kPasses && !stats_.capped; ++pass) {
     const std::size_t before = dt_.num_vertices();
-    // Before the first pass only conform() has run since the constructor queued every piece, and
-    // an episode that emptied the queues without giving up has checked again every piece whose
-    // neighbourhood an insertion changed (enqueue_changed): that sweep would find nothing.
-    if (pass > 0 || !conforming() || gave_up_) enqueue_all();
+    enqueue_all();
     conform();
     std::snprintf(what, sizeof what, "pass %d sweep (%zu vertices)", pass, dt_.num_vertices() - before);
     lap(what);
