@@ -59,7 +59,13 @@ LayerSpacingResult bound_by_layer_thickness(sizing::Grid3& g, const Tin& tin, co
   }
   // The same convention as the depth spacing: a per-axis limit of grade / sqrt(3) keeps the
   // trilinear field grade-Lipschitz.
-  sizing::limit_gradient3(bound, opt.grade / std::sqrt(3.0));
+  // Limiting only lowers a cell to another's bound plus a non-negative amount, so no limited bound
+  // is below the least one: when that is no smaller than every spacing cell, no cell of g changes
+  // with or without the limiter, and its sweeps over the whole grid are spared (every layer
+  // thicker than the spacing needs, the usual case without thin horizons).
+  const double least_bound = *std::min_element(bound.v.begin(), bound.v.end());
+  const double most_spacing = *std::max_element(g.v.begin(), g.v.end());
+  if (least_bound < most_spacing) sizing::limit_gradient3(bound, opt.grade / std::sqrt(3.0));
   LayerSpacingResult r;
   r.smallest = kInf;
   for (std::size_t c = 0; c < g.v.size(); ++c) {

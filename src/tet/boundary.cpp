@@ -35,9 +35,15 @@ void Boundary::grow(VertexId v) {
 }
 
 bool Boundary::is_subsegment(VertexId a, VertexId b) const {
-  // Most vertices lie on no segment: their lists answer before the hash map is asked.
-  if (segment_neighbours(a).empty() || segment_neighbours(b).empty()) return false;
-  return segs_.count(seg_key(a, b)) != 0;
+  // The shorter of the two ends' neighbour lists (a few entries, in cache) answers without the
+  // hash map, whose look-up costs a miss or two: facet cavities and the boundary sweeps ask this
+  // for every edge they meet, and on a terrain every TIN edge is a subsegment.
+  const std::vector<VertexId>& na = segment_neighbours(a);
+  const std::vector<VertexId>& nb = segment_neighbours(b);
+  const bool a_shorter = na.size() <= nb.size();
+  const std::vector<VertexId>& l = a_shorter ? na : nb;
+  const VertexId other = a_shorter ? b : a;
+  return std::find(l.begin(), l.end(), other) != l.end();
 }
 
 std::uint32_t Boundary::segment_origin(VertexId a, VertexId b) const {

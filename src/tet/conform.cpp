@@ -184,12 +184,14 @@ void Refiner3::note_shortfall(Point3 where, const std::string& what) {
 }
 
 bool Refiner3::segment_encroached(VertexId a, VertexId b) {
-  std::vector<TetId> ts;
-  if (!edge_tets(dt_, a, b, ts)) return true;  // missing: its diametral sphere is not empty
+  // Only the vertices around the edge can lie in its diametral sphere first (the sphere is empty
+  // when they do not): each is tested once, from a walk around the edge rather than a's whole star.
+  const TetId t = edge_tet(dt_, a, b);
+  if (t == kNoId) return true;  // missing: its diametral sphere is not empty
+  edge_ring(dt_, t, a, b, ring_);
   const Point3 pa = dt_.point(a), pb = dt_.point(b);
-  for (TetId t : ts)
-    for (VertexId u : dt_.vertices(t))
-      if (u != a && u != b && u != kInfinite && predicates::diametral_side(pa, pb, dt_.point(u)) >= 0) return true;
+  for (VertexId u : ring_)
+    if (u != kInfinite && predicates::diametral_side(pa, pb, dt_.point(u)) >= 0) return true;
   return false;
 }
 
@@ -279,8 +281,8 @@ void Refiner3::after_insert(VertexId v, const std::vector<TetId>& created) {
 void Refiner3::split_segment(VertexId a, VertexId b) {
   const Point3 p = segment_split_point(dt_.point(a), dt_.point(b), apex_[a], apex_[b]);
   std::vector<TetId> created;
-  std::vector<TetId> ts;
-  const TetId hint = edge_tets(dt_, a, b, ts) ? ts[0] : dt_.vertex_tet(a);
+  const TetId on_edge = edge_tet(dt_, a, b);
+  const TetId hint = on_edge != kNoId ? on_edge : dt_.vertex_tet(a);
   const TetId h = dt_.locate(p, hint);
   const Insertion ins = dt_.insert(p, h, &created);
   if (ins.duplicate) {  // the piece is too short to split in doubles
@@ -469,9 +471,8 @@ std::string Refiner3::missing_boundary() const {
     return std::string(s);
   };
   std::string out;
-  std::vector<TetId> ts;
   bd_->for_each_subsegment([&](VertexId a, VertexId b, std::uint32_t) {
-    if (out.empty() && !edge_tets(dt_, a, b, ts)) out = "subsegment " + at(a) + " - " + at(b) + " is no edge";
+    if (out.empty() && edge_tet(dt_, a, b) == kNoId) out = "subsegment " + at(a) + " - " + at(b) + " is no edge";
   });
   for (std::uint32_t t = 0; t < bd_->tri_slots() && out.empty(); ++t) {
     const SubfacetTri& s = bd_->tri(t);

@@ -71,6 +71,36 @@ bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& 
   return !out.empty();
 }
 
+TetId edge_tet(const Delaunay3& dt, VertexId a, VertexId b) {
+  thread_local std::vector<TetId> star;  // scratch: a call allocates nothing once it has grown
+  return walk_star(dt, a, star, [&](TetId x) { return holds(dt.vertices(x), b); });
+}
+
+void edge_ring(const Delaunay3& dt, TetId t, VertexId a, VertexId b, std::vector<VertexId>& out) {
+  // Around the edge from t: across the face (a, b, next) into the tetrahedron whose vertex
+  // opposite that face is the one after next, until that one is t's first again.
+  out.clear();
+  const auto& tv = dt.vertices(t);
+  int k[2], m = 0;
+  for (int i = 0; i < 4; ++i)
+    if (tv[i] != a && tv[i] != b) k[m++] = i;
+  out.push_back(tv[k[0]]);
+  out.push_back(tv[k[1]]);
+  VertexId prev = tv[k[0]];
+  TetId cur = t;
+  for (;;) {
+    const auto& cv = dt.vertices(cur);
+    int i = 0;
+    while (cv[i] != prev) ++i;
+    const TetId n = dt.neighbour(cur, i);
+    const VertexId next = dt.vertices(n)[dt.mirror_index(cur, i)];
+    if (next == out.front()) return;
+    prev = out.back();
+    out.push_back(next);
+    cur = n;
+  }
+}
+
 int face_apexes(const Delaunay3& dt, VertexId a, VertexId b, VertexId c, std::array<VertexId, 2>& apex) {
   // The star of a, walked only until a tetrahedron with the face turns up: the other one is its
   // neighbour across that face.

@@ -16,6 +16,12 @@ void vertex_star(const Delaunay3& dt, VertexId v, std::vector<TetId>& out);
 
 // The tetrahedra (ghosts included) with edge ab; false when ab is not an edge.
 bool edge_tets(const Delaunay3& dt, VertexId a, VertexId b, std::vector<TetId>& out);
+// The first of those (the same as edge_tets' first), by a's star walked only until one turns up;
+// kNoId when ab is not an edge.
+TetId edge_tet(const Delaunay3& dt, VertexId a, VertexId b);
+// The vertices of the tetrahedra around edge ab other than a and b (kInfinite included), each
+// once, in their order around the edge starting from tetrahedron t (which has edge ab).
+void edge_ring(const Delaunay3& dt, TetId t, VertexId a, VertexId b, std::vector<VertexId>& out);
 
 // The vertices opposite face abc in the (at most two) tetrahedra that have it (kInfinite for a
 // ghost); returns how many there are (0: abc is not a face).

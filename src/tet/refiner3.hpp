@@ -163,6 +163,7 @@ class Refiner3 {
   std::vector<std::uint32_t> tmark_;  // per tetrahedron slot: == tstamp_ when in the cavity at hand
   std::uint32_t tstamp_ = 0;
   std::vector<VertexId> around_;  // the vertices of the tetrahedra an insertion made
+  std::vector<VertexId> ring_;    // scratch: the vertices around a subsegment
   std::vector<std::uint32_t> vmark_;
   std::uint32_t vstamp_ = 0;
   std::size_t stalls_ = 0;     // splits of the current conform() episode that made no vertex

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "base/debug.hpp"
 #include "base/memory.hpp"
+#include "base/step_laps.hpp"
 #include "predicates/predicates3d.hpp"
 #include "tet/dt_queries.hpp"
 #include "tet/refiner3.hpp"
@@ -310,16 +312,23 @@ bool Refiner3::near_small_angle(std::size_t segs_from, std::size_t facets_from) 
 }
 
 void Refiner3::refine() {
+  StepLaps lap(debug::Aid::kStages, "stage tet:");
+  char what[64];
   bad_ = std::make_unique<BadTetQueue>(bound_);
   // A few passes: the regions are flooded again after each, in case a boundary split passed a
   // region on across a subfacet that was missing for a moment.
   constexpr int kPasses = 4;
   for (int pass = 0; pass < kPasses && !stats_.capped; ++pass) {
+    const std::size_t before = dt_.num_vertices();
     enqueue_all();
     conform();
+    std::snprintf(what, sizeof what, "pass %d sweep (%zu vertices)", pass, dt_.num_vertices() - before);
+    lap(what);
     flood_regions();
     regions_live_ = true;
     dt_.for_each_finite_tet([&](TetId t) { offer(t); });
+    std::snprintf(what, sizeof what, "pass %d flood and offer (%zu bad)", pass, bad_->size());
+    lap(what);
     if (bad_->size() == 0) break;
     BadTet b;
     std::size_t purge_at = dt_.tet_slots() * 3 / 2;
@@ -332,13 +341,23 @@ void Refiner3::refine() {
       release_free_memory();
       purge_at = dt_.tet_slots() * 3 / 2;
     }
+    std::snprintf(what, sizeof what, "pass %d rule 3 (%zu vertices)", pass, dt_.num_vertices() - before);
+    lap(what);
+    // A pass that made no vertex leaves the mesh and the flood's labels as it found them, so the
+    // next would only repeat it (the same tetrahedra offered, the same circumcentres rejected).
+    if (dt_.num_vertices() == before) break;
   }
   if (options_.remove_slivers && options_.sliver_angle_deg > 0 && !stats_.capped) remove_slivers();
+  lap("slivers");
   bad_.reset();  // what it holds is stale or left for the shortfalls: its memory goes first
+  const std::size_t before = dt_.num_vertices();
   enqueue_all();
   conform();
+  std::snprintf(what, sizeof what, "closing sweep (%zu vertices)", dt_.num_vertices() - before);
+  lap(what);
   flood_regions();
   list_shortfalls();
+  lap("closing flood and shortfalls");
 }
 
 void Refiner3::list_shortfalls() {

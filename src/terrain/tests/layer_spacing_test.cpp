@@ -53,6 +53,26 @@ TEST(LayerSpacing, PinchedOutTrianglesBoundNothing) {
   EXPECT_EQ(r.cells_below_hmin, 0u);
 }
 
+TEST(LayerSpacing, LayersThickerThanEverySpacingCellChangeNothing) {
+  const Tin tin = lattice_tin();
+  // One layer 6 thick over a spacing that varies below 5 (and one cell at exactly 6): the bound
+  // never goes under a cell, so the grid comes back bit for bit, limiter or not.
+  const std::vector<Surface> stack{plane(tin, "top", 0), plane(tin, "base", -6)};
+  sizing::Grid3 g = constant_grid(-6, 0, 1.0);
+  for (std::size_t c = 0; c < g.v.size(); ++c) g.v[c] = 1.0 + 4.0 * static_cast<double>(c % 7) / 7.0;
+  g.v[g.v.size() / 2] = 6.0;
+  const std::vector<double> before = g.v;
+  const LayerSpacingResult r = bound_by_layer_thickness(g, tin, stack, {.factor = 1.0, .grade = 0.5, .hmin = 1.0});
+  EXPECT_EQ(g.v, before);
+  EXPECT_DOUBLE_EQ(r.smallest, 1.0);
+  EXPECT_EQ(r.cells_below_hmin, 0u);
+  EXPECT_TRUE(r.places.empty());
+  // A spacing cell above the layer's thickness is lowered to it.
+  g.v[g.v.size() / 2] = 7.0;
+  bound_by_layer_thickness(g, tin, stack, {.factor = 1.0, .grade = 0.5, .hmin = 1.0});
+  EXPECT_DOUBLE_EQ(g.v[g.v.size() / 2], 6.0);
+}
+
 TEST(LayerSpacing, BadOptionsAreUsageErrors) {
   const Tin tin = lattice_tin();
   const std::vector<Surface> stack{plane(tin, "top", 0), plane(tin, "base", -8)};

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 #include "sizing/spacing3d.hpp"
 #include "tet/dt_queries.hpp"
@@ -176,6 +177,50 @@ TEST(TetRefineSteps, DtQueriesStarEdgeFaceConflict) {
   std::vector<TetId> cav;
   conflict_region(dt, {0.5, 0.5, 0.5}, h, cav);
   EXPECT_GE(cav.size(), 2u);
+}
+
+TEST(TetRefineSteps, EdgeRingHasTheVerticesAroundTheEdgeOnce) {
+  // Random points: every edge of every tetrahedron (hull edges too, whose rings hold the infinite
+  // vertex) against edge_tets' answer.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> pts(200);
+  for (Point3& p : pts) p = {u(rng), u(rng), u(rng)};
+  Delaunay3 dt;
+  dt.insert_all(pts);
+  std::vector<TetId> ts;
+  std::vector<VertexId> ring;
+  std::size_t edges = 0;
+  for (TetId t = 0; t < dt.tet_slots(); ++t) {
+    if (!dt.alive(t)) continue;
+    const auto& v = dt.vertices(t);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const VertexId a = v[i], b = v[j];
+        if (a == kInfinite || b == kInfinite) continue;
+        ASSERT_TRUE(edge_tets(dt, a, b, ts));
+        EXPECT_EQ(edge_tet(dt, a, b), ts[0]);
+        edge_ring(dt, t, a, b, ring);
+        std::multiset<VertexId> want;
+        for (TetId e : ts)
+          for (VertexId w : dt.vertices(e))
+            if (w != a && w != b) want.insert(w);
+        // Each vertex around the edge is in two of its tetrahedra and once in the ring.
+        EXPECT_EQ(ring.size(), ts.size());
+        for (VertexId w : ring) EXPECT_EQ(want.count(w), 2u);
+        EXPECT_EQ(std::set<VertexId>(ring.begin(), ring.end()).size(), ring.size());
+        ++edges;
+      }
+  }
+  EXPECT_GT(edges, 1000u);
+  // A pair that is no edge has no tetrahedron.
+  std::size_t apart = 0;
+  for (VertexId b = 1; b < dt.num_vertices() && apart == 0; ++b)
+    if (!edge_tets(dt, 0, b, ts)) {
+      EXPECT_EQ(edge_tet(dt, 0, b), kNoId);
+      ++apart;
+    }
+  EXPECT_EQ(apart, 1u);
 }
 
 TEST(TetRefine, ConformingCubeWithoutRefinement) {
