@@ -61,6 +61,15 @@ bool beyond(Point2 p, double r, const Box2& b) {
 bool apart(const Box2& a, const Box2& b, double r) {
   return a.lo.x > b.hi.x + r || b.lo.x > a.hi.x + r || a.lo.y > b.hi.y + r || b.lo.y > a.hi.y + r;
 }
+bool inside_ring(Point2 p, const std::vector<Point2>& ring) {
+  bool in = false;
+  for (std::size_t i = 0, n = ring.size(), j = n - 1; i < n; j = i++) {
+    const Point2 a = ring[i], b = ring[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
+  }
+  return in;
+}
+
 bool inside_convex(Point2 p, const std::vector<Point2>& h) {  // closed
   for (std::size_t i = 0; i < h.size(); ++i)
     if (predicates::orient2d(h[i], h[(i + 1) % h.size()], p) < 0) return false;

@@ -25,6 +25,8 @@ Box2 box_of(const std::vector<Point2>& pts);
 bool beyond(Point2 p, double r, const Box2& b);
 // Boxes a and b farther apart than r along x or y.
 bool apart(const Box2& a, const Box2& b, double r);
+// p inside the ring (even-odd; a ray through a vertex counts once: the half-open rule on y).
+bool inside_ring(Point2 p, const std::vector<Point2>& ring);
 // p in the closed convex polygon h (counter-clockwise).
 bool inside_convex(Point2 p, const std::vector<Point2>& h);
 // Distance from segment ab to the convex polygon h (0 when they meet).

@@ -17,11 +17,7 @@ namespace {
 // p inside the polygon of `rings` (even-odd over all its rings).
 bool holds(const Rings& rings, Point2 p) {
   bool in = false;
-  for (const auto& r : rings)
-    for (std::size_t i = 0, n = r.size(), j = n - 1; i < n; j = i++) {
-      const Point2 a = r[i], b = r[j];
-      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
-    }
+  for (const auto& r : rings) in ^= inside_ring(p, r);
   return in;
 }
 

@@ -110,15 +110,6 @@ coast::Options scaled(const coast::Options& g, double s) {
   return o;
 }
 
-bool inside(Point2 p, const std::vector<Point2>& ring) {
-  bool in = false;
-  for (std::size_t i = 0, n = ring.size(), j = n - 1; i < n; j = i++) {
-    const Point2 a = ring[i], b = ring[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
-  }
-  return in;
-}
-
 // The exterior rings of the land pieces (their holes, water enclosed by land, filled), pieces
 // inside such a hole dropped.
 std::vector<std::vector<Point2>> filled_land(std::vector<std::unique_ptr<OGRPolygon>> pieces) {
@@ -224,7 +215,7 @@ BatchOut generalise_batch(const Batch& b, LonLat pole, const coast::Options& gro
   const bool pole_here = std::isfinite(pole_at.x) && std::isfinite(pole_at.y);
   std::vector<std::vector<Point2>> land_out(out.res.polygons[main].begin() + 1, out.res.polygons[main].end());
   for (const auto& r : land_out) {
-    out.holds_pole.push_back(pole_here && inside(pole_at, r) ? 1 : 0);
+    out.holds_pole.push_back(pole_here && coast::inside_ring(pole_at, r) ? 1 : 0);
     std::vector<LonLat> ll;
     for (const Point2& p : densified(r, step_m)) ll.push_back(local.inverse(p));
     out.rings.push_back(std::move(ll));

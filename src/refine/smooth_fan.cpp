@@ -16,13 +16,6 @@ namespace {
 using mesh::next_he;
 using mesh::prev_he;
 
-// The angle at a of triangle (a, b, c), in degrees.
-double angle_at(Point2 a, Point2 b, Point2 c) {
-  const Point2 u = b - a, w = c - a;
-  const double cs = dot(u, w) / std::sqrt(norm2(u) * norm2(w));
-  return std::acos(std::clamp(cs, -1.0, 1.0)) / geom::kRadPerDeg;
-}
-
 // Inserts a free vertex at p (located from triangle start) if the rules of smooth_fan.hpp allow.
 bool try_insert(mesh::Triangulation& tri, const sizing::SizingField& f, const FanOptions& o, double floor_key,
                 cdt::Inserter& ins, TriangleId start, Point2 p) {
@@ -86,7 +79,7 @@ Fan fan_of(const mesh::Triangulation& tri, Index y) {
   for (std::size_t guard = 0; guard < 1024; ++guard) {
     const Index a = tri.dst(h), b = tri.apex(h);
     if (tri.kind(a) == mesh::VertexKind::kSuper || tri.kind(b) == mesh::VertexKind::kSuper) return {};
-    const double ang = angle_at(tri.point(y), tri.point(a), tri.point(b));
+    const double ang = geom::angle_deg(tri.point(y), tri.point(a), tri.point(b));
     ++fan.triangles;
     fan.angle_deg += ang;
     if (ang > widest) {
