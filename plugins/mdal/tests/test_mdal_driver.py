@@ -150,3 +150,37 @@ def test_broken_files_are_invalid_layers(qgs, chesapeake):
         del layer
     # The process is still alive and opens a good file after the broken ones.
     assert load(chesapeake["dir"] / "m.14")["vertices"] == chesapeake["report"]["vertices"]
+
+
+def test_plugin_finds_the_loaded_driver(qgs):
+    sys.path.insert(0, os.path.join(REPO, "plugins", "qgis"))
+    from fdrmesh.mdal_driver import driver_dir, driver_loaded, setup_hint
+    assert driver_loaded() and setup_hint(FDRMESH) is None
+    # From the executable: build/bin/fdrmesh -> build/lib/fdrmesh/mdal, as <prefix>/bin and <libdir>/fdrmesh/mdal installed.
+    assert os.path.realpath(driver_dir(FDRMESH)) == os.path.realpath(DRIVER_DIR)
+
+
+PLUGIN_LATE = r"""
+import os, sys
+sys.path[:0] = [sys.argv[1], sys.argv[2]]
+from pyqgis_app import pyqgis_app
+with pyqgis_app(sys.argv[3]):
+    os.environ["MDAL_DRIVER_PATH"] = sys.argv[4]  # as a plugin would: after QGIS has started
+    from fdrmesh.mdal_driver import driver_loaded, setup_hint
+    print("loaded=%s" % driver_loaded())
+    print(setup_hint(sys.argv[5]))
+"""
+
+
+def test_plugin_is_too_late_to_set_the_path(tmp_path):
+    """MDAL reads MDAL_DRIVER_PATH when QGIS starts: set later, the driver is not loaded, and the
+    plugin's hint names the folder and the one-time QGIS setting."""
+    env = dict(os.environ)
+    env.pop("MDAL_DRIVER_PATH", None)
+    r = subprocess.run([sys.executable, "-c", PLUGIN_LATE, os.path.join(REPO, "tools", "qgis"),
+                        os.path.join(REPO, "plugins", "qgis"), str(tmp_path), DRIVER_DIR, FDRMESH],
+                       capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "loaded=False" in r.stdout
+    assert "MDAL_DRIVER_PATH=" + os.path.realpath(DRIVER_DIR) in r.stdout or "MDAL_DRIVER_PATH=" + DRIVER_DIR in r.stdout
+    assert "Options > System > Environment" in r.stdout
