@@ -5,7 +5,6 @@
 #include <climits>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <string_view>
 #include <unordered_map>
 
@@ -219,10 +218,13 @@ void read_boundaries(Lines& in, const NodeIds& ids) {
 }
 
 std::string read_text(const std::string& path, std::string& text) {
-  std::ifstream f(path, std::ios::binary);
+  std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) return "cannot open";
-  text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-  if (f.bad()) return "read error";
+  const std::streamoff size = f.tellg();
+  if (size < 0) return "cannot tell its size";
+  text.resize(static_cast<std::size_t>(size));
+  f.seekg(0);
+  if (!f.read(text.data(), size)) return "read error";
   return {};
 }
 
