@@ -182,20 +182,21 @@ void read_elements(Lines& in, int ne, const NodeIds& ids, Grid& g) {
   }
 }
 
-// One list of boundaries: the count line, the total line, then per boundary its node count
-// (first value) and one node id per line (first value). Returns the sum of the node counts.
-long long read_boundary_list(Lines& in, const NodeIds& ids, const char* kind, bool& barriers) {
+// One list of boundaries, its count line being the current line: the total line, then per
+// boundary its node count (first value) and one node per line (the node id first). The total must
+// equal the sum of the counts, except with weirs or barriers (IBTYPE x4, x5), whose pairs ADCIRC
+// counts its own way.
+void read_boundary_list(Lines& in, const NodeIds& ids, const char* kind) {
   const int n = count_of(in, in.integer(0), kind);
   in.require("the total number of boundary nodes");
   const long long total = in.integer(0);
   long long sum = 0;
+  bool barriers = false;
   for (int b = 0; b < n; ++b) {
     in.require("a boundary's node count");
     const long long k = count_of(in, in.integer(0), "boundary node count");
-    if (in.size() > 1) {
-      long long type = 0;
-      if (Lines::parse_integer(in.tok(1), type) && (type % 10 == 4 || type % 10 == 5)) barriers = true;
-    }
+    long long type = 0;
+    if (in.size() > 1 && Lines::parse_integer(in.tok(1), type) && (type % 10 == 4 || type % 10 == 5)) barriers = true;
     sum += k;
     for (long long j = 0; j < k; ++j) {
       in.require("a boundary node id");
@@ -205,16 +206,12 @@ long long read_boundary_list(Lines& in, const NodeIds& ids, const char* kind, bo
   if (!barriers && sum != total)
     in.fail(std::string("the ") + kind + " hold " + std::to_string(sum) + " nodes, the file's total says " +
             std::to_string(total));
-  return sum;
 }
 
 void read_boundaries(Lines& in, const NodeIds& ids) {
   if (!in.next_data()) return;  // a grid without boundaries (any gr3 but hgrid)
-  bool barriers = false;
-  read_boundary_list(in, ids, "open boundaries", barriers);
-  if (!in.next_data()) return;
-  barriers = false;
-  read_boundary_list(in, ids, "land boundaries", barriers);
+  read_boundary_list(in, ids, "open boundaries");
+  if (in.next_data()) read_boundary_list(in, ids, "land boundaries");
 }
 
 std::string read_text(const std::string& path, std::string& text) {

@@ -124,6 +124,19 @@ def test_global_through_mdal(qgs, global_run, name):
     assert -180 <= x0 < -170 and 170 < x1 <= 180 and -90 <= y0 and y1 <= 90
 
 
+def test_quads_through_mdal(qgs, tmp_path):
+    """A SCHISM grid mixing triangles and quads keeps both as written."""
+    path = tmp_path / "mixed.gr3"
+    path.write_text("mixed\n2 5\n1 0 0 1\n2 10 0 2\n3 10 10 3\n4 0 10 4\n5 20 5 0\n"
+                    "1 4 1 2 3 4\n2 3 2 5 3\n")
+    m = load(path)
+    assert m["vertices"] == 5 and m["faces"] == 2
+    assert m["faces_list"] == [[0, 1, 2, 3], [1, 4, 2]]
+    assert [z for _, _, z in m["xyz"]] == [-1, -2, -3, -4, 0]
+    assert m["groups"]["depth"] == [1, 2, 3, 4, 0]
+    assert m["crs"] == "EPSG:4326"  # every node within lon/lat bounds
+
+
 def broken_copies(src, d):
     """The same grid cut in its node list, with one node too many in NP, and with one element
     too few in NE (the last element is then read as the boundary section)."""
