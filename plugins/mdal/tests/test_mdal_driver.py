@@ -40,6 +40,9 @@ def qgs(tmp_path_factory):
         from qgis.core import QgsProviderRegistry
         names = [d.name() for d in QgsProviderRegistry.instance().providerMetadata("mdal").meshDriversMetadata()]
         assert "FDRMESH_ADCIRC" in names
+        # The Add Mesh Layer dialog offers the driver's extensions.
+        filters = QgsProviderRegistry.instance().fileMeshFilters()
+        assert all(ext in filters for ext in ("*.14", "*.grd", "*.gr3", "*.ll")), filters
         yield app
 
 
