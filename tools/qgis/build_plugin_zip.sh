@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Builds fdrmesh-qgis-<version>.zip (folder fdrmesh/ at the zip root, as the QGIS plugin manager expects).
-# Usage: tools/qgis/build_plugin_zip.sh OUTPUT_DIR     -> prints the path of the zip
+# Usage: tools/qgis/build_plugin_zip.sh OUTPUT_DIR [MDAL_DRIVER]   -> prints the path of the zip
+# MDAL_DRIVER (build/lib/fdrmesh/mdal/libmdal_fdrmesh.so) goes to fdrmesh/mdal/, where the plugin
+# looks for it first (plugins/qgis/fdrmesh/mdal_driver.py).
 set -euo pipefail
-if [ $# -ne 1 ]; then
-  echo "usage: $0 OUTPUT_DIR" >&2
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+  echo "usage: $0 OUTPUT_DIR [MDAL_DRIVER]" >&2
   exit 2
 fi
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -19,6 +21,10 @@ mkdir "$stage/fdrmesh"
 for f in "$src"/*.py "$src"/metadata.txt "$src"/*.md "$src"/*.png "$src"/*.svg; do
   [ -e "$f" ] && cp "$f" "$stage/fdrmesh/"
 done
+if [ $# -eq 2 ]; then
+  mkdir "$stage/fdrmesh/mdal"
+  cp "$2" "$stage/fdrmesh/mdal/libmdal_fdrmesh.so"
+fi
 [ -f "$root/plugins/qgis/README.md" ] && cp "$root/plugins/qgis/README.md" "$stage/fdrmesh/README.md"
 rm -f "$out"
 # Python's zipfile keeps this independent of the zip package being installed.

@@ -1,6 +1,8 @@
 # The QGIS plugin object: adds the fdrmesh Processing provider (also under qgis_process, where there is no GUI).
-from qgis.core import QgsApplication
+from qgis.core import Qgis, QgsApplication, QgsMessageLog
 
+from .fdrmesh_algorithm import LOG_TAG, find_executable
+from .mdal_driver import setup_hint
 from .provider import FdrmeshProvider
 
 
@@ -13,6 +15,9 @@ class FdrmeshPlugin:
         if self.provider is None:
             self.provider = FdrmeshProvider()
             QgsApplication.processingRegistry().addProvider(self.provider)
+            hint = setup_hint(find_executable()[0])
+            if hint:
+                QgsMessageLog.logMessage(hint, LOG_TAG, Qgis.Info)
 
     def initGui(self):  # noqa: N802 (QGIS API)
         self.initProcessing()
