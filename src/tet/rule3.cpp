@@ -172,6 +172,10 @@ bool Refiner3::tet_bad(TetId t, BadTet* out) const {
   if (!(ratio <= bound_)) return true;
   // The paper's theorem gives radius-edge <= 2 only under conditions on B and f's Lipschitz
   // constant that a user's B need not meet; asking for it directly keeps the output's shape bound.
+  // Such a split stays within the termination argument of Theorem 4.2: with the protection spheres
+  // apart, the shortest edge pq has |pq| >= beta (f(p) + f(q)), so R > 2 |pq| gives
+  // R > 4 beta f(p) / (1 + alpha beta), which is what Lemma 4.1 asks of the circumcentre's
+  // distance to every vertex whenever alpha beta <= 1/7 (always so with alpha B < 1).
   constexpr double kRadiusEdge = 2.0;
   if (s.radius > kRadiusEdge * shortest_edge(a, b, c, d)) return true;
   const std::int32_t r = region(t);
