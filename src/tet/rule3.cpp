@@ -301,9 +301,9 @@ bool Refiner3::near_acute_partner(std::uint32_t f, Point3 c, double r) const {
   // The cascade between two facets at a small angle runs where a piece of one has the other
   // within its ball: its split point then encroaches the other's pieces, and theirs it, ever
   // closer to the angle. A ball that stays off the other facet's plane holds none of that facet's
-  // vertices, so its piece is as far from the angle as from any facet, and the termination
-  // argument of the paper's Theorem 4.2 holds there. A policy choice only (doubles suffice):
-  // which rejected splits to go ahead with.
+  // vertices: the two facets do not feed each other's splits there, and the termination argument
+  // of the paper's Theorem 4.2 holds as it does away from any small angle. A policy choice only
+  // (doubles suffice): which rejected splits to go ahead with.
   for (std::size_t k = 0; k < acute_.size(); ++k) {
     const auto& [g, h] = acute_[k];
     if (g != f && h != f) continue;
