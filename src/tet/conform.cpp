@@ -163,6 +163,17 @@ void Refiner3::find_acute_facet_pairs() {
   acute_.insert(acute_.end(), wedges.begin(), wedges.end());
   std::sort(acute_.begin(), acute_.end());
   acute_.erase(std::unique(acute_.begin(), acute_.end()), acute_.end());
+  auto plane = [&](std::uint32_t f) {
+    const plc::FacetFrame& fr = ft_.frames[f];
+    const Point3 p0 = plc_.points[fr.p0];
+    const Point3 n = cross(plc_.points[fr.p1] - p0, plc_.points[fr.p2] - p0);
+    return FacetPlane{p0, (1.0 / std::sqrt(norm2(n))) * n};
+  };
+  acute_planes_.clear();
+  for (const auto& [f, g] : acute_) {
+    acute_planes_.push_back(plane(f));
+    acute_planes_.push_back(plane(g));
+  }
 }
 
 bool Refiner3::acute_pair(std::uint32_t f, std::uint32_t g) const {

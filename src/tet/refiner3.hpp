@@ -123,8 +123,12 @@ class Refiner3 {
   void assign_regions(const std::vector<TetId>& created);
   void flood(TetId start, std::int32_t code, std::vector<std::uint32_t>& mark, std::uint32_t stamp);
   void offer(TetId t);
-  // Whether the queue entries from these positions on touch a facet of an acute pair.
+  // Whether the queue entries from these positions on lie near a small angle: a piece of a facet
+  // of an acute pair whose diametral or equatorial ball reaches the other facet's plane.
   bool near_small_angle(std::size_t segs_from, std::size_t facets_from) const;
+  // Whether the ball (centre c, radius r) on facet f reaches the plane of a facet paired with f in
+  // acute_.
+  bool near_acute_partner(std::uint32_t f, Point3 c, double r) const;
   bool face_is_subfacet(TetId t, int i) const;
   // The sliver phase's steps (slivers.cpp).
   double tet_dihedral_cos(TetId t) const;
@@ -147,6 +151,10 @@ class Refiner3 {
   // one does not encroach the other's subfacets (missing ones are still split), which stops the
   // cascade of splits between two facets at a small angle.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> acute_;
+  struct FacetPlane {
+    Point3 p, n;  // a point of the facet and the plane's unit normal
+  };
+  std::vector<FacetPlane> acute_planes_;  // per acute_ entry: its first facet's plane, then its second's
   bool acute_pair(std::uint32_t f, std::uint32_t g) const;
   void find_acute_facet_pairs();
   std::unique_ptr<Boundary> bd_;

@@ -172,6 +172,10 @@ bool Refiner3::tet_bad(TetId t, BadTet* out) const {
   if (!(ratio <= bound_)) return true;
   // The paper's theorem gives radius-edge <= 2 only under conditions on B and f's Lipschitz
   // constant that a user's B need not meet; asking for it directly keeps the output's shape bound.
+  // Such a split stays within the termination argument of Theorem 4.2: with the protection spheres
+  // apart, the shortest edge pq has |pq| >= beta (f(p) + f(q)), so R > 2 |pq| gives
+  // R > 4 beta f(p) / (1 + alpha beta), which is what Lemma 4.1 asks of the circumcentre's
+  // distance to every vertex whenever alpha beta <= 1/7 (always so with alpha B < 1).
   constexpr double kRadiusEdge = 2.0;
   if (s.radius > kRadiusEdge * shortest_edge(a, b, c, d)) return true;
   const std::int32_t r = region(t);
@@ -293,20 +297,36 @@ void Refiner3::reject_for_boundary(const BadTet& b, std::size_t segs_before, std
   if (dt_.num_vertices() > before) offer(b.tet);
 }
 
+bool Refiner3::near_acute_partner(std::uint32_t f, Point3 c, double r) const {
+  // The cascade between two facets at a small angle runs where a piece of one has the other
+  // within its ball: its split point then encroaches the other's pieces, and theirs it, ever
+  // closer to the angle. A ball that stays off the other facet's plane holds none of that facet's
+  // vertices: the two facets do not feed each other's splits there, and the termination argument
+  // of the paper's Theorem 4.2 holds as it does away from any small angle. A policy choice only
+  // (doubles suffice): which rejected splits to go ahead with.
+  for (std::size_t k = 0; k < acute_.size(); ++k) {
+    const auto& [g, h] = acute_[k];
+    if (g != f && h != f) continue;
+    const FacetPlane& other = acute_planes_[2 * k + (g == f ? 1 : 0)];
+    if (!(std::fabs(dot(c - other.p, other.n)) > r)) return true;  // NaN counts as near
+  }
+  return false;
+}
+
 bool Refiner3::near_small_angle(std::size_t segs_from, std::size_t facets_from) const {
   if (acute_.empty()) return false;
-  auto acute_facet = [&](std::uint32_t f) {
-    for (const auto& [g, h] : acute_)
-      if (g == f || h == f) return true;
-    return false;
-  };
-  for (std::size_t i = facets_from; i < facet_queue_.size(); ++i)
-    if (acute_facet(bd_->tri(facet_queue_[i].tri).facet)) return true;
+  for (std::size_t i = facets_from; i < facet_queue_.size(); ++i) {
+    const SubfacetTri& s = bd_->tri(facet_queue_[i].tri);
+    const Point3 a = dt_.point(s.v[0]);
+    const Point3 c = triangle_circumcentre(a, dt_.point(s.v[1]), dt_.point(s.v[2]));
+    if (near_acute_partner(s.facet, c, dist(c, a))) return true;
+  }
   for (std::size_t i = segs_from; i < seg_queue_.size(); ++i) {
     const std::uint32_t o = bd_->segment_origin(seg_queue_[i].a, seg_queue_[i].b);
     if (o == UINT32_MAX) continue;
+    const Point3 a = dt_.point(seg_queue_[i].a), b = dt_.point(seg_queue_[i].b);
     for (std::uint32_t f : bd_->origin(o).facets)
-      if (acute_facet(f)) return true;
+      if (near_acute_partner(f, 0.5 * (a + b), 0.5 * dist(a, b))) return true;
   }
   return false;
 }

@@ -169,3 +169,23 @@ def test_same_vtu_bytes_for_one_and_two_threads(tmp_path):
         rep = json.loads((tmp_path / f"t{n}.json").read_text())
         assert rep["counts"]["tetrahedra"] > 20000 and rep["slivers"]["before"] > 0
     assert written["1"] == written["2"]
+
+
+def test_tip_prism_radius_edge_and_same_bytes_for_one_and_two_threads(tmp_path):
+    # Side walls meeting at a 57 degree tip: rule 3 leaves tetrahedra bad by shape only near the
+    # tip, so with a spacing graded by depth every tetrahedron keeps radius-edge <= 2, on one
+    # thread or two, in the same bytes.
+    written = {}
+    for n in ("1", "2"):
+        env = dict(os.environ, FDR_THREADS=n)
+        p = subprocess.run([FDRMESH, "mesh", str(DATA / "tip_prism.poly"), "--spacing", "150+0.5*(295-z)",
+                            "-o", f"t{n}.vtu", "--report", f"t{n}.json", "-q"], cwd=tmp_path, env=env,
+                           capture_output=True, text=True, timeout=120)
+        assert p.returncode == 0, p.stderr
+        written[n] = (tmp_path / f"t{n}.vtu").read_bytes()
+        rep = json.loads((tmp_path / f"t{n}.json").read_text())
+        assert rep["max_radius_edge"] <= 2 and not rep["refinement"]["shortfalls"]
+    assert written["1"] == written["2"]
+    rc, v = verify(tmp_path / "t1.vtu", "--plc", DATA / "tip_prism.poly", "--spacing", "150+0.5*(295-z)",
+                   "--bound", "1", "--max-radius-edge", "2", want_json=True)
+    assert rc == 0 and v["radius_edge_max"] <= 2

@@ -1,7 +1,7 @@
 """The whole of Luxembourg (testdata/luxembourg, every canton) with a base at -500 m and two synthetic
 horizons (testdata/terrain), the terrain issue's target case: the run finishes and what it writes holds
-R/f <= B, the layer volumes and, with the pinch-outs ended at walls, no dihedral angle under 5
-degrees. Long (about a minute)."""
+R/f <= B, radius-edge <= 2 with no shortfall listed, the layer volumes and, with the pinch-outs
+ended at walls, no dihedral angle under 5 degrees. Long (about a minute)."""
 import json
 import os
 import subprocess
@@ -39,6 +39,8 @@ def test_whole_country_with_two_horizons(tmp_path):
     assert (vol > 0).all()
     rf = np.concatenate(m.cell_data["r_over_f"])
     assert rf.max() <= report["bound_B"] + 1e-9
+    assert report["max_radius_edge"] <= 2 and not report["refinement"]["shortfalls"]
+    assert np.concatenate(m.cell_data["radius_edge"]).max() <= 2 * (1 + 1e-9)
     layers = report["layers"]
     assert [l["name"] for l in layers] == ["top-lux_h1", "lux_h1-lux_h2", "lux_h2-base"]
     for l in layers:
