@@ -114,10 +114,11 @@ std::vector<Rings> close_in_polygon(const Rings& rings, std::vector<Bridge>& bri
     if (pass == 2) break;
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       if (k == largest || !(pieces[k]->get_Area() >= o.gap_body_area)) continue;
+      const Prepared piece(pieces[k].get());  // tested against every bridge
       for (Bridge& b : bridges) {
         if (b.widen) continue;
         const OGRPolygon hp = to_ogr({b.hull});
-        if (pieces[k]->Intersects(&hp)) b.widen = changed = true;
+        if (piece.intersects(&hp)) b.widen = changed = true;
       }
     }
     if (!changed) break;

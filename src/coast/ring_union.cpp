@@ -33,8 +33,11 @@ void hole_remainder(const OGRLinearRing* h, const OwnedPolygons& pieces, const s
   OGRPolygon hp;
   hp.addRing(const_cast<OGRLinearRing*>(h));
   OGRMultiPolygon dm;
+  // Prepared once for all the pieces near it: a large hole (a continent) has many, and each plain
+  // test would build its graph anew.
+  const Prepared php(&hp);
   for (const std::size_t i : near)
-    if (hp.Intersects(pieces[i].get())) dm.addGeometry(pieces[i].get());
+    if (php.intersects(pieces[i].get())) dm.addGeometry(pieces[i].get());
   if (dm.IsEmpty()) {
     out.emplace_back(h->clone());
     return;
